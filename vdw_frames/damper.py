@@ -1,0 +1,237 @@
+"""The fractional-derivative Maxwell-Kelvin (FDMK) damper: parameters, frequency response, time stepping.
+
+The model is the paper's eqs. (3)-(5) (Xu, Li & Shen 2016): a fractional Kelvin branch
+
+    sigma1 = G1 eps + eta1 D^r eps                                   (3)
+
+in parallel (same strain, stresses add, eq. (5)) with a fractional Maxwell branch
+
+    sigma2 + (eta2 / G2) D^r sigma2 = eta2 D^r eps                   (4)
+
+Laplace-transforming (3)-(5) from rest gives the complex modulus (s = i omega)
+
+    G*(s) = G1 + eta1 s^r + G2 eta2 s^r / (G2 + eta2 s^r).
+
+With a = omega^r, c = cos(r pi/2), q = sin(r pi/2) and D = G2^2 + 2 G2 eta2 a c + eta2^2 a^2:
+
+    G'  = G1 + eta1 a c + G2 eta2 a (G2 c + eta2 a) / D
+    G'' = eta1 a q + G2^2 eta2 a q / D
+
+This is *not* the paper's printed (6b)-(11); see :mod:`vdw_frames.paper` for those and how they differ.
+
+Units: moduli MPa, viscosities MPa*s^r, area mm^2, thickness mm, displacement mm, force N,
+frequency Hz, stiffness N/mm, damping coefficient N*s/mm, time s.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import _kernel
+from ._validation import finite_array, non_negative, positive, positive_frequencies
+from .fractional import DEFAULT_METHOD, _check_order, get_method
+
+MEMORY_STRATEGIES = ("exact",)
+
+
+@dataclass(frozen=True)
+class FDMKDamper:
+    """An FDMK viscoelastic damper (paper eqs. (3)-(5)) of shear area ``area`` and layer thickness ``thickness``.
+
+    Parameters
+    ----------
+    G1, G2 : float
+        Elastic moduli of the Kelvin and Maxwell branches, MPa (>= 0).
+    eta1, eta2 : float
+        Viscosities of the Abel dashpots, MPa*s^r (>= 0).
+    r : float
+        Fractional order, 0 < r <= 1 (r = 1: classical Kelvin + Maxwell).
+    area : float
+        Total shear area of the viscoelastic layers, mm^2 (the paper's A = 1e6 mm^2).
+    thickness : float
+        Thickness of one viscoelastic layer, mm (the paper's h = 10 mm); strain = displacement / thickness.
+    """
+
+    G1: float
+    G2: float
+    eta1: float
+    eta2: float
+    r: float
+    area: float = 1.0e6
+    thickness: float = 10.0
+
+    def __post_init__(self):
+        for name in ("G1", "G2", "eta1", "eta2"):
+            object.__setattr__(self, name, non_negative(name, getattr(self, name)))
+        object.__setattr__(self, "r", _check_order(self.r))
+        object.__setattr__(self, "area", positive("area", self.area))
+        object.__setattr__(self, "thickness", positive("thickness", self.thickness))
+
+    # ------------------------------------------------------------------ frequency domain
+    @property
+    def stiffness_scale(self) -> float:
+        """area / thickness (mm): converts a modulus in MPa to a stiffness in N/mm."""
+        return self.area / self.thickness
+
+    def transfer(self, s):
+        """G*(s) = G1 + eta1 s^r + G2 eta2 s^r / (G2 + eta2 s^r) (MPa) for complex s (rad/s).
+
+        The Laplace transform of eqs. (3)-(5); principal branch of s^r.
+        """
+        s_r = np.asarray(s, dtype=complex) ** self.r
+        modulus = self.G1 + self.eta1 * s_r
+        if self.G2 > 0.0 and self.eta2 > 0.0:
+            modulus = modulus + self.G2 * self.eta2 * s_r / (self.G2 + self.eta2 * s_r)
+        return modulus
+
+    def complex_modulus(self, f):
+        """G*(i 2 pi f) = G' + i G'' in MPa for frequencies f in Hz (scalar or array)."""
+        f = positive_frequencies("f", f)
+        return self.transfer(2j * np.pi * f)
+
+    def storage_modulus(self, f):
+        """G' (MPa) at f (Hz)."""
+        return self.complex_modulus(f).real
+
+    def loss_modulus(self, f):
+        """G'' (MPa) at f (Hz)."""
+        return self.complex_modulus(f).imag
+
+    def loss_factor(self, f):
+        """G''/G' (dimensionless) at f (Hz)."""
+        modulus = self.complex_modulus(f)
+        return modulus.imag / modulus.real
+
+    def storage_stiffness(self, f):
+        """K' = G' area / thickness (N/mm) at f (Hz)."""
+        return self.storage_modulus(f) * self.stiffness_scale
+
+    def loss_stiffness(self, f):
+        """K'' = G'' area / thickness (N/mm) at f (Hz)."""
+        return self.loss_modulus(f) * self.stiffness_scale
+
+    def damping_coefficient(self, f):
+        """C_d = K'' / omega (N*s/mm) at f (Hz)."""
+        f = positive_frequencies("f", f)
+        return self.loss_stiffness(f) / (2.0 * np.pi * f)
+
+    # ------------------------------------------------------------------ time domain
+    def new_state(self, dt: float, method=DEFAULT_METHOD, memory: str = "exact") -> "DamperState":
+        """A fresh (at-rest) time-stepping state with step ``dt`` (s); see :class:`DamperState`."""
+        return DamperState(self, dt, method=method, memory=memory)
+
+    def force(self, displacement, dt: float, method=DEFAULT_METHOD, memory: str = "exact"):
+        """Force history (N) for a displacement history (mm) sampled every ``dt`` s, starting from rest.
+
+        ``displacement[n]`` is the displacement at t = n dt; the history before t = 0 is zero
+        (Riemann-Liouville derivatives from rest).  ``method`` selects the discretisation of D^r
+        (:mod:`vdw_frames.fractional`; default: trapezoidal convolution quadrature, second order).
+        """
+        displacement = finite_array("displacement", displacement)
+        dt = positive("dt", dt)
+        memory_arrays = Memory.allocate(self, dt, displacement.size, method, memory)
+        stress = _kernel.strain_driven(
+            displacement / self.thickness, self.G1, self.G2, self.eta1, self.eta2, *memory_arrays.arrays()
+        )
+        return stress * self.area
+
+
+@dataclass
+class Memory:
+    """The fractional memory of one damper (the arrays :mod:`vdw_frames._kernel` steps)."""
+
+    weights: np.ndarray
+    past: np.ndarray
+    mode_weight: np.ndarray
+    mode_ratio: np.ndarray
+    mode_state: np.ndarray
+    exact: bool = True
+
+    @classmethod
+    def allocate(cls, damper: FDMKDamper, dt: float, steps: int, method=DEFAULT_METHOD, memory="exact"):
+        """Memory for ``steps`` steps of size ``dt`` (s)."""
+        if memory not in MEMORY_STRATEGIES:
+            raise ValueError(f"memory must be one of {MEMORY_STRATEGIES}, got {memory!r}")
+        window = max(int(steps), 1)
+        weights = get_method(method).weights(damper.r, window + 1, dt)
+        empty = np.zeros(0)
+        return cls(weights, np.zeros((window, 2)), empty, empty, np.zeros((0, 2)))
+
+    def arrays(self):
+        """(weights, past, mode_weight, mode_ratio, mode_state) in the order the kernel takes them."""
+        return self.weights, self.past, self.mode_weight, self.mode_ratio, self.mode_state
+
+
+@dataclass
+class DamperState:
+    """Time-stepping state of one damper, with OpenSees ``UniaxialMaterial``-like trial/commit semantics.
+
+    ``force, tangent = state.trial(displacement)`` gives the force (N) at the next step for the given
+    displacement (mm) and its derivative d(force)/d(displacement) (N/mm) without changing the memory;
+    any number of trials may precede ``state.commit()``, which accepts the last trial and advances the
+    memory by one step of ``dt`` seconds.  Stepping trial/commit reproduces :meth:`FDMKDamper.force`.
+    """
+
+    damper: FDMKDamper
+    dt: float
+    method: object = DEFAULT_METHOD
+    memory: str = "exact"
+    steps: int = field(default=0, init=False)
+    _memory: Memory = field(init=False, repr=False)
+    _history: tuple | None = field(default=None, init=False, repr=False)
+    _trial: tuple | None = field(default=None, init=False, repr=False)
+    committed_displacement: float = field(default=0.0, init=False)
+    committed_force: float = field(default=0.0, init=False)
+
+    _INITIAL_CAPACITY = 1024
+
+    def __post_init__(self):
+        self.dt = positive("dt", self.dt)
+        self.method = get_method(self.method)
+        self._memory = Memory.allocate(self.damper, self.dt, self._INITIAL_CAPACITY, self.method, self.memory)
+
+    def trial(self, displacement: float):
+        """(force in N, tangent in N/mm) at the next step for ``displacement`` (mm); memory untouched."""
+        displacement = finite_array("displacement", [displacement])[0]
+        memory = self._memory
+        if self._history is None:
+            self._history = _kernel.memory_history(
+                memory.weights, memory.past, self.steps, memory.mode_weight, memory.mode_state
+            )
+        damper = self.damper
+        stress, maxwell, tangent = _kernel.fdmk_stress(
+            displacement / damper.thickness, *self._history,
+            damper.G1, damper.G2, damper.eta1, damper.eta2, memory.weights[0],
+        )
+        force = stress * damper.area
+        self._trial = (displacement, force, maxwell)
+        return force, tangent * damper.stiffness_scale
+
+    def commit(self) -> None:
+        """Accept the last trial and advance the memory one step."""
+        if self._trial is None:
+            raise ValueError("commit() needs a trial() first")
+        displacement, force, maxwell = self._trial
+        if self.memory == "exact" and self.steps == self._memory.past.shape[0]:
+            self._grow()
+        memory = self._memory
+        self.steps = _kernel.memory_push(
+            memory.past, self.steps, memory.mode_ratio, memory.mode_state,
+            displacement / self.damper.thickness, maxwell,
+        )
+        self.committed_displacement, self.committed_force = displacement, force
+        self._history = None
+        self._trial = None
+
+    def revert_to_last_commit(self) -> None:
+        """Discard the pending trial."""
+        self._trial = None
+
+    def _grow(self) -> None:
+        # Exact memory keeps every step: double the window (the ring buffer has not wrapped yet).
+        old = self._memory
+        bigger = Memory.allocate(self.damper, self.dt, 2 * old.past.shape[0], self.method, self.memory)
+        bigger.past[: old.past.shape[0]] = old.past
+        self._memory = bigger
