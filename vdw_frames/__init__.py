@@ -4,19 +4,31 @@ Units throughout: N, mm, s, tonne; moduli MPa (N/mm^2), viscosities MPa*s^r, sti
 energy N*mm, frequency Hz.
 """
 
+from .building import ShearBuilding
 from .damper import DamperState, FDMKDamper
 from .fractional import BDF2, Discretisation, GrunwaldLetnikov, Trapezoidal
+from .ground_motion import G, GroundMotion, read_at2, read_two_column, response_spectrum
 from .plotting import plot_loops
+from .simulation import EnergyHistory, SimulationResult, simulate
 from .sine import SineTestResult, sine_test
 
 __all__ = [
     "BDF2",
     "DamperState",
     "Discretisation",
+    "EnergyHistory",
     "FDMKDamper",
+    "G",
+    "GroundMotion",
     "GrunwaldLetnikov",
+    "ShearBuilding",
+    "SimulationResult",
     "SineTestResult",
     "Trapezoidal",
     "plot_loops",
+    "read_at2",
+    "read_two_column",
+    "response_spectrum",
+    "simulate",
     "sine_test",
 ]

@@ -52,6 +52,9 @@ class FDMKDamper:
         Total shear area of the viscoelastic layers, mm^2 (the paper's A = 1e6 mm^2).
     thickness : float
         Thickness of one viscoelastic layer, mm (the paper's h = 10 mm); strain = displacement / thickness.
+    strain_range : (float, float), optional
+        Shear-strain amplitudes (dimensionless: 3.0 is 300 %) the parameters were identified for;
+        :func:`vdw_frames.simulate` warns when a damper's peak strain leaves it.  Not part of the model.
     """
 
     G1: float
@@ -61,6 +64,7 @@ class FDMKDamper:
     r: float
     area: float = 1.0e6
     thickness: float = 10.0
+    strain_range: tuple | None = field(default=None, compare=False)
 
     def __post_init__(self):
         for name in ("G1", "G2", "eta1", "eta2"):
@@ -68,6 +72,14 @@ class FDMKDamper:
         object.__setattr__(self, "r", _check_order(self.r))
         object.__setattr__(self, "area", positive("area", self.area))
         object.__setattr__(self, "thickness", positive("thickness", self.thickness))
+        if self.strain_range is not None:
+            bounds = self.strain_range if isinstance(self.strain_range, (tuple, list)) else ()
+            if len(bounds) != 2:
+                raise ValueError(f"strain_range must be two numbers (low, high), got {self.strain_range!r}")
+            low, high = (non_negative("strain_range", value) for value in bounds)
+            if low > high:
+                raise ValueError(f"strain_range must have low <= high, got {self.strain_range!r}")
+            object.__setattr__(self, "strain_range", (low, high))
 
     # ------------------------------------------------------------------ frequency domain
     @property

@@ -1,0 +1,191 @@
+"""Shear building: lumped floor masses, story springs, Rayleigh damping, FDMK walls across stories."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from scipy.linalg import eigh
+
+from ._validation import finite_array, finite_scalar
+from .damper import FDMKDamper
+
+
+@dataclass(frozen=True, eq=False)
+class ShearBuilding:
+    """A shear building with optional FDMK dampers.
+
+    Parameters
+    ----------
+    masses : sequence of float
+        Floor masses, tonne, from the first floor up.
+    stiffnesses : sequence of float
+        Story stiffnesses, N/mm; story 1 connects the ground to floor 1, story k floor k-1 to floor k.
+    damping_ratio : float
+        Inherent (Rayleigh) damping ratio of the bare frame, in [0, 1).
+    damping_modes : (int, int)
+        The two modes (1-based) given ``damping_ratio`` by C = a0 M + a1 K_frame (dampers excluded);
+        the same mode twice splits the ratio equally between the mass and stiffness terms.
+    dampers : dict {story: FDMKDamper or list of FDMKDamper}
+        Walls across stories (1 ... n); several on one story act in parallel.  The damper displacement
+        is the interstory drift.
+    story_heights : sequence of float, optional
+        Story heights, mm, for drift ratios.
+    """
+
+    masses: tuple
+    stiffnesses: tuple
+    damping_ratio: float = 0.05
+    damping_modes: tuple = (1, 2)
+    dampers: dict | None = None
+    story_heights: tuple | None = None
+
+    def __post_init__(self):
+        masses = finite_array("masses", self.masses)
+        stiffnesses = finite_array("stiffnesses", self.stiffnesses)
+        if masses.size == 0:
+            raise ValueError("masses must hold at least one floor")
+        if (masses <= 0).any():
+            raise ValueError(f"masses must be > 0 tonne, got {masses[masses <= 0][0]!r}")
+        if (stiffnesses <= 0).any():
+            raise ValueError(f"stiffnesses must be > 0 N/mm, got {stiffnesses[stiffnesses <= 0][0]!r}")
+        if stiffnesses.size != masses.size:
+            raise ValueError(f"stiffnesses has {stiffnesses.size} stories for {masses.size} floors (masses)")
+        object.__setattr__(self, "masses", tuple(masses.tolist()))
+        object.__setattr__(self, "stiffnesses", tuple(stiffnesses.tolist()))
+        ratio = finite_scalar("damping_ratio", self.damping_ratio)
+        if not 0.0 <= ratio < 1.0:
+            raise ValueError(f"damping_ratio must lie in [0, 1), got {self.damping_ratio!r}")
+        object.__setattr__(self, "damping_ratio", ratio)
+        modes = tuple(self.damping_modes)
+        if len(modes) != 2 or any(int(m) != m or not 1 <= m <= masses.size for m in modes):
+            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, got {self.damping_modes!r}")
+        object.__setattr__(self, "damping_modes", tuple(int(m) for m in modes))
+        object.__setattr__(self, "dampers", self._normalise_dampers(self.dampers, masses.size))
+        if self.story_heights is not None:
+            heights = finite_array("story_heights", self.story_heights)
+            if heights.size != masses.size:
+                raise ValueError(f"story_heights has {heights.size} entries for {masses.size} stories")
+            if (heights <= 0).any():
+                raise ValueError(f"story_heights must be > 0 mm, got {heights[heights <= 0][0]!r}")
+            object.__setattr__(self, "story_heights", tuple(heights.tolist()))
+
+    @staticmethod
+    def _normalise_dampers(dampers, stories):
+        normalised = {}
+        for story, walls in (dampers or {}).items():
+            if isinstance(story, bool) or not isinstance(story, (int, np.integer)) or not 1 <= story <= stories:
+                raise ValueError(f"damper story must be a story number in 1 ... {stories}, got {story!r}")
+            walls = tuple(walls) if isinstance(walls, (list, tuple)) else (walls,)
+            for wall in walls:
+                if not isinstance(wall, FDMKDamper):
+                    raise ValueError(f"dampers[{story}] must be FDMKDamper objects, got {type(wall).__name__}")
+            if walls:
+                normalised[int(story)] = walls
+        return dict(sorted(normalised.items()))
+
+    # ------------------------------------------------------------------ matrices (tonne, N/mm, N*s/mm)
+    @property
+    def stories(self) -> int:
+        return len(self.masses)
+
+    @cached_property
+    def mass_matrix(self) -> np.ndarray:
+        """Diagonal mass matrix, tonne."""
+        return np.diag(self.masses)
+
+    @cached_property
+    def stiffness_matrix(self) -> np.ndarray:
+        """Bare-frame stiffness matrix, N/mm."""
+        return story_matrix(np.asarray(self.stiffnesses))
+
+    @cached_property
+    def _modes(self):
+        eigenvalues, shapes = eigh(self.stiffness_matrix, self.mass_matrix)
+        return np.sqrt(eigenvalues), shapes
+
+    @property
+    def circular_frequencies(self) -> np.ndarray:
+        """Bare-frame circular frequencies, rad/s, ascending."""
+        return self._modes[0]
+
+    @property
+    def periods(self) -> np.ndarray:
+        """Bare-frame periods, s, longest first."""
+        return 2.0 * np.pi / self._modes[0]
+
+    @property
+    def mode_shapes(self) -> np.ndarray:
+        """Bare-frame mode shapes as columns, mass-normalised (phi^T M phi = I), 1/sqrt(tonne)."""
+        return self._modes[1]
+
+    @cached_property
+    def rayleigh_coefficients(self) -> tuple[float, float]:
+        """(a0 in 1/s, a1 in s) of C = a0 M + a1 K_frame."""
+        i, j = self.damping_modes
+        wi, wj = self.circular_frequencies[i - 1], self.circular_frequencies[j - 1]
+        zeta = self.damping_ratio
+        return 2.0 * zeta * wi * wj / (wi + wj), 2.0 * zeta / (wi + wj)
+
+    @cached_property
+    def damping_matrix(self) -> np.ndarray:
+        """Inherent Rayleigh damping matrix of the bare frame, N*s/mm."""
+        a0, a1 = self.rayleigh_coefficients
+        return a0 * self.mass_matrix + a1 * self.stiffness_matrix
+
+    @property
+    def damper_list(self) -> list[tuple[int, FDMKDamper]]:
+        """(story, damper) for every damper, stories ascending."""
+        return [(story, wall) for story, walls in self.dampers.items() for wall in walls]
+
+    def without_dampers(self) -> "ShearBuilding":
+        """The same frame with no dampers."""
+        return ShearBuilding(self.masses, self.stiffnesses, self.damping_ratio, self.damping_modes,
+                             None, self.story_heights)
+
+    def frequency_response(self, frequency) -> np.ndarray:
+        """Relative floor displacement per unit ground acceleration, mm/(mm/s^2), shape (len(f), floors).
+
+        Solves (-w^2 M + i w C + K + K_d(w)) U = -M 1 at w = 2 pi f for frequencies f in Hz (>= 0),
+        with each damper's exact complex stiffness G*(i w) area / thickness (eqs. (3)-(5)).
+        """
+        frequency = np.atleast_1d(np.asarray(frequency, dtype=float))
+        if not np.isfinite(frequency).all() or (frequency < 0).any():
+            raise ValueError("frequency must be finite and >= 0 Hz")
+        omega = 2.0 * np.pi * frequency
+        load = -np.asarray(self.masses)
+        response = np.empty((omega.size, self.stories), dtype=complex)
+        base = self.stiffness_matrix.astype(complex)
+        for k, w in enumerate(omega):
+            per_story = np.zeros(self.stories, dtype=complex)
+            for story, wall in self.damper_list:
+                per_story[story - 1] += wall.transfer(1j * w) * wall.stiffness_scale
+            dynamic = base + story_matrix(per_story) - w**2 * self.mass_matrix + 1j * w * self.damping_matrix
+            response[k] = np.linalg.solve(dynamic, load)
+        return response
+
+    def stationary_response(self, ground_acceleration, dt: float, pad_factor: int = 8) -> np.ndarray:
+        """Relative displacements (mm, steps x floors) from the frequency-domain solution (FFT).
+
+        ``ground_acceleration`` (mm/s^2, sampled every ``dt`` s) is zero padded to ``pad_factor`` times its
+        length; the result is the exact continuous response of the linear frame with FDMK dampers to the
+        band-limited input, up to the wrap-around of what remains of the response after the padding.
+        Useful for stationary (e.g. harmonic or long random) excitation and as a check of :func:`simulate`.
+        """
+        ground = finite_array("ground_acceleration", ground_acceleration)
+        size = int(pad_factor) * ground.size
+        spectrum = np.fft.rfft(ground, size)
+        response = self.frequency_response(np.fft.rfftfreq(size, dt))
+        return np.fft.irfft(response * spectrum[:, None], size, axis=0)[: ground.size]
+
+
+def story_matrix(per_story: np.ndarray) -> np.ndarray:
+    """Assemble story springs (story k between floors k-1 and k, floor 0 the ground) into a matrix."""
+    n = per_story.size
+    matrix = np.zeros((n, n), dtype=per_story.dtype)
+    matrix[np.arange(n), np.arange(n)] = per_story
+    matrix[np.arange(n - 1), np.arange(n - 1)] += per_story[1:]
+    matrix[np.arange(n - 1), np.arange(1, n)] = -per_story[1:]
+    matrix[np.arange(1, n), np.arange(n - 1)] = -per_story[1:]
+    return matrix
