@@ -24,9 +24,10 @@ class ShearBuilding:
         Story stiffnesses, N/mm; story 1 connects the ground to floor 1, story k floor k-1 to floor k.
     damping_ratio : float
         Inherent (Rayleigh) damping ratio of the bare frame, in [0, 1).
-    damping_modes : (int, int)
+    damping_modes : (int, int), optional
         The two modes (1-based) given ``damping_ratio`` by C = a0 M + a1 K_frame (dampers excluded);
-        the same mode twice splits the ratio equally between the mass and stiffness terms.
+        the same mode twice splits the ratio equally between the mass and stiffness terms.  Default
+        (1, 2), or (1, 1) for a one-story building.
     dampers : dict {story: FDMKDamper or list of FDMKDamper}
         Walls across stories (1 ... n); several on one story act in parallel.  The damper displacement
         is the interstory drift.
@@ -37,7 +38,7 @@ class ShearBuilding:
     masses: tuple
     stiffnesses: tuple
     damping_ratio: float = 0.05
-    damping_modes: tuple = (1, 2)
+    damping_modes: tuple | None = None
     dampers: dict | None = None
     story_heights: tuple | None = None
 
@@ -58,6 +59,8 @@ class ShearBuilding:
         if not 0.0 <= ratio < 1.0:
             raise ValueError(f"damping_ratio must lie in [0, 1), got {self.damping_ratio!r}")
         object.__setattr__(self, "damping_ratio", ratio)
+        if self.damping_modes is None:
+            object.__setattr__(self, "damping_modes", (1, min(2, masses.size)))
         modes = tuple(self.damping_modes)
         if len(modes) != 2 or any(int(m) != m or not 1 <= m <= masses.size for m in modes):
             raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, got {self.damping_modes!r}")

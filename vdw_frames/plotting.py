@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
+
 
 
 def _pyplot():
@@ -42,9 +44,79 @@ def plot_loops(results, path, labels=None, title=None) -> Path:
     axes.legend(fontsize="small")
     if title:
         axes.set_title(title)
+    return _save(figure, path)
+
+
+def _save(figure, path) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     figure.tight_layout()
     figure.savefig(path, dpi=120)
-    plt.close(figure)
+    _pyplot().close(figure)
     return path
+
+
+def plot_drift_envelope(results: dict, path) -> Path:
+    """Peak interstory drift ratio (or drift in mm without story heights) per story, one line per result.
+
+    ``results`` maps a label to a :class:`~vdw_frames.simulation.SimulationResult`.
+    """
+    plt = _pyplot()
+    figure, axes = plt.subplots(figsize=(5.0, 5.6))
+    for label, result in results.items():
+        stories = np.arange(1, result.building.stories + 1)
+        ratio = result.peak_drift_ratio
+        values = 100.0 * ratio if ratio is not None else result.peak_drift
+        axes.step(np.r_[values, values[-1]], np.r_[stories - 0.5, stories[-1] + 0.5], where="pre", label=label)
+        axes.plot(values, stories, "o", ms=3, color=axes.lines[-1].get_color())
+    ratio_known = all(r.drift_ratio is not None for r in results.values())
+    axes.set_xlabel("peak interstory drift ratio (%)" if ratio_known else "peak interstory drift (mm)")
+    axes.set_ylabel("story")
+    axes.set_xlim(left=0.0)
+    axes.grid(True, alpha=0.3)
+    axes.legend(fontsize="small")
+    return _save(figure, path)
+
+
+def plot_roof_displacement(results: dict, path) -> Path:
+    """Roof displacement relative to the ground (mm) against time (s), one line per result."""
+    plt = _pyplot()
+    figure, axes = plt.subplots(figsize=(8.0, 3.6))
+    for label, result in results.items():
+        axes.plot(result.time, result.displacement[:, -1], lw=0.9, label=label)
+    axes.set_xlabel("time (s)")
+    axes.set_ylabel("roof displacement (mm)")
+    axes.grid(True, alpha=0.3)
+    axes.legend(fontsize="small")
+    return _save(figure, path)
+
+
+def plot_damper_hysteresis(result, story: int, path, title=None) -> Path:
+    """Total damper force (kN) against drift (mm) of one story (1-based) of a simulation result."""
+    plt = _pyplot()
+    figure, axes = plt.subplots(figsize=(5.6, 4.6))
+    axes.plot(result.drift[:, story - 1], result.damper_force[:, story - 1] / 1e3, lw=0.6)
+    axes.set_xlabel(f"story {story} drift (mm)")
+    axes.set_ylabel(f"story {story} damper force (kN)")
+    axes.grid(True, alpha=0.3)
+    if title:
+        axes.set_title(title)
+    return _save(figure, path)
+
+
+def plot_energy(result, path, title=None) -> Path:
+    """Stacked energy histories (kN*m = 1e6 N*mm) with the input energy on top."""
+    plt = _pyplot()
+    energy = result.energy
+    figure, axes = plt.subplots(figsize=(8.0, 4.0))
+    parts = [("damper work", energy.damper_work), ("inherent damping", energy.inherent_damping),
+             ("frame strain", energy.frame_strain), ("kinetic", energy.kinetic)]
+    axes.stackplot(result.time, *[values / 1e6 for _, values in parts], labels=[name for name, _ in parts], alpha=0.8)
+    axes.plot(result.time, energy.input / 1e6, "k", lw=1.0, label="input")
+    axes.set_xlabel("time (s)")
+    axes.set_ylabel("energy (kN m)")
+    axes.grid(True, alpha=0.3)
+    axes.legend(fontsize="small", loc="upper left")
+    if title:
+        axes.set_title(title)
+    return _save(figure, path)

@@ -251,13 +251,14 @@ def _energy(building, ground, displacement, velocity, drift, damper_force):
 
 
 def _warn_strain_range(building, drift):
+    outside = []
     for story, wall in building.damper_list:
         if wall.strain_range is None:
             continue
         peak = np.abs(drift[:, story - 1]).max() / wall.thickness
         low, high = wall.strain_range
         if not low <= peak <= high:
-            warnings.warn(
-                f"story {story}: damper peak strain {100 * peak:.0f} % is outside the range "
-                f"{100 * low:.0f}-{100 * high:.0f} % its parameters were identified for",
-                UserWarning, stacklevel=3)
+            outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %)")
+    if outside:
+        warnings.warn("damper peak strain outside the range its parameters were identified for: "
+                      + "; ".join(dict.fromkeys(outside)), UserWarning, stacklevel=3)

@@ -1,0 +1,108 @@
+"""The example seismic simulation and the command line, end to end."""
+
+import json
+import runpy
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from vdw_frames import cli, paper, simulate
+from vdw_frames.config import building_from_dict, load_building
+from vdw_frames.ground_motion import default_record_path, read_at2
+
+ROOT = Path(__file__).resolve().parents[1]
+SHARED = ROOT.parent / "shared" / "ground_motions"
+FIGURES = ("drift_envelope.png", "roof_displacement.png", "damper_hysteresis.png", "energy.png")
+
+
+def _example():
+    return runpy.run_path(str(ROOT / "examples" / "seismic_simulation.py"), run_name="example")
+
+
+def test_seismic_example_runs_on_the_shipped_record(tmp_path, capsys):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # strain-range warnings are expected output
+        assert _example()["main"](["--out", str(tmp_path)]) == 0
+    printed = capsys.readouterr().out
+    assert "peak drift ratio (%)" in printed and "reduction" in printed
+    for name in FIGURES:
+        assert (tmp_path / name).stat().st_size > 10_000
+    # The printed reduction is the one the package computes.
+    building = _example()["example_building"]()
+    motion = read_at2(default_record_path())
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        bare = simulate(building.without_dampers(), motion).peak_drift_ratio.max()
+        walls = simulate(building, motion).peak_drift_ratio.max()
+    line = next(row for row in printed.splitlines() if row.startswith("peak drift ratio"))
+    assert float(line.split()[-2]) == pytest.approx(100 * (1 - walls / bare), abs=0.06)
+    assert walls < 0.7 * bare
+
+
+def test_seismic_example_on_a_shared_record_scaled(tmp_path, capsys):
+    if not SHARED.is_dir():
+        pytest.skip(f"shared ground motions not found at {SHARED}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        _example()["main"](["--record", str(SHARED / "RIO270.AT2"), "--scale", "0.3", "--out", str(tmp_path)])
+    assert "PGA = 0.300 g" in capsys.readouterr().out
+    assert all((tmp_path / name).exists() for name in FIGURES)
+
+
+def test_example_building_file_matches_its_description():
+    building = load_building(ROOT / "examples" / "ten_story.toml")
+    np.testing.assert_allclose(building.periods[:4], [1.984, 0.708, 0.435, 0.319], atol=5e-4)
+    assert len(building.damper_list) == 10
+    assert building.damper_list[0][1] == paper.fitted(225)
+
+
+def test_cli_simulate_with_a_json_building(tmp_path, capsys):
+    spec = {"masses": [300.0, 300.0], "stiffnesses": [2e5, 1.5e5], "story_heights": [3500.0, 3500.0],
+            "walls": [{"stories": [1], "per_story": 2,
+                       "parameters": {"G1": 0.0, "G2": 3.0, "eta1": 0.3, "eta2": 2.0, "r": 0.5}}]}
+    path = tmp_path / "two.json"
+    path.write_text(json.dumps(spec))
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "2 stories" in out and "2 FDMK dampers" in out
+    assert (tmp_path / "damper_hysteresis.png").exists()
+
+
+def test_cli_sine_test_prints_stiffness_and_writes_the_loop(tmp_path, capsys):
+    assert cli.main(["sine-test", "--strain", "300", "--frequency", "1.5", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    damper = paper.fitted(300)
+    expected = damper.storage_stiffness(1.5) / 1e3
+    line = next(row for row in out.splitlines() if "storage stiffness" in row)
+    assert float(line.split("=")[1].split()[0]) == pytest.approx(expected, rel=2e-3)
+    assert (tmp_path / "sine_test_loop.png").stat().st_size > 10_000
+
+
+def test_cli_reports_bad_input_as_an_error(tmp_path, capsys):
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({"masses": [1.0, 1.0], "stiffnesses": [1.0, 1.0],
+                               "walls": [{"stories": [3], "parameters": "fitted-300"}]}))
+    assert cli.main(["simulate", str(bad), "--record", str(default_record_path())]) == 2
+    assert "bad.json: damper story must be a story number in 1 ... 2, got 3" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", ["simulate", "sine-test", "paper-report"])
+def test_cli_help(command):
+    run = subprocess.run([sys.executable, "-m", "vdw_frames.cli", command, "--help"], capture_output=True, text=True)
+    assert run.returncode == 0 and "usage: vdw-frames" in run.stdout
+
+
+@pytest.mark.parametrize("data, match", [
+    ({"masses": [1.0]}, "missing key 'stiffnesses'"),
+    ({"masses": [1.0], "stiffnesses": [1.0], "floors": 1}, "unknown building keys"),
+    ({"masses": [1.0], "stiffnesses": [1.0], "walls": [{"parameters": "fitted-999"}]}, "strain must be one of"),
+    ({"masses": [1.0], "stiffnesses": [1.0], "walls": [{"parameters": {"G1": 1.0}}]}, "walls parameters"),
+    ({"masses": [1.0], "stiffnesses": [1.0], "walls": [{"parameters": "fitted-300", "per_story": 0}]}, "per_story"),
+])
+def test_building_file_validation(data, match):
+    with pytest.raises(ValueError, match=match):
+        building_from_dict(data)

@@ -1,0 +1,135 @@
+"""The ``vdw-frames`` command line: ``sine-test``, ``simulate`` and ``paper-report``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+
+def _add_damper_options(parser: argparse.ArgumentParser) -> None:
+    group = parser.add_argument_group("damper (default: the recommended set for --strain)")
+    group.add_argument("--strain", type=float, default=300.0,
+                       help="shear strain level in %% whose recommended parameters to use (225, 300, 450)")
+    for name, unit in (("G1", "MPa"), ("G2", "MPa"), ("eta1", "MPa*s^r"), ("eta2", "MPa*s^r"), ("r", "-")):
+        group.add_argument(f"--{name}", type=float, help=f"override {name} ({unit})")
+    group.add_argument("--area", type=float, default=1.0e6, help="shear area, mm^2 (default 1e6)")
+    group.add_argument("--thickness", type=float, default=10.0, help="layer thickness, mm (default 10)")
+
+
+def _damper_from(args):
+    from .damper import FDMKDamper
+    from .paper import fitted
+
+    base = fitted(args.strain)
+    values = {name: getattr(args, name) if getattr(args, name) is not None else getattr(base, name)
+              for name in ("G1", "G2", "eta1", "eta2", "r")}
+    return FDMKDamper(**values, area=args.area, thickness=args.thickness)
+
+
+def _sine_test(args) -> int:
+    from .plotting import plot_loops
+    from .sine import sine_test
+
+    damper = _damper_from(args)
+    amplitude = args.amplitude if args.amplitude is not None else args.strain / 100.0 * damper.thickness
+    result = sine_test(damper, amplitude, args.frequency, cycles=args.cycles)
+    print(f"FDMK damper: G1={damper.G1:g} MPa, G2={damper.G2:g} MPa, eta1={damper.eta1:g} MPa*s^r, "
+          f"eta2={damper.eta2:g} MPa*s^r, r={damper.r:g}, A={damper.area:g} mm^2, h={damper.thickness:g} mm")
+    print(f"sine test: U = {amplitude:g} mm, f = {args.frequency:g} Hz, {args.cycles} cycles, dt = {result.dt:.3g} s")
+    print(f"  storage stiffness K'  = {result.storage_stiffness / 1e3:10.2f} kN/mm"
+          f"   (frequency domain {damper.storage_stiffness(args.frequency) / 1e3:.2f})")
+    print(f"  loss stiffness    K'' = {result.loss_stiffness / 1e3:10.2f} kN/mm"
+          f"   (frequency domain {damper.loss_stiffness(args.frequency) / 1e3:.2f})")
+    print(f"  loop area (last cycle) = {result.loop_area / 1e3:10.1f} kN*mm"
+          f"   (pi K'' U^2 = {3.141592653589793 * damper.loss_stiffness(args.frequency) * amplitude**2 / 1e3:.1f})")
+    print(f"  effective stiffness   = {result.effective_stiffness / 1e3:10.2f} kN/mm, "
+          f"equivalent damping ratio = {result.equivalent_damping_ratio:.3f}")
+    path = plot_loops(result, Path(args.out) / "sine_test_loop.png",
+                      title=f"FDMK damper, U = {amplitude:g} mm, f = {args.frequency:g} Hz")
+    print(f"loop figure: {path}")
+    return 0
+
+
+def _simulate(args) -> int:
+    import numpy as np
+
+    from . import plotting
+    from .config import load_building
+    from .ground_motion import G, read_at2
+    from .simulation import simulate
+
+    building = load_building(args.building)
+    motion = read_at2(args.record)
+    if args.scale is not None:
+        motion = motion.scaled_to_pga(args.scale * G)
+    result = simulate(building, motion, dt=args.dt)
+    print(f"{args.building}: {building.stories} stories, T1 = {building.periods[0]:.3f} s (bare frame), "
+          f"{len(building.damper_list)} FDMK dampers")
+    print(f"record {motion.name}: PGA = {motion.pga / G:.3f} g, dt = {result.time[1]:g} s, {result.time.size} steps")
+    print(f"{'story':>5s} {'drift mm':>9s} {'ratio %':>8s} {'floor acc g':>11s} {'damper kN':>10s} {'strain %':>9s}")
+    ratio = result.peak_drift_ratio
+    for k in range(building.stories):
+        print(f"{k + 1:5d} {result.peak_drift[k]:9.2f} {100 * ratio[k] if ratio is not None else np.nan:8.3f} "
+              f"{result.peak_absolute_acceleration[k] / G:11.3f} {result.peak_damper_force[k] / 1e3:10.1f} "
+              f"{100 * np.abs(result.damper_strain[:, k]).max():9.1f}")
+    energy = result.energy
+    print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; dampers dissipate "
+          f"{100 * energy.damper_work[-1] / energy.input[-1]:.0f} % of the input energy")
+    if args.out:
+        out = Path(args.out)
+        paths = [plotting.plot_drift_envelope({"response": result}, out / "drift_envelope.png"),
+                 plotting.plot_roof_displacement({"response": result}, out / "roof_displacement.png"),
+                 plotting.plot_energy(result, out / "energy.png")]
+        if building.damper_list:
+            story = int(np.argmax(result.peak_damper_force)) + 1
+            paths.append(plotting.plot_damper_hysteresis(result, story, out / "damper_hysteresis.png"))
+        print("figures: " + ", ".join(str(p) for p in paths))
+    return 0
+
+
+def _paper_report(args) -> int:
+    from .report import write_paper_report
+
+    path = write_paper_report(args.out)
+    print(f"report: {path}")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="vdw-frames", description=__doc__)
+    commands = parser.add_subparsers(dest="command", required=True)
+
+    sine = commands.add_parser("sine-test", help="sinusoidal test of one FDMK damper: K', K'', loop area, loop PNG")
+    _add_damper_options(sine)
+    sine.add_argument("--amplitude", type=float, help="displacement amplitude, mm (default strain x thickness)")
+    sine.add_argument("--frequency", type=float, default=1.0, help="Hz (default 1)")
+    sine.add_argument("--cycles", type=int, default=5, help="cycles from rest (default 5)")
+    sine.add_argument("--out", default="out", help="folder for the figure (default ./out)")
+    sine.set_defaults(run=_sine_test)
+
+    run = commands.add_parser("simulate", help="seismic time-history analysis of a shear building (TOML/JSON file)")
+    run.add_argument("building", help="building file, .toml or .json (format: vdw_frames.config)")
+    run.add_argument("--record", required=True, help="PEER AT2 ground-motion record (units of g)")
+    run.add_argument("--scale", type=float, help="scale the record to this PGA, g")
+    run.add_argument("--dt", type=float, help="time step, s (default: the record's; must divide it)")
+    run.add_argument("--out", help="folder for figures (default: none)")
+    run.set_defaults(run=_simulate)
+
+    report = commands.add_parser("paper-report", help="reproduce the paper's tables and figures into DIR/report.md")
+    report.add_argument("--out", default="paper_report", help="output folder (default ./paper_report)")
+    report.set_defaults(run=_paper_report)
+    return parser
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return args.run(args)
+    except ValueError as error:
+        print(f"vdw-frames: error: {error}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,117 @@
+"""Buildings described in small TOML or JSON files (for the ``vdw-frames simulate`` command).
+
+Keys (units N-mm-s-tonne)::
+
+    masses = [600, 600, 450]            # tonne, first floor up
+    stiffnesses = [9e5, 7e5, 5e5]       # N/mm, story 1 first
+    story_heights = [4000, 3500, 3500]  # mm, optional
+    damping_ratio = 0.05                # optional (default 0.05)
+    damping_modes = [1, 2]              # optional (default [1, 2]; [1, 1] for one story)
+
+    [[walls]]                           # any number of wall groups, optional
+    stories = "all"                     # or a list of story numbers
+    per_story = 2                       # walls in parallel in each of those stories
+    parameters = "fitted-300"           # recommended set for 225, 300 or 450 % strain ...
+    # parameters = {G1 = 0.0, G2 = 3.0, eta1 = 0.3, eta2 = 2.0, r = 0.5}   # ... or explicit (MPa, MPa*s^r)
+    area = 1.0e6                        # mm^2, optional (default: the paper's 1e6)
+    thickness = 10.0                    # mm, optional (default: the paper's 10)
+
+JSON files use the same keys ("walls" a list of objects).  TOML needs Python >= 3.11 (tomllib).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from .building import ShearBuilding
+from .damper import FDMKDamper
+
+_BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "walls"}
+_WALL_KEYS = {"stories", "per_story", "parameters", "area", "thickness"}
+_PARAMETER_KEYS = {"G1", "G2", "eta1", "eta2", "r"}
+
+
+def load_building(path) -> ShearBuilding:
+    """Read a :class:`ShearBuilding` from a ``.toml`` or ``.json`` file (format in the module docstring)."""
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except OSError as error:
+        raise ValueError(f"{path}: cannot read building file ({error.strerror})") from None
+    try:
+        if path.suffix.lower() == ".toml":
+            try:
+                import tomllib
+            except ModuleNotFoundError:  # Python 3.10
+                raise ValueError(f"{path}: TOML needs Python >= 3.11; use a .json building file") from None
+            data = tomllib.loads(text)
+        elif path.suffix.lower() == ".json":
+            data = json.loads(text)
+        else:
+            raise ValueError(f"{path}: building files must end in .toml or .json")
+    except (ValueError, json.JSONDecodeError) as error:
+        if str(error).startswith(str(path)):
+            raise
+        raise ValueError(f"{path}: not valid {path.suffix[1:].upper()}: {error}") from None
+    try:
+        return building_from_dict(data)
+    except ValueError as error:
+        raise ValueError(f"{path}: {error}") from None
+
+
+def building_from_dict(data: dict) -> ShearBuilding:
+    """A :class:`ShearBuilding` from a dict with the keys of the module docstring."""
+    if not isinstance(data, dict):
+        raise ValueError("a building must be a table of keys")
+    unknown = set(data) - _BUILDING_KEYS
+    if unknown:
+        raise ValueError(f"unknown building keys {sorted(unknown)}; expected some of {sorted(_BUILDING_KEYS)}")
+    for key in ("masses", "stiffnesses"):
+        if key not in data:
+            raise ValueError(f"missing key {key!r}")
+    stories = len(data["masses"])
+    dampers: dict[int, list[FDMKDamper]] = {}
+    for group in data.get("walls", []):
+        wall, story_numbers, per_story = _wall_group(group, stories)
+        for story in story_numbers:
+            dampers.setdefault(story, []).extend([wall] * per_story)
+    return ShearBuilding(
+        data["masses"], data["stiffnesses"],
+        damping_ratio=data.get("damping_ratio", 0.05),
+        damping_modes=tuple(data["damping_modes"]) if "damping_modes" in data else None,
+        dampers=dampers or None,
+        story_heights=data.get("story_heights"),
+    )
+
+
+def _wall_group(group, stories):
+    from .paper import fitted
+
+    if not isinstance(group, dict):
+        raise ValueError(f"each walls entry must be a table, got {group!r}")
+    unknown = set(group) - _WALL_KEYS
+    if unknown:
+        raise ValueError(f"unknown walls keys {sorted(unknown)}; expected some of {sorted(_WALL_KEYS)}")
+    geometry = {key: group[key] for key in ("area", "thickness") if key in group}
+    parameters = group.get("parameters")
+    if isinstance(parameters, str) and parameters.startswith("fitted-"):
+        try:
+            strain = float(parameters.removeprefix("fitted-"))
+        except ValueError:
+            raise ValueError(f"walls parameters {parameters!r}: expected e.g. 'fitted-300'") from None
+        wall = fitted(strain, **geometry)
+    elif isinstance(parameters, dict) and set(parameters) == _PARAMETER_KEYS:
+        wall = FDMKDamper(**parameters, **geometry)
+    else:
+        raise ValueError(f"walls parameters must be 'fitted-225', 'fitted-300', 'fitted-450' or a table "
+                         f"with exactly {sorted(_PARAMETER_KEYS)}, got {parameters!r}")
+    story_numbers = group.get("stories", "all")
+    if story_numbers == "all":
+        story_numbers = range(1, stories + 1)
+    elif not isinstance(story_numbers, list):
+        raise ValueError(f"walls stories must be 'all' or a list of story numbers, got {story_numbers!r}")
+    per_story = group.get("per_story", 1)
+    if isinstance(per_story, bool) or not isinstance(per_story, int) or per_story < 1:
+        raise ValueError(f"walls per_story must be a whole number >= 1, got {per_story!r}")
+    return wall, story_numbers, per_story
