@@ -4,6 +4,7 @@ Units throughout: N, mm, s, tonne; moduli MPa (N/mm^2), viscosities MPa*s^r, sti
 energy N*mm, frequency Hz.
 """
 
+from .batch import BatchResult, run_batch
 from .building import ShearBuilding
 from .damper import DamperState, FDMKDamper
 from .fractional import BDF2, Discretisation, GrunwaldLetnikov, Trapezoidal
@@ -14,6 +15,7 @@ from .sine import SineTestResult, sine_test
 
 __all__ = [
     "BDF2",
+    "BatchResult",
     "DamperState",
     "Discretisation",
     "EnergyHistory",
@@ -29,6 +31,7 @@ __all__ = [
     "read_at2",
     "read_two_column",
     "response_spectrum",
+    "run_batch",
     "simulate",
     "sine_test",
 ]

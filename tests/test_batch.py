@@ -1,0 +1,81 @@
+"""Batch analyses: identical to simulate, on thread, process and Dask executors."""
+
+import concurrent.futures
+import csv
+
+import numpy as np
+import pytest
+
+from reference import tapered_sine
+from vdw_frames import FDMKDamper, GroundMotion, ShearBuilding, simulate
+from vdw_frames.batch import run_batch, scale_factors_to_pga, scale_factors_to_spectral_acceleration
+
+WALL = FDMKDamper(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.5, area=2.0e5)
+
+
+def building(heights=True):
+    return ShearBuilding([300.0, 300.0, 250.0], [2e5, 1.8e5, 1.5e5], dampers={1: [WALL, WALL], 3: WALL},
+                         story_heights=[3500.0] * 3 if heights else None)
+
+
+def motions():
+    t = np.arange(801) * 0.01
+    return [GroundMotion(tapered_sine(t, f, 1500.0, 2.0, 8.0), 0.01, name=f"sine {f} Hz") for f in (1.1, 2.7)]
+
+
+def test_batch_peaks_equal_simulate():
+    records = motions()
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        result = run_batch(building(), records, [0.5, 2.0], executor=pool, progress=False)
+    assert result.peak_drift.shape == (2, 2, 3) and result.peak_base_shear.shape == (2, 2, 1)
+    for m, motion in enumerate(records):
+        for s, scale in enumerate((0.5, 2.0)):
+            single = simulate(building(), motion.scaled(scale))
+            np.testing.assert_array_equal(result.peak_drift[m, s], single.peak_drift)
+            np.testing.assert_array_equal(result.peak_drift_ratio[m, s], single.peak_drift_ratio)
+            np.testing.assert_array_equal(result.peak_absolute_acceleration[m, s], single.peak_absolute_acceleration)
+            np.testing.assert_array_equal(result.peak_damper_force[m, s], single.peak_damper_force)
+            assert result.peak_base_shear[m, s, 0] == single.peak_base_shear
+            assert result.pga[m, s] == pytest.approx(scale * motion.pga)
+
+
+def test_default_process_pool_and_per_motion_scales(tmp_path):
+    records = motions()
+    factors = scale_factors_to_pga(records, [1000.0, 3000.0])
+    result = run_batch(building(heights=False), records, factors, progress=False)
+    np.testing.assert_allclose(result.pga, [[1000.0, 3000.0]] * 2, rtol=1e-12)
+    assert result.peak_drift_ratio is None
+    # Linear frame: peaks scale with the record.
+    np.testing.assert_allclose(result.peak_drift[:, 1], 3 * result.peak_drift[:, 0], rtol=1e-10)
+    path = tmp_path / "peaks.csv"
+    result.to_csv(path)
+    rows = list(csv.DictReader(path.open()))
+    assert len(rows) == 2 * 2 * 3
+    assert float(rows[4]["peak_drift_mm"]) == result.peak_drift[0, 1, 1]
+    assert rows[0]["peak_drift_ratio_-"] == ""
+
+
+def test_spectral_scale_factors_hit_the_target():
+    records = motions()
+    factors = scale_factors_to_spectral_acceleration(records, [2000.0], period=0.5)
+    for motion, (factor,) in zip(records, factors):
+        assert motion.scaled(factor).scale_factor_to_spectral_acceleration(2000.0, 0.5) == pytest.approx(1.0)
+
+
+def test_batch_on_a_dask_local_cluster():
+    distributed = pytest.importorskip("distributed", reason="dask[distributed] not installed (extra 'dask')")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        result = run_batch(building(), motions()[:1], [1.0, 1.5], executor=client.get_executor(), progress=False)
+    single = simulate(building(), motions()[0].scaled(1.5))
+    np.testing.assert_array_equal(result.peak_drift[0, 1], single.peak_drift)
+
+
+@pytest.mark.parametrize("args, match", [
+    (dict(motions=[]), "motions"), (dict(scales=[[1.0, 2.0]] * 3), "scales must have shape"),
+    (dict(scales=[1.0, np.nan]), "scales must be finite"), (dict(scales=[]), "scales must have shape"),
+])
+def test_batch_validation(args, match):
+    arguments = dict(motions=motions(), scales=[1.0]) | args
+    with pytest.raises(ValueError, match=match):
+        run_batch(building(), arguments["motions"], arguments["scales"], executor=concurrent.futures.ThreadPoolExecutor(1))

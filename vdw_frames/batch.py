@@ -1,0 +1,171 @@
+"""Batch analyses (incremental dynamic analysis, parameter studies) on any concurrent.futures executor.
+
+Every (motion, scale) pair is one small picklable task -- the building, the record and the factor --
+run by :func:`vdw_frames.simulate` in whichever process the executor chooses, returning only the peak
+responses.  The default executor is a process pool over all cores; a Dask cluster works through
+``distributed.Client(...).get_executor()`` (install the ``dask`` extra).
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import csv
+import os
+import sys
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validation import finite_array
+from .building import ShearBuilding
+from .fractional import DEFAULT_METHOD
+from .ground_motion import GroundMotion
+from .simulation import simulate
+
+
+@dataclass(frozen=True)
+class BatchTask:
+    """One analysis of a batch: ``building`` under ``motion.scaled(scale)``."""
+
+    building: ShearBuilding
+    motion: GroundMotion
+    scale: float
+    memory: str
+    method: str
+
+    def run(self) -> dict:
+        """Peak responses of this analysis (units of :class:`~vdw_frames.simulation.SimulationResult`)."""
+        result = simulate(self.building, self.motion.scaled(self.scale), method=self.method, memory=self.memory)
+        return {
+            "peak_drift": result.peak_drift,
+            "peak_drift_ratio": result.peak_drift_ratio,
+            "peak_absolute_acceleration": result.peak_absolute_acceleration,
+            "peak_base_shear": np.array([result.peak_base_shear]),
+            "peak_damper_force": result.peak_damper_force,
+        }
+
+
+def _run(task: BatchTask) -> dict:
+    # A module-level function: executors pickle it by name.
+    return task.run()
+
+
+PEAKS = ("peak_drift", "peak_drift_ratio", "peak_absolute_acceleration", "peak_base_shear", "peak_damper_force")
+_UNITS = {"peak_drift": "mm", "peak_drift_ratio": "-", "peak_absolute_acceleration": "mm/s2",
+          "peak_base_shear": "N", "peak_damper_force": "N"}
+
+
+@dataclass(frozen=True)
+class BatchResult:
+    """Peaks of every (motion, scale) analysis, arrays shaped (motions, scales, stories or 1).
+
+    ``scales`` is (motions, scales): the factor each record was multiplied by.  Units: peak_drift mm,
+    peak_drift_ratio - (None without story heights), peak_absolute_acceleration mm/s^2 (per floor),
+    peak_base_shear N, peak_damper_force N (total per story).
+    """
+
+    motion_names: tuple
+    scales: np.ndarray
+    pga: np.ndarray  # (motions, scales): PGA of each scaled record, mm/s^2
+    peak_drift: np.ndarray
+    peak_drift_ratio: np.ndarray | None
+    peak_absolute_acceleration: np.ndarray
+    peak_base_shear: np.ndarray
+    peak_damper_force: np.ndarray
+
+    def to_csv(self, path) -> None:
+        """One row per (motion, scale, story) with every peak; ``None`` ratios are left empty."""
+        stories = self.peak_drift.shape[2]
+        with open(path, "w", newline="") as handle:
+            writer = csv.writer(handle)
+            writer.writerow(["motion", "scale", "pga_mm_s2", "story"]
+                            + [f"{name}_{_UNITS[name]}" for name in PEAKS])
+            for m, name in enumerate(self.motion_names):
+                for s in range(self.scales.shape[1]):
+                    for k in range(stories):
+                        row = [name, repr(float(self.scales[m, s])), repr(float(self.pga[m, s])), k + 1]
+                        for peak in PEAKS:
+                            values = getattr(self, peak)
+                            if values is None:
+                                row.append("")
+                            else:
+                                row.append(repr(float(values[m, s, k if values.shape[2] > 1 else 0])))
+                        writer.writerow(row)
+
+
+def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.futures.Executor | None = None,
+              progress: bool = True, memory: str = "exact", method=DEFAULT_METHOD) -> BatchResult:
+    """Run ``building`` under every motion at every scale factor.
+
+    ``motions``: GroundMotion objects (mm/s^2).  ``scales``: factors (dimensionless) applied as
+    :meth:`GroundMotion.scaled` does, either one sequence for all motions (shape (scales,)) or one row
+    per motion (shape (motions, scales)), e.g. from :func:`scale_factors_to_pga`.  ``executor``: any
+    :class:`concurrent.futures.Executor` (default: a process pool over all cores, shut down after).
+    ``progress``: a progress bar on standard error, only when it is a terminal.  The peaks equal those
+    of :func:`simulate` for the same run.
+    """
+    if not isinstance(building, ShearBuilding):
+        raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
+    motions = list(motions)
+    if not motions or not all(isinstance(m, GroundMotion) for m in motions):
+        raise ValueError("motions must be a non-empty sequence of GroundMotion objects")
+    factors = finite_array("scales", scales, ndim=None)
+    if factors.ndim == 1:
+        factors = np.broadcast_to(factors, (len(motions), factors.size))
+    if factors.ndim != 2 or factors.shape[0] != len(motions) or factors.shape[1] == 0:
+        raise ValueError(f"scales must have shape (scales,) or ({len(motions)}, scales), got {np.shape(scales)}")
+    tasks = {(m, s): BatchTask(building, motion, float(factors[m, s]), memory, getattr(method, "name", method))
+             for m, motion in enumerate(motions) for s in range(factors.shape[1])}
+
+    own_executor = executor is None
+    if own_executor:
+        executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
+    try:
+        futures = {executor.submit(_run, task): key for key, task in tasks.items()}
+        peaks = {}
+        bar = _ProgressBar(len(futures)) if progress and sys.stderr.isatty() else None
+        for future in concurrent.futures.as_completed(futures):
+            peaks[futures[future]] = future.result()
+            if bar:
+                bar.advance()
+    finally:
+        if own_executor:
+            executor.shutdown()
+
+    def stack(name):
+        if peaks[(0, 0)][name] is None:
+            return None
+        return np.array([[peaks[(m, s)][name] for s in range(factors.shape[1])] for m in range(len(motions))])
+
+    pga = np.array([[abs(f) * motion.pga for f in row] for row, motion in zip(factors, motions)])
+    return BatchResult(tuple(m.name for m in motions), np.array(factors), pga, *(stack(name) for name in PEAKS))
+
+
+def scale_factors_to_pga(motions, targets) -> np.ndarray:
+    """Factors (motions, targets) that scale each motion to each target PGA (mm/s^2)."""
+    targets = finite_array("targets", targets)
+    return np.array([[motion.scale_factor_to_pga(t) for t in targets] for motion in motions])
+
+
+def scale_factors_to_spectral_acceleration(motions, targets, period: float, damping_ratio: float = 0.05) -> np.ndarray:
+    """Factors (motions, targets) that scale each motion to each target Sa(period) (mm/s^2, s)."""
+    targets = finite_array("targets", targets)
+    return np.array([[motion.scale_factor_to_spectral_acceleration(t, period, damping_ratio) for t in targets]
+                     for motion in motions])
+
+
+class _ProgressBar:
+    def __init__(self, total: int):
+        self.total, self.done = total, 0
+        self._draw()
+
+    def advance(self) -> None:
+        self.done += 1
+        self._draw()
+        if self.done == self.total:
+            sys.stderr.write("\n")
+
+    def _draw(self) -> None:
+        filled = int(30 * self.done / self.total)
+        sys.stderr.write(f"\r[{'#' * filled}{'.' * (30 - filled)}] {self.done}/{self.total} analyses")
+        sys.stderr.flush()
