@@ -120,3 +120,27 @@ def plot_energy(result, path, title=None) -> Path:
     if title:
         axes.set_title(title)
     return _save(figure, path)
+
+
+def plot_ida_curves(results: dict, path, title=None) -> Path:
+    """IDA curves: PGA (g) against the peak interstory drift ratio (%) of each record.
+
+    ``results`` maps a label to a :class:`~vdw_frames.batch.BatchResult` with story heights; the
+    first label is drawn dashed, the others solid, one colour per record.
+    """
+    from .ground_motion import G
+
+    plt = _pyplot()
+    figure, axes = plt.subplots(figsize=(6.4, 4.8))
+    for (label, result), style in zip(results.items(), ("--", "-", ":", "-.")):
+        drift = 100.0 * result.peak_drift_ratio.max(axis=2)
+        for m, name in enumerate(result.motion_names):
+            axes.plot(drift[m], result.pga[m] / G, style, marker="o", ms=3, lw=1.0,
+                      label=f"{name} ({label})", color=f"C{m}")
+    axes.set_xlabel("peak interstory drift ratio (%)")
+    axes.set_ylabel("PGA (g)")
+    if title:
+        axes.set_title(title)
+    axes.grid(True, alpha=0.3)
+    axes.legend(fontsize="x-small", ncol=2)
+    return _save(figure, path)
