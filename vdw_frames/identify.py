@@ -1,0 +1,366 @@
+"""Identification of FDMK parameters from storage and loss moduli (the paper's objective (12)).
+
+Objective
+---------
+For test frequencies f_i (Hz) with measured G'_i and G''_i (MPa), minimise over G1, G2, eta1, eta2 >= 0
+and 0 < r <= 1
+
+    residual="absolute":  S = sum_i (G'(f_i) - G'_i)^2 + (G''(f_i) - G''_i)^2                (MPa^2)
+    residual="relative":  S = sum_i ((G'(f_i) - G'_i) / G'_i)^2 + ((G''(f_i) - G''_i) / G''_i)^2   (-)
+
+with G' + i G'' the complex modulus of :class:`~vdw_frames.damper.FDMKDamper` (eqs. (3)-(5)).  This
+is the paper's (12), "the error between the model and the experimental complex modulus", written
+out for the real and imaginary parts.
+
+Why a global method, and which one
+----------------------------------
+The problem is badly conditioned: on the paper's data the optima sit on bounds (G1 = 0, r = 1), the
+surface is flat along r, and several local minima exist.  Local least squares from a guess (the
+paper's MATLAB route) lands wherever the guess lies.  The model, however, is linear in most of its
+parameters.  Write the Maxwell branch with its ratio lambda = eta2 / G2 (s^r):
+
+    G*(s) = G1 * 1  +  eta1 * s^r  +  G2 * lambda s^r / (1 + lambda s^r).
+
+For fixed (r, lambda) the moduli G1, eta1, G2 enter linearly with non-negativity bounds: a
+non-negative least-squares problem in three unknowns, solved *exactly* here by enumerating its
+seven active sets (variable projection).  What remains is a two-dimensional search over (r, lambda),
+done on a fixed grid (r on [R_MIN, 1], lambda over LOG_LAMBDA_SPAN decades either side of the data's
+geometric-mean frequency), so every basin of the surface is sampled; the best grid points that are
+local minima of the grid are then polished with ``scipy.optimize.least_squares`` (trust-region
+reflective, bounds) in all free parameters.  Nothing is random: the result is a deterministic
+function of the data, and it does not depend on the grid (``tests/test_identify.py`` checks several
+grids and a much denser independent search).
+
+The ends of the lambda range are not lost optima: lambda -> infinity turns the Maxwell branch into
+a spring (G1 + G2 appear only as a sum) and lambda -> 0 into an Abel dashpot (eta1 + eta2 as a sum);
+both limits are the fractional Kelvin model, i.e. G2 = eta2 = 0, which the active-set enumeration
+includes at every grid point.  When the optimum is that degenerate model it is returned with
+G2 = eta2 = 0.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from ._validation import finite_array, finite_scalar
+from .damper import FDMKDamper
+
+PARAMETERS = ("G1", "G2", "eta1", "eta2", "r")
+RESIDUALS = ("absolute", "relative")
+R_MIN = 1.0e-3  # lowest order searched; the bound itself is r > 0 (r -> 0 makes G* real: G'' -> 0)
+LOG_LAMBDA_SPAN = 6.0  # decades of |lambda s^r| at the reference frequency searched either side of 1
+DEFAULT_GRID = (41, 49)  # (orders r, values of log lambda)
+_LINEAR = ("G1", "eta1", "G2")  # the coefficients solved by non-negative least squares
+_BOUND_FACES = ({"G2": 0.0, "eta2": 0.0}, {"G1": 0.0}, {"eta1": 0.0}, {"r": 1.0})
+_SUBSETS = {k: [s for n in range(1, k + 1) for s in itertools.combinations(range(k), n)] for k in range(4)}
+
+
+@dataclass(frozen=True)
+class IdentificationResult:
+    """Result of :func:`identify`.
+
+    params : dict
+        G1, G2 (MPa), eta1, eta2 (MPa*s^r), r (-) at the global minimum.
+    sse : float
+        The minimised sum of squares (MPa^2 for "absolute", dimensionless for "relative").
+    residuals : ndarray
+        The 2n terms whose squares sum to ``sse``: model minus test, G' terms at every frequency
+        then G'' terms, divided by the test values when ``residual == "relative"``.
+    at_bound : tuple of str
+        Parameters on a bound: G1, G2, eta1 or eta2 equal to 0, r equal to 1 (or to the search floor
+        R_MIN).  When G2 = 0 the Maxwell branch is absent and eta2 is returned as 0 (on its bound).
+    standard_errors : dict
+        Approximate standard errors, sqrt(diag(s^2 (J^T J)^-1)) with s^2 = sse / (2n - p), J the
+        Jacobian of the residuals with respect to the p free parameters off their bounds.  ``None``
+        for a parameter that is fixed, on a bound, or where J^T J is singular or 2n <= p.
+    residual, fixed : the objective and pinned parameters used.
+    frequency, storage_modulus, loss_modulus : the data (Hz, MPa, MPa).
+    """
+
+    params: dict
+    sse: float
+    residuals: np.ndarray
+    at_bound: tuple
+    standard_errors: dict
+    residual: str
+    fixed: dict
+    frequency: np.ndarray = field(repr=False)
+    storage_modulus: np.ndarray = field(repr=False)
+    loss_modulus: np.ndarray = field(repr=False)
+
+    def damper(self, area: float = 1.0e6, thickness: float = 10.0, strain_range=None) -> FDMKDamper:
+        """The identified damper with shear area ``area`` (mm^2) and layer thickness ``thickness`` (mm).
+
+        Defaults are the paper's A = 1e6 mm^2 and h = 10 mm.
+        """
+        return FDMKDamper(**self.params, area=area, thickness=thickness, strain_range=strain_range)
+
+    def relative_errors(self):
+        """(model - test) / test for G' and for G'' at every frequency: two arrays."""
+        modulus = self.damper().complex_modulus(self.frequency)
+        return (modulus.real / self.storage_modulus - 1.0, modulus.imag / self.loss_modulus - 1.0)
+
+    def max_relative_errors(self):
+        """(max |relative error| in G', max |relative error| in G'') over the data."""
+        storage, loss = self.relative_errors()
+        return float(np.max(np.abs(storage))), float(np.max(np.abs(loss)))
+
+
+def identify(frequency, storage_modulus, loss_modulus, residual: str = "absolute", fixed=None,
+             grid=DEFAULT_GRID) -> IdentificationResult:
+    """Global least-squares FDMK parameters for measured G' and G'' (objective (12); see module doc).
+
+    frequency in Hz (> 0; repeated frequencies allowed, e.g. several strain levels pooled),
+    storage_modulus and loss_modulus in MPa; ``residual`` is "absolute" or "relative"; ``fixed``
+    pins parameters, e.g. ``{"r": 0.6}``; ``grid`` = (number of orders r, number of log lambda
+    values) of the global search.  Raises ValueError naming the offending value.
+    """
+    problem = _Problem(frequency, storage_modulus, loss_modulus, residual, fixed)
+    n_r, n_u = _grid_size(grid)
+    r_values = np.array([problem.fixed["r"]]) if "r" in problem.fixed else np.linspace(R_MIN, 1.0, n_r)
+    u_values = np.linspace(-LOG_LAMBDA_SPAN, LOG_LAMBDA_SPAN, n_u) if problem.searches_lambda else np.zeros(1)
+
+    sse, coefficients = problem.projected(r_values, u_values)
+    starts = [problem.full_parameters(r_values[i], u_values[j], coefficients[i, j])
+              for i, j in _grid_minima(sse, most=6)]
+    candidates = [problem.polish(start) for start in starts] + starts
+    best = min(candidates, key=problem.sse)
+    # An optimum on a bound is approached only slowly from inside: polish again with each bound imposed.
+    on_bound = [problem.polish(dict(best, **pins), pinned=pins) for pins in _BOUND_FACES
+                if not set(pins) & set(problem.fixed)]
+    best = min([best] + on_bound, key=problem.sse)
+    return problem.result(problem.snap(best))
+
+
+# ---------------------------------------------------------------------------------------------- internals
+def _grid_size(grid):
+    try:
+        n_r, n_u = (int(n) for n in grid)
+    except (TypeError, ValueError):
+        raise ValueError(f"grid must be two whole numbers (orders, log lambda values), got {grid!r}") from None
+    if n_r < 3 or n_u < 3:
+        raise ValueError(f"grid must have at least 3 values each way, got {grid!r}")
+    return n_r, n_u
+
+
+def _grid_minima(sse, most):
+    """Indices of the grid's local minima (<= every neighbour), best first, at most ``most``."""
+    padded = np.pad(sse, 1, constant_values=np.inf)
+    rows, cols = sse.shape
+    is_min = np.ones(sse.shape, dtype=bool)
+    for di, dj in itertools.product((-1, 0, 1), repeat=2):
+        if di or dj:
+            is_min &= sse <= padded[1 + di:1 + di + rows, 1 + dj:1 + dj + cols]
+    indices = np.argwhere(is_min)
+    order = np.argsort(sse[is_min], kind="stable")
+    return [tuple(indices[k]) for k in order[:most]]
+
+
+def _nonnegative_least_squares(columns, target):
+    """Exact NNLS for up to three columns, batched over leading axes of ``columns`` (..., m, k).
+
+    The minimiser is the unconstrained least-squares solution on its support; enumerating every
+    support and keeping the best one with non-negative coefficients is exact for k <= 3.
+    Returns (sum of squares, coefficients).
+    """
+    shape, k = columns.shape[:-2], columns.shape[-1]
+    best = np.broadcast_to(np.sum(target**2, axis=-1), shape).copy()
+    coefficients = np.zeros(shape + (k,))
+    for subset in _SUBSETS[k]:
+        sub = columns[..., list(subset)]
+        solution = np.einsum("...im,...m->...i", np.linalg.pinv(sub), target)
+        fit = np.sum((np.einsum("...mi,...i->...m", sub, solution) - target) ** 2, axis=-1)
+        better = np.all(solution >= 0.0, axis=-1) & (fit < best)
+        best = np.where(better, fit, best)
+        full = np.zeros_like(coefficients)
+        full[..., list(subset)] = solution
+        coefficients = np.where(better[..., None], full, coefficients)
+    return best, coefficients
+
+
+class _Problem:
+    """Validated data, weights and pinned parameters of one identification."""
+
+    def __init__(self, frequency, storage_modulus, loss_modulus, residual, fixed):
+        f = finite_array("frequency", frequency)
+        storage = finite_array("storage_modulus", storage_modulus)
+        loss = finite_array("loss_modulus", loss_modulus)
+        if not (f.size == storage.size == loss.size):
+            raise ValueError(f"frequency, storage_modulus and loss_modulus must have equal lengths, got "
+                             f"{f.size}, {storage.size} and {loss.size}")
+        if (f <= 0.0).any():
+            raise ValueError(f"frequency must be > 0 Hz, got {f[f <= 0.0][0]!r}")
+        if residual not in RESIDUALS:
+            raise ValueError(f"residual must be one of {RESIDUALS}, got {residual!r}")
+        if residual == "relative":
+            for name, values in (("storage_modulus", storage), ("loss_modulus", loss)):
+                if (values == 0.0).any():
+                    raise ValueError(f"residual='relative' divides by {name}, which contains 0.0")
+        self.fixed = self._check_fixed(fixed)
+        free = [name for name in PARAMETERS if name not in self.fixed]
+        if 2 * f.size < len(free):
+            raise ValueError(f"{2 * f.size} data (G' and G'' at {f.size} frequencies) cannot determine "
+                             f"{len(free)} free parameters {free}")
+        self.free = free
+        self.residual = residual
+        self.frequency, self.storage, self.loss = f, storage, loss
+        self.weights = (np.concatenate([1.0 / storage, 1.0 / loss]) if residual == "relative"
+                        else np.ones(2 * f.size))
+        self.target = np.concatenate([storage, loss]) * self.weights
+        s = 2j * np.pi * f
+        self.log_s = np.log(s)
+        self.log_reference = np.mean(np.log(2.0 * np.pi * f))  # log of the geometric-mean omega
+        fixed_g2, fixed_eta2 = self.fixed.get("G2"), self.fixed.get("eta2")
+        self.maxwell_off = fixed_g2 == 0.0 or fixed_eta2 == 0.0
+        self.searches_lambda = not self.maxwell_off and not (fixed_g2 is not None and fixed_eta2 is not None)
+        self.linear = [name for name in _LINEAR if name not in self.fixed
+                       and not (name == "G2" and (fixed_eta2 is not None or self.maxwell_off))]
+
+    @staticmethod
+    def _check_fixed(fixed):
+        if fixed is None:
+            return {}
+        if not isinstance(fixed, dict):
+            raise ValueError(f"fixed must be a dict of parameter values, got {fixed!r}")
+        checked = {}
+        for name, value in fixed.items():
+            if name not in PARAMETERS:
+                raise ValueError(f"fixed has unknown parameter {name!r}; expected some of {PARAMETERS}")
+            value = finite_scalar(f"fixed[{name!r}]", value)
+            if name == "r" and not 0.0 < value <= 1.0:
+                raise ValueError(f"fixed['r'] must lie in (0, 1], got {value!r}")
+            if name != "r" and value < 0.0:
+                raise ValueError(f"fixed[{name!r}] must be >= 0, got {value!r}")
+            checked[name] = value
+        return checked
+
+    # -- the model, through FDMKDamper -------------------------------------------------------------
+    def weighted_residuals(self, params) -> np.ndarray:
+        modulus = FDMKDamper(**params).complex_modulus(self.frequency)
+        return np.concatenate([modulus.real, modulus.imag]) * self.weights - self.target
+
+    def sse(self, params) -> float:
+        return float(np.sum(self.weighted_residuals(params) ** 2))
+
+    def _unit_columns(self, r, lam):
+        """G*(s) of unit dampers: the columns multiplying G1, eta1 and G2 (lam = eta2 / G2), each (..., n)."""
+        one = FDMKDamper(G1=1.0, G2=0.0, eta1=0.0, eta2=0.0, r=r).complex_modulus(self.frequency)
+        s_r = FDMKDamper(G1=0.0, G2=0.0, eta1=1.0, eta2=0.0, r=r).complex_modulus(self.frequency)
+        lam = np.asarray(lam, dtype=float)[..., None]
+        # FDMKDamper(G2=1, eta2=lam).transfer, vectorised over lam: lam s^r / (1 + lam s^r).
+        maxwell = lam * s_r / (1.0 + lam * s_r)
+        return np.broadcast_to(one, maxwell.shape), np.broadcast_to(s_r, maxwell.shape), maxwell
+
+    def _lambda(self, r, u):
+        """eta2 / G2 (s^r) for the search variable u = log10 |lambda (i omega_ref)^r|."""
+        if not self.searches_lambda:
+            g2, eta2 = self.fixed.get("G2", 0.0), self.fixed.get("eta2", 0.0)
+            return eta2 / g2 if g2 > 0.0 else 0.0
+        return 10.0**u * np.exp(-r * self.log_reference)
+
+    def projected(self, r_values, u_values):
+        """Variable projection on the grid: (sse, linear coefficients) of shape (len(r), len(u)[, k])."""
+        sse = np.empty((r_values.size, u_values.size))
+        coefficients = np.empty((r_values.size, u_values.size, len(self.linear)))
+        for i, r in enumerate(r_values):
+            lam = self._lambda(r, u_values)
+            one, s_r, maxwell = self._unit_columns(r, np.broadcast_to(lam, u_values.shape))
+            columns = {"G1": one, "eta1": s_r, "G2": maxwell}
+            offset = np.zeros(maxwell.shape, dtype=complex)
+            for name in ("G1", "eta1"):
+                if name in self.fixed:
+                    offset = offset + self.fixed[name] * columns[name]
+            if not self.maxwell_off and "G2" not in self.linear:
+                g2 = self.fixed["G2"] if "G2" in self.fixed else self.fixed["eta2"] / lam
+                offset = offset + np.asarray(g2)[..., None] * maxwell
+            design = np.stack([np.concatenate([columns[name].real, columns[name].imag], axis=-1)
+                               for name in self.linear], axis=-1) * self.weights[:, None]
+            rest = self.target - np.concatenate([offset.real, offset.imag], axis=-1) * self.weights
+            sse[i], coefficients[i] = _nonnegative_least_squares(design, rest)
+        return sse, coefficients
+
+    def full_parameters(self, r, u, coefficients) -> dict:
+        """All five parameters from a grid point (r, u) and its linear coefficients."""
+        params = dict(self.fixed)
+        params.update(zip(self.linear, (float(c) for c in coefficients)))
+        params["r"] = float(r)
+        if self.maxwell_off:
+            params.setdefault("G2", 0.0)
+            params.setdefault("eta2", 0.0)
+        elif self.searches_lambda:
+            lam = float(self._lambda(r, u))
+            if "eta2" in self.fixed:
+                params["G2"] = self.fixed["eta2"] / lam
+            else:
+                params["eta2"] = params["G2"] * lam
+        return {name: params[name] for name in PARAMETERS}
+
+    # -- local polishing ----------------------------------------------------------------------------
+    def polish(self, start: dict, pinned=()) -> dict:
+        """least_squares (trf, bounds) in the free parameters not in ``pinned`` from ``start``."""
+        free = [name for name in self.free if name not in pinned]
+        lower = np.array([R_MIN if name == "r" else 0.0 for name in free])
+        upper = np.array([1.0 if name == "r" else np.inf for name in free])
+        x0 = np.clip([start[name] for name in free], lower, upper)
+
+        def params_of(x):
+            params = dict(start)
+            params.update(zip(free, np.clip(x, lower, upper)))
+            return params
+
+        solution = least_squares(lambda x: self.weighted_residuals(params_of(x)), x0, bounds=(lower, upper),
+                                 method="trf", x_scale="jac", ftol=1e-14, xtol=1e-14, gtol=1e-14, max_nfev=3000)
+        return params_of(solution.x)
+
+    def snap(self, params: dict) -> dict:
+        """Put parameters within round-off of a bound onto it (kept only if the sum does not rise)."""
+        params = dict(params)
+        scale = float(np.max(np.abs(np.concatenate([self.storage, self.loss]))))
+        if params["G2"] <= 1e-9 * scale and "G2" not in self.fixed:
+            params.update(G2=0.0, eta2=0.0 if "eta2" not in self.fixed else params["eta2"])
+        for name in ("G1", "G2", "eta1", "eta2"):
+            if name not in self.fixed and 0.0 < params[name] <= 1e-9 * scale:
+                trial = dict(params, **{name: 0.0})
+                if self.sse(trial) <= self.sse(params) * (1.0 + 1e-9) + 1e-20:
+                    params = trial
+        if "r" not in self.fixed and params["r"] >= 1.0 - 1e-9:
+            params["r"] = 1.0
+        return params
+
+    def result(self, params: dict) -> IdentificationResult:
+        params = {name: float(value) for name, value in params.items()}
+        residuals = self.weighted_residuals(params)
+        at_bound = tuple(name for name in PARAMETERS if
+                         (name != "r" and params[name] == 0.0) or (name == "r" and params[name] in (1.0, R_MIN)))
+        return IdentificationResult(
+            params=params, sse=float(np.sum(residuals**2)), residuals=residuals, at_bound=at_bound,
+            standard_errors=self._standard_errors(params, at_bound), residual=self.residual,
+            fixed=dict(self.fixed), frequency=self.frequency, storage_modulus=self.storage, loss_modulus=self.loss)
+
+    def _standard_errors(self, params, at_bound) -> dict:
+        errors = {name: None for name in PARAMETERS}
+        names = [name for name in self.free if name not in at_bound]
+        dof = self.target.size - len(names)
+        if not names or dof <= 0:
+            return errors
+        columns = []
+        for name in names:  # central differences, steps relative to the value
+            step = 1e-6 * max(abs(params[name]), 1e-6)
+            up, down = dict(params), dict(params)
+            up[name] += step
+            down[name] -= step
+            if name == "r" and up["r"] > 1.0:
+                up["r"], step = 1.0, 0.5 * (1.0 - down["r"])
+            columns.append((self.weighted_residuals(up) - self.weighted_residuals(down)) / (2.0 * step))
+        jacobian = np.column_stack(columns)
+        normal = jacobian.T @ jacobian
+        if np.linalg.cond(normal) > 1e12:
+            return errors
+        variance = float(np.sum(self.weighted_residuals(params) ** 2)) / dof
+        covariance = variance * np.linalg.inv(normal)
+        errors.update({name: float(np.sqrt(covariance[k, k])) for k, name in enumerate(names)})
+        return errors

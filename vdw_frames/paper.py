@@ -1,0 +1,205 @@
+"""The data of Xu, Li & Shen (2016), "Fractional-derivative Maxwell Kelvin model for '5+4' viscoelastic
+damping wall subjected to large deformation", as printed, and the parameter sets this package recommends.
+
+Printed data (values exactly as in the paper, in the paper's units)
+-------------------------------------------------------------------
+``TABLES[strain]`` for strain = 225, 300, 450 (%; Tables 1, 2, 3, all at 21.2 degC), one numpy array
+(read-only) per column, in the order of ``FREQUENCIES`` (Hz):
+
+    storage_modulus      G'    MPa
+    loss_modulus         G''   MPa
+    loss_factor          the column printed as "eta (MPa*s)"; its values are G''/G' (dimensionless)
+    storage_stiffness    K'_d  **kN/mm**   (not N/mm: numerically equal to G' in MPa, see the report)
+    loss_stiffness       K''_d **kN/mm**
+    damping_coefficient  C_d   **kN*s/mm** (as printed; it is not K''_d / omega, see the report)
+
+``COLUMN_UNITS`` repeats these units.  ``TABLE4`` holds the paper's "best-fitting parameters" (MPa,
+MPa*s^r, -), ``TABLE5`` its loop areas (kN*mm) and their differences Delta (%, eq. (13)).
+
+The printed closed forms (NOT the model)
+----------------------------------------
+:func:`printed_eq7_modulus` and :func:`printed_eq8_moduli` to :func:`printed_eq11_damping_coefficient`
+transcribe eqs. (6b)/(7) and (8)-(11) as printed.  They do not follow from the model's defining
+eqs. (3)-(5) (:class:`~vdw_frames.damper.FDMKDamper` implements those); they are here only so that
+:mod:`vdw_frames.report` can show what Table 4 gives under them.  Do not use them for anything else.
+
+Recommended parameter sets
+--------------------------
+:func:`fitted` returns this package's identification (:func:`vdw_frames.identify.identify`) of each
+strain level's Tables 1-3 data, never the paper's Table 4 (which reproduces none of the tables, under
+the model or under the printed formulas).  The objective is the paper's (12) with **relative**
+residuals: sum over the six frequencies of ((G'_model - G'_test)/G'_test)^2 + ((G''_model -
+G''_test)/G''_test)^2.  Why relative: at 300 % and 450 % strain G'' is 3.5-12 times smaller than G',
+so the absolute sum of squares all but ignores G'' -- the absolute fits miss G'' by up to 46 % and 50 %
+-- although G'' is what sets the energy a damper dissipates (loop area pi K'' U^2).  Relative residuals
+weigh both moduli by their percentage error and cut the worst G'' error to 16 % and 6 % while the
+worst G' error rises from 22 % to 30 % and from 17 % to 27 %.  At 225 % neither objective can follow
+the measured fall of G' with frequency (a passive linear model's G' cannot fall, see the report); the
+relative set misses G' by up to 79 % there and G'' by up to 34 % (absolute: 61 % and 63 %).
+
+Fit quality (``FIT_QUALITY``; relative SSE, max |relative error| in G' and G'' over 0.5-10 Hz):
+
+    225 %:  SSE 1.520,  G' 78.6 %,  G'' 34.3 %   (G1 = 0 and r = 1 on their bounds)
+    300 %:  SSE 0.3213, G' 29.6 %,  G'' 15.7 %   (G1 = 0 on its bound)
+    450 %:  SSE 0.1579, G' 27.0 %,  G''  6.0 %
+
+``tests/test_paper.py`` re-runs the identification and checks that it reproduces the stored numbers.
+
+Strain range (``FIT_RANGE``, % shear strain): each set is assigned the strain amplitudes nearer to its
+test strain than to another one -- boundaries at the midpoints 262.5 % and 375 % -- and no further
+than the tested envelope 225-450 %: 225 % -> [225, 262.5], 300 % -> [262.5, 375], 450 % -> [375, 450].
+The data say nothing below 225 % or above 450 % (and the moduli change strongly with strain: G' at
+0.5-10 Hz is 0.96-2.65 MPa at 225 % but 2.65-3.54 MPa at 450 %), so the outer ends are not open: a
+simulation whose peak strain leaves the interval is extrapolating and is warned about it.
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+
+import numpy as np
+
+from .damper import FDMKDamper
+
+FREQUENCIES = np.array([0.5, 1.0, 1.5, 2.0, 5.0, 10.0])  # Hz
+STRAINS = (225, 300, 450)  # shear strain amplitude, %
+TEMPERATURE = 21.2  # degC
+AREA = 1.0e6  # total shear area A, mm^2 (paper, after eq. (10))
+THICKNESS = 10.0  # thickness h of one viscoelastic layer, mm
+
+COLUMN_UNITS = {
+    "storage_modulus": "MPa",
+    "loss_modulus": "MPa",
+    "loss_factor": "- (printed header: eta (MPa*s))",
+    "storage_stiffness": "kN/mm",
+    "loss_stiffness": "kN/mm",
+    "damping_coefficient": "kN*s/mm",
+}
+
+
+def _frozen(values):
+    array = np.array(values, dtype=float)
+    array.flags.writeable = False
+    return array
+
+
+def _table(storage, loss, factor, storage_k, loss_k, damping):
+    columns = zip(COLUMN_UNITS, (storage, loss, factor, storage_k, loss_k, damping))
+    return {name: _frozen(values) for name, values in columns}
+
+
+TABLES = {
+    225: _table([2.65, 1.79, 1.34, 1.16, 1.00, 0.96], [0.76, 1.05, 0.85, 0.89, 0.91, 0.94],
+                [0.29, 0.59, 0.63, 0.77, 0.91, 0.98], [2.65, 1.79, 1.34, 1.16, 1.00, 0.96],
+                [0.76, 1.05, 0.85, 0.89, 0.91, 0.94], [1.52, 0.70, 0.57, 0.45, 0.40, 0.38]),
+    300: _table([2.36, 2.69, 1.89, 2.43, 2.20, 2.10], [0.67, 0.63, 0.63, 0.62, 0.61, 0.50],
+                [0.29, 0.23, 0.33, 0.26, 0.28, 0.24], [2.36, 2.69, 1.89, 2.43, 2.20, 2.10],
+                [0.67, 0.63, 0.63, 0.62, 0.61, 0.50], [1.34, 0.42, 0.42, 0.31, 0.28, 0.25]),
+    450: _table([3.54, 3.20, 2.89, 2.72, 2.71, 2.65], [0.29, 0.29, 0.32, 0.33, 0.34, 0.36],
+                [0.08, 0.09, 0.11, 0.12, 0.13, 0.14], [3.54, 3.20, 2.89, 2.72, 2.71, 2.65],
+                [0.29, 0.29, 0.32, 0.33, 0.34, 0.36], [0.58, 0.19, 0.21, 0.17, 0.16, 0.11]),
+}
+
+TABLE4 = {"G1": 8.69, "G2": 3.58, "eta1": 0.75, "eta2": 0.98, "r": 0.60}  # MPa, MPa, MPa*s^r, MPa*s^r, -
+
+Table5Row = namedtuple("Table5Row", "frequency strain theoretical experimental delta")
+Table5Row.__doc__ = "One row of Table 5: Hz, %, kN*mm, kN*mm, % (Delta of eq. (13), as printed)."
+TABLE5 = (
+    Table5Row(0.5, 225, 2279.0, 2413.0, 5.6),
+    Table5Row(1.5, 225, 2104.0, 2249.0, 6.9),
+    Table5Row(0.5, 300, 2849.0, 2826.0, 0.8),
+    Table5Row(1.5, 300, 2445.0, 2540.0, 3.7),
+    Table5Row(0.5, 450, 5240.0, 5394.0, 2.9),
+    Table5Row(1.5, 450, 4427.0, 4530.0, 2.3),
+)
+
+
+def table_moduli(strain):
+    """(FREQUENCIES in Hz, G' in MPa, G'' in MPa) of the table for ``strain`` (225, 300 or 450 %)."""
+    table = TABLES[_strain_key(strain)]
+    return FREQUENCIES, table["storage_modulus"], table["loss_modulus"]
+
+
+def _strain_key(strain) -> int:
+    for key in STRAINS:
+        try:
+            if float(strain) == key:
+                return key
+        except (TypeError, ValueError):
+            break
+    raise ValueError(f"strain must be one of the paper's strain levels {STRAINS} (%), got {strain!r}")
+
+
+# ---------------------------------------------------------------------------- recommended parameter sets
+RECOMMENDED_RESIDUAL = "relative"
+
+FITTED = {  # identify(*table_moduli(strain), residual="relative").params, to full precision
+    225: {"G1": 0.0, "G2": 1.345063289561554, "eta1": 0.017660063643352687, "eta2": 0.365874967763888,
+          "r": 1.0},
+    300: {"G1": 0.0, "G2": 2.629620360282735, "eta1": 0.03553163240054065, "eta2": 1.9554766033255833,
+          "r": 0.5891742702867667},
+    450: {"G1": 1.873862947265929, "G2": 1.2119939259478345, "eta1": 0.052314549243817524,
+          "eta2": 0.7978350638064874, "r": 0.46424699522808816},
+}
+
+FIT_QUALITY = {  # relative SSE, max |relative error| of G' and of G'' over the six frequencies
+    225: {"sse": 1.5199190989974034, "storage": 0.7857779085933676, "loss": 0.3433724128570297},
+    300: {"sse": 0.3213029904399966, "storage": 0.2961850942681107, "loss": 0.1566195980277456},
+    450: {"sse": 0.15788682990806244, "storage": 0.26963071379193315, "loss": 0.05994714816674129},
+}
+
+FIT_RANGE = {225: (225.0, 262.5), 300: (262.5, 375.0), 450: (375.0, 450.0)}  # shear strain, %
+
+
+def fitted(strain, area: float = AREA, thickness: float = THICKNESS) -> FDMKDamper:
+    """The recommended FDMK damper for the paper's strain level ``strain`` (225, 300 or 450 %).
+
+    Parameters from ``FITTED``: the global minimum of objective (12) with relative residuals,
+    sum of ((G'_model - G'_test)/G'_test)^2 + ((G''_model - G''_test)/G''_test)^2 over that strain's
+    six frequencies (why relative: module docstring).  Fit quality (``FIT_QUALITY``): SSE 1.520 /
+    0.3213 / 0.1579 and max |relative error| in G' 78.6 / 29.6 / 27.0 % and in G'' 34.3 / 15.7 / 6.0 %
+    at 225 / 300 / 450 %.  Shear area ``area`` (mm^2) and layer
+    thickness ``thickness`` (mm) default to the paper's.  The damper's ``strain_range`` is
+    ``FIT_RANGE[strain]`` as fractions (3.0 = 300 %), so simulations warn outside it.
+    """
+    key = _strain_key(strain)
+    low, high = FIT_RANGE[key]
+    return FDMKDamper(**FITTED[key], area=area, thickness=thickness, strain_range=(low / 100.0, high / 100.0))
+
+
+# ------------------------------------------------------------ the printed closed forms: NOT the model
+def printed_eq7_modulus(omega, G1, G2, eta1, eta2, r):
+    """sigma~/eps~ of the printed eq. (7) (= eq. (6b) with D^r -> (i omega)^r), complex, omega in rad/s.
+
+    NOT the model: (6b) does not follow from eqs. (3)-(5) (see :mod:`vdw_frames.report`).
+    """
+    x = (1j * np.asarray(omega, dtype=float)) ** r
+    numerator = G2 * eta1 * eta2 * x * (G1 + eta1 * x)
+    denominator = (G1 * eta2 + eta1 * eta2 * x) * (G2 * eta2 + eta2**2 * x) + G2 * eta2**2 * x
+    return numerator / denominator
+
+
+def printed_eq8_moduli(omega, G1, G2, eta1, eta2, r):
+    """(G', G'') of the printed eq. (8), omega in rad/s.  NOT the model."""
+    a = np.asarray(omega, dtype=float) ** r
+    c, q = np.cos(r * np.pi / 2), np.sin(r * np.pi / 2)
+    storage = (G1 * G2 * eta2**2 * a * q + G2 * eta2 * eta1**2 * a * np.sin(r * np.pi)) / np.cos(r * np.pi)
+    loss = (G1 * G2 * eta2 * eta1 * a * c + G2 * eta1 * eta2**2 * a * c + a**2 * c) / np.sin(r * np.pi)
+    return storage, loss
+
+
+def printed_eq9_loss_factor(omega, G1, G2, eta1, eta2, r):
+    """The printed eq. (9): G''/G' of eq. (8).  NOT the model."""
+    storage, loss = printed_eq8_moduli(omega, G1, G2, eta1, eta2, r)
+    return loss / storage
+
+
+def printed_eq10_stiffness(omega, G1, G2, eta1, eta2, r, area=AREA, thickness=THICKNESS):
+    """(K'_d, K''_d) of the printed eq. (10) = eq. (8) * A / h, in N/mm for A in mm^2, h in mm.  NOT the model."""
+    storage, loss = printed_eq8_moduli(omega, G1, G2, eta1, eta2, r)
+    return storage * area / thickness, loss * area / thickness
+
+
+def printed_eq11_damping_coefficient(omega, G1, G2, eta1, eta2, r, area=AREA, thickness=THICKNESS):
+    """C_d of the printed eq. (11) = K''_d(10) / omega, in N*s/mm.  NOT the model."""
+    return printed_eq10_stiffness(omega, G1, G2, eta1, eta2, r, area, thickness)[1] / np.asarray(omega, dtype=float)

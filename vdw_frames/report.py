@@ -1,0 +1,543 @@
+"""Reproduction report of the paper (Xu, Li & Shen 2016): its tables and figures against the model.
+
+:func:`write_paper_report` writes ``report.md`` and PNG figures; the command line runs it as
+``vdw-frames paper-report --out DIR``.  Every number in the report is computed here from the
+printed data in :mod:`vdw_frames.paper`, the model (:class:`~vdw_frames.damper.FDMKDamper`), the
+identification (:mod:`vdw_frames.identify`) and the time-domain sine test (:mod:`vdw_frames.sine`).
+The functions that compute (``parameter_sets``, ``table5_candidates``, ``errata``) are public so
+the tests can check the numbers the report prints.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from . import paper
+from .damper import FDMKDamper
+from .identify import identify
+from .paper import FREQUENCIES, STRAINS, TABLE4, TABLE5, TABLES
+from .plotting import _pyplot, plot_loops
+from .sine import sine_test
+
+N_PER_KN = 1.0e3
+
+
+# ------------------------------------------------------------------------------------ parameter sets
+@dataclass(frozen=True)
+class ParameterSet:
+    """One parameter set compared with the tables: a damper per strain level (paper A and h)."""
+
+    key: str
+    label: str
+    dampers: dict  # strain (%) -> FDMKDamper
+    results: dict  # strain (%) -> IdentificationResult, or {} for Table 4
+
+
+def _pooled():
+    frequency = np.concatenate([FREQUENCIES for _ in STRAINS])
+    storage = np.concatenate([TABLES[s]["storage_modulus"] for s in STRAINS])
+    loss = np.concatenate([TABLES[s]["loss_modulus"] for s in STRAINS])
+    return frequency, storage, loss
+
+
+def parameter_sets() -> list:
+    """Table 4 and this package's fits: per strain (both objectives), r fixed at 0.60, all strains pooled."""
+    sets = [ParameterSet("table4", "Table 4 (paper)", {s: FDMKDamper(**TABLE4) for s in STRAINS}, {})]
+    for residual in ("relative", "absolute"):
+        per_strain = {s: identify(*paper.table_moduli(s), residual=residual) for s in STRAINS}
+        sets.append(ParameterSet(f"{residual}", f"fit per strain, {residual}",
+                                 {s: res.damper() for s, res in per_strain.items()}, per_strain))
+    for residual in ("relative", "absolute"):
+        fixed = {s: identify(*paper.table_moduli(s), residual=residual, fixed={"r": 0.6}) for s in STRAINS}
+        sets.append(ParameterSet(f"r060_{residual}", f"fit per strain, r = 0.60, {residual}",
+                                 {s: res.damper() for s, res in fixed.items()}, fixed))
+    for residual in ("relative", "absolute"):
+        joint = identify(*_pooled(), residual=residual)
+        sets.append(ParameterSet(f"joint_{residual}", f"joint fit (all strains), {residual}",
+                                 {s: joint.damper() for s in STRAINS}, {s: joint for s in STRAINS}))
+    return sets
+
+
+def _fit_measures(damper, strain):
+    """(absolute SSE, relative SSE, max |rel err| G', max |rel err| G'') of ``damper`` on one table."""
+    _, storage, loss = paper.table_moduli(strain)
+    modulus = damper.complex_modulus(FREQUENCIES)
+    absolute = np.concatenate([modulus.real - storage, modulus.imag - loss])
+    relative = np.concatenate([modulus.real / storage - 1.0, modulus.imag / loss - 1.0])
+    n = FREQUENCIES.size
+    return (float(absolute @ absolute), float(relative @ relative),
+            float(np.abs(relative[:n]).max()), float(np.abs(relative[n:]).max()))
+
+
+# ------------------------------------------------------------------------------------ Table 5
+@dataclass(frozen=True)
+class Table5Candidate:
+    """A candidate definition of the "theoretical" loop areas of Table 5 (kN*mm, in TABLE5's row order)."""
+
+    label: str
+    areas: np.ndarray
+    method: str
+    frequency_domain: np.ndarray | None = None  # pi K'' U^2 of the same damper (kN*mm), time-domain candidates only
+
+    def deviation(self):
+        """(candidate - printed theoretical) / printed theoretical, per row."""
+        return self.areas / np.array([row.theoretical for row in TABLE5]) - 1.0
+
+    def delta(self):
+        """Delta of eq. (13) against the printed experimental areas, per row (fraction)."""
+        experimental = np.array([row.experimental for row in TABLE5])
+        return np.abs(experimental - self.areas) / experimental
+
+
+def _table_scale() -> float:
+    """A/h (mm) that the printed K'_d (kN/mm) implies: K'_d / G', converted to N/mm per MPa."""
+    ratios = [TABLES[s]["storage_stiffness"] * N_PER_KN / TABLES[s]["storage_modulus"] for s in STRAINS]
+    return float(np.median(np.concatenate(ratios)))
+
+
+def table5_candidates(sets=None) -> list:
+    """Every candidate definition of Table 5's theoretical areas, computed (see the report)."""
+    sets = parameter_sets() if sets is None else sets
+    by_key = {s.key: s for s in sets}
+    table_scale = _table_scale()
+    geometries = (  # (label, thickness giving U = strain * thickness, area)
+        (f"U = strain x h, h = {paper.THICKNESS:g} mm, A = {paper.AREA:g} mm^2", paper.THICKNESS, paper.AREA),
+        (f"U = strain x h, A/h = {table_scale:g} mm (the tables' K'/G')", paper.THICKNESS,
+         table_scale * paper.THICKNESS),
+        (f"U = strain x 4h = strain x {4 * paper.THICKNESS:g} mm (four layers), A = {paper.AREA:g} mm^2",
+         4 * paper.THICKNESS, paper.AREA),
+    )
+    candidates = []
+    for key in ("table4", "relative", "absolute", "joint_relative"):
+        for geometry, thickness, area in geometries:
+            areas, steady = [], []
+            for row in TABLE5:
+                damper = dataclasses.replace(by_key[key].dampers[row.strain], area=area, thickness=thickness)
+                amplitude = row.strain / 100.0 * thickness
+                areas.append(sine_test(damper, amplitude, row.frequency).loop_area / N_PER_KN)
+                steady.append(np.pi * damper.loss_stiffness(row.frequency) * amplitude**2 / N_PER_KN)
+            candidates.append(Table5Candidate(f"{by_key[key].label}; {geometry}", np.array(areas),
+                                              "time-domain sine test (5 cycles from rest, last loop)",
+                                              np.array(steady)))
+    for scale, scale_label in ((paper.AREA / paper.THICKNESS, "A/h = 1e5 mm"), (table_scale, "A/h = 1000 mm")):
+        areas = [np.pi * paper.printed_eq10_stiffness(2 * np.pi * row.frequency, **TABLE4, area=scale,
+                                                      thickness=1.0)[1]
+                 * (row.strain / 100.0 * paper.THICKNESS) ** 2 / N_PER_KN for row in TABLE5]
+        candidates.append(Table5Candidate(f"Table 4 under printed (8)/(10), {scale_label}, U = strain x h",
+                                          np.array(areas), "pi K''_d U^2 with K''_d from the printed eq. (10)"))
+    for thickness in (paper.THICKNESS, 4 * paper.THICKNESS):
+        areas = [np.pi * _table_row(row, "loss_stiffness") * (row.strain / 100.0 * thickness) ** 2
+                 for row in TABLE5]
+        candidates.append(Table5Candidate(f"printed K''_d (kN/mm) of Tables 1-3, U = strain x {thickness:g} mm",
+                                          np.array(areas), "pi K''_d U^2 from the tables"))
+    return candidates
+
+
+def _table_row(row, column):
+    return float(TABLES[row.strain][column][list(FREQUENCIES).index(row.frequency)])
+
+
+# ------------------------------------------------------------------------------------ errata
+def errata() -> dict:
+    """Every number of the report's errata section (keys documented inline)."""
+    omega = 2 * np.pi * FREQUENCIES
+    table4 = FDMKDamper(**TABLE4)
+    out = {"frequency": FREQUENCIES, "omega": omega}
+    out["model_table4"] = table4.complex_modulus(FREQUENCIES)  # correct model, MPa
+    out["eq7_table4"] = paper.printed_eq7_modulus(omega, **TABLE4)  # printed (7), "MPa"
+    out["eq8_table4"] = np.array(paper.printed_eq8_moduli(omega, **TABLE4))  # printed (8): rows G', G''
+    out["eq10_table4"] = np.array(paper.printed_eq10_stiffness(omega, **TABLE4))  # N/mm
+    out["eq11_table4"] = paper.printed_eq11_damping_coefficient(omega, **TABLE4)  # N*s/mm
+    out["cos_r_pi"] = float(np.cos(TABLE4["r"] * np.pi))
+    # Table 4 against each table under the model, printed (7) and printed (8): abs SSE, rel SSE, max rel errs.
+    versions = {"model": out["model_table4"], "eq7": out["eq7_table4"],
+                "eq8": out["eq8_table4"][0] + 1j * out["eq8_table4"][1]}
+    out["table4_fit"] = {}
+    for name, modulus in versions.items():
+        for strain in STRAINS:
+            _, storage, loss = paper.table_moduli(strain)
+            rel = np.concatenate([modulus.real / storage - 1.0, modulus.imag / loss - 1.0])
+            ab = np.concatenate([modulus.real - storage, modulus.imag - loss])
+            out["table4_fit"][name, strain] = (float(ab @ ab), float(rel @ rel), float(np.abs(rel[:6]).max()),
+                                               float(np.abs(rel[6:]).max()))
+    # Internal consistency of Tables 1-3.
+    consistency = {}
+    for strain in STRAINS:
+        t = TABLES[strain]
+        consistency[strain] = {
+            "loss_factor_minus_ratio": t["loss_factor"] - t["loss_modulus"] / t["storage_modulus"],
+            "storage_scale": t["storage_stiffness"] * N_PER_KN / t["storage_modulus"],  # N/mm per MPa = mm
+            "loss_scale": t["loss_stiffness"] * N_PER_KN / t["loss_modulus"],
+            "cd_times_omega_over_k": t["damping_coefficient"] * omega / t["loss_stiffness"],
+            "cd_times_f_over_k": t["damping_coefficient"] * FREQUENCIES / t["loss_stiffness"],
+            # Is C_d = K''_d / f within the rounding of the printed two decimals?
+            "cd_is_k_over_f": np.abs(t["damping_coefficient"] - t["loss_stiffness"] / FREQUENCIES)
+            <= 0.005 + 0.005 / FREQUENCIES + 1e-12,
+            "cd_is_k_over_1p5": (FREQUENCIES == 1.0)
+            & (np.abs(t["damping_coefficient"] - t["loss_stiffness"] / 1.5) <= 0.005 + 0.005 / 1.5 + 1e-12),
+            "storage_change": t["storage_modulus"][-1] / t["storage_modulus"][0] - 1.0,
+            "storage_steps": np.diff(t["storage_modulus"]),
+            # Local Kramers-Kronig (Booij & Thoone): dG'/dln(omega) ~ (2/pi) G''; trapezoid over the data.
+            "kk_predicted_rise": float(2.0 / np.pi * np.sum(0.5 * (t["loss_modulus"][1:] + t["loss_modulus"][:-1])
+                                                             * np.diff(np.log(omega)))),
+            "observed_rise": float(t["storage_modulus"][-1] - t["storage_modulus"][0]),
+        }
+    out["consistency"] = consistency
+    out["implied_area_over_thickness"] = _table_scale()  # mm
+    out["implied_thickness"] = paper.AREA / out["implied_area_over_thickness"]  # mm, for A = 1e6 mm^2
+    out["implied_area"] = out["implied_area_over_thickness"] * paper.THICKNESS  # mm^2, for h = 10 mm
+    # Table 5: Delta recomputed by eq. (13) from the printed areas, and the 0.5/1.5 Hz and strain ratios.
+    theoretical = np.array([row.theoretical for row in TABLE5])
+    experimental = np.array([row.experimental for row in TABLE5])
+    out["table5_delta_recomputed"] = 100.0 * np.abs(experimental - theoretical) / experimental
+    out["table5_delta_printed"] = np.array([row.delta for row in TABLE5])
+    out["table5_theory_over_experiment"] = theoretical / experimental
+    out["table5_ratio_05_over_15"] = theoretical[0::2] / theoretical[1::2]  # per strain
+    out["table5_ratio_strain"] = theoretical[0::2] / theoretical[0]  # 0.5 Hz areas / the 225 % one
+    out["table5_ratio_strain_squared"] = (np.array(STRAINS) / STRAINS[0]) ** 2
+    # Any FDMK parameters: G' never falls with frequency.  A deterministic sample of 2000 sets.
+    out["monotone_min_step"] = _min_storage_step(2000)
+    return out
+
+
+def _min_storage_step(count: int) -> float:
+    """Smallest G'(f_{k+1}) - G'(f_k) (MPa) over ``count`` log-uniform FDMK parameter sets on 0.01-100 Hz."""
+    rng = np.random.default_rng(20160529)
+    f = np.geomspace(0.01, 100.0, 400)
+    low = np.inf
+    for _ in range(count):
+        g1, g2, e1, e2 = 10.0 ** rng.uniform(-3, 2, 4)
+        damper = FDMKDamper(G1=g1, G2=g2, eta1=e1, eta2=e2, r=rng.uniform(0.01, 1.0))
+        low = min(low, float(np.diff(damper.storage_modulus(f)).min()))
+    return low
+
+
+# ------------------------------------------------------------------------------------ figures
+def _frequency_figure(path, sets, quantity, ylabel, title, data=None, extra=None):
+    """Data (markers) and model curves of ``quantity(damper, f)`` against f, one panel per strain."""
+    plt = _pyplot()
+    f = np.geomspace(0.4, 12.0, 200)
+    figure, axes = plt.subplots(1, len(STRAINS), figsize=(13.0, 4.6), sharey=False)
+    styles = {"relative": "-", "absolute": "--", "table4": ":", "joint_relative": "-."}
+    for ax, strain in zip(axes, STRAINS):
+        if data is not None:
+            ax.plot(FREQUENCIES, data(strain), "ko", label="paper (printed)")
+        if extra is not None:
+            ax.plot(FREQUENCIES, extra[1](strain), "kx", label=extra[0])
+        for s in sets:
+            if s.key in styles:
+                ax.plot(f, quantity(s.dampers[strain], f), styles[s.key], label=s.label)
+        ax.set_xscale("log")
+        ax.set_yscale("log")  # Table 4's curves lie 3-20 times above the data
+        ax.set_xlabel("frequency (Hz)")
+        ax.set_ylabel(ylabel)
+        ax.set_title(f"{strain} % strain")
+        ax.grid(True, which="both", alpha=0.3)
+    handles, labels = axes[0].get_legend_handles_labels()
+    figure.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize="small")
+    figure.suptitle(title)
+    path = Path(path)
+    figure.tight_layout(rect=(0.0, 0.07, 1.0, 1.0))
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+    return path
+
+
+def _figures(out, sets) -> list:
+    by_key = {s.key: s for s in sets}
+    paths = []
+    for strain in STRAINS:
+        for frequency in (0.5, 1.5):
+            results, labels = [], []
+            for key in ("relative", "absolute", "table4"):
+                damper = by_key[key].dampers[strain]
+                results.append(sine_test(damper, strain / 100.0 * damper.thickness, frequency))
+                labels.append(by_key[key].label)
+            paths.append(plot_loops(results, out / f"fig5_loops_{strain}pct_{frequency:g}Hz.png", labels=labels,
+                                    title=f"{strain} % strain, {frequency:g} Hz, U = {strain / 100 * paper.THICKNESS:g} mm"))
+    scale = _table_scale()
+
+    def at_table_scale(damper):
+        return dataclasses.replace(damper, area=scale * damper.thickness)
+
+    def column(name):
+        return lambda strain: TABLES[strain][name]
+
+    paths.append(_frequency_figure(out / "fig6_storage_modulus.png", sets, lambda d, f: d.storage_modulus(f),
+                                   "G' (MPa)", "Fig. 6 analogue: storage modulus", column("storage_modulus")))
+    paths.append(_frequency_figure(out / "fig7_loss_modulus.png", sets, lambda d, f: d.loss_modulus(f),
+                                   "G'' (MPa)", "Fig. 7 analogue: loss modulus", column("loss_modulus")))
+    paths.append(_frequency_figure(
+        out / "fig8_damping_coefficient.png", sets,
+        lambda d, f: at_table_scale(d).damping_coefficient(f) / N_PER_KN, "C_d (kN*s/mm)",
+        f"Fig. 8 analogue: C_d = K''/omega with the tables' A/h = {scale:g} mm", column("damping_coefficient"),
+        extra=("printed K''_d / omega", lambda s: TABLES[s]["loss_stiffness"] / (2 * np.pi * FREQUENCIES))))
+    paths.append(_frequency_figure(out / "fig9_loss_factor.png", sets, lambda d, f: d.loss_factor(f),
+                                   "loss factor G''/G' (-)", "Fig. 9 analogue: loss factor", column("loss_factor")))
+    return paths
+
+
+# ------------------------------------------------------------------------------------ markdown
+def _md(headers, rows) -> str:
+    lines = ["| " + " | ".join(headers) + " |", "|" + "---|" * len(headers)]
+    lines += ["| " + " | ".join(str(cell) for cell in row) + " |" for row in rows]
+    return "\n".join(lines) + "\n"
+
+
+def _pct(x) -> str:
+    return f"{100.0 * x:+.1f} %"
+
+
+def _params_text(damper) -> str:
+    return (f"G1 = {damper.G1:.4g}, G2 = {damper.G2:.4g}, eta1 = {damper.eta1:.4g}, eta2 = {damper.eta2:.4g}, "
+            f"r = {damper.r:.4g}")
+
+
+def _section_sets(sets) -> str:
+    rows = []
+    for s in sets:
+        for strain in STRAINS:
+            res = s.results.get(strain)
+            sse_abs, sse_rel, e_storage, e_loss = _fit_measures(s.dampers[strain], strain)
+            bounds = ", ".join(res.at_bound) if res is not None and res.at_bound else "-"
+            errors = ("-" if res is None else ", ".join(f"{k} {v:.2g}" for k, v in res.standard_errors.items()
+                                                       if v is not None) or "-")
+            rows.append([s.label, f"{strain} %", _params_text(s.dampers[strain]), f"{sse_abs:.4g}", f"{sse_rel:.4g}",
+                         f"{100 * e_storage:.1f} %", f"{100 * e_loss:.1f} %", bounds, errors])
+    return ("## 1. Parameter sets\n\nModuli in MPa, viscosities in MPa*s^r. SSE (absolute, MPa^2) and SSE "
+            "(relative, -) are the two forms of objective (12) on the six rows of that strain's table; "
+            "max errors are max |model/test - 1| over the six frequencies. Standard errors are from the "
+            "Jacobian at the optimum (omitted for parameters on a bound or not identifiable). Joint fits use "
+            "all 18 rows at once; the r = 0.60 fits pin r at Table 4's value.\n\n"
+            + _md(["set", "strain", "parameters", "SSE abs", "SSE rel", "max err G'", "max err G''",
+                   "on bound", "std. errors"], rows))
+
+
+def _section_tables(sets) -> str:
+    scale = _table_scale()
+    text = ["## 2. Tables 1-3 against the model\n\nEach cell: model value (error relative to the printed value). "
+            "The model is the complex modulus of eqs. (3)-(5) (never the printed (8)). K'_d and K''_d are "
+            "G' and G'' times A/h and carry the same relative errors (see section 4.4 for the printed "
+            "stiffness units). The C_d errors are mostly the printed column's own inconsistency (section 4.4).\n"]
+    quantities = (("G' (MPa)", "storage_modulus", lambda d: d.storage_modulus(FREQUENCIES)),
+                  ("G'' (MPa)", "loss_modulus", lambda d: d.loss_modulus(FREQUENCIES)),
+                  ("loss factor G''/G' (printed column \"eta\")", "loss_factor", lambda d: d.loss_factor(FREQUENCIES)),
+                  (f"C_d = K''/omega (kN*s/mm) with the tables' own A/h = {scale:g} mm", "damping_coefficient",
+                   lambda d: dataclasses.replace(d, area=scale * d.thickness).damping_coefficient(FREQUENCIES) / N_PER_KN))
+    for number, strain in enumerate(STRAINS, start=1):
+        for title, column, model in quantities:
+            printed = TABLES[strain][column]
+            values = {s.key: model(s.dampers[strain]) for s in sets}
+            rows = [[f"{f:g}", f"{printed[k]:.2f}"] + [f"{values[s.key][k]:.3f} ({_pct(values[s.key][k] / printed[k] - 1)})"
+                                                        for s in sets] for k, f in enumerate(FREQUENCIES)]
+            text.append(f"\n### Table {number} ({strain} % strain): {title}\n\n"
+                        + _md(["f (Hz)", "printed"] + [s.label for s in sets], rows))
+    return "".join(text)
+
+
+def _section_table5(candidates, errata_numbers) -> str:
+    rows = [[f"{row.frequency:g}", f"{row.strain}", f"{row.strain / 100 * paper.THICKNESS:g}", f"{row.theoretical:g}",
+             f"{row.experimental:g}", f"{row.delta:.1f} %", f"{errata_numbers['table5_delta_recomputed'][k]:.2f} %"]
+            for k, row in enumerate(TABLE5)]
+    text = ("## 3. Table 5: loop areas\n\nPrinted values (kN*mm) and Delta of eq. (13) recomputed from them:\n\n"
+            + _md(["f (Hz)", "strain (%)", "U = strain x 10 mm", "theoretical", "experimental", "Delta printed",
+                   "Delta by (13)"], rows))
+    ranked = sorted(candidates, key=lambda c: float(np.max(np.abs(c.deviation()))))
+    rows = [[c.label, c.method] + [f"{a:.4g} ({_pct(d)})" for a, d in zip(c.areas, c.deviation())]
+            + [f"{100 * np.max(np.abs(c.deviation())):.1f} %", f"{100 * np.max(c.delta()):.1f} %"] for c in ranked]
+    heads = [f"{row.frequency:g} Hz, {row.strain} %" for row in TABLE5]
+    best = ranked[0]
+    ratios = errata_numbers["table5_ratio_05_over_15"]
+    strain_ratio = errata_numbers["table5_ratio_strain"]
+    squared = errata_numbers["table5_ratio_strain_squared"]
+    text += ("\nCandidate definitions of the *theoretical* areas, best first. Cells: area in kN*mm (deviation "
+             "from the printed theoretical value); then the largest deviation and the largest Delta (eq. (13)) "
+             "against the printed experimental areas.\n\n"
+             + _md(["candidate", "how"] + heads + ["max dev. from theoretical", "max Delta vs experimental"], rows)
+             + f"\n**No candidate reproduces the printed theoretical areas.** The closest, *{best.label}*, is off by "
+             f"up to {100 * np.max(np.abs(best.deviation())):.0f} %. No single parameter set can: for a linear "
+             "model with fixed parameters and U proportional to the strain, the area pi K'' U^2 scales with U^2 and the ratio "
+             "of the 0.5 Hz to the 1.5 Hz area is the same at every strain. The printed theoretical areas have "
+             f"0.5/1.5 Hz ratios {', '.join(f'{x:.3f}' for x in ratios)} at {', '.join(map(str, STRAINS))} %, and "
+             f"their 0.5 Hz areas grow with strain as {', '.join(f'{x:.3f}' for x in strain_ratio)} where "
+             f"U^2 grows as {', '.join(f'{x:.3f}' for x in squared)}. They are therefore not loops of Table 4 "
+             "(or of any one linear parameter set) at these amplitudes, under the printed formulas or the model; "
+             "per-strain sets are not held to these ratios but miss by the amounts above. The printed values sit within "
+             f"{100 * np.max(np.abs(errata_numbers['table5_theory_over_experiment'] - 1)):.1f} % of the "
+             "experimental areas, which are themselves nonlinear (Z-shaped) loops.\n")
+    sse_check = [c for c in candidates if c.method.startswith("time-domain")]
+    text += (f"\nThe time-domain areas above come from {len(sse_check) * len(TABLE5)} sine tests of the "
+             "element; `tests/test_report.py` checks them against pi K'' U^2 of the same parameters (1 %).\n")
+    return text
+
+
+def _section_errata(e, sets) -> str:
+    f = FREQUENCIES
+    model, eq7, eq8 = e["model_table4"], e["eq7_table4"], e["eq8_table4"]
+    rows = [[f"{f[k]:g}", f"{model[k].real:.3f}", f"{model[k].imag:.3f}", f"{eq7[k].real:.4g}", f"{eq7[k].imag:.4g}",
+             f"{eq8[0][k]:.4g}", f"{eq8[1][k]:.4g}"] + [f"{TABLES[s]['storage_modulus'][k]:.2f} / "
+                                                          f"{TABLES[s]['loss_modulus'][k]:.2f}" for s in STRAINS]
+            for k in range(f.size)]
+    fits = e["table4_fit"]
+    fit_rows = [[name, f"{s} %", f"{fits[name, s][0]:.4g}", f"{fits[name, s][1]:.4g}", f"{100 * fits[name, s][2]:.0f} %",
+                 f"{100 * fits[name, s][3]:.0f} %"] for name in ("model", "eq7", "eq8") for s in STRAINS]
+    c = e["consistency"]
+    cons_rows = []
+    for s in STRAINS:
+        cs = c[s]
+        cons_rows.append([f"{s} %", f"{np.abs(cs['loss_factor_minus_ratio']).max():.4f}",
+                          f"{cs['storage_scale'].min():.4g}-{cs['storage_scale'].max():.4g}",
+                          f"{cs['loss_scale'].min():.4g}-{cs['loss_scale'].max():.4g}",
+                          ", ".join(f"{x:.2f}" for x in cs["cd_times_omega_over_k"]),
+                          ", ".join(f"{x:.2f}" for x in cs["cd_times_f_over_k"]),
+                          ", ".join(f"{x:g}" for x, ok in zip(f, cs["cd_is_k_over_f"]) if ok)])
+    trend_rows = [[f"{s} %", ", ".join(f"{x:+.2f}" for x in c[s]["storage_steps"]), _pct(c[s]["storage_change"]),
+                   f"{c[s]['observed_rise']:+.2f}", f"{c[s]['kk_predicted_rise']:+.2f}"] for s in STRAINS]
+    fitted_rise = [[st.label] + [f"{st.dampers[s].storage_modulus(10.0) / st.dampers[s].storage_modulus(0.5):.3f}"
+                                 for s in STRAINS] for st in sets]
+    return f"""## 4. Errata (every number computed by the package)
+
+### 4.1 Eq. (6b)/(7) does not follow from (3)-(5)
+
+With eps1 = eps2 = eps and sigma = sigma1 + sigma2 (eq. (5)), eq. (3) gives sigma1 = (G1 + eta1 D^r) eps and
+eq. (4) gives (G2 + eta2 D^r) sigma2 = G2 eta2 D^r eps, so
+
+    Theta = G1 + eta1 D^r + G2 eta2 D^r / (G2 + eta2 D^r)
+          = [(G1 + eta1 D^r)(G2 + eta2 D^r) + G2 eta2 D^r] / (G2 + eta2 D^r).
+
+The printed (6b), after cancelling eta2^2, reads
+
+    Theta_printed = (G2 eta1 / eta2) D^r (G1 + eta1 D^r) / [(G1 + eta1 D^r)(G2 + eta2 D^r) + G2 D^r].
+
+Its denominator is the correct *numerator* with the factor eta2 lost from the last term, and it is not
+dimensionally a modulus: with G in MPa, eta in MPa*s^r and D^r in s^-r, the printed denominator adds
+(G1 eta2 + ...)(G2 eta2 + ...) [MPa^4 s^2r] to G2 eta2^2 D^r [MPa^3 s^r], and the quotient has units s^-r.
+
+### 4.2 Eqs. (8)-(11) do not follow from (7) or from (3)-(5)
+
+The correct storage and loss moduli, with a = omega^r, c = cos(r pi/2), q = sin(r pi/2),
+D = G2^2 + 2 G2 eta2 a c + eta2^2 a^2, are
+
+    G'  = G1 + eta1 a c + G2 eta2 a (G2 c + eta2 a) / D,      G'' = eta1 a q + G2^2 eta2 a q / D.
+
+The printed (8) divides G' by cos(r pi), which is {e['cos_r_pi']:.4f} for Table 4's r = 0.60 (negative for every
+r > 0.5), so it gives a negative storage modulus. Neither line is dimensionally consistent: G' adds G1 G2 eta2^2 omega^r
+[MPa^4 s^r] to G2 eta2 eta1^2 omega^r [MPa^4 s^2r], and G'' adds G1 G2 eta2 eta1 omega^r [MPa^4 s^r],
+G2 eta1 eta2^2 omega^r [MPa^4 s^2r] and omega^2r [s^-2r]; (9)-(11) inherit all of it. Table 4's parameters at the six frequencies
+(MPa; the last columns are the printed G'/G'' of Tables 1-3):
+
+{_md(["f (Hz)", "G' model", "G'' model", "G' printed (7)", "G'' printed (7)", "G' printed (8)", "G'' printed (8)"]
+     + [f"Table {k} G'/G''" for k in (1, 2, 3)], rows)}
+Printed (10) and (11) with A = 1e6 mm^2, h = 10 mm give K'_d = {e['eq10_table4'][0][0] / N_PER_KN:.4g} kN/mm and
+C_d = {e['eq11_table4'][0] / N_PER_KN:.4g} kN*s/mm at 0.5 Hz (printed Table 1: 2.65 kN/mm and 1.52 kN*s/mm).
+
+### 4.3 Table 4 reproduces none of the tables
+
+Table 4 under the correct model, under printed (7) and under printed (8), scored on each table:
+
+{_md(["formula", "table", "SSE abs (MPa^2)", "SSE rel", "max err G'", "max err G''"], fit_rows)}
+Under the correct model Table 4 gives G'(0.5 Hz) = {model[0].real:.2f} MPa against the printed 2.65 (225 %),
+2.36 (300 %) and 3.54 MPa (450 %).
+
+### 4.4 Internal consistency of Tables 1-3
+
+{_md(["table", "max |eta - G''/G'|", "K'_d[N/mm] / G'[MPa] (mm)", "K''_d / G'' (mm)", "C_d omega / K''_d",
+      "C_d f / K''_d", "rows with C_d = K''_d / f (to rounding)"], cons_rows)}
+* The column printed as "eta (MPa*s)" is the loss factor G''/G' (dimensionless), to the printed rounding.
+* K'_d and K''_d equal G' and G'' digit for digit: the printed stiffness scale is A/h = {e['implied_area_over_thickness']:g} mm
+  (1 kN/mm per MPa). The paper's A = 1e6 mm^2 and h = 10 mm give A/h = {paper.AREA / paper.THICKNESS:g} mm, 100 times more;
+  A/h = {e['implied_area_over_thickness']:g} mm would need h = {e['implied_thickness']:g} mm with A = 1e6 mm^2, or
+  A = {e['implied_area']:g} mm^2 with h = 10 mm. The model in this package uses the stated A and h, so its
+  stiffnesses are 100 times the printed ones.
+{_cd_text(e)}
+
+### 4.5 G' falls with frequency in the tables; no FDMK parameters (no passive linear model) can do that
+
+Changes of G' (MPa) between consecutive frequencies, the total change from 0.5 to 10 Hz, and the rise that the
+local Kramers-Kronig relation dG'/d ln(omega) ~ (2/pi) G'' (Booij & Thoone) predicts from each table's own G'':
+
+{_md(["table", "steps of G'", "G'(10)/G'(0.5) - 1", "observed G'(10) - G'(0.5)", "KK-predicted rise"], trend_rows)}
+For the FDMK model dG'/d omega >= 0 for every admissible parameter set: eta1 omega^r cos(r pi/2) grows, and with
+x = eta2 omega^r / G2 the Maxwell term is G2 x (c + x) / (1 + 2 x c + x^2), whose x-derivative has numerator
+c (1 + x^2) + 2 x >= 0. Over 2000 random parameter sets (0.01-100 Hz) the smallest step of G' between neighbouring
+frequencies is {e['monotone_min_step']:.3g} MPa. More generally every linear viscoelastic material with a non-negative
+relaxation spectrum (every spring-dashpot network, fractional ones included) has a non-decreasing G'. Ratio
+G'(10 Hz)/G'(0.5 Hz) of every set (>= 1 throughout, against 0.36 and 0.75 in Tables 1 and 3):
+
+{_md(["set"] + [f"{s} %" for s in STRAINS], fitted_rise)}
+### 4.6 Table 5 and its discussion
+
+* Delta by eq. (13) from the printed areas is {', '.join(f'{x:.2f}' for x in e['table5_delta_recomputed'])} %; the
+  printed {', '.join(f'{x:.1f}' for x in e['table5_delta_printed'])} % differ in the second row
+  (printed {e['table5_delta_printed'][1]:.1f} %, computed {e['table5_delta_recomputed'][1]:.2f} %).
+* The text says the model *overestimates* the area at 225 % and 1.5 Hz; the printed theoretical/experimental
+  ratio there is {e['table5_theory_over_experiment'][1]:.3f}, an underestimate.
+"""
+
+
+def _cd_text(e) -> str:
+    c = e["consistency"]
+    cd_f = np.concatenate([c[s]["cd_times_f_over_k"] for s in STRAINS])
+    cd_w = np.concatenate([c[s]["cd_times_omega_over_k"] for s in STRAINS])
+    holds = np.concatenate([c[s]["cd_is_k_over_f"] for s in STRAINS])
+    one_hz = np.concatenate([c[s]["cd_is_k_over_1p5"] for s in STRAINS])
+    rows = np.tile(FREQUENCIES, len(STRAINS))
+    where = sorted(set(rows[holds]))
+    others = ~holds & ~one_hz
+    return (f"* C_d is not K''_d / omega as eq. (11) defines it: C_d omega / K''_d would be 1 and is "
+            f"{cd_w.min():.2f}-{cd_w.max():.2f}. In {holds.sum()} of the 18 rows (f = {', '.join(f'{x:g}' for x in where)} Hz) "
+            f"C_d = K''_d / f to the printed rounding (C_d omega / K''_d = 2 pi); in {one_hz.sum()} rows "
+            f"(f = {', '.join(f'{x:g}' for x in sorted(set(rows[one_hz])))} Hz) C_d = K''_d / (1.5 Hz), the next row's "
+            f"frequency; in the other {others.sum()} rows (f = {', '.join(f'{x:g}' for x in sorted(set(rows[others])))} Hz) "
+            f"C_d f / K''_d is {cd_f[others].min():.2f}-{cd_f[others].max():.2f}, which matches no stated relation.")
+
+
+def write_paper_report(out_dir, quick: bool = False) -> Path:
+    """Write ``out_dir/report.md`` and its PNG figures; returns the path of report.md.
+
+    ``quick=True`` leaves out the figures (the tables and errata are computed in full).
+    """
+    start = time.perf_counter()
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    sets = parameter_sets()
+    candidates = table5_candidates(sets)
+    numbers = errata()
+    figures = [] if quick else _figures(out, sets)
+    recommended = [s for s in sets if s.key == paper.RECOMMENDED_RESIDUAL][0]
+    summary = "\n".join(f"* {strain} %: {_params_text(recommended.dampers[strain])} "
+                        f"(max error G' {100 * paper.FIT_QUALITY[strain]['storage']:.1f} %, "
+                        f"G'' {100 * paper.FIT_QUALITY[strain]['loss']:.1f} %)" for strain in STRAINS)
+    figure_text = "\n".join(f"![{p.stem}]({p.name})" for p in figures) or "(figures not drawn: quick run)"
+    text = f"""# Reproduction of Xu, Li & Shen (2016), FDMK model of the "5+4" viscoelastic damping wall
+
+Generated by `vdw_frames.report.write_paper_report`. Units: MPa, MPa*s^r, Hz, kN/mm and kN*s/mm as printed in
+the paper's tables, kN*mm for loop areas. Model: eqs. (3)-(5), complex modulus
+G*(i omega) = G1 + eta1 (i omega)^r + G2 eta2 (i omega)^r / (G2 + eta2 (i omega)^r), A = 1e6 mm^2, h = 10 mm.
+
+Recommended parameter sets (`vdw_frames.paper.fitted`, objective (12) with relative residuals):
+
+{summary}
+
+{_section_sets(sets)}
+{_section_tables(sets)}
+{_section_table5(candidates, numbers)}
+{_section_errata(numbers, sets)}
+## 5. Figures (analogues of the paper's Figures 5-9)
+
+Figure 5 analogues: loops of the element (time-domain sine test, 5 cycles from rest; last cycle thick) at U =
+strain x 10 mm, recommended set against Table 4 (paper A and h). Figures 6-9: printed data (dots) and model
+curves.
+
+{figure_text}
+
+(Report computed in {time.perf_counter() - start:.1f} s.)
+"""
+    path = out / "report.md"
+    path.write_text(text)
+    return path
