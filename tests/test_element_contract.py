@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from vdw_frames import FDMKDamper, sine_test
+from vdw_frames.fast_memory import FastMemory
 
 TABLE4 = dict(G1=8.69, G2=3.58, eta1=0.75, eta2=0.98, r=0.60)
 
@@ -15,18 +16,20 @@ def _history(steps=3000, dt=0.004):
     return 20 * np.sin(2 * np.pi * 1.1 * t) * np.sin(0.7 * t) + 3 * np.sin(2 * np.pi * 4.3 * t), dt
 
 
+@pytest.mark.parametrize("memory", ["fast", "exact"])
 @pytest.mark.parametrize("method", ["bdf2", "trapezoidal", "grunwald"])
-def test_trial_commit_reproduces_force(method):
+def test_trial_commit_reproduces_force(method, memory):
     damper = FDMKDamper(**TABLE4)
-    displacement, dt = _history()  # 3000 steps: the state's memory grows past its first allocation
-    state = damper.new_state(dt, method=method)
+    displacement, dt = _history()  # 3000 steps: the exact memory grows past its first allocation
+    state = damper.new_state(dt, method=method, memory=memory)
     stepped = []
     for u in displacement:
         state.trial(u + 5.0)  # a rejected iterate must leave no trace
         force, _ = state.trial(u)
         stepped.append(force)
         state.commit()
-    np.testing.assert_allclose(stepped, damper.force(displacement, dt, method=method), rtol=1e-12, atol=1e-6)
+    np.testing.assert_allclose(stepped, damper.force(displacement, dt, method=method, memory=memory),
+                               rtol=1e-12, atol=1e-6)
     assert state.steps == displacement.size
 
 
@@ -47,6 +50,16 @@ def test_trial_is_repeatable_and_tangent_is_the_derivative():
     w0 = 1.5**damper.r * dt**-damper.r
     expected = damper.G1 + damper.eta1 * w0 + damper.G2 * damper.eta2 * w0 / (damper.G2 + damper.eta2 * w0)
     assert tangent == pytest.approx(expected * damper.area / damper.thickness, rel=1e-12)
+
+
+def test_fast_state_refuses_to_run_past_its_horizon():
+    state = FDMKDamper(**TABLE4).new_state(0.01, memory=FastMemory(max_steps=20))
+    for _ in range(20):
+        state.trial(1.0)
+        state.commit()
+    state.trial(1.0)
+    with pytest.raises(ValueError, match="built for 20 steps"):
+        state.commit()
 
 
 def test_revert_discards_the_trial():

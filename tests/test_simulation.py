@@ -149,3 +149,29 @@ def test_energy_balance_closes_on_every_shared_record(name):
     # The bar is 0.5 % of the peak input energy; average acceleration closes it to rounding.
     assert np.abs(energy.balance_error).max() < 1e-9 * np.abs(energy.input).max()
     assert energy.damper_work[-1] > 0.2 * energy.input[-1]  # the walls do real work
+
+
+def _fast_versus_exact(r, dt, duration):
+    wall = FDMKDamper(G1=0.5, G2=3.0, eta1=0.3, eta2=2.0, r=r, area=2.0e5)
+    building = ShearBuilding([300.0, 300.0, 250.0], [2e5, 1.8e5, 1.5e5], dampers={1: [wall, wall], 3: wall})
+    t = np.arange(round(duration / dt) + 1) * dt
+    # Broadband and long: a chirp from 0.2 to 8 Hz under a slow envelope, so the whole memory matters.
+    ground = 3000.0 * np.sin(2 * np.pi * (0.2 + 3.9 * t / duration) * t) * np.sin(np.pi * t / duration) ** 2
+    motion = GroundMotion(ground, dt)
+    fast, exact = simulate(building, motion, memory="fast"), simulate(building, motion, memory="exact")
+    peak = np.abs(fast.peak_drift / exact.peak_drift - 1).max()
+    force = np.abs(fast.wall_force - exact.wall_force).max() / np.abs(exact.wall_force).max()
+    return peak, force
+
+
+@pytest.mark.parametrize("r", [0.05, 0.5, 0.99, 1.0])
+@pytest.mark.parametrize("dt, duration", [(0.001, 20.0), (0.02, 400.0)])
+def test_fast_memory_meets_the_bar_against_exact(r, dt, duration):
+    # The bar for making "fast" the default: <= 1e-6 on peak drifts and force histories.
+    peak, force = _fast_versus_exact(r, dt, duration)
+    assert peak <= 1e-6 and force <= 1e-6, (peak, force)
+
+
+def test_fast_memory_meets_the_bar_over_100000_steps():
+    peak, force = _fast_versus_exact(0.6, 0.001, 100.0)
+    assert peak <= 1e-6 and force <= 1e-6, (peak, force)

@@ -11,7 +11,8 @@ Memory layout of one damper (arrays, so that many dampers stack into higher-dime
 ``mode_weight`` (K,), ``mode_ratio`` (K,), ``mode_state`` (K, 2)
                      an optional exponential (geometric) representation of the weights beyond the
                      window, w_j ~= sum_k c_k rho_k^j for j > L, with mode_weight = c_k rho_k^(L+1).
-                     K = 0 and L >= the number of steps gives the exact full-history convolution.
+                     K = 0 and L >= the number of steps gives the exact full-history convolution;
+                     :mod:`vdw_frames.fast_memory` builds L = 16 and K = 24-68 modes (the fast memory).
 
 The history at step n (``count`` = n committed steps) of channel c is
 ``sum_{j=1}^{min(n, L)} w_j past_c[n-j] + sum_k mode_weight_k * mode_state_k,c``; values leaving the

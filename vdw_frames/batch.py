@@ -30,7 +30,7 @@ class BatchTask:
     building: ShearBuilding
     motion: GroundMotion
     scale: float
-    memory: str
+    memory: object
     method: str
 
     def run(self) -> dict:
@@ -94,7 +94,7 @@ class BatchResult:
 
 
 def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.futures.Executor | None = None,
-              progress: bool = True, memory: str = "exact", method=DEFAULT_METHOD) -> BatchResult:
+              progress: bool = True, memory="fast", method=DEFAULT_METHOD) -> BatchResult:
     """Run ``building`` under every motion at every scale factor.
 
     ``motions``: GroundMotion objects (mm/s^2).  ``scales``: factors (dimensionless) applied as

@@ -31,9 +31,22 @@ import numpy as np
 
 from . import _kernel
 from ._validation import finite_array, non_negative, positive, positive_frequencies
+from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, _check_order, get_method
 
-MEMORY_STRATEGIES = ("exact",)
+MEMORY_STRATEGIES = ("fast", "exact")
+DEFAULT_MEMORY = "fast"
+
+
+def memory_strategy(memory):
+    """``None`` for the exact full-history memory, else the :class:`FastMemory` to use."""
+    if isinstance(memory, FastMemory):
+        return memory
+    if memory == "fast":
+        return FastMemory()
+    if memory == "exact":
+        return None
+    raise ValueError(f"memory must be one of {MEMORY_STRATEGIES} or a FastMemory, got {memory!r}")
 
 
 @dataclass(frozen=True)
@@ -130,16 +143,19 @@ class FDMKDamper:
         return self.loss_stiffness(f) / (2.0 * np.pi * f)
 
     # ------------------------------------------------------------------ time domain
-    def new_state(self, dt: float, method=DEFAULT_METHOD, memory: str = "exact") -> "DamperState":
+    def new_state(self, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY) -> "DamperState":
         """A fresh (at-rest) time-stepping state with step ``dt`` (s); see :class:`DamperState`."""
         return DamperState(self, dt, method=method, memory=memory)
 
-    def force(self, displacement, dt: float, method=DEFAULT_METHOD, memory: str = "exact"):
+    def force(self, displacement, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY):
         """Force history (N) for a displacement history (mm) sampled every ``dt`` s, starting from rest.
 
         ``displacement[n]`` is the displacement at t = n dt; the history before t = 0 is zero
         (Riemann-Liouville derivatives from rest).  ``method`` selects the discretisation of D^r
-        (:mod:`vdw_frames.fractional`; default: trapezoidal convolution quadrature, second order).
+        (:mod:`vdw_frames.fractional`; default: BDF2 convolution quadrature, second order).
+        ``memory``: "fast" (default; O(1) work per step, within ~1e-9 of "exact"; see
+        :mod:`vdw_frames.fast_memory`), "exact" (the full history, O(n) at step n) or a
+        :class:`~vdw_frames.fast_memory.FastMemory` with its own tolerance.
         """
         displacement = finite_array("displacement", displacement)
         dt = positive("dt", dt)
@@ -159,17 +175,19 @@ class Memory:
     mode_weight: np.ndarray
     mode_ratio: np.ndarray
     mode_state: np.ndarray
-    exact: bool = True
+    max_steps: int
 
     @classmethod
-    def allocate(cls, damper: FDMKDamper, dt: float, steps: int, method=DEFAULT_METHOD, memory="exact"):
-        """Memory for ``steps`` steps of size ``dt`` (s)."""
-        if memory not in MEMORY_STRATEGIES:
-            raise ValueError(f"memory must be one of {MEMORY_STRATEGIES}, got {memory!r}")
+    def allocate(cls, damper: FDMKDamper, dt: float, steps: int, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY):
+        """Memory for ``steps`` steps of size ``dt`` (s): exact (a window of all steps) or fast."""
+        strategy = memory_strategy(memory)
+        if strategy is not None:
+            arrays = strategy.arrays(method, damper.r, dt, steps)
+            return cls(*arrays, max_steps=max(int(steps), strategy.max_steps))
         window = max(int(steps), 1)
         weights = get_method(method).weights(damper.r, window + 1, dt)
         empty = np.zeros(0)
-        return cls(weights, np.zeros((window, 2)), empty, empty, np.zeros((0, 2)))
+        return cls(weights, np.zeros((window, 2)), empty, empty, np.zeros((0, 2)), max_steps=window)
 
     def arrays(self):
         """(weights, past, mode_weight, mode_ratio, mode_state) in the order the kernel takes them."""
@@ -189,9 +207,10 @@ class DamperState:
     damper: FDMKDamper
     dt: float
     method: object = DEFAULT_METHOD
-    memory: str = "exact"
+    memory: object = DEFAULT_MEMORY
     steps: int = field(default=0, init=False)
     _memory: Memory = field(init=False, repr=False)
+    _fast: bool = field(default=False, init=False, repr=False)
     _history: tuple | None = field(default=None, init=False, repr=False)
     _trial: tuple | None = field(default=None, init=False, repr=False)
     committed_displacement: float = field(default=0.0, init=False)
@@ -202,7 +221,9 @@ class DamperState:
     def __post_init__(self):
         self.dt = positive("dt", self.dt)
         self.method = get_method(self.method)
-        self._memory = Memory.allocate(self.damper, self.dt, self._INITIAL_CAPACITY, self.method, self.memory)
+        self._fast = memory_strategy(self.memory) is not None
+        self._memory = Memory.allocate(self.damper, self.dt, 0 if self._fast else self._INITIAL_CAPACITY,
+                                       self.method, self.memory)
 
     def trial(self, displacement: float):
         """(force in N, tangent in N/mm) at the next step for ``displacement`` (mm); memory untouched."""
@@ -226,7 +247,10 @@ class DamperState:
         if self._trial is None:
             raise ValueError("commit() needs a trial() first")
         displacement, force, maxwell = self._trial
-        if self.memory == "exact" and self.steps == self._memory.past.shape[0]:
+        if self.steps == self._memory.max_steps:
+            if self._fast:
+                raise ValueError(f"the fast memory was built for {self.steps} steps; pass "
+                                 f"memory=FastMemory(max_steps=...) with more to new_state()")
             self._grow()
         memory = self._memory
         self.steps = _kernel.memory_push(
