@@ -171,17 +171,25 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
     steps, floors = ground.size, building.stories
     time = np.arange(steps) * dt
 
+    # Identical walls on one story see the same drift: step each group once, with the summed area.
     walls = building.damper_list
-    memories = [Memory.allocate(wall, dt, steps, method, memory) for _, wall in walls]
+    groups: dict[tuple, list[int]] = {}
+    for index, (story, wall) in enumerate(walls):
+        key = (story, wall.G1, wall.G2, wall.eta1, wall.eta2, wall.r, wall.thickness)
+        groups.setdefault(key, []).append(index)
+    members = list(groups.values())
+    group_area = np.array([sum(walls[i][1].area for i in group) for group in members])
+    representatives = [walls[group[0]] for group in members]
+    memories = [Memory.allocate(wall, dt, steps, method, memory) for _, wall in representatives]
     stacked = _stack(memories)
-    damper_story = np.array([story - 1 for story, _ in walls], dtype=np.int64)
-    constants = np.array([[w.G1, w.G2, w.eta1, w.eta2, w.area, w.thickness] for _, w in walls]).reshape(-1, 6)
+    damper_story = np.array([story - 1 for story, _ in representatives], dtype=np.int64)
+    constants = np.array([[w.G1, w.G2, w.eta1, w.eta2, area, w.thickness]
+                          for (_, w), area in zip(representatives, group_area)]).reshape(-1, 6)
 
     tangent = np.zeros(floors)
-    for (story, wall), mem in zip(walls, memories):
-        w0 = mem.weights[0]
-        _, _, modulus = _kernel.fdmk_stress(0.0, 0.0, 0.0, wall.G1, wall.G2, wall.eta1, wall.eta2, w0)
-        tangent[story - 1] += modulus * wall.stiffness_scale
+    for (story, wall), area, mem in zip(representatives, group_area, memories):
+        _, _, modulus = _kernel.fdmk_stress(0.0, 0.0, 0.0, wall.G1, wall.G2, wall.eta1, wall.eta2, mem.weights[0])
+        tangent[story - 1] += modulus * area / wall.thickness
     masses = np.asarray(building.masses)
     effective = (building.stiffness_matrix + story_matrix(tangent) + (4.0 / dt**2) * building.mass_matrix
                  + (2.0 / dt) * building.damping_matrix)
@@ -189,10 +197,18 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
     displacement = np.zeros((steps, floors))
     velocity = np.zeros((steps, floors))
     acceleration = np.zeros((steps, floors))
-    wall_force = np.zeros((steps, len(walls)))
+    group_force = np.zeros((steps, len(members)))
     _newmark(ground, dt, masses, building.damping_matrix, building.stiffness_matrix, np.linalg.inv(effective),
-             damper_story, constants, *stacked, displacement, velocity, acceleration, wall_force)
-    return _result(building, time, ground, displacement, velocity, acceleration, wall_force)
+             damper_story, constants, *stacked, displacement, velocity, acceleration, group_force)
+    # Each wall carries its area's share of its group's force; stories sum their groups.
+    share = np.zeros((len(members), len(walls)))
+    to_story = np.zeros((len(members), floors))
+    for g, group in enumerate(members):
+        to_story[g, damper_story[g]] = 1.0
+        for i in group:
+            share[g, i] = walls[i][1].area / group_area[g]
+    return _result(building, time, ground, displacement, velocity, acceleration,
+                   group_force @ share, group_force @ to_story)
 
 
 def _stack(memories):
@@ -210,53 +226,77 @@ def _stack(memories):
     return weights, past, mode_weight, mode_ratio, np.zeros((len(memories), modes, 2))
 
 
-def _result(building, time, ground, displacement, velocity, acceleration, wall_force):
+def _result(building, time, ground, displacement, velocity, acceleration, wall_force, damper_force):
     floors = building.stories
-    below = np.hstack([np.zeros((time.size, 1)), displacement[:, :-1]])
-    drift = displacement - below
+    drift = np.diff(displacement, axis=1, prepend=0.0)
     heights = building.story_heights
     drift_ratio = None if heights is None else drift / np.asarray(heights)
-    damper_force = np.zeros((time.size, floors))
     thinnest = np.full(floors, np.inf)
-    for d, (story, wall) in enumerate(building.damper_list):
-        damper_force[:, story - 1] += wall_force[:, d]
+    for story, wall in building.damper_list:
         thinnest[story - 1] = min(thinnest[story - 1], wall.thickness)
     damper_strain = drift / thinnest
     masses = np.asarray(building.masses)
     absolute = acceleration + ground[:, None]
     base_shear = -(absolute @ masses)
     energy = _energy(building, ground, displacement, velocity, drift, damper_force)
-    _warn_strain_range(building, drift)
+    _warn_strain_range(building, np.abs(drift).max(axis=0))
     return SimulationResult(building, time, ground, displacement, velocity, acceleration, absolute, drift,
                             drift_ratio, damper_force, damper_strain, base_shear, energy, wall_force)
 
 
-def _cumulative_work(force, displacement):
-    """int force . d(displacement) by the trapezoidal rule, per step; both (steps, k)."""
-    increments = 0.5 * (force[1:] + force[:-1]) * np.diff(displacement, axis=0)
-    return np.concatenate([[0.0], np.cumsum(increments.sum(axis=1))])
+@njit(cache=True)
+def _energy_histories(ground, masses, stiffness, damping, displacement, velocity, drift, damper_force):
+    """One pass over the steps: (input, kinetic, frame strain, inherent damping, damper work), N*mm.
+
+    Work terms use trapezoidal increments 0.5 (f_n + f_{n+1}) . (x_{n+1} - x_n), the rule under which
+    Newmark's average acceleration conserves energy exactly.
+    """
+    steps, floors = displacement.shape
+    energy = np.zeros((5, steps))
+    damping_force = np.zeros((2, floors))
+    for n in range(steps):
+        now = n % 2
+        kinetic = 0.0
+        strain = 0.0
+        for i in range(floors):
+            kinetic += 0.5 * masses[i] * velocity[n, i] ** 2
+            restoring = 0.0
+            viscous = 0.0
+            for j in range(floors):
+                restoring += stiffness[i, j] * displacement[n, j]
+                viscous += damping[i, j] * velocity[n, j]
+            strain += 0.5 * displacement[n, i] * restoring
+            damping_force[now, i] = viscous
+        energy[1, n] = kinetic
+        energy[2, n] = strain
+        if n == 0:
+            continue
+        work_input = 0.0
+        work_damping = 0.0
+        work_damper = 0.0
+        for i in range(floors):
+            step = displacement[n, i] - displacement[n - 1, i]
+            work_input -= 0.5 * masses[i] * (ground[n] + ground[n - 1]) * step
+            work_damping += 0.5 * (damping_force[now, i] + damping_force[1 - now, i]) * step
+            work_damper += 0.5 * (damper_force[n, i] + damper_force[n - 1, i]) * (drift[n, i] - drift[n - 1, i])
+        energy[0, n] = energy[0, n - 1] + work_input
+        energy[3, n] = energy[3, n - 1] + work_damping
+        energy[4, n] = energy[4, n - 1] + work_damper
+    return energy
 
 
 def _energy(building, ground, displacement, velocity, drift, damper_force):
-    masses = np.asarray(building.masses)
-    effective_load = -np.outer(ground, masses)
-    kinetic = 0.5 * np.einsum("ij,j,ij->i", velocity, masses, velocity)
-    frame_strain = 0.5 * np.einsum("ij,jk,ik->i", displacement, building.stiffness_matrix, displacement)
-    return EnergyHistory(
-        input=_cumulative_work(effective_load, displacement),
-        kinetic=kinetic,
-        frame_strain=frame_strain,
-        inherent_damping=_cumulative_work(velocity @ building.damping_matrix, displacement),
-        damper_work=_cumulative_work(damper_force, drift),
-    )
+    energy = _energy_histories(ground, np.asarray(building.masses), building.stiffness_matrix,
+                               building.damping_matrix, displacement, velocity, drift, damper_force)
+    return EnergyHistory(*energy)
 
 
-def _warn_strain_range(building, drift):
+def _warn_strain_range(building, peak_drift):
     outside = []
     for story, wall in building.damper_list:
         if wall.strain_range is None:
             continue
-        peak = np.abs(drift[:, story - 1]).max() / wall.thickness
+        peak = peak_drift[story - 1] / wall.thickness
         low, high = wall.strain_range
         if not low <= peak <= high:
             outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %)")
