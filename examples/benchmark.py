@@ -1,0 +1,304 @@
+"""Benchmark of vdw_frames (issue 5): memory strategies, scaling, OpenSees comparison, compile time.
+
+    python examples/benchmark.py [--quick]
+
+Everything is measured in this one run, on this machine, with ``time.perf_counter`` (best of a few
+repeats for runs under a second; numba compilation is excluded except in (d)):
+
+(a) ``memory="fast"`` against ``memory="exact"``: time and deviation of the drifts at 2 000, 20 000 and
+    200 000 steps (a 2 000-sample window around the peak of the record, the whole record, the whole
+    record at dt / 10).  The exact memory costs O(N^2); when the 200 000-step run would take more than
+    two minutes (estimated from the 20 000-step time by N^2 scaling) it is not run and the estimate is
+    printed, labelled as extrapolated.
+(b) the fast mode's scaling exponent: the least-squares slope of log(time) against log(steps).
+(c) the 10-story frame with two fractional FDMK walls a story on HWA002-N (Chi-Chi 1999; 20 000 steps,
+    dt 0.004 s) against OpenSeesPy running the same frame with classical r = 1 walls (Elastic + Maxwell
+    materials, Newmark, one ``analyze(N)`` call, a node recorder): the time ratio (target: vdw_frames
+    at most 1/20 of OpenSees) and the fast mode's "10x the steps in at most 11x the time" ratio.
+(d) numba compilation: ``import vdw_frames`` + a first ``simulate`` in a fresh subprocess with an empty
+    cache (``NUMBA_CACHE_DIR`` a new temporary folder), then again in a fresh subprocess with that cache
+    warm.
+
+``--quick``: 2 000 and 20 000 steps only (no 200 000-step runs), single repeats.  Without the
+../shared/ground_motions folder (a fresh clone) a synthetic 80 s record at 0.004 s stands in for
+HWA002-N; without OpenSeesPy part (c) prints the vdw_frames times only.  Units: N, mm, s, tonne.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import math
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+RECORD = ROOT.parent / "shared" / "ground_motions" / "HWA002-N.AT2"
+EXACT_BUDGET = 120.0  # s: longest exact-memory run attempted (estimated by N^2 scaling)
+SHORT_RUN = 5.0  # s: runs shorter than this are repeated and the best time kept
+
+try:
+    import vdw_frames  # noqa: F401
+except ImportError:  # run from a checkout without an install
+    sys.path.insert(0, str(ROOT))
+from vdw_frames import FDMKDamper, ShearBuilding, simulate
+from vdw_frames.ground_motion import G, GroundMotion, read_at2
+
+# The frame of examples/ten_story.toml (600 t floors, 450 t roof, 900 -> 450 kN/mm, 5 % Rayleigh on
+# modes 1 and 2) with two paper-size walls (A = 1e6 mm^2, h = 10 mm) a story; the README's damper.
+WALL = FDMKDamper(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.5, area=1.0e6, thickness=10.0)
+
+
+def ten_story(wall=WALL) -> ShearBuilding:
+    return ShearBuilding([600.0] * 9 + [450.0], np.linspace(900e3, 450e3, 10),
+                         dampers={story: [wall, wall] for story in range(1, 11)})
+
+
+def load_record():
+    """HWA002-N from ../shared, else a seeded synthetic stand-in of the same length and step."""
+    if RECORD.is_file():
+        return read_at2(RECORD), f"{RECORD.name} (Chi-Chi 1999, HWA002 N)"
+    from vdw_frames.ground_motion import synthetic_ground_motion
+
+    motion = synthetic_ground_motion(duration=19999 * 0.004, dt=0.004, pga=0.1 * G, name="synthetic")
+    return motion, f"synthetic stand-in ({RECORD} is absent)"
+
+
+def timed(function, repeats):
+    """(best time in s, result of the last call); repeats only while a run is shorter than SHORT_RUN."""
+    best, result = math.inf, None
+    for attempt in range(repeats):
+        started = time.perf_counter()
+        result = function()
+        elapsed = time.perf_counter() - started
+        best = min(best, elapsed)
+        if elapsed > SHORT_RUN:
+            break
+    return best, result
+
+
+def fast_memory_available(building) -> bool:
+    try:
+        simulate(building, GroundMotion(np.zeros(8), 0.01), memory="fast")
+    except ValueError:
+        return False
+    return True
+
+
+def deviations(drift, reference):
+    """(max over stories of |peak / reference peak - 1|, max |difference| / max |reference|)."""
+    peaks = np.abs(drift).max(axis=0) / np.abs(reference).max(axis=0)
+    return float(np.abs(peaks - 1.0).max()), float(np.abs(drift - reference).max() / np.abs(reference).max())
+
+
+def cases(motion, quick):
+    """(label, GroundMotion, dt) for 2 000, 20 000 and (unless quick) 200 000 steps."""
+    peak = int(np.argmax(np.abs(motion.acceleration)))
+    start = min(max(peak - 1000, 0), max(motion.acceleration.size - 2000, 0))
+    window = GroundMotion(motion.acceleration[start:start + 2000], motion.dt, motion.name)
+    rows = [(f"window {start * motion.dt:.0f}-{(start + 2000) * motion.dt:.0f} s", window, motion.dt),
+            ("whole record", motion, motion.dt)]
+    if not quick:
+        rows.append(("whole record, dt / 10", motion, motion.dt / 10))
+    return rows
+
+
+def part_a(building, motion, fast, quick, repeats):
+    print("\n(a) fast vs exact memory: 10-story frame, 2 walls a story (r = 0.5), BDF2")
+    if not fast:
+        print("    fast memory not available (simulate(..., memory='fast') is refused): exact memory only")
+    header = f"    {'steps':>7}  {'dt (s)':>7}  {'input':<24} {'exact (s)':>16}  {'fast (s)':>9}  " \
+             f"{'fast/exact':>10}  {'peak dev':>9}  {'hist dev':>9}"
+    print(header)
+    print("    " + "-" * (len(header) - 4))
+    timings = {"exact": {}, "fast": {}}
+    extrapolated = False
+    for label, record, dt in cases(motion, quick):
+        steps = record.acceleration_at(dt).size
+        exact_time = exact = None
+        estimate = None
+        measured = timings["exact"]
+        if measured:
+            known = max(measured)
+            estimate = measured[known] * (steps / known) ** 2
+        if estimate is None or estimate <= EXACT_BUDGET:
+            exact_time, exact = timed(lambda: simulate(building, record, dt=dt, memory="exact"), repeats)
+            timings["exact"][steps] = exact_time
+            exact_cell = f"{exact_time:.3f}"
+        else:
+            exact_cell = f"~{estimate:.0f} extrap.*"
+            extrapolated = True
+        fast_cell = ratio_cell = peak_cell = history_cell = "-"
+        if fast:
+            fast_time, result = timed(lambda: simulate(building, record, dt=dt, memory="fast"), repeats)
+            timings["fast"][steps] = fast_time
+            fast_cell = f"{fast_time:.3f}"
+            reference_time = exact_time if exact_time is not None else estimate
+            ratio_cell = f"{fast_time / reference_time:.4f}" + ("" if exact_time is not None else "*")
+            if exact is not None:
+                peak_dev, history_dev = deviations(result.drift, exact.drift)
+                peak_cell, history_cell = f"{peak_dev:.2e}", f"{history_dev:.2e}"
+            else:
+                peak_cell = history_cell = "n/a*"
+        print(f"    {steps:>7}  {dt:>7.4g}  {label:<24} {exact_cell:>16}  {fast_cell:>9}  {ratio_cell:>10}  "
+              f"{peak_cell:>9}  {history_cell:>9}")
+    if extrapolated:
+        print(f"    * extrapolated, not measured: the exact run would exceed {EXACT_BUDGET:.0f} s, so its time is"
+              " the 20 000-step time x (N / 20 000)^2 and there is no deviation to report")
+    print("    peak dev = max over stories |peak drift fast / exact - 1|; "
+          "hist dev = max |drift fast - exact| / max |drift exact|")
+    return timings
+
+
+def slope(timings):
+    steps = np.array(sorted(timings), dtype=float)
+    if steps.size < 2:
+        return math.nan
+    seconds = np.array([timings[int(n)] for n in steps])
+    return float(np.polyfit(np.log(steps), np.log(seconds), 1)[0])
+
+
+def part_b(timings):
+    print("\n(b) scaling exponent p in time ~ steps^p (least-squares slope on log-log, measured points only)")
+    if timings["fast"]:
+        print(f"    fast memory:  p = {slope(timings['fast']):.3f}   (target ~1)")
+    else:
+        print("    fast memory not available")
+    print(f"    exact memory: p = {slope(timings['exact']):.3f}   (O(N^2) convolution)")
+
+
+def opensees_time(building, acceleration, dt, repeats, algorithm="Newton"):
+    sys.path.insert(0, str(ROOT / "tests"))
+    try:
+        import opensees_frame
+
+        opensees_frame.opensees()
+    except ImportError as error:
+        return None, f"OpenSeesPy not available ({error})"
+    seconds, displacement = timed(
+        lambda: opensees_frame.run_recorded(building, acceleration, dt, algorithm=algorithm), repeats)
+    return (seconds, opensees_frame.drifts(displacement)), None
+
+
+def part_c(building, motion, source, fast, timings, quick, repeats):
+    steps = motion.acceleration.size
+    print(f"\n(c) 10-story frame, 2 walls a story, {source}: {steps} steps, dt = {motion.dt:g} s")
+    memory = "fast" if fast else "exact"
+    vdw_time = timings[memory].get(steps)
+    if vdw_time is None:
+        vdw_time, _ = timed(lambda: simulate(building, motion, memory=memory), repeats)
+    classical = ShearBuilding(building.masses, building.stiffnesses, building.damping_ratio,
+                              building.damping_modes,
+                              {story: [dataclasses.replace(w, r=1.0) for w in walls]
+                               for story, walls in building.dampers.items()})
+    opensees, problem = opensees_time(classical, motion.acceleration, motion.dt, repeats)
+    rows = [(f"vdw_frames, fractional r = {WALL.r:g}, memory='{memory}'", vdw_time)]
+    if opensees is not None:
+        os_time, os_drift = opensees
+        rows.append(("OpenSeesPy, classical r = 1 (Elastic+Maxwell, Newton)", os_time))
+        if not quick:
+            (linear_time, linear_drift), _ = opensees_time(classical, motion.acceleration, motion.dt, repeats, "Linear")
+            linear_dev, _ = deviations(linear_drift, os_drift)
+            rows.append((f"OpenSeesPy, same, algorithm Linear (peaks off {100 * linear_dev:.2f} %)", linear_time))
+            r1_time, r1 = timed(lambda: simulate(classical, motion, memory=memory), repeats)
+            peak_dev, _ = deviations(r1.drift, os_drift)
+            rows.append((f"vdw_frames, same r = 1 frame, memory='{memory}'", r1_time))
+    for label, seconds in rows:
+        print(f"    {label:<58} {seconds:9.3f} s")
+    if opensees is None:
+        print(f"    {problem}")
+    else:
+        ratio = vdw_time / os_time
+        verdict = "meets" if ratio <= 1 / 20 else "misses"
+        print(f"    vdw_frames (fractional) / OpenSees (classical) = {ratio:.4f}  (= 1/{1 / ratio:.1f}; "
+              f"target <= 1/20 = 0.05: {verdict})")
+        if not quick:
+            print(f"    (r = 1 frame, vdw_frames BDF2 vs OpenSees: peak drifts within {100 * peak_dev:.2f} %)")
+    if fast:
+        fast_times = timings["fast"]
+        ordered = sorted(fast_times)
+        for low, high in zip(ordered, ordered[1:]):
+            growth = fast_times[high] / fast_times[low]
+            verdict = "meets" if growth <= 11.0 * high / low / 10.0 else "misses"
+            print(f"    fast memory, {high / low:.0f}x the steps ({low} -> {high}): {growth:.2f}x the time "
+                  f"(target <= {11.0 * high / low / 10.0:.0f}x: {verdict})")
+    else:
+        print("    fast memory not available: no 10x-steps / 11x-time ratio")
+
+
+_PROBE = r"""
+import json, time
+started = time.perf_counter()
+import numpy as np
+import vdw_frames
+from vdw_frames import FDMKDamper, ShearBuilding, simulate
+from vdw_frames.ground_motion import GroundMotion
+imported = time.perf_counter()
+wall = FDMKDamper(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.5)
+building = ShearBuilding([600.0] * 9 + [450.0], np.linspace(900e3, 450e3, 10),
+                         dampers={story: [wall, wall] for story in range(1, 11)})
+t = np.arange(500) * 0.01
+simulate(building, GroundMotion(1000.0 * np.sin(2 * np.pi * t), 0.01))
+done = time.perf_counter()
+print(json.dumps({"import": imported - started, "simulate": done - imported}))
+"""
+
+
+def probe(cache_dir):
+    environment = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir))
+    environment["PYTHONPATH"] = os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")]))
+    started = time.perf_counter()
+    completed = subprocess.run([sys.executable, "-c", _PROBE], env=environment, capture_output=True, text=True,
+                               check=True)
+    wall_time = time.perf_counter() - started
+    timings = json.loads(completed.stdout.strip().splitlines()[-1])
+    return timings["import"], timings["simulate"], wall_time
+
+
+def part_d():
+    print("\n(d) numba compilation: fresh subprocess, import vdw_frames + first simulate "
+          "(10-story frame, 2 walls a story, 500 steps)")
+    print(f"    {'cache':<30} {'import (s)':>10}  {'1st simulate (s)':>16}  {'process total (s)':>17}")
+    with tempfile.TemporaryDirectory(prefix="vdw-numba-cache-") as cache_dir:
+        for label in ("cold (empty NUMBA_CACHE_DIR)", "warm (same cache, new process)"):
+            imported, first, total = probe(cache_dir)
+            print(f"    {label:<30} {imported:>10.3f}  {first:>16.3f}  {total:>17.3f}")
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--quick", action="store_true", help="2 000 and 20 000 steps only, single repeats")
+    args = parser.parse_args(argv)
+    repeats = 1 if args.quick else 3
+
+    motion, source = load_record()
+    building = ten_story()
+    print("vdw_frames benchmark" + (" (--quick)" if args.quick else ""))
+    load = os.getloadavg() if hasattr(os, "getloadavg") else (math.nan,) * 3
+    print(f"machine: {platform.machine()}, {os.cpu_count()} CPUs, load {load[0]:.2f}; Python "
+          f"{platform.python_version()}, numpy {np.__version__}, numba {__import__('numba').__version__}")
+    print(f"record: {source}: {motion.acceleration.size} points, dt = {motion.dt:g} s, "
+          f"PGA = {motion.pga / G:.3f} g")
+    fast = fast_memory_available(building)
+    # Compile (or load from the cache) before timing anything.
+    warm = GroundMotion(motion.acceleration[:50], motion.dt)
+    for memory in ("exact", "fast") if fast else ("exact",):
+        simulate(building, warm, memory=memory)
+
+    timings = part_a(building, motion, fast, args.quick, repeats)
+    part_b(timings)
+    part_c(building, motion, source, fast, timings, args.quick, repeats)
+    part_d()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
