@@ -1,5 +1,6 @@
 """The example seismic simulation and the command line, end to end."""
 
+import csv
 import json
 import runpy
 import subprocess
@@ -12,7 +13,7 @@ import pytest
 
 from vdw_frames import cli, paper, simulate
 from vdw_frames.config import building_from_dict, load_building
-from vdw_frames.ground_motion import default_record_path, read_at2
+from vdw_frames.ground_motion import G, default_record_path, read_at2
 
 ROOT = Path(__file__).resolve().parents[1]
 SHARED = ROOT.parent / "shared" / "ground_motions"
@@ -106,3 +107,19 @@ def test_cli_help(command):
 def test_building_file_validation(data, match):
     with pytest.raises(ValueError, match=match):
         building_from_dict(data)
+
+
+def test_ida_example_writes_curves_and_csv(tmp_path, capsys):
+    records = tmp_path / "records"
+    records.mkdir()
+    (records / "synthetic.AT2").write_bytes(default_record_path().read_bytes())
+    ida = runpy.run_path(str(ROOT / "examples" / "ida.py"), run_name="ida")
+    assert ida["main"](["--out", str(tmp_path), "--records", str(records), "--levels", "2"]) == 0
+    rows = list(csv.DictReader((tmp_path / "ida_with_VDW.csv").open()))
+    assert len(rows) == 1 * 2 * 10
+    assert float(rows[10]["pga_mm_s2"]) == pytest.approx(0.2 * G)
+    # A linear frame: doubling the PGA doubles every peak.
+    first, second = float(rows[0]["peak_drift_mm"]), float(rows[10]["peak_drift_mm"])
+    assert second == pytest.approx(2 * first, rel=1e-9)
+    assert (tmp_path / "ida_curves.png").stat().st_size > 10_000
+    assert "median peak drift ratio" in capsys.readouterr().out
