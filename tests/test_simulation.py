@@ -107,6 +107,8 @@ def test_time_step_rules():
     for bad in (0.02, 0.003):
         with pytest.raises(ValueError, match="dt"):
             simulate(building, motion, dt=bad)
+    with pytest.raises(ValueError, match="ground_motion must be a GroundMotion"):
+        simulate(building, motion.acceleration)
 
 
 @pytest.mark.parametrize("kwargs, match", [

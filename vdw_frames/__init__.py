@@ -7,6 +7,7 @@ energy N*mm, frequency Hz.
 from .batch import BatchResult, run_batch
 from .building import ShearBuilding
 from .damper import DamperState, FDMKDamper
+from .fast_memory import FastMemory
 from .fractional import BDF2, Discretisation, GrunwaldLetnikov, Trapezoidal
 from .ground_motion import G, GroundMotion, read_at2, read_two_column, response_spectrum
 from .plotting import plot_loops
@@ -20,6 +21,7 @@ __all__ = [
     "Discretisation",
     "EnergyHistory",
     "FDMKDamper",
+    "FastMemory",
     "G",
     "GroundMotion",
     "GrunwaldLetnikov",

@@ -22,6 +22,7 @@ from ._validation import positive
 from .building import ShearBuilding, story_matrix
 from .damper import DEFAULT_MEMORY, Memory
 from .fractional import DEFAULT_METHOD
+from .ground_motion import GroundMotion
 
 
 @njit(cache=True)
@@ -164,6 +165,8 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
     """
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
+    if not isinstance(ground_motion, GroundMotion):
+        raise ValueError(f"ground_motion must be a GroundMotion (see read_at2), got {type(ground_motion).__name__}")
     if dt is None:
         dt = ground_motion.dt
     dt = positive("dt", dt)
