@@ -71,11 +71,21 @@ def test_batch_on_a_dask_local_cluster():
     np.testing.assert_array_equal(result.peak_drift[0, 1], single.peak_drift)
 
 
+def test_batch_reports_worker_warnings_and_failures():
+    bounded = FDMKDamper(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.5, area=2.0e5, strain_range=(2.0, 3.0))
+    frame = ShearBuilding([300.0], [2e5], dampers={1: bounded})
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        with pytest.warns(UserWarning, match=r"sine 1.1 Hz x 0.5: damper peak strain outside"):
+            run_batch(frame, motions()[:1], [0.5], executor=pool, progress=False)
+        with pytest.raises(ValueError, match="overflowed"):
+            run_batch(frame, motions()[:1], [1.0, 1e200], executor=pool, progress=False)
+
+
 @pytest.mark.parametrize("args, match", [
     (dict(motions=[]), "motions"), (dict(scales=[[1.0, 2.0]] * 3), "scales must have shape"),
     (dict(scales=[1.0, np.nan]), "scales must be finite"), (dict(scales=[]), "scales must have shape"),
 ])
 def test_batch_validation(args, match):
     arguments = dict(motions=motions(), scales=[1.0]) | args
-    with pytest.raises(ValueError, match=match):
-        run_batch(building(), arguments["motions"], arguments["scales"], executor=concurrent.futures.ThreadPoolExecutor(1))
+    with concurrent.futures.ThreadPoolExecutor(1) as pool, pytest.raises(ValueError, match=match):
+        run_batch(building(), arguments["motions"], arguments["scales"], executor=pool)

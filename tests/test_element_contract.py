@@ -114,6 +114,32 @@ def test_invalid_inputs_are_refused():
         sine_test(TABLE4, 1.0, 1.0)
 
 
+def test_more_boundary_cases():
+    damper = FDMKDamper(**TABLE4)
+    with pytest.raises(ValueError, match="displacement must be real"):
+        damper.force(np.array([0.0, 1.0 + 5.0j]), 0.01)
+    with pytest.raises(ValueError, match="G1 must be a real number"):
+        FDMKDamper(**dict(TABLE4, G1=np.complex128(1 + 1j)))
+    with pytest.raises(ValueError, match="cycles must be a whole number"):
+        sine_test(damper, 1.0, 1.0, cycles=None)
+    with pytest.raises(ValueError, match="cycles must be a whole number"):
+        sine_test(damper, 1.0, 1.0, cycles=math.inf)
+    with pytest.raises(ValueError, match="force overflowed"):
+        FDMKDamper(**dict(TABLE4, G1=1e308)).force([0.0, 1e3, 2e3], 0.01)
+    for bad, match in [(dict(max_steps=math.inf), "max_steps must be a whole number"),
+                       (dict(window="a"), "window must be a whole number"), (dict(tolerance=0.0), "tolerance must be > 0")]:
+        with pytest.raises(ValueError, match=match):
+            FastMemory(**bad)
+    with pytest.raises(ValueError, match="strain_range must be two numbers"):
+        FDMKDamper(**TABLE4, strain_range=(1.0,))
+
+
+def test_loss_factor_of_a_damper_without_modulus_is_zero():
+    # G2 > 0 with eta2 = 0: the Maxwell branch carries no force, and nothing else is there.
+    assert FDMKDamper(G1=0.0, G2=3.0, eta1=0.0, eta2=0.0, r=0.5).loss_factor(1.0) == 0.0
+    assert FDMKDamper(G1=0.0, G2=0.0, eta1=1.0, eta2=0.0, r=0.5).loss_factor(1.0) == pytest.approx(1.0)
+
+
 def test_parameters_are_immutable():
     damper = FDMKDamper(**TABLE4)
     with pytest.raises(AttributeError):

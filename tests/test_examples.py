@@ -57,8 +57,9 @@ def test_seismic_example_on_a_shared_record_scaled(tmp_path, capsys):
 def test_example_building_file_matches_its_description():
     building = load_building(ROOT / "examples" / "ten_story.toml")
     np.testing.assert_allclose(building.periods[:4], [1.984, 0.708, 0.435, 0.319], atol=5e-4)
-    assert len(building.damper_list) == 10
-    assert building.damper_list[0][1] == paper.fitted(225)
+    assert [story for story, _ in building.damper_list] == [1, 2, 3, 4, 5, 6]
+    assert building.damper_list[0][1] == paper.fitted(300, area=0.5e6)
+    assert 0.0 < building.damper_list[0][1].r < 1.0  # the example exercises the fractional memory
 
 
 def test_cli_simulate_with_a_json_building(tmp_path, capsys):
@@ -97,7 +98,17 @@ def test_cli_help(command):
     assert run.returncode == 0 and "usage: vdw-frames" in run.stdout
 
 
+def test_cli_reports_a_missing_record(tmp_path, capsys):
+    assert cli.main(["simulate", str(ROOT / "examples" / "ten_story.toml"), "--record", str(tmp_path / "none.AT2")]) == 2
+    assert "none.AT2" in capsys.readouterr().err
+
+
 @pytest.mark.parametrize("data, match", [
+    ({"masses": 5, "stiffnesses": [1.0]}, "masses must be a list"),
+    ({"masses": [1.0], "stiffnesses": [1.0], "walls": 5}, "walls must be a list"),
+    ({"masses": [1.0], "stiffnesses": [1.0], "damping_modes": 5}, "damping_modes must be a list"),
+    ({"masses": [1.0, 1.0], "stiffnesses": [1.0, 1.0], "walls": [{"stories": [1, 1], "parameters": "fitted-300"}]},
+     "distinct story numbers"),
     ({"masses": [1.0]}, "missing key 'stiffnesses'"),
     ({"masses": [1.0], "stiffnesses": [1.0], "floors": 1}, "unknown building keys"),
     ({"masses": [1.0], "stiffnesses": [1.0], "walls": [{"parameters": "fitted-999"}]}, "strain must be one of"),

@@ -220,7 +220,9 @@ def test_ground_motion_properties_and_validation():
     source[0] = 99.0
     assert copy.acceleration[0] == 1.0
     for bad, match in [(dict(acceleration=[1.0, np.nan]), r"acceleration must be finite, got .*nan.* at index 1"),
-                       (dict(acceleration=[]), "must not be empty"),
+                       (dict(acceleration=[]), "at least 2 samples, got 0"),
+                       (dict(acceleration=[3.0]), "at least 2 samples, got 1"),
+                       (dict(acceleration=[1.0, 2.0 + 1.0j]), "acceleration must be real"),
                        (dict(acceleration=[[1.0]]), "1-dimensional"),
                        (dict(dt=0.0), r"dt must be > 0, got 0\.0"),
                        (dict(dt=np.inf), "dt must be finite"),
@@ -315,8 +317,8 @@ def test_response_spectrum_limits_and_shape():
     assert float(gm.response_spectrum(motion, 2.0)) == pytest.approx(sdof_peak_lsim(motion, 2.0, 0.05), rel=1e-8)
     for periods, damping_ratio, match in [([-1.0], 0.05, "periods must be >= 0"),
                                           ([np.nan], 0.05, "periods must be finite"),
-                                          ([1.0], 1.0, r"damping_ratio must be in \[0, 1\), got 1\.0"),
-                                          ([1.0], -0.1, "damping_ratio must be in")]:
+                                          ([1.0], 1.0, r"damping_ratio must lie in \[0, 1\), got 1\.0"),
+                                          ([1.0], -0.1, "damping_ratio must lie in")]:
         with pytest.raises(ValueError, match=match):
             gm.response_spectrum(motion, periods, damping_ratio)
 

@@ -118,6 +118,8 @@ def test_time_step_rules():
     (dict(damping_modes=(1, 3)), "damping_modes"), (dict(dampers={3: WALL}), "story"),
     (dict(dampers={0: WALL}), "story"), (dict(dampers={1: "wall"}), "FDMKDamper"),
     (dict(story_heights=[3000.0]), "story_heights"), (dict(story_heights=[3000.0, -1.0]), "story_heights"),
+    (dict(damping_modes=(1, None)), "damping_modes"), (dict(damping_modes=(1, np.inf)), "damping_modes"),
+    (dict(damping_modes=2), "damping_modes"), (dict(dampers=[WALL]), "dampers must be a dict"),
 ])
 def test_building_validation(kwargs, match):
     arguments = dict(masses=[1.0, 1.0], stiffnesses=[1.0, 1.0]) | kwargs

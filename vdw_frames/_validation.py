@@ -9,6 +9,8 @@ import numpy as np
 
 def finite_scalar(name: str, value) -> float:
     """Return ``value`` as a float, or raise ValueError if it is not a finite real number."""
+    if np.iscomplexobj(value):
+        raise ValueError(f"{name} must be a real number, got {value!r}")
     try:
         number = float(value)
     except (TypeError, ValueError):
@@ -36,6 +38,8 @@ def positive(name: str, value) -> float:
 
 def finite_array(name: str, values, ndim: int | None = 1) -> np.ndarray:
     """A float64 array with only finite entries (and ``ndim`` dimensions when given)."""
+    if np.iscomplexobj(values):
+        raise ValueError(f"{name} must be real, got complex values")
     try:
         array = np.asarray(values, dtype=float)
     except (TypeError, ValueError):
@@ -48,6 +52,29 @@ def finite_array(name: str, values, ndim: int | None = 1) -> np.ndarray:
         index_text = index[0] if len(index) == 1 else index
         raise ValueError(f"{name} must be finite, got {array[index]!r} at index {index_text}")
     return array
+
+
+def whole_number(name: str, value, minimum: int) -> int:
+    """An integer >= ``minimum`` (bools and non-integral numbers refused)."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer, float, np.floating)):
+        raise ValueError(f"{name} must be a whole number >= {minimum}, got {value!r}")
+    if not math.isfinite(value) or int(value) != value or value < minimum:
+        raise ValueError(f"{name} must be a whole number >= {minimum}, got {value!r}")
+    return int(value)
+
+
+def damping_ratio(value, name: str = "damping_ratio") -> float:
+    """A damping ratio in [0, 1)."""
+    zeta = finite_scalar(name, value)
+    if not 0.0 <= zeta < 1.0:
+        raise ValueError(f"{name} must lie in [0, 1), got {value!r}")
+    return zeta
+
+
+def require_finite(name: str, values) -> None:
+    """Refuse an overflowed result (inf or NaN) instead of handing it to the user."""
+    if not np.all(np.isfinite(values)):
+        raise ValueError(f"{name} overflowed (inf or NaN): the inputs or parameters are too large")
 
 
 def positive_frequencies(name: str, values) -> np.ndarray:

@@ -12,13 +12,15 @@ import concurrent.futures
 import csv
 import os
 import sys
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from ._validation import finite_array
 from .building import ShearBuilding
-from .fractional import DEFAULT_METHOD
+from .damper import DEFAULT_MEMORY
+from .fractional import DEFAULT_METHOD, Discretisation
 from .ground_motion import GroundMotion
 from .simulation import simulate
 
@@ -31,12 +33,19 @@ class BatchTask:
     motion: GroundMotion
     scale: float
     memory: object
-    method: str
+    method: str | Discretisation
 
     def run(self) -> dict:
-        """Peak responses of this analysis (units of :class:`~vdw_frames.simulation.SimulationResult`)."""
-        result = simulate(self.building, self.motion.scaled(self.scale), method=self.method, memory=self.memory)
+        """Peak responses of this analysis (units of :class:`~vdw_frames.simulation.SimulationResult`).
+
+        Warnings raised by the analysis (e.g. strain outside the identified range) travel back as
+        text under "warnings", since a worker process cannot warn the caller.
+        """
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            result = simulate(self.building, self.motion.scaled(self.scale), method=self.method, memory=self.memory)
         return {
+            "warnings": [str(w.message) for w in caught],
             "peak_drift": result.peak_drift,
             "peak_drift_ratio": result.peak_drift_ratio,
             "peak_absolute_acceleration": result.peak_absolute_acceleration,
@@ -94,7 +103,7 @@ class BatchResult:
 
 
 def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.futures.Executor | None = None,
-              progress: bool = True, memory="fast", method=DEFAULT_METHOD) -> BatchResult:
+              progress: bool = True, memory=DEFAULT_MEMORY, method=DEFAULT_METHOD) -> BatchResult:
     """Run ``building`` under every motion at every scale factor.
 
     ``motions``: GroundMotion objects (mm/s^2).  ``scales``: factors (dimensionless) applied as
@@ -102,7 +111,8 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
     per motion (shape (motions, scales)), e.g. from :func:`scale_factors_to_pga`.  ``executor``: any
     :class:`concurrent.futures.Executor` (default: a process pool over all cores, shut down after).
     ``progress``: a progress bar on standard error, only when it is a terminal.  The peaks equal those
-    of :func:`simulate` for the same run.
+    of :func:`simulate` for the same run; warnings of the analyses are re-issued here, once per message,
+    naming the motion and scale.  The first failing analysis cancels the rest and raises.
     """
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
@@ -114,12 +124,13 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
         factors = np.broadcast_to(factors, (len(motions), factors.size))
     if factors.ndim != 2 or factors.shape[0] != len(motions) or factors.shape[1] == 0:
         raise ValueError(f"scales must have shape (scales,) or ({len(motions)}, scales), got {np.shape(scales)}")
-    tasks = {(m, s): BatchTask(building, motion, float(factors[m, s]), memory, getattr(method, "name", method))
+    tasks = {(m, s): BatchTask(building, motion, float(factors[m, s]), memory, method)
              for m, motion in enumerate(motions) for s in range(factors.shape[1])}
 
     own_executor = executor is None
     if own_executor:
         executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
+    futures = {}
     try:
         futures = {executor.submit(_run, task): key for key, task in tasks.items()}
         peaks = {}
@@ -128,9 +139,20 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
             peaks[futures[future]] = future.result()
             if bar:
                 bar.advance()
+    except BaseException:
+        for future in futures:
+            future.cancel()
+        raise
     finally:
         if own_executor:
-            executor.shutdown()
+            executor.shutdown(cancel_futures=True)
+    reported = set()
+    for (m, s), peak in sorted(peaks.items()):
+        for message in peak["warnings"]:
+            if message not in reported:
+                reported.add(message)
+                warnings.warn(f"{motions[m].name or f'motion {m}'} x {factors[m, s]:g}: {message}", UserWarning,
+                              stacklevel=2)
 
     def stack(name):
         if peaks[(0, 0)][name] is None:

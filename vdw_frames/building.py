@@ -8,7 +8,7 @@ from functools import cached_property
 import numpy as np
 from scipy.linalg import eigh
 
-from ._validation import finite_array, finite_scalar
+from ._validation import damping_ratio, finite_array, whole_number
 from .damper import FDMKDamper
 
 
@@ -55,16 +55,16 @@ class ShearBuilding:
             raise ValueError(f"stiffnesses has {stiffnesses.size} stories for {masses.size} floors (masses)")
         object.__setattr__(self, "masses", tuple(masses.tolist()))
         object.__setattr__(self, "stiffnesses", tuple(stiffnesses.tolist()))
-        ratio = finite_scalar("damping_ratio", self.damping_ratio)
-        if not 0.0 <= ratio < 1.0:
-            raise ValueError(f"damping_ratio must lie in [0, 1), got {self.damping_ratio!r}")
-        object.__setattr__(self, "damping_ratio", ratio)
+        object.__setattr__(self, "damping_ratio", damping_ratio(self.damping_ratio))
         if self.damping_modes is None:
             object.__setattr__(self, "damping_modes", (1, min(2, masses.size)))
-        modes = tuple(self.damping_modes)
-        if len(modes) != 2 or any(int(m) != m or not 1 <= m <= masses.size for m in modes):
+        modes = self.damping_modes
+        if not isinstance(modes, (tuple, list)) or len(modes) != 2:
+            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, got {modes!r}")
+        modes = tuple(whole_number("damping_modes", m, 1) for m in modes)
+        if max(modes) > masses.size:
             raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, got {self.damping_modes!r}")
-        object.__setattr__(self, "damping_modes", tuple(int(m) for m in modes))
+        object.__setattr__(self, "damping_modes", modes)
         object.__setattr__(self, "dampers", self._normalise_dampers(self.dampers, masses.size))
         if self.story_heights is not None:
             heights = finite_array("story_heights", self.story_heights)
@@ -76,6 +76,8 @@ class ShearBuilding:
 
     @staticmethod
     def _normalise_dampers(dampers, stories):
+        if dampers is not None and not isinstance(dampers, dict):
+            raise ValueError(f"dampers must be a dict {{story: FDMKDamper or list}}, got {type(dampers).__name__}")
         normalised = {}
         for story, walls in (dampers or {}).items():
             if isinstance(story, bool) or not isinstance(story, (int, np.integer)) or not 1 <= story <= stories:
@@ -96,17 +98,17 @@ class ShearBuilding:
     @cached_property
     def mass_matrix(self) -> np.ndarray:
         """Diagonal mass matrix, tonne."""
-        return np.diag(self.masses)
+        return _read_only(np.diag(self.masses))
 
     @cached_property
     def stiffness_matrix(self) -> np.ndarray:
         """Bare-frame stiffness matrix, N/mm."""
-        return story_matrix(np.asarray(self.stiffnesses))
+        return _read_only(story_matrix(np.asarray(self.stiffnesses)))
 
     @cached_property
     def _modes(self):
         eigenvalues, shapes = eigh(self.stiffness_matrix, self.mass_matrix)
-        return np.sqrt(eigenvalues), shapes
+        return _read_only(np.sqrt(eigenvalues)), _read_only(shapes)
 
     @property
     def circular_frequencies(self) -> np.ndarray:
@@ -135,7 +137,7 @@ class ShearBuilding:
     def damping_matrix(self) -> np.ndarray:
         """Inherent Rayleigh damping matrix of the bare frame, N*s/mm."""
         a0, a1 = self.rayleigh_coefficients
-        return a0 * self.mass_matrix + a1 * self.stiffness_matrix
+        return _read_only(a0 * self.mass_matrix + a1 * self.stiffness_matrix)
 
     @property
     def damper_list(self) -> list[tuple[int, FDMKDamper]]:
@@ -181,6 +183,12 @@ class ShearBuilding:
         spectrum = np.fft.rfft(ground, size)
         response = self.frequency_response(np.fft.rfftfreq(size, dt))
         return np.fft.irfft(response * spectrum[:, None], size, axis=0)[: ground.size]
+
+
+def _read_only(array: np.ndarray) -> np.ndarray:
+    # Cached once per building: nobody may change them behind the validated inputs.
+    array.flags.writeable = False
+    return array
 
 
 def story_matrix(per_story: np.ndarray) -> np.ndarray:

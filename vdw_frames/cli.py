@@ -74,8 +74,9 @@ def _simulate(args) -> int:
               f"{result.peak_absolute_acceleration[k] / G:11.3f} {result.peak_damper_force[k] / 1e3:10.1f} "
               f"{100 * np.abs(result.damper_strain[:, k]).max():9.1f}")
     energy = result.energy
+    share = energy.damper_work[-1] / energy.input[-1] if energy.input[-1] > 0 else 0.0
     print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; dampers dissipate "
-          f"{100 * energy.damper_work[-1] / energy.input[-1]:.0f} % of the input energy")
+          f"{100 * share:.0f} % of the input energy")
     if args.out:
         out = Path(args.out)
         paths = [plotting.plot_drift_envelope({"response": result}, out / "drift_envelope.png"),
@@ -126,7 +127,7 @@ def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.run(args)
-    except ValueError as error:
+    except (ValueError, OSError) as error:
         print(f"vdw-frames: error: {error}", file=sys.stderr)
         return 2
 

@@ -70,6 +70,12 @@ def building_from_dict(data: dict) -> ShearBuilding:
     for key in ("masses", "stiffnesses"):
         if key not in data:
             raise ValueError(f"missing key {key!r}")
+        if not isinstance(data[key], list):
+            raise ValueError(f"{key} must be a list of numbers, got {data[key]!r}")
+    if not isinstance(data.get("damping_modes", []), list):
+        raise ValueError(f"damping_modes must be a list of two mode numbers, got {data['damping_modes']!r}")
+    if not isinstance(data.get("walls", []), list):
+        raise ValueError(f"walls must be a list of wall groups, got {data['walls']!r}")
     stories = len(data["masses"])
     dampers: dict[int, list[FDMKDamper]] = {}
     for group in data.get("walls", []):
@@ -109,8 +115,8 @@ def _wall_group(group, stories):
     story_numbers = group.get("stories", "all")
     if story_numbers == "all":
         story_numbers = range(1, stories + 1)
-    elif not isinstance(story_numbers, list):
-        raise ValueError(f"walls stories must be 'all' or a list of story numbers, got {story_numbers!r}")
+    elif not isinstance(story_numbers, list) or len(set(map(repr, story_numbers))) != len(story_numbers):
+        raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got {story_numbers!r}")
     per_story = group.get("per_story", 1)
     if isinstance(per_story, bool) or not isinstance(per_story, int) or per_story < 1:
         raise ValueError(f"walls per_story must be a whole number >= 1, got {per_story!r}")

@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _kernel
-from ._validation import finite_array, non_negative, positive, positive_frequencies
+from ._validation import finite_array, non_negative, positive, positive_frequencies, require_finite
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, _check_order, get_method
 
@@ -125,9 +125,10 @@ class FDMKDamper:
         return self.complex_modulus(f).imag
 
     def loss_factor(self, f):
-        """G''/G' (dimensionless) at f (Hz)."""
+        """G''/G' (dimensionless) at f (Hz); 0 where the damper has no modulus at all (G* = 0)."""
         modulus = self.complex_modulus(f)
-        return modulus.imag / modulus.real
+        silent = modulus == 0.0
+        return np.where(silent, 0.0, modulus.imag / np.where(silent, 1.0, modulus.real))
 
     def storage_stiffness(self, f):
         """K' = G' area / thickness (N/mm) at f (Hz)."""
@@ -153,7 +154,7 @@ class FDMKDamper:
         ``displacement[n]`` is the displacement at t = n dt; the history before t = 0 is zero
         (Riemann-Liouville derivatives from rest).  ``method`` selects the discretisation of D^r
         (:mod:`vdw_frames.fractional`; default: BDF2 convolution quadrature, second order).
-        ``memory``: "fast" (default; O(1) work per step, within ~1e-9 of "exact"; see
+        ``memory``: "fast" (default; O(1) work per step, within 3e-9 of "exact"; see
         :mod:`vdw_frames.fast_memory`), "exact" (the full history, O(n) at step n) or a
         :class:`~vdw_frames.fast_memory.FastMemory` with its own tolerance.
         """
@@ -163,7 +164,9 @@ class FDMKDamper:
         stress = _kernel.strain_driven(
             displacement / self.thickness, self.G1, self.G2, self.eta1, self.eta2, *memory_arrays.arrays()
         )
-        return stress * self.area
+        force = stress * self.area
+        require_finite("force", force)
+        return force
 
 
 @dataclass
@@ -181,7 +184,7 @@ class Memory:
     def allocate(cls, damper: FDMKDamper, dt: float, steps: int, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY):
         """Memory for ``steps`` steps of size ``dt`` (s): exact (a window of all steps) or fast."""
         strategy = memory_strategy(memory)
-        if strategy is not None:
+        if strategy is not None and not 0 < steps <= strategy.exact_below:
             arrays = strategy.arrays(method, damper.r, dt, steps)
             return cls(*arrays, max_steps=max(int(steps), strategy.max_steps))
         window = max(int(steps), 1)

@@ -89,7 +89,7 @@ from functools import lru_cache
 import numpy as np
 from scipy import linalg
 
-from ._validation import positive
+from ._validation import positive, whole_number
 from .fractional import _check_order, get_method
 
 DEFAULT_WINDOW = 16
@@ -395,12 +395,22 @@ class FastMemory:
 
     ``tolerance``: relative weight error beyond the window (see :func:`tail_modes`); ``window``: past
     steps kept exactly; ``max_steps``: the longest record the modes serve (raised to the record length
-    when a whole record is known in advance).
+    when a whole record is known in advance); ``exact_below``: records known to be at most this long
+    use the exact memory instead, which is both exact and cheaper there than building the modes.
     """
 
     tolerance: float = DEFAULT_TOLERANCE
     window: int = DEFAULT_WINDOW
     max_steps: int = DEFAULT_MAX_STEPS
+    exact_below: int = 2048
+
+    def __post_init__(self):
+        object.__setattr__(self, "tolerance", positive("tolerance", self.tolerance))
+        object.__setattr__(self, "window", whole_number("window", self.window, 2))
+        object.__setattr__(self, "max_steps", whole_number("max_steps", self.max_steps, self.window + 1))
+        if self.max_steps > 2**40:
+            raise ValueError(f"max_steps must be <= 2**40, got {self.max_steps!r}")
+        object.__setattr__(self, "exact_below", whole_number("exact_below", self.exact_below, 0))
 
     def arrays(self, method, r, dt, steps=0):
         """Kernel arrays for a record of ``steps`` steps (see :func:`fast_memory_arrays`)."""

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 from numba import njit
 
+from ._validation import damping_ratio as _damping_ratio
 from ._validation import finite_array, finite_scalar, non_negative, positive
 
 G = 9806.65
@@ -55,8 +56,8 @@ class GroundMotion:
 
     def __post_init__(self):
         acceleration = finite_array("acceleration", self.acceleration).copy()
-        if acceleration.size == 0:
-            raise ValueError("acceleration must not be empty, got 0 samples")
+        if acceleration.size < 2:
+            raise ValueError(f"acceleration must hold at least 2 samples, got {acceleration.size}")
         acceleration.flags.writeable = False
         if not isinstance(self.name, str):
             raise ValueError(f"name must be a string, got {self.name!r}")
@@ -200,13 +201,6 @@ def _peak_displacements(acceleration, dt, omegas, zeta):
         u, _ = _sdof_history(load, dt, omegas[j], zeta)
         peaks[j] = np.max(np.abs(u))
     return peaks
-
-
-def _damping_ratio(value) -> float:
-    zeta = finite_scalar("damping_ratio", value)
-    if not 0.0 <= zeta < 1.0:
-        raise ValueError(f"damping_ratio must be in [0, 1), got {value!r}")
-    return zeta
 
 
 def response_spectrum(ground_motion: GroundMotion, periods, damping_ratio: float = 0.05) -> np.ndarray:
@@ -460,9 +454,9 @@ def synthetic_ground_motion(duration: float = 25.0, dt: float = 0.01, pga: float
     positive("ground_frequency", ground_frequency)
     samples = round(duration / dt) + 1
     noise = np.random.default_rng(seed).standard_normal(samples)
-    acceleration = _filtered(noise, dt, ground_frequency, _damping_ratio(ground_damping))
+    acceleration = _filtered(noise, dt, ground_frequency, _damping_ratio(ground_damping, "ground_damping"))
     if high_pass_frequency > 0.0:
-        filtered = _filtered(acceleration, dt, high_pass_frequency, _damping_ratio(high_pass_damping))
+        filtered = _filtered(acceleration, dt, high_pass_frequency, _damping_ratio(high_pass_damping, "high_pass_damping"))
         acceleration = filtered - acceleration  # the high-pass oscillator's relative acceleration
     acceleration = acceleration * jennings_envelope(np.arange(samples) * dt, rise_time, strong_motion_end,
                                                     decay_rate)

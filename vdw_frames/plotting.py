@@ -93,6 +93,8 @@ def plot_roof_displacement(results: dict, path) -> Path:
 
 def plot_damper_hysteresis(result, story: int, path, title=None) -> Path:
     """Total damper force (kN) against drift (mm) of one story (1-based) of a simulation result."""
+    if isinstance(story, bool) or not isinstance(story, (int, np.integer)) or not 1 <= story <= result.building.stories:
+        raise ValueError(f"story must be a story number in 1 ... {result.building.stories}, got {story!r}")
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(5.6, 4.6))
     axes.plot(result.drift[:, story - 1], result.damper_force[:, story - 1] / 1e3, lw=0.6)
