@@ -72,6 +72,11 @@ def test_cli_simulate_with_a_json_building(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "2 stories" in out and "2 FDMK dampers" in out
     assert (tmp_path / "damper_hysteresis.png").exists()
+    # The printed table is the package's own result for the same building and record.
+    expected = simulate(building_from_dict(spec), read_at2(default_record_path()))
+    row = next(line.split() for line in out.splitlines() if line.strip().startswith("1 "))
+    assert float(row[1]) == pytest.approx(expected.peak_drift[0], abs=0.006)
+    assert float(row[4]) == pytest.approx(expected.peak_damper_force[0] / 1e3, abs=0.06)
 
 
 def test_cli_sine_test_prints_stiffness_and_writes_the_loop(tmp_path, capsys):

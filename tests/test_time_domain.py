@@ -92,7 +92,8 @@ def test_kelvin_branch_on_a_power_function():
     errors = []
     for stride in (4, 2, 1):
         force = damper.force(t[::stride] ** 2, dt * stride)
-        errors.append(abs(force[-1] - exact[-1]) / exact[-1])
+        late = t[::stride] >= 0.5  # away from the start, where the t^2 kink in D^r costs accuracy
+        errors.append(np.max(np.abs(force[late] - exact[::stride][late]) / exact[::stride][late]))
     assert errors[-1] < 1e-5
     assert errors[0] / errors[1] > 3.5 and errors[1] / errors[2] > 3.5
 

@@ -43,7 +43,9 @@ def _newmark(ground_acceleration, dt, masses, damping, stiffness, effective_inve
     for n in range(steps - 1):
         count = n + 1  # committed damper steps: 0 .. n
         u, v, a = displacement[n], velocity[n], acceleration[n]
-        # Trial at zero drift gives each damper's history force; the rest is tangent x drift.
+        # The element's trial/commit contract, compiled: a trial at zero drift gives each damper's
+        # history force (memory untouched); being linear, the rest is the constant tangent x drift,
+        # already in the factorised effective stiffness.  A nonlinear frame would iterate trials here.
         story_force[:] = 0.0
         for d in range(dampers):
             G1, G2, eta1, eta2, area, thickness = damper_constants[d]
@@ -72,6 +74,7 @@ def _newmark(ground_acceleration, dt, masses, damping, stiffness, effective_inve
             stress, maxwell, _ = _kernel.fdmk_stress(drift / thickness, history[d, 0], history[d, 1],
                                                      G1, G2, eta1, eta2, weights[d, 0])
             damper_force[n + 1, d] = stress * area
+            # Commit the accepted trial: only now does the memory advance.
             _kernel.memory_push(past[d], count, mode_ratio[d], mode_state[d], drift / thickness, maxwell)
         for i in range(floors):
             increment = new[i] - u[i]
