@@ -15,7 +15,7 @@ from vdw_frames.fast_memory import (
     fast_memory_arrays,
     tail_modes,
 )
-from vdw_frames.fractional import METHODS, get_method
+from vdw_frames.fractional import METHODS, DampedTwoStep, get_method
 
 TABLE4 = (8.69, 3.58, 0.75, 0.98)  # G1, G2, eta1, eta2 (MPa, MPa*s^r)
 NO_SPRING = (0.0, 3.58, 0.75, 0.98)  # G1 = 0: Abel dashpot in parallel with the fractional Maxwell branch
@@ -97,7 +97,7 @@ def assert_force_close(exact, fast, bound):
 def test_modes_reproduce_the_weights_over_100000_steps(method, r, dt):
     l1, filtered = tail_errors(method, r, dt, 100_000)
     # Measured (defaults): filtered <= 3e-10 for the trapezoidal rule (mostly the float64 recurrence's own
-    # rounding, see the extended-precision test) and <= 7e-11 for BDF2 / Grunwald.
+    # rounding, see the extended-precision test) and <= 7e-11 for BDF2 / Grunwald / damped (l1 <= 3.5e-11).
     assert filtered <= 1e-9
     if method == "trapezoidal":
         # The alternating tail's float64 ratios near -1 leave a Nyquist-only error (measured <= 3.3e-7).
@@ -139,6 +139,8 @@ def test_any_order_and_window(method, r, window):
         ("trapezoidal", 0.99, 0.001, NO_SPRING),
         ("trapezoidal", 0.05, 0.02, TABLE4),
         ("bdf2", 0.6, 0.005, NO_SPRING),
+        ("damped", 0.9, 0.001, NO_SPRING),
+        ("damped", 0.99, 0.02, TABLE4),
     ],
 )
 def test_force_history_matches_exact_memory_over_100000_steps(method, r, dt, parameters):
@@ -153,6 +155,21 @@ def test_force_history_matches_exact_memory_sweep(method, r, dt):
     for parameters in (TABLE4, NO_SPRING):
         exact, fast = stress_histories(method, r, dt, 20_000, parameters)
         assert_force_close(exact, fast, 1e-7)
+
+
+@pytest.mark.parametrize("rho", [0.0, 0.25, 0.9])
+@pytest.mark.parametrize("r", [0.3, 0.9, 0.99, 1.0])
+def test_damped_family_any_rho_infinity(rho, r):
+    # Branch points 1, -a0/a1 and -1/rho (the last absent at rho = 0, where the method is BDF2).
+    method = DampedTwoStep(rho_infinity=rho)
+    steps = 20_000
+    mode_ratio, mode_weight = tail_modes(method, r, 0.01, max_steps=steps)
+    assert np.all(np.abs(mode_ratio) < 1.0)
+    l1, _ = tail_errors(method, r, 0.01, steps, max_steps=steps)
+    assert l1 <= 2e-10
+    if rho == 0.0:
+        reference = tail_modes("bdf2", r, 0.01, max_steps=steps)
+        assert mode_ratio.size == reference[0].size
 
 
 def test_fast_arrays_are_fresh_and_in_kernel_order():
@@ -185,9 +202,10 @@ def test_cost_per_step_does_not_depend_on_the_record_length():
             counts[method, steps] = max(
                 tail_modes(method, r, 0.005, max_steps=steps)[0].size for r in (0.05, 0.3, 0.6, 0.9, 0.99)
             )
-    # Measured at the defaults (L = 16, tolerance 1e-10): 68 / 33 / 33 at 1e6 steps.
+    # Measured at the defaults (L = 16, tolerance 1e-10): 68 / 33 / 33 / 36 at 1e6 steps.
     assert counts["trapezoidal", 10**6] <= 72
     assert counts["bdf2", 10**6] <= 36 and counts["grunwald", 10**6] <= 36
+    assert counts["damped", 10**6] <= 40
     for method in METHODS:
         per_decade = 14 if method == "trapezoidal" else 8
         assert counts[method, 10**8] <= counts[method, 10**6] + 2 * per_decade
@@ -200,6 +218,10 @@ def test_exact_limits_at_r_equal_one():
     mode_ratio, mode_weight = tail_modes("trapezoidal", 1.0, dt, window=window)
     np.testing.assert_array_equal(mode_ratio, [-1.0])
     np.testing.assert_allclose(mode_weight, [4.0 / dt * (-1.0) ** (window + 1)], rtol=1e-15)
+    # Damped (rho_infinity = 1/2) r = 1: (1 - z)(7 - z) / (4 + 2 z), w_j = 27/4 (-1/2)^j for j >= 2, one mode.
+    mode_ratio, mode_weight = tail_modes("damped", 1.0, dt, window=window)
+    np.testing.assert_allclose(mode_ratio, [-0.5], rtol=1e-15)
+    np.testing.assert_allclose(mode_weight, [6.75 / dt * (-0.5) ** (window + 1)], rtol=1e-13)
     # BDF2 and Grunwald r = 1: finite differences, no tail at all.
     for method in ("bdf2", "grunwald"):
         assert tail_modes(method, 1.0, dt)[0].size == 0

@@ -29,6 +29,16 @@ writing rho = 1/|zeta| = exp(-u) gives, with s = sin(pi r),
   (The cut runs to infinity, not only over (1, 3): going once round both branch points multiplies
   W by exp(4 pi i r).)  At r = 1 every term vanishes: the tail is exactly zero.
 
+* damped two-step (rho_infinity = rho in (0, 1)), W = (1 - zeta)^r P^r Q^-r, P = a0 + a1 zeta,
+  Q = b0 + b1 zeta (see :class:`vdw_frames.fractional.DampedTwoStep`), for j >= 1 (W grows like |zeta|^r),
+  with z_a = -a0/a1 (= 7 at rho = 1/2) and ln(1/rho) the start of the alternating cut (zeta < -1/rho):
+      w_j = -(1 / pi) [ s \\int_0^ln(z_a) e^{-j u} ((e^u - 1)(a0 + a1 e^u) / (b0 + b1 e^u))^r du
+                        + sin(2 pi r) \\int_ln(z_a)^oo e^{-j u} ((e^u - 1)(-a1 e^u - a0) / (b0 + b1 e^u))^r du ]
+            + (-1)^j (s / pi) \\int_ln(1/rho)^oo e^{-j u} ((1 + e^u)(a0 - a1 e^u) / (b1 e^u - b0))^r du.
+  The last density is ~ (u - ln(1/rho))^-r at its start (offsets passed separately: u itself cannot
+  resolve them below 1e-16), its left tail summed in closed form as for the trapezoidal rule; at r = 1
+  it is the pole of W at -1/rho, exactly one mode of ratio -rho.  rho = 0 is BDF2 (no alternating cut).
+
 Each integral is discretised by the trapezoidal (sinc) rule in t = log u (u = ln3 / (1 + e^-t) on
 (0, ln 3), u = ln 3 + e^t on (ln 3, oo)), step 0.25, which is uniformly accurate (~1e-15) for every decay
 from one step to ``max_steps`` steps; the rule's infinite left tail (u -> 0, the slowest modes, where the
@@ -55,10 +65,12 @@ are raised to 4x that floor.
 
 Measured at the defaults (tests/test_fast_memory.py), 1e5 steps, dt-independent (the weights all scale
 with dt^-r): filtered l1 error <= 7e-11 |w_0| against extended-precision weights (<= 3e-10 against the
-float64 recurrence), plain l1 <= 6.1e-11 for BDF2 / Grunwald and <= 3.3e-7 (Nyquist) for the trapezoidal
-rule.  Kernel force histories, 1e5 steps of a smooth 0.1-10 Hz strain history, r in {0.05 .. 1},
-dt = 0.001 and 0.02, Table-4 and G1 = 0 dampers: max |F_fast - F_exact| / max |F_exact| <= 2.6e-9
-(trapezoidal, r = 0.99, dt = 0.001), peak responses within 1.1e-9.
+float64 recurrence), plain l1 <= 6.1e-11 for BDF2 / Grunwald, <= 3.5e-11 for the damped method (its
+alternating ratios near -rho decay geometrically: plain l1 measure) and <= 3.3e-7 (Nyquist) for the
+trapezoidal rule.  Kernel force histories, 1e5 steps of a smooth 0.1-10 Hz strain history, r in
+{0.05 .. 1}, dt = 0.001 and 0.02, Table-4 and G1 = 0 dampers: max |F_fast - F_exact| / max |F_exact|
+<= 2.6e-9 (trapezoidal, r = 0.99, dt = 0.001; damped: <= 7.2e-10, r = 0.9, dt = 0.001, G1 = 0), peak
+responses within 1.1e-9.
 
 Defaults and cost
 -----------------
@@ -74,7 +86,10 @@ doubling of L saves ~1-2 modes) and grows beyond, so L = 16.  K grows ~6 (BDF2, 
     trapezoidal   64        68       68       65       58        1
     bdf2          33        33       32       28       24        0
     grunwald      33        33       31       27       22        0
+    damped        36        36       35       30       26        1
     ============  ========  =======  =======  =======  ========  =====
+
+(damped: rho_infinity = 1/2, two of the modes alternating, near -1/2; 44-47 modes at max_steps = 1e8.)
 
 The modes are built for records of at most ``max_steps`` steps: beyond, the error grows quickly (the
 slowest modes are only moment-matched), so pass ``max_steps`` >= the record length.
@@ -125,7 +140,7 @@ class _Segment:
 
     def __init__(self, sigma, density, kind, end=0.0, small=None):
         self.sigma = sigma  # +1: ratio rho = e^-u, -1: rho = -e^-u
-        self.density = density  # F(u), vectorised
+        self.density = density  # F(u), vectorised; F(u, u - end) for kind 'shift'
         self.kind = kind  # 'log' (0, oo), 'logistic' (0, end), 'shift' (end, oo)
         self.end = end
         # (mass, first moment) of the sinc rule's nodes left of t0, F(u) ~ C u^alpha as u -> 0:
@@ -146,7 +161,8 @@ def _power_tail(scale, alpha, length=1.0):
     return tail
 
 
-def _segments(name, r):
+def _segments(method, r):
+    name = method.name
     s = _sin_pi(r)
     if name == "trapezoidal":
         k = 2.0**r * s / math.pi
@@ -181,7 +197,7 @@ def _segments(name, r):
         def inner(u):  # (0, ln 3): (e^u - 1)(3 - e^u) >= 0
             return -k * s * np.maximum(np.expm1(u) * (3.0 - np.exp(u)), 0.0) ** r
 
-        def outer(u):  # (ln 3, oo)
+        def outer(u, delta):  # (ln 3, oo)
             return -k * s2 * np.maximum(np.expm1(u) * (np.exp(u) - 3.0), 0.0) ** r
 
         # inner ~ -k s (2u)^r = -(s / pi) u^r as u -> 0
@@ -189,14 +205,58 @@ def _segments(name, r):
             _Segment(+1, inner, "logistic", end=_LN3, small=_power_tail(-s / math.pi, r, _LN3)),
             _Segment(+1, outer, "shift", end=_LN3),
         ]
+    if name == "damped":
+        return _damped_segments(method, r, s)
     raise ValueError(f"unknown method {name!r}")
 
 
-def _fine_modes(name, r, window, max_steps, tolerance):
+def _damped_segments(method, r, s):
+    # W = (1 - zeta)^r P^r Q^-r, P = a0 + a1 zeta, Q = b0 + b1 zeta; branch points 1 and z_a = -a0/a1 > 1
+    # (exponent r, cut (1, oo) as for BDF2) and z_b = -b0/b1 = -1/rho_infinity (exponent -r, cut
+    # (-oo, z_b)); |W| grows like |zeta|^r, so the cut integrals hold for j >= 1.
+    a0, a1, b0, b1 = method.coefficients
+    s2 = _sin_2pi(r)
+    log_za = math.log(-a0 / a1)
+
+    def inner(u):  # (0, ln z_a): (e^u - 1)(a0 + a1 e^u) >= 0
+        x = np.exp(u)
+        return -(s / math.pi) * (np.maximum(np.expm1(u) * (a0 + a1 * x), 0.0) / (b0 + b1 * x)) ** r
+
+    def outer(u, delta):  # (ln z_a, oo): both factors of (1 - x)(a0 + a1 x) negative, phase exp(-2 pi i r)
+        x = np.exp(u)
+        return -(s2 / math.pi) * (np.maximum(np.expm1(u) * (-a1 * x - a0), 0.0) / (b0 + b1 * x)) ** r
+
+    # inner ~ -(s / pi) u^r as u -> 0 (a0 + a1 = b0 + b1 = 1)
+    segments = [
+        _Segment(+1, inner, "logistic", end=log_za, small=_power_tail(-s / math.pi, r, log_za)),
+        _Segment(+1, outer, "shift", end=log_za),
+    ]
+    if b1 > 0.0:
+        rho = method.rho_infinity
+        log_zb = -math.log(rho)  # zeta = -e^u, u > ln|z_b|; b1 e^u - b0 = b0 expm1(u - ln|z_b|)
+        scale = ((1.0 + 1.0 / rho) * (a0 - a1 / rho) / b0) ** r  # |W| ~ scale * (u - ln|z_b|)^-r
+
+        def alternating(u, delta):  # delta = u - ln|z_b|, passed separately: u loses it below ~1e-16
+            x = np.exp(u)
+            return (s / math.pi) * ((1.0 + x) * (a0 - a1 * x) / (b0 * np.expm1(delta))) ** r
+
+        def alternating_tail(t0, h):
+            # (s / pi) scale delta^-r summed over delta_k = e^{t_k}, t_k <= t0; s / (pi (1 - r)) = sinc(1 - r)
+            # keeps r -> 1 finite: at r = 1 the cut is the simple pole, one mode (-rho)^j of mass `scale`.
+            d0 = math.exp(t0)
+            m0 = scale * float(np.sinc(1.0 - r)) * d0 ** (1.0 - r) * _phi((1.0 - r) * h)
+            m1 = scale * s / math.pi * h * d0 ** (2.0 - r) / -math.expm1(-(2.0 - r) * h)
+            return m0, m1
+
+        segments.append(_Segment(-1, alternating, "shift", end=log_zb, small=alternating_tail))
+    return segments
+
+
+def _fine_modes(method, r, window, max_steps, tolerance):
     """Sinc-quadrature modes: list of (sigma, u, g) with w_{L+1+i} ~= sum g sigma^i e^{-i u}."""
     h = _STEP
     first = window + 1  # smallest lag represented by the modes
-    w0 = abs(get_method(name).weights(r, 1)[0])
+    w0 = abs(method.weights(r, 1)[0])
     # Lump the rule's nodes below u_low into one moment-matched mode: its error is
     # <= j^2 var/2 * mass <= (j u_low)^2 * 2 for mass <= 4; summed over j <= max_steps it stays
     # below 1e-3 of the tolerance.
@@ -204,7 +264,7 @@ def _fine_modes(name, r, window, max_steps, tolerance):
     # Beyond u_high every node's residue e^{-(L+1) u} F(u) h u is negligible (F grows <= e^{2 r u}).
     u_high = 50.0 * math.log(10.0) / max(first - 2.0 * r, 1.0)
     modes = []
-    for segment in _segments(name, r):
+    for segment in _segments(method, r):
         if segment.kind == "log":
             t = h * np.arange(math.ceil(math.log(u_low) / h), math.ceil(math.log(u_high) / h) + 1)
             u = np.exp(t)
@@ -218,16 +278,18 @@ def _fine_modes(name, r, window, max_steps, tolerance):
         else:  # shift
             if u_high <= segment.end:
                 continue
-            t = h * np.arange(math.floor(-50.0 / h), math.ceil(math.log(u_high - segment.end) / h) + 1)
+            low = math.log(u_low) if segment.small is not None else -50.0
+            t = h * np.arange(math.floor(low / h), math.ceil(math.log(u_high - segment.end) / h) + 1)
             u = segment.end + np.exp(t)
             du = np.exp(t)
         with np.errstate(over="ignore", invalid="ignore"):
-            c = h * segment.density(u) * du
+            c = h * (segment.density(u, du) if segment.kind == "shift" else segment.density(u)) * du
         c = np.where(np.isfinite(c), c, 0.0)
         if segment.small is not None:
             m0, m1 = segment.small(t[0] - h, h)
             if m0 != 0.0:
-                u = np.append(u, m1 / m0 if m1 != 0.0 else 0.0)
+                start = segment.end if segment.kind == "shift" else 0.0
+                u = np.append(u, start + (m1 / m0 if m1 != 0.0 else 0.0))
                 c = np.append(c, m0)
         g = c * np.exp(-first * u) * segment.sigma**first
         keep = np.abs(g) > _NEGLIGIBLE * w0
@@ -305,9 +367,9 @@ def _reduce(u, g, horizon, budget, alternating):
 
 
 @lru_cache(maxsize=256)
-def _dimensionless_modes(name, r, window, tolerance, max_steps):
-    w0 = abs(get_method(name).weights(r, 1)[0])
-    fine = _fine_modes(name, r, window, max_steps, tolerance)
+def _dimensionless_modes(method, r, window, tolerance, max_steps):
+    w0 = abs(method.weights(r, 1)[0])
+    fine = _fine_modes(method, r, window, max_steps, tolerance)
     groups = {}
     for sigma, u, g in fine:
         groups.setdefault((sigma, g > 0), []).append((u, g))
@@ -317,7 +379,9 @@ def _dimensionless_modes(name, r, window, tolerance, max_steps):
     for (sigma, _), members in sorted(groups.items()):
         u = np.array([m[0] for m in members])
         g = np.array([m[1] for m in members])
-        u_r, g_r = _reduce(u, g, horizon, budget, alternating=sigma < 0)
+        # The Nyquist-filtered measure only for ratios near -1 (trapezoidal); the damped method's
+        # alternating ratios are near -rho_infinity and decay geometrically: plain l1.
+        u_r, g_r = _reduce(u, g, horizon, budget, alternating=sigma < 0 and method.name == "trapezoidal")
         order = np.argsort(u_r)
         ratios.append(sigma * np.exp(-u_r[order]))
         weights.append(g_r[order])
@@ -333,7 +397,8 @@ def tail_modes(method, r, dt, window=DEFAULT_WINDOW, tolerance=DEFAULT_TOLERANCE
     Parameters
     ----------
     method : str or Discretisation
-        'trapezoidal', 'bdf2' or 'grunwald' (see :mod:`vdw_frames.fractional`).
+        'trapezoidal', 'bdf2', 'grunwald' or 'damped', or a :class:`~vdw_frames.fractional.DampedTwoStep`
+        with any rho_infinity (see :mod:`vdw_frames.fractional`).
     r : float
         Fractional order, 0 < r <= 1.
     dt : float
@@ -357,7 +422,7 @@ def tail_modes(method, r, dt, window=DEFAULT_WINDOW, tolerance=DEFAULT_TOLERANCE
         In the layout of :mod:`vdw_frames._kernel`: rho_k and c_k rho_k^(L+1) (s^-r), so that
         w_j ~= sum_k mode_weight_k * mode_ratio_k^(j - L - 1) for j > L.
     """
-    name = get_method(method).name
+    method = get_method(method)
     r = _check_order(r)
     dt = positive("dt", dt)
     window = int(window)
@@ -367,7 +432,7 @@ def tail_modes(method, r, dt, window=DEFAULT_WINDOW, tolerance=DEFAULT_TOLERANCE
         raise ValueError(f"window must be >= 2, got {window}")
     if max_steps <= window:
         raise ValueError(f"max_steps must exceed window ({window}), got {max_steps}")
-    ratio, weight = _dimensionless_modes(name, r, window, tolerance, max_steps)
+    ratio, weight = _dimensionless_modes(method, r, window, tolerance, max_steps)
     return ratio.copy(), weight * dt ** (-r)
 
 
