@@ -192,7 +192,7 @@ def test_rho_to_one_approaches_trapezoidal(r):
 
 def test_registration_and_validation():
     assert set(METHODS) >= {"bdf2", "trapezoidal", "grunwald", "damped"}
-    assert DEFAULT_METHOD == "bdf2"
+    assert DEFAULT_METHOD == "damped"
     scheme = get_method("damped")
     assert isinstance(scheme, DampedTwoStep) and scheme.rho_infinity == 0.5 and scheme.order == 2
     assert get_method(scheme) is scheme

@@ -8,7 +8,7 @@ from .batch import BatchResult, run_batch
 from .building import ShearBuilding
 from .damper import DamperState, FDMKDamper
 from .fast_memory import FastMemory
-from .fractional import BDF2, Discretisation, GrunwaldLetnikov, Trapezoidal
+from .fractional import BDF2, DampedTwoStep, Discretisation, GrunwaldLetnikov, Trapezoidal
 from .ground_motion import G, GroundMotion, read_at2, read_two_column, response_spectrum
 from .plotting import plot_loops
 from .simulation import EnergyHistory, SimulationResult, simulate
@@ -17,6 +17,7 @@ from .sine import SineTestResult, sine_test
 __all__ = [
     "BDF2",
     "BatchResult",
+    "DampedTwoStep",
     "DamperState",
     "Discretisation",
     "EnergyHistory",

@@ -153,7 +153,7 @@ class FDMKDamper:
 
         ``displacement[n]`` is the displacement at t = n dt; the history before t = 0 is zero
         (Riemann-Liouville derivatives from rest).  ``method`` selects the discretisation of D^r
-        (:mod:`vdw_frames.fractional`; default: BDF2 convolution quadrature, second order).
+        (:mod:`vdw_frames.fractional`; default: the damped two-step convolution quadrature, second order).
         ``memory``: "fast" (default; O(1) work per step, within 3e-9 of "exact"; see
         :mod:`vdw_frames.fast_memory`), "exact" (the full history, O(n) at step n) or a
         :class:`~vdw_frames.fast_memory.FastMemory` with its own tolerance.

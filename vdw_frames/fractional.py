@@ -14,22 +14,7 @@ element is the model's transfer function evaluated at ``s = delta(zeta) / dt``. 
 
 Methods
 -------
-``BDF2`` (default)
-    delta(zeta) = 3/2 - 2 zeta + zeta^2 / 2.  Second order and L-stable: delta(-1) is finite, so the
-    highest (Nyquist) frequencies are damped, and the weights decay smoothly like j^(-1-r).  Its symbol
-    is i omega (1 + (omega dt)^2 / 3 + ...), so s^r is off by about r (omega dt)^2 / 3: 0.8 % for
-    r = 0.6 and 1.3 % for r = 1 at omega dt = 0.2 (0.17-0.39 % on the force of the paper's Table 4
-    damper at 0.5-10 Hz); omega dt <= 0.15 keeps every r within 1 %.
-``Trapezoidal``
-    delta(zeta) = 2 (1 - zeta) / (1 + zeta) (Tustin).  Second order with a four times smaller error
-    ((omega dt)^2 / 12 in |s|, exact phase) but only A-stable: delta^r is singular at zeta = -1, the
-    weights carry an alternating tail (-1)^j j^(r-1), and any kink in the input -- the start of a sine
-    test, u'(0+) != 0 -- excites a Nyquist-frequency oscillation that decays like a power law and, at
-    r = 1, not at all (the trapezoidal velocity's well-known ringing).  Measured on a sine from rest
-    with 200 steps per cycle and r = 0.6: 1.8 % error in the first quarter cycle and 0.2 % a cycle
-    later, against 0.7 % and 0.005 % for BDF2.  Hence BDF2 is the default; the trapezoidal rule remains
-    selectable for inputs that start smoothly.
-``DampedTwoStep`` (name ``"damped"``, field ``rho_infinity`` = 1/2 by default, in [0, 1))
+``DampedTwoStep`` (default; name ``"damped"``, field ``rho_infinity`` = 1/2 by default, in [0, 1))
     delta(zeta) = (1 - zeta)(a0 + a1 zeta) / (b0 + b1 zeta), a1 = (rho - 1) / (2 (1 + rho)), a0 = 1 - a1,
     b1 = rho / (1 + rho), b0 = 1 / (1 + rho): the second-order two-step family from BDF2 (rho = 0) to the
     trapezoidal rule (rho -> 1).  delta(e^-z) = z + (a1/2 - 1/12) z^3 + ..., so s^r is off by about
@@ -45,9 +30,23 @@ Methods
     0.69 / 1.36 % (r = 0.9), 0.77 / 1.54 % (r = 1): within 1 % for every r, which BDF2 is not.  On a
     sine from rest (kink at t = 0, 200 steps per cycle, Table 4, r = 0.6, against a 32x finer BDF2
     solution): 1.3 % error in the first cycle (BDF2 0.7 %, trapezoidal 1.8 %), dominated by the first
-    steps after the kink, and 2.6e-5 in the second cycle (BDF2 5.2e-5, trapezoidal 2.2e-3).  So it halves
-    BDF2's error on resolved content and a cycle after a kink, at the price of a larger transient in
-    the few steps right after the kink.
+    steps after the kink, and 2.6e-5 in the second cycle (BDF2 5.2e-5, trapezoidal 2.2e-3).
+    Why the default: it meets "within 1 % at omega dt <= 0.2" for every r in (0, 1] with the damping
+    at the Nyquist frequency that the trapezoidal rule lacks; the price is a larger error in the few
+    steps right after a kink in the input, which dies out like 2^-n.
+``BDF2``
+    delta(zeta) = 3/2 - 2 zeta + zeta^2 / 2 (rho_infinity = 0).  Second order and L-stable: the
+    strongest damping of the family, weights decaying smoothly like j^(-1-r).  Its symbol is
+    i omega (1 + (omega dt)^2 / 3 + ...), so s^r is off by about r (omega dt)^2 / 3: 0.8 % for r = 0.6
+    and 1.3 % for r = 1 at omega dt = 0.2 (omega dt <= 0.15 keeps every r within 1 %).
+``Trapezoidal``
+    delta(zeta) = 2 (1 - zeta) / (1 + zeta) (Tustin, rho_infinity = 1).  Second order with a four times
+    smaller error than BDF2 ((omega dt)^2 / 12 in |s|, exact phase) but only A-stable: delta^r is
+    singular at zeta = -1, the weights carry an alternating tail (-1)^j j^(r-1), and any kink in the
+    input -- the start of a sine test, u'(0+) != 0 -- excites a Nyquist-frequency oscillation that
+    decays like a power law and, at r = 1, not at all (the trapezoidal velocity's well-known ringing).
+    Measured on a sine from rest with 200 steps per cycle and r = 0.6: 1.8 % error in the first quarter
+    cycle and 0.2 % a cycle later.  Selectable for inputs that start smoothly.
 ``GrunwaldLetnikov``
     delta(zeta) = 1 - zeta (backward Euler).  First order: symbol i omega (1 - i omega dt / 2 + ...), about
     6 % error in s^0.6 at omega dt = 0.2.  Kept for comparison with the literature.
@@ -173,7 +172,7 @@ class Trapezoidal(Discretisation):
 
 @dataclass(frozen=True)
 class BDF2(Discretisation):
-    """Second-order backward-difference convolution quadrature: L-stable; the default."""
+    """Second-order backward-difference convolution quadrature: L-stable, twice the default's error."""
 
     name: str = "bdf2"
     order: int = 2
@@ -234,7 +233,7 @@ class DampedTwoStep(Discretisation):
 
 
 METHODS = {m.name: m for m in (BDF2(), Trapezoidal(), GrunwaldLetnikov(), DampedTwoStep())}
-DEFAULT_METHOD = "bdf2"
+DEFAULT_METHOD = "damped"
 
 
 def get_method(method) -> Discretisation:

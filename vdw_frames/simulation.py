@@ -247,7 +247,8 @@ def _result(building, time, ground, displacement, velocity, acceleration, wall_f
     absolute = acceleration + ground[:, None]
     base_shear = -(absolute @ masses)
     energy = _energy(building, ground, displacement, velocity, drift, damper_force)
-    require_finite("the energy balance", energy.balance_error)
+    require_finite("the energy histories", np.concatenate([energy.input, energy.kinetic, energy.frame_strain,
+                                                           energy.inherent_damping, energy.damper_work]))
     _warn_strain_range(building, np.abs(drift).max(axis=0))
     return SimulationResult(building, time, ground, displacement, velocity, acceleration, absolute, drift,
                             drift_ratio, damper_force, damper_strain, base_shear, energy, wall_force)
