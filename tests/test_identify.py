@@ -168,15 +168,16 @@ def test_paper_optima_and_their_bounds(case):
     assert result.at_bound == bounds
 
 
-@pytest.mark.parametrize("grid", [(5, 7), (21, 25), (81, 121)])
+@pytest.mark.parametrize("grid", [(5, 7), (11, 13), (17, 19), (81, 121)])
 def test_result_does_not_depend_on_the_search_grid(grid):
-    # Different grids start the local polish from different points.
-    f, storage, loss = paper.table_moduli(300)
-    reference = identify(f, storage, loss, residual="relative")
-    other = identify(f, storage, loss, residual="relative", grid=grid)
-    assert other.sse == pytest.approx(reference.sse, rel=1e-9)
-    for name, value in reference.params.items():
-        assert other.params[name] == pytest.approx(value, rel=1e-5, abs=1e-9), name
+    # Different grids start the local polish from different points; on every paper table and both
+    # objectives the minimum found is the same (an 11 x 13 grid once missed it at 450 %, relative).
+    for strain in paper.STRAINS:
+        f, storage, loss = paper.table_moduli(strain)
+        for residual in ("absolute", "relative"):
+            reference = identify(f, storage, loss, residual=residual)
+            other = identify(f, storage, loss, residual=residual, grid=grid)
+            assert other.sse == pytest.approx(reference.sse, rel=1e-9), (strain, residual)
 
 
 def test_no_random_start_finds_a_lower_sum():
