@@ -45,6 +45,17 @@ Fit quality (``FIT_QUALITY``; relative SSE, max |relative error| in G' and G'' o
 
 ``tests/test_paper.py`` re-runs the identification and checks that it reproduces the stored numbers.
 
+Cautions (numbers in the report, ``vdw-frames paper-report``):
+
+* Geometry: the default A = 1e6 mm^2 and h = 10 mm are the paper's stated values (A/h = 1e5 mm), but its
+  printed K'_d = G' implies A/h = 1000 mm and its measured loop areas imply A/h = 1430-2920 mm: a damper
+  built with the stated A and h is 34-100 times stronger than the tested wall.  The moduli are what the
+  identification determines; pass the ``area`` and ``thickness`` of the wall you design.
+* The 225 % set is a viscoelastic fluid (G1 = 0, r = 1): no static stiffness.
+* The data determine the moduli over 0.5-10 Hz better than the parameters: at 450 % pinning r anywhere in
+  0.1-0.6 raises the relative sum by at most 1.3 %, so r (and the split between the branches) is barely
+  determined there; outside 0.5-10 Hz the sets are extrapolations.
+
 Strain range (``FIT_RANGE``, % shear strain): each set is assigned the strain amplitudes nearer to its
 test strain than to another one -- boundaries at the midpoints 262.5 % and 375 % -- and no further
 than the tested envelope 225-450 %: 225 % -> [225, 262.5], 300 % -> [262.5, 375], 450 % -> [375, 450].

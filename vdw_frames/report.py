@@ -153,6 +153,7 @@ def errata() -> dict:
     out["eq8_table4"] = np.array(paper.printed_eq8_moduli(omega, **TABLE4))  # printed (8): rows G', G''
     out["eq10_table4"] = np.array(paper.printed_eq10_stiffness(omega, **TABLE4))  # N/mm
     out["eq11_table4"] = paper.printed_eq11_damping_coefficient(omega, **TABLE4)  # N*s/mm
+    out["eq9_table4"] = paper.printed_eq9_loss_factor(omega, **TABLE4)  # printed (9), "loss factor"
     out["cos_r_pi"] = float(np.cos(TABLE4["r"] * np.pi))
     # Table 4 against each table under the model, printed (7) and printed (8): abs SSE, rel SSE, max rel errs.
     versions = {"model": out["model_table4"], "eq7": out["eq7_table4"],
@@ -195,11 +196,29 @@ def errata() -> dict:
     theoretical = np.array([row.theoretical for row in TABLE5])
     experimental = np.array([row.experimental for row in TABLE5])
     out["table5_delta_recomputed"] = 100.0 * np.abs(experimental - theoretical) / experimental
+    out["table5_delta_over_theoretical"] = 100.0 * np.abs(experimental - theoretical) / theoretical
+    # Measured areas against pi K''_d U^2 of the printed loss stiffness (U = strain x h, h = 10 mm): only the
+    # first harmonic of the force dissipates over a sinusoidal cycle, so any loop, nonlinear or not, has
+    # area pi K'' U^2 with K'' its first-harmonic loss stiffness.
+    printed_loss = np.array([TABLES[row.strain]["loss_stiffness"][FREQUENCIES == row.frequency][0] for row in TABLE5])
+    amplitude = np.array([row.strain / 100.0 * paper.THICKNESS for row in TABLE5])
+    out["table5_experimental_over_pi_k_u2"] = experimental / (np.pi * printed_loss * amplitude**2)
+    # The A/h (mm) that the measured areas imply: area [N*mm] / (pi G'' [MPa] U^2).
+    printed_g2 = np.array([TABLES[row.strain]["loss_modulus"][FREQUENCIES == row.frequency][0] for row in TABLE5])
+    out["table5_implied_area_over_thickness"] = experimental * N_PER_KN / (np.pi * printed_g2 * amplitude**2)
     out["table5_delta_printed"] = np.array([row.delta for row in TABLE5])
     out["table5_theory_over_experiment"] = theoretical / experimental
     out["table5_ratio_05_over_15"] = theoretical[0::2] / theoretical[1::2]  # per strain
     out["table5_ratio_strain"] = theoretical[0::2] / theoretical[0]  # 0.5 Hz areas / the 225 % one
     out["table5_ratio_strain_squared"] = (np.array(STRAINS) / STRAINS[0]) ** 2
+    # How well r is determined: the relative-objective sum with r pinned, over the best free-r sum.
+    out["r_profile_orders"] = np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0])
+    out["r_profile"] = {}
+    for strain in STRAINS:
+        data = paper.table_moduli(strain)
+        best = identify(*data, residual="relative").sse
+        out["r_profile"][strain] = np.array([identify(*data, residual="relative", fixed={"r": r}).sse / best
+                                             for r in out["r_profile_orders"]])
     # Any FDMK parameters: G' never falls with frequency.  A deterministic sample of 2000 sets.
     out["monotone_min_step"] = _min_storage_step(2000)
     return out
@@ -416,7 +435,8 @@ The printed (6b), after cancelling eta2^2, reads
 
 Its denominator is the correct *numerator* with the factor eta2 lost from the last term, and it is not
 dimensionally a modulus: with G in MPa, eta in MPa*s^r and D^r in s^-r, the printed denominator adds
-(G1 eta2 + ...)(G2 eta2 + ...) [MPa^4 s^2r] to G2 eta2^2 D^r [MPa^3 s^r], and the quotient has units s^-r.
+(G1 eta2 + ...)(G2 eta2 + ...) [MPa^4 s^2r] to G2 eta2^2 D^r [MPa^3 s^r]; its leading terms give a quotient
+in s^-r, not MPa.
 
 ### 4.2 Eqs. (8)-(11) do not follow from (7) or from (3)-(5)
 
@@ -435,6 +455,8 @@ G2 eta1 eta2^2 omega^r [MPa^4 s^2r] and omega^2r [s^-2r]; (9)-(11) inherit all o
      + [f"Table {k} G'/G''" for k in (1, 2, 3)], rows)}
 Printed (10) and (11) with A = 1e6 mm^2, h = 10 mm give K'_d = {e['eq10_table4'][0][0] / N_PER_KN:.4g} kN/mm and
 C_d = {e['eq11_table4'][0] / N_PER_KN:.4g} kN*s/mm at 0.5 Hz (printed Table 1: 2.65 kN/mm and 1.52 kN*s/mm).
+Printed (9) gives Table 4 a negative loss factor at every frequency: {', '.join(f'{x:.3f}' for x in e['eq9_table4'])}
+(0.5 ... 10 Hz).
 
 ### 4.3 Table 4 reproduces none of the tables
 
@@ -456,7 +478,7 @@ Under the correct model Table 4 gives G'(0.5 Hz) = {model[0].real:.2f} MPa again
   stiffnesses are 100 times the printed ones.
 {_cd_text(e)}
 
-### 4.5 G' falls with frequency in the tables; no FDMK parameters (no passive linear model) can do that
+### 4.5 G' falls with frequency in the tables; no FDMK parameters (no model with a non-negative relaxation spectrum) can do that
 
 Changes of G' (MPa) between consecutive frequencies, the total change from 0.5 to 10 Hz, and the rise that the
 local Kramers-Kronig relation dG'/d ln(omega) ~ (2/pi) G'' (Booij & Thoone) predicts from each table's own G'':
@@ -466,7 +488,9 @@ For the FDMK model dG'/d omega >= 0 for every admissible parameter set: eta1 ome
 x = eta2 omega^r / G2 the Maxwell term is G2 x (c + x) / (1 + 2 x c + x^2), whose x-derivative has numerator
 c (1 + x^2) + 2 x >= 0. Over 2000 random parameter sets (0.01-100 Hz) the smallest step of G' between neighbouring
 frequencies is {e['monotone_min_step']:.3g} MPa. More generally every linear viscoelastic material with a non-negative
-relaxation spectrum (every spring-dashpot network, fractional ones included) has a non-decreasing G'. Ratio
+relaxation spectrum (every spring-dashpot network, fractional ones included) has a non-decreasing G'. Passivity
+alone (G'' >= 0) does not force this: an inertia in the measurement, k - m omega^2 + i c omega, makes G' fall, and so
+would a wall that softens or heats up over the test sequence; the tables cannot tell which. Ratio
 G'(10 Hz)/G'(0.5 Hz) of every set (>= 1 throughout, against 0.36 and 0.75 in Tables 1 and 3):
 
 {_md(["set"] + [f"{s} %" for s in STRAINS], fitted_rise)}
@@ -475,6 +499,14 @@ G'(10 Hz)/G'(0.5 Hz) of every set (>= 1 throughout, against 0.36 and 0.75 in Tab
 * Delta by eq. (13) from the printed areas is {', '.join(f'{x:.2f}' for x in e['table5_delta_recomputed'])} %; the
   printed {', '.join(f'{x:.1f}' for x in e['table5_delta_printed'])} % differ in the second row
   (printed {e['table5_delta_printed'][1]:.1f} %, computed {e['table5_delta_recomputed'][1]:.2f} %).
+* The printed second-row Delta is |A_exp - A_the| / A_the = {e['table5_delta_over_theoretical'][1]:.2f} %: divided by the
+  theoretical area, not by the experimental one as eq. (13) says.
+* The measured areas do not agree with the printed loss stiffness: area / (pi K''_d U^2) with U = strain x 10 mm is
+  {', '.join(f'{x:.2f}' for x in e['table5_experimental_over_pi_k_u2'])} (it would be 1 for any loop, linear or not,
+  because only the first harmonic of the force dissipates over a sinusoidal cycle; the Z-shape does not explain it).
+  The A/h that the measured areas imply with the printed G'' is
+  {', '.join(f'{x:.0f}' for x in e['table5_implied_area_over_thickness'])} mm, against the tables' 1000 mm and the stated
+  A/h = 1e5 mm.
 * The text says the model *overestimates* the area at 225 % and 1.5 Hz; the printed theoretical/experimental
   ratio there is {e['table5_theory_over_experiment'][1]:.3f}, an underestimate.
 """
@@ -523,6 +555,21 @@ G*(i omega) = G1 + eta1 (i omega)^r + G2 eta2 (i omega)^r / (G2 + eta2 (i omega)
 Recommended parameter sets (`vdw_frames.paper.fitted`, objective (12) with relative residuals):
 
 {summary}
+
+Read these with three cautions, all computed below:
+
+* Geometry. With the stated A = 1e6 mm^2 and h = 10 mm (A/h = 1e5 mm) a damper is far stronger than the tested
+  wall: the printed K'_d = G' implies A/h = {numbers['implied_area_over_thickness']:g} mm and the measured loop areas
+  imply A/h = {numbers['table5_implied_area_over_thickness'].min():.0f}-{numbers['table5_implied_area_over_thickness'].max():.0f} mm,
+  so forces and loop areas computed with the stated geometry are {1e5 / numbers['table5_implied_area_over_thickness'].max():.0f}-{1e5 / numbers['implied_area_over_thickness']:.0f}
+  times the test's. The moduli (MPa) are what the identification determines; choose A and h for the wall you design.
+* 225 %: no linear passive model follows Table 1 (its G' falls by 64 % from 0.5 to 10 Hz); the best fit is a
+  viscoelastic fluid (G1 = 0, r = 1, no static stiffness) with G' {100 * paper.FIT_QUALITY[225]['storage']:.0f} % low at 0.5 Hz.
+* The data determine the moduli over 0.5-10 Hz better than the parameters: with r pinned at
+  {', '.join(f'{r:g}' for r in numbers['r_profile_orders'])} the best relative sum is
+  {', '.join(f'{x:.3f}' for x in numbers['r_profile'][450])} times the free-r one at 450 %
+  ({', '.join(f'{x:.3f}' for x in numbers['r_profile'][300])} at 300 %), so r is barely determined at 450 %,
+  and some standard errors in section 1 exceed their values. The residuals are model error, not noise.
 
 {_section_sets(sets)}
 {_section_tables(sets)}
