@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from reference import frequency_domain_response, tapered_sine
+import reference
 from vdw_frames import FDMKDamper
 from vdw_frames.fractional import DEFAULT_METHOD, METHODS, DampedTwoStep, get_method
 
@@ -20,13 +20,7 @@ def cauchy_coefficients(scheme, r, count=64, radius=0.9, points=4096):
 
 
 def tapered_sine_error(damper, dt, method="damped", frequency=1.0, duration=8.0):
-    """max |F - F_exact| / max |F_exact| for a tapered 30 mm sine; exact response on a 4x finer grid."""
-    fine = dt / 4
-    t_fine = np.arange(round(duration / fine) + 1) * fine
-    u_fine = tapered_sine(t_fine, frequency, 30.0, ramp=2.0, duration=duration)
-    exact = frequency_domain_response(damper.transfer, u_fine / damper.thickness, fine) * damper.area
-    force = damper.force(u_fine[::4], dt, method=method)
-    return np.max(np.abs(force - exact[::4])) / np.max(np.abs(exact))
+    return reference.tapered_sine_error(damper, dt, method, frequency, duration)
 
 
 # ----------------------------------------------------------------------------- (a) weights
@@ -122,15 +116,7 @@ def test_a_stable_and_damped_at_nyquist():
 @pytest.mark.parametrize("method", ["damped", DampedTwoStep(rho_infinity=0.25), DampedTwoStep(rho_infinity=0.9)])
 @pytest.mark.parametrize("memory", ["exact", "fast"])
 def test_kernel_equals_discrete_transfer_function(method, memory):
-    damper = FDMKDamper(**TABLE4)
-    dt = 0.01
-    t = np.arange(3001) * dt
-    u = tapered_sine(t, 2.0, 30.0, ramp=3.0, duration=30.0)
-    scheme = get_method(method)
-    discrete = lambda s: damper.transfer(scheme.symbol(s.imag, dt))  # noqa: E731
-    expected = frequency_domain_response(discrete, u / damper.thickness, dt, pad_factor=64) * damper.area
-    force = damper.force(u, dt, method=method, memory=memory)
-    assert np.max(np.abs(force - expected)) < 1e-7 * np.max(np.abs(expected))
+    assert reference.discrete_transfer_error(FDMKDamper(**TABLE4), get_method(method), memory, 3001) < 1e-7
 
 
 # ----------------------------------------------------------------------------- (d) kink at the start

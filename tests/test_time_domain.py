@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from reference import frequency_domain_response, tapered_sine
+from reference import discrete_transfer_error, tapered_sine, tapered_sine_error
 from vdw_frames import FDMKDamper
 from vdw_frames.fractional import DEFAULT_METHOD, METHODS, get_method
 
@@ -25,13 +25,7 @@ def test_weights_are_taylor_coefficients_of_the_generating_function(method, r):
 
 
 def _tapered_sine_error(damper, dt, method=DEFAULT_METHOD, frequency=1.0, duration=8.0):
-    """max |F - F_exact| / max |F_exact| for a tapered 30 mm sine; reference on a 4x finer grid."""
-    fine = dt / 4
-    t_fine = np.arange(round(duration / fine) + 1) * fine
-    u_fine = tapered_sine(t_fine, frequency, 30.0, ramp=2.0, duration=duration)
-    exact = frequency_domain_response(damper.transfer, u_fine / damper.thickness, fine) * damper.area
-    force = damper.force(u_fine[::4], dt, method=method)
-    return np.max(np.abs(force - exact[::4])) / np.max(np.abs(exact))
+    return tapered_sine_error(damper, dt, method, frequency, duration)
 
 
 @pytest.mark.parametrize("params", [TABLE4, dict(G1=0.0, G2=5.0, eta1=0.2, eta2=3.0, r=0.3),
@@ -53,17 +47,7 @@ def test_pure_abel_dashpot_r1_within_one_percent_at_omega_dt_0_2():
 
 @pytest.mark.parametrize("method", sorted(METHODS))
 def test_kernel_equals_discrete_transfer_function(method):
-    # Convolution quadrature is the transfer function evaluated at s = delta(zeta)/dt: an FFT solution
-    # with that symbol must equal the time stepping to rounding (tests the kernel, not the method).
-    damper = FDMKDamper(**TABLE4)
-    dt = 0.01
-    t = np.arange(1201) * dt
-    u = tapered_sine(t, 2.0, 30.0, ramp=3.0, duration=12.0)
-    scheme = get_method(method)
-    discrete = lambda s: damper.transfer(scheme.symbol(s.imag, dt))  # noqa: E731
-    expected = frequency_domain_response(discrete, u / damper.thickness, dt, pad_factor=64) * damper.area
-    force = damper.force(u, dt, method=method)
-    assert np.max(np.abs(force - expected)) < 1e-7 * np.max(np.abs(expected))
+    assert discrete_transfer_error(FDMKDamper(**TABLE4), get_method(method), "exact", 1201) < 1e-7
 
 
 @pytest.mark.parametrize("method, order", [("damped", 2), ("bdf2", 2), ("trapezoidal", 2), ("grunwald", 1)])
