@@ -109,7 +109,8 @@ def table5_candidates(sets=None) -> list:
         (f"U = strain x h, h = {paper.THICKNESS:g} mm, A = {paper.AREA:g} mm^2", paper.THICKNESS, paper.AREA),
         (f"U = strain x h, A/h = {table_scale:g} mm (the tables' K'/G')", paper.THICKNESS,
          table_scale * paper.THICKNESS),
-        (f"U = strain x 4h = strain x {4 * paper.THICKNESS:g} mm (four layers), A = {paper.AREA:g} mm^2",
+        (f"U = strain x 4h = strain x {4 * paper.THICKNESS:g} mm (as if the four layers were in series; "
+         f"they are not: they work in parallel), A = {paper.AREA:g} mm^2",
          4 * paper.THICKNESS, paper.AREA),
     )
     candidates = []
