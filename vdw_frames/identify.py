@@ -54,6 +54,10 @@ RESIDUALS = ("absolute", "relative")
 R_MIN = 1.0e-3  # lowest order searched; the bound itself is r > 0 (r -> 0 makes G* real: G'' -> 0)
 LOG_LAMBDA_SPAN = 6.0  # decades of |lambda s^r| at the reference frequency searched either side of 1
 DEFAULT_GRID = (41, 49)  # (orders r, values of log lambda)
+START_BAND = 0.05  # polish every refined grid minimum within 5 % of the best one ...
+MAX_PROFILE_MINIMA = 8  # ... and the best points of up to 8 local minima of the profile over r
+MAX_STARTS = 40  # at most this many starts from the band (thinned evenly in r)
+_GOLDEN_STEPS = 40  # golden-section steps refining u between grid neighbours (0.618^40 ~ 5e-9)
 _LINEAR = ("G1", "eta1", "G2")  # the coefficients solved by non-negative least squares
 _BOUND_FACES = ({"G2": 0.0, "eta2": 0.0}, {"G1": 0.0}, {"eta1": 0.0}, {"r": 1.0})
 _SUBSETS = {k: [s for n in range(1, k + 1) for s in itertools.combinations(range(k), n)] for k in range(4)}
@@ -124,14 +128,7 @@ def identify(frequency, storage_modulus, loss_modulus, residual: str = "absolute
     r_values = np.array([problem.fixed["r"]]) if "r" in problem.fixed else np.linspace(R_MIN, 1.0, n_r)
     u_values = np.linspace(-LOG_LAMBDA_SPAN, LOG_LAMBDA_SPAN, n_u) if problem.searches_lambda else np.zeros(1)
 
-    sse, coefficients = problem.projected(r_values, u_values)
-    # Polished: every local grid minimum and the best point of every order r (the profile over r)
-    # within a factor 2 of the grid's best.  A coarse grid can miss the global basin's minimum (450 %
-    # relative on 11 x 13), but the profile over r still passes through that basin.
-    profile = [(i, int(np.argmin(sse[i]))) for i in range(sse.shape[0])]
-    points = dict.fromkeys(_grid_minima(sse, most=40) + profile)
-    starts = [problem.full_parameters(r_values[i], u_values[j], coefficients[i, j])
-              for i, j in points if sse[i, j] <= 2.0 * sse.min() + 1e-300]
+    starts = [problem.full_parameters(r, u, c) for r, u, c in problem.starts(r_values, u_values)]
     candidates = [problem.polish(start) for start in starts] + starts
     best = min(candidates, key=problem.sse)
     # An optimum on a bound is approached only slowly from inside: polish again with each bound imposed.
@@ -150,19 +147,6 @@ def _grid_size(grid):
     if n_r < 3 or n_u < 3:
         raise ValueError(f"grid must have at least 3 values each way, got {grid!r}")
     return n_r, n_u
-
-
-def _grid_minima(sse, most):
-    """Indices of the grid's local minima (<= every neighbour), best first, at most ``most``."""
-    padded = np.pad(sse, 1, constant_values=np.inf)
-    rows, cols = sse.shape
-    is_min = np.ones(sse.shape, dtype=bool)
-    for di, dj in itertools.product((-1, 0, 1), repeat=2):
-        if di or dj:
-            is_min &= sse <= padded[1 + di:1 + di + rows, 1 + dj:1 + dj + cols]
-    indices = np.argwhere(is_min)
-    order = np.argsort(sse[is_min], kind="stable")
-    return [tuple(indices[k]) for k in order[:most]]
 
 
 def _nonnegative_least_squares(columns, target):
@@ -185,6 +169,26 @@ def _nonnegative_least_squares(columns, target):
         full[..., list(subset)] = solution
         coefficients = np.where(better[..., None], full, coefficients)
     return best, coefficients
+
+
+def _golden_section(function, low, high, steps=_GOLDEN_STEPS):
+    """Vectorised golden-section minimisation of ``function`` (array -> array) on [low, high] elementwise.
+
+    Returns (argmin, min) per element, the better of the two final interior points.
+    """
+    ratio = (np.sqrt(5.0) - 1.0) / 2.0
+    a, b = np.array(low, dtype=float), np.array(high, dtype=float)
+    c, d = b - ratio * (b - a), a + ratio * (b - a)
+    fc, fd = function(c), function(d)
+    for _ in range(steps):
+        left = fc <= fd  # the minimum lies in [a, d]
+        a, b = np.where(left, a, c), np.where(left, d, b)
+        new = np.where(left, b - ratio * (b - a), a + ratio * (b - a))
+        value = function(new)
+        c, d, fc, fd = (np.where(left, new, d), np.where(left, c, new),
+                        np.where(left, value, fd), np.where(left, fc, value))
+    better = fc <= fd
+    return np.where(better, c, d), np.where(better, fc, fd)
 
 
 class _Problem:
@@ -251,42 +255,105 @@ class _Problem:
     def sse(self, params) -> float:
         return float(np.sum(self.weighted_residuals(params) ** 2))
 
-    def _unit_columns(self, r, lam):
-        """G*(s) of unit dampers: the columns multiplying G1, eta1 and G2 (lam = eta2 / G2), each (..., n)."""
-        one = FDMKDamper(G1=1.0, G2=0.0, eta1=0.0, eta2=0.0, r=r).complex_modulus(self.frequency)
-        s_r = FDMKDamper(G1=0.0, G2=0.0, eta1=1.0, eta2=0.0, r=r).complex_modulus(self.frequency)
-        lam = np.asarray(lam, dtype=float)[..., None]
-        # FDMKDamper(G2=1, eta2=lam).transfer, vectorised over lam: lam s^r / (1 + lam s^r).
-        maxwell = lam * s_r / (1.0 + lam * s_r)
-        return np.broadcast_to(one, maxwell.shape), np.broadcast_to(s_r, maxwell.shape), maxwell
-
     def _lambda(self, r, u):
-        """eta2 / G2 (s^r) for the search variable u = log10 |lambda (i omega_ref)^r|."""
+        """eta2 / G2 (s^r) for the search variable u = log10 |lambda (i omega_ref)^r| (arrays broadcast)."""
         if not self.searches_lambda:
             g2, eta2 = self.fixed.get("G2", 0.0), self.fixed.get("eta2", 0.0)
-            return eta2 / g2 if g2 > 0.0 else 0.0
+            return np.broadcast_to(eta2 / g2 if g2 > 0.0 else 0.0, np.shape(u)).astype(float)
         return 10.0**u * np.exp(-r * self.log_reference)
+
+    def projected_points(self, r, u):
+        """Variable projection at the points (r[k], u[k]): (sse of shape (n,), linear coefficients (n, k)).
+
+        For each point the coefficients in ``self.linear`` (among G1, eta1, G2) are the exact
+        non-negative least-squares solution for that order r and ratio lambda = eta2 / G2.
+        """
+        r, u = (np.ravel(x) for x in np.broadcast_arrays(np.asarray(r, dtype=float), np.asarray(u, dtype=float)))
+        s_r = np.exp(r[:, None] * self.log_s[None, :])  # (i omega)^r, principal branch, (n, m)
+        lam = self._lambda(r, u)[:, None]
+        maxwell = lam * s_r / (1.0 + lam * s_r)  # G* of a Maxwell branch with G2 = 1, eta2 = lam
+        columns = {"G1": np.ones_like(s_r), "eta1": s_r, "G2": maxwell}
+        offset = np.zeros_like(s_r)
+        for name in ("G1", "eta1"):
+            if name in self.fixed:
+                offset = offset + self.fixed[name] * columns[name]
+        if not self.maxwell_off and "G2" not in self.linear:
+            with np.errstate(divide="ignore"):
+                g2 = self.fixed["G2"] if "G2" in self.fixed else self.fixed["eta2"] / lam
+            offset = offset + g2 * maxwell
+        rest = self.target - np.concatenate([offset.real, offset.imag], axis=-1) * self.weights
+        if not self.linear:
+            return np.sum(rest**2, axis=-1), np.zeros((r.size, 0))
+        design = np.stack([np.concatenate([columns[name].real, columns[name].imag], axis=-1)
+                           for name in self.linear], axis=-1) * self.weights[:, None]
+        return _nonnegative_least_squares(design, rest)
 
     def projected(self, r_values, u_values):
         """Variable projection on the grid: (sse, linear coefficients) of shape (len(r), len(u)[, k])."""
-        sse = np.empty((r_values.size, u_values.size))
-        coefficients = np.empty((r_values.size, u_values.size, len(self.linear)))
-        for i, r in enumerate(r_values):
-            lam = self._lambda(r, u_values)
-            one, s_r, maxwell = self._unit_columns(r, np.broadcast_to(lam, u_values.shape))
-            columns = {"G1": one, "eta1": s_r, "G2": maxwell}
-            offset = np.zeros(maxwell.shape, dtype=complex)
-            for name in ("G1", "eta1"):
-                if name in self.fixed:
-                    offset = offset + self.fixed[name] * columns[name]
-            if not self.maxwell_off and "G2" not in self.linear:
-                g2 = self.fixed["G2"] if "G2" in self.fixed else self.fixed["eta2"] / lam
-                offset = offset + np.asarray(g2)[..., None] * maxwell
-            design = np.stack([np.concatenate([columns[name].real, columns[name].imag], axis=-1)
-                               for name in self.linear], axis=-1) * self.weights[:, None]
-            rest = self.target - np.concatenate([offset.real, offset.imag], axis=-1) * self.weights
-            sse[i], coefficients[i] = _nonnegative_least_squares(design, rest)
-        return sse, coefficients
+        r_grid, u_grid = np.meshgrid(r_values, u_values, indexing="ij")
+        sse, coefficients = self.projected_points(r_grid, u_grid)
+        return sse.reshape(r_grid.shape), coefficients.reshape(r_grid.shape + (len(self.linear),))
+
+    def starts(self, r_values, u_values):
+        """Starting points (r, u, linear coefficients) for the local polish, from the grid.
+
+        1. The projected sum on the (r, u) grid.
+        2. Along every row (fixed r), each local minimum in u is refined by golden-section search
+           between its neighbours, so each row gives the profile value min over u of the sum at that
+           r to within round-off, whatever the spacing of the u grid.
+        3. Starts: every refined row minimum within START_BAND (relative) of the best one, plus the
+           best point of every local minimum of the profile over r (at most MAX_PROFILE_MINIMA); when
+           more than MAX_STARTS lie in the band they are thinned evenly in r.
+        """
+        sse, _ = self.projected(r_values, u_values)
+        n_u = u_values.size
+        padded = np.pad(sse, ((0, 0), (1, 1)), constant_values=np.inf)
+        is_min = (sse <= padded[:, :-2]) & (sse <= padded[:, 2:])
+        rows, cols = [], []
+        for i in range(r_values.size):  # the best 3 local minima in u of each row (a plateau counts many)
+            js = np.flatnonzero(is_min[i])
+            js = js[np.argsort(sse[i, js], kind="stable")][:3]
+            rows.extend([i] * js.size)
+            cols.extend(js)
+        rows, cols = np.array(rows), np.array(cols)
+        r = r_values[rows]
+        if n_u > 1 and self.searches_lambda:
+            low = u_values[np.maximum(cols - 1, 0)]
+            high = u_values[np.minimum(cols + 1, n_u - 1)]
+            u, value = _golden_section(lambda x: self.projected_points(r, x)[0], low, high)
+            grid_value = sse[rows, cols]
+            keep_grid = grid_value <= value
+            u = np.where(keep_grid, u_values[cols], u)
+            value = np.where(keep_grid, grid_value, value)
+        else:
+            u, value = u_values[cols], sse[rows, cols]
+        # Per row: distinct refined minima (a plateau in u refines to one value), best first, at most 3.
+        kept = []
+        for i in np.unique(rows):
+            members = np.flatnonzero(rows == i)
+            members = members[np.argsort(value[members], kind="stable")]
+            distinct = []
+            for k in members:
+                if all(abs(value[k] - value[m]) > 1e-9 * max(value[m], 1e-300) for m in distinct):
+                    distinct.append(k)
+            kept.extend(distinct[:3])
+        kept = np.array(kept)
+        best = float(value[kept].min())
+        band = kept[value[kept] <= best * (1.0 + START_BAND) + 1e-300]
+        band = band[np.argsort(r[band], kind="stable")]
+        if band.size > MAX_STARTS:
+            band = band[np.unique(np.round(np.linspace(0, band.size - 1, MAX_STARTS)).astype(int))]
+        # Local minima of the profile over r (the best refined value of each row).
+        profile_rows = np.unique(rows[kept])
+        profile = np.array([value[kept][rows[kept] == i].min() for i in profile_rows])
+        left = np.r_[np.inf, profile[:-1]]
+        right = np.r_[profile[1:], np.inf]
+        minima_rows = profile_rows[(profile <= left) & (profile <= right)]
+        minima = [kept[rows[kept] == i][np.argmin(value[kept][rows[kept] == i])] for i in minima_rows]
+        minima = sorted(minima, key=lambda k: value[k])[:MAX_PROFILE_MINIMA]
+        chosen = list(dict.fromkeys(list(band) + list(minima)))
+        chosen_sse, coefficients = self.projected_points(r[chosen], u[chosen])
+        return [(float(r[k]), float(u[k]), coefficients[n]) for n, k in enumerate(chosen)]
 
     def full_parameters(self, r, u, coefficients) -> dict:
         """All five parameters from a grid point (r, u) and its linear coefficients."""
