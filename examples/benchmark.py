@@ -50,7 +50,7 @@ try:
 except ImportError:  # run from a checkout without an install
     sys.path.insert(0, str(ROOT))
 from vdw_frames import FastMemory, FDMKDamper, ShearBuilding, simulate
-from vdw_frames.ground_motion import G, GroundMotion, read_at2
+from vdw_frames.motion import G, GroundMotion, read_at2
 
 # The fast memory on every record length (by default records under 2 048 steps use the exact memory).
 FAST = FastMemory(exact_below=0)
@@ -69,7 +69,7 @@ def load_record():
     """HWA002-N from ../shared, else a seeded synthetic stand-in of the same length and step."""
     if RECORD.is_file():
         return read_at2(RECORD), f"{RECORD.name} (Chi-Chi 1999, HWA002 N)"
-    from vdw_frames.ground_motion import synthetic_ground_motion
+    from vdw_frames.motion import synthetic_ground_motion
 
     motion = synthetic_ground_motion(duration=19999 * 0.004, dt=0.004, pga=0.1 * G, name="synthetic")
     return motion, f"synthetic stand-in ({RECORD} is absent)"
@@ -244,7 +244,7 @@ started = time.perf_counter()
 import numpy as np
 import vdw_frames
 from vdw_frames import FDMKDamper, ShearBuilding, simulate
-from vdw_frames.ground_motion import GroundMotion
+from vdw_frames.motion import GroundMotion
 imported = time.perf_counter()
 wall = FDMKDamper(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.5)
 building = ShearBuilding([600.0] * 9 + [450.0], np.linspace(900e3, 450e3, 10),

@@ -20,12 +20,13 @@ from pathlib import Path
 import numpy as np
 
 from vdw_frames import read_at2, run_batch
-from vdw_frames.batch import scale_factors_to_pga
+from vdw_frames.frame.batch import scale_factors_to_pga
 from vdw_frames.config import load_building
-from vdw_frames.ground_motion import G, default_record_path, shared_records_dir
+from vdw_frames.motion import G, default_record_path
 from vdw_frames.plotting import plot_ida_curves
 
 BUILDING_FILE = Path(__file__).with_name("ten_story.toml")
+SHARED_RECORDS = Path(__file__).resolve().parents[1].parent / "shared" / "ground_motions"
 
 
 def main(argv=None) -> int:
@@ -35,7 +36,7 @@ def main(argv=None) -> int:
     parser.add_argument("--levels", type=int, default=10, help="PGA levels from 0.1 g in steps of 0.1 g (default 10)")
     args = parser.parse_args(argv)
 
-    folder = args.records or shared_records_dir()
+    folder = args.records or (SHARED_RECORDS if SHARED_RECORDS.is_dir() else None)
     paths = sorted(folder.glob("*.[aA][tT]2")) if folder else [default_record_path()]
     motions = [read_at2(path) for path in paths]
     pga_g = 0.1 * np.arange(1, args.levels + 1)

@@ -9,7 +9,7 @@ paper's Table 2, not its Table 4; fractional order r = 0.59).
 
     python examples/seismic_simulation.py [--record PATH.AT2] [--scale PGA_g] [--out DIR]
 
-Without --record it runs the synthetic record that ships in ground_motions/.  Prints peak drift
+Without --record it runs the synthetic record that ships with the package (vdw_frames/motion/data/).  Prints peak drift
 (ratio), peak absolute floor acceleration, base shear and damper force with and without the walls,
 and writes four PNGs to --out.
 """
@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 import vdw_frames as vdw
-from vdw_frames import ground_motion, plotting
+from vdw_frames import motion as ground_motion, plotting
 from vdw_frames.config import load_building
 
 BUILDING_FILE = Path(__file__).with_name("ten_story.toml")

@@ -1,9 +1,9 @@
-"""Regenerate the default ground-motion record(s) that ship in this folder.
+"""Regenerate the default ground-motion record(s) that ship as package data in vdw_frames/motion/data/.
 
-    python ground_motions/make_records.py            # rewrites the files next to this script
+    python ground_motions/make_records.py            # rewrites the shipped files
     python ground_motions/make_records.py --out DIR  # writes them to DIR instead
 
-Deterministic: the records come from a fixed seed through vdw_frames.ground_motion, so rerunning this
+Deterministic: the records come from a fixed seed through vdw_frames.motion, so rerunning this
 script reproduces the shipped files (tests/test_ground_motion.py checks that it does).
 """
 
@@ -12,7 +12,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from vdw_frames.ground_motion import DEFAULT_RECORD, G, synthetic_ground_motion, write_at2
+from vdw_frames.motion import G, synthetic_ground_motion, write_at2
+from vdw_frames.motion.synthetic import DEFAULT_RECORD, default_record_path
 
 # file name -> (synthetic_ground_motion keyword arguments, two free-text header lines)
 RECORDS = {
@@ -34,8 +35,8 @@ def write_records(directory) -> list[Path]:
 
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", type=Path, default=Path(__file__).resolve().parent,
-                        help="folder to write the records to (default: this script's folder)")
+    parser.add_argument("--out", type=Path, default=default_record_path().parent,
+                        help="folder to write the records to (default: the package's vdw_frames/motion/data/)")
     for path in write_records(parser.parse_args(argv).out):
         print(f"wrote {path}")
 

@@ -8,7 +8,7 @@ import pytest
 
 from reference import tapered_sine
 from vdw_frames import FDMKDamper, GroundMotion, ShearBuilding, simulate
-from vdw_frames.batch import run_batch, scale_factors_to_pga, scale_factors_to_spectral_acceleration
+from vdw_frames.frame.batch import run_batch, scale_factors_to_pga, scale_factors_to_spectral_acceleration
 
 WALL = FDMKDamper(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.5, area=2.0e5)
 

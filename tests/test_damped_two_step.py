@@ -7,7 +7,7 @@ import pytest
 
 import reference
 from vdw_frames import FDMKDamper
-from vdw_frames.fractional import DEFAULT_METHOD, METHODS, DampedTwoStep, get_method
+from vdw_frames.element.fractional import DEFAULT_METHOD, METHODS, DampedTwoStep, get_method
 
 TABLE4 = dict(G1=8.69, G2=3.58, eta1=0.75, eta2=0.98, r=0.60)
 ABEL = dict(G1=0.0, G2=0.0, eta1=1.0, eta2=0.0, r=1.0)  # pure Abel dashpot: s^r alone, the worst case

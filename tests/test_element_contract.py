@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from vdw_frames import FDMKDamper, sine_test
-from vdw_frames.fast_memory import FastMemory
+from vdw_frames.element.fast_memory import FastMemory
 
 TABLE4 = dict(G1=8.69, G2=3.58, eta1=0.75, eta2=0.98, r=0.60)
 

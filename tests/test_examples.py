@@ -13,10 +13,10 @@ import pytest
 
 from vdw_frames import cli, paper, simulate
 from vdw_frames.config import building_from_dict, load_building
-from vdw_frames.ground_motion import G, default_record_path, read_at2
+from vdw_frames.motion import G, default_record_path, read_at2
 
-ROOT = Path(__file__).resolve().parents[1]
-SHARED = ROOT.parent / "shared" / "ground_motions"
+from shared_data import REPO as ROOT
+from shared_data import shared_record
 FIGURES = ("drift_envelope.png", "roof_displacement.png", "damper_hysteresis.png", "energy.png")
 
 
@@ -45,11 +45,10 @@ def test_seismic_example_runs_on_the_shipped_record(tmp_path, capsys):
 
 
 def test_seismic_example_on_a_shared_record_scaled(tmp_path, capsys):
-    if not SHARED.is_dir():
-        pytest.skip(f"shared ground motions not found at {SHARED}")
+    rio = shared_record("RIO270.AT2")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)
-        _example()["main"](["--record", str(SHARED / "RIO270.AT2"), "--scale", "0.3", "--out", str(tmp_path)])
+        _example()["main"](["--record", str(rio), "--scale", "0.3", "--out", str(tmp_path)])
     assert "PGA = 0.300 g" in capsys.readouterr().out
     assert all((tmp_path / name).exists() for name in FIGURES)
 

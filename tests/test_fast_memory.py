@@ -7,15 +7,15 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from vdw_frames import _kernel
-from vdw_frames.fast_memory import (
+from vdw_frames.element import kernel
+from vdw_frames.element.fast_memory import (
     DEFAULT_MAX_STEPS,
     DEFAULT_TOLERANCE,
     DEFAULT_WINDOW,
     fast_memory_arrays,
     tail_modes,
 )
-from vdw_frames.fractional import METHODS, DampedTwoStep, get_method
+from vdw_frames.element.fractional import METHODS, DampedTwoStep, get_method
 
 TABLE4 = (8.69, 3.58, 0.75, 0.98)  # G1, G2, eta1, eta2 (MPa, MPa*s^r)
 NO_SPRING = (0.0, 3.58, 0.75, 0.98)  # G1 = 0: Abel dashpot in parallel with the fractional Maxwell branch
@@ -72,13 +72,13 @@ def broadband_strain(steps, dt, amplitude=0.3, seed=7):
 
 
 def stress_histories(method, r, dt, steps, parameters):
-    """(exact, fast) stress histories of _kernel.strain_driven for the broadband strain."""
+    """(exact, fast) stress histories of kernel.strain_driven for the broadband strain."""
     strain = broadband_strain(steps, dt)
     weights = get_method(method).weights(r, steps + 1, dt)
-    exact = _kernel.strain_driven(
+    exact = kernel.strain_driven(
         strain, *parameters, weights, np.zeros((steps, 2)), np.zeros(0), np.zeros(0), np.zeros((0, 2))
     )
-    fast = _kernel.strain_driven(strain, *parameters, *fast_memory_arrays(method, r, dt))
+    fast = kernel.strain_driven(strain, *parameters, *fast_memory_arrays(method, r, dt))
     return exact, fast
 
 
@@ -179,17 +179,17 @@ def test_fast_arrays_are_fresh_and_in_kernel_order():
     assert mode_weight.shape == mode_ratio.shape == (mode_state.shape[0],) and mode_state.shape[1] == 2
     assert not mode_state.any()
     strain = broadband_strain(3000, 0.01)
-    first = _kernel.strain_driven(strain, *TABLE4, weights, past, mode_weight, mode_ratio, mode_state)
+    first = kernel.strain_driven(strain, *TABLE4, weights, past, mode_weight, mode_ratio, mode_state)
     assert mode_state.any()  # stepped in place ...
-    again = _kernel.strain_driven(strain, *TABLE4, *fast_memory_arrays("trapezoidal", 0.6, 0.01))
+    again = kernel.strain_driven(strain, *TABLE4, *fast_memory_arrays("trapezoidal", 0.6, 0.01))
     np.testing.assert_array_equal(first, again)  # ... without touching the cached modes
     # Records no longer than the window never reach the modes: identical to the exact memory.
     short = strain[:DEFAULT_WINDOW]
-    exact = _kernel.strain_driven(
+    exact = kernel.strain_driven(
         short, *TABLE4, get_method("trapezoidal").weights(0.6, short.size + 1, 0.01),
         np.zeros((short.size, 2)), np.zeros(0), np.zeros(0), np.zeros((0, 2)),
     )
-    fast = _kernel.strain_driven(short, *TABLE4, *fast_memory_arrays("trapezoidal", 0.6, 0.01))
+    fast = kernel.strain_driven(short, *TABLE4, *fast_memory_arrays("trapezoidal", 0.6, 0.01))
     np.testing.assert_allclose(fast, exact, rtol=1e-14, atol=0.0)
 
 

@@ -10,7 +10,7 @@ FREQUENCIES = np.array([0.01, 0.5, 1.0, 1.5, 2.0, 5.0, 10.0, 100.0])
 
 
 def closed_form(G1, G2, eta1, eta2, r, f):
-    """G', G'' written out in real arithmetic (derivation in vdw_frames.damper's docstring)."""
+    """G', G'' written out in real arithmetic (derivation in vdw_frames.element.damper's docstring)."""
     a = (2 * np.pi * f) ** r
     c, q = np.cos(r * np.pi / 2), np.sin(r * np.pi / 2)
     denominator = G2**2 + 2 * G2 * eta2 * a * c + eta2**2 * a**2

@@ -11,11 +11,10 @@ import numpy as np
 import pytest
 from scipy import signal
 
-from vdw_frames import ground_motion as gm
-from vdw_frames.ground_motion import G, GroundMotion
+from vdw_frames import motion as gm
+from vdw_frames.motion import G, GroundMotion
 
-REPO = Path(__file__).resolve().parents[1]
-SHARED = REPO.parent / "shared" / "ground_motions"
+from shared_data import REPO, shared_record
 
 # From the table in ../shared/ground_motions/README.md: file -> (NPTS, DT s).
 SHARED_RECORDS = {
@@ -27,10 +26,7 @@ SHARED_RECORDS = {
 }
 
 
-def shared(file_name: str) -> Path:
-    if not SHARED.is_dir():
-        pytest.skip(f"shared ground motions not found at {SHARED}")
-    return SHARED / file_name
+shared = shared_record
 
 
 def independent_values(path: Path) -> list[float]:
@@ -75,14 +71,6 @@ def test_read_at2_known_values():
     assert motion.pga / G == pytest.approx(0.3129, abs=5e-5)  # El Centro 1940, 180: PGA 0.313 g
     elcentro = gm.read_at2(shared("elCentro.AT2"))
     assert elcentro.acceleration[:3] == pytest.approx(np.array([0.00630, 0.00364, 0.00099]) * G, rel=1e-15)
-
-
-def test_shared_records_dir_matches_the_test_location():
-    found = gm.shared_records_dir()
-    if SHARED.is_dir():
-        assert found == SHARED.resolve()
-    else:
-        assert found is None
 
 
 # --------------------------------------------------------------------------------------------------
@@ -366,7 +354,7 @@ def test_write_at2_round_trip(tmp_path):
 
 def test_shipped_default_record_is_what_make_records_writes(tmp_path):
     path = gm.default_record_path()
-    assert path == REPO / "ground_motions" / "synthetic_kt_035g.AT2"
+    assert path.resolve() == (REPO / "vdw_frames" / "motion" / "data" / "synthetic_kt_035g.AT2").resolve()
     shipped = gm.read_at2(path)
     assert shipped.name == "synthetic_kt_035g"
     assert (shipped.acceleration.size, shipped.dt) == (2501, 0.01)

@@ -1,4 +1,4 @@
-"""Parameter identification (vdw_frames.identify): recovery, global optimality, bounds, bad input."""
+"""Parameter identification (vdw_frames.paper.identification): recovery, global optimality, bounds, bad input."""
 
 import numpy as np
 import pytest
@@ -6,7 +6,7 @@ from scipy.optimize import least_squares, minimize, nnls
 
 from vdw_frames import FDMKDamper
 from vdw_frames import paper
-from vdw_frames.identify import IdentificationResult, identify
+from vdw_frames.paper.identification import IdentificationResult, identify
 
 F_WIDE = np.geomspace(0.1, 50.0, 14)
 

@@ -15,9 +15,9 @@ import pytest
 
 import opensees_frame
 from vdw_frames import FDMKDamper, ShearBuilding, simulate
-from vdw_frames.ground_motion import read_at2
+from vdw_frames.motion import read_at2
 
-RECORDS = Path(__file__).resolve().parents[1].parent / "shared" / "ground_motions"
+from shared_data import shared_record
 RECORD = "elCentro.AT2"  # Imperial Valley 1940, N-S: 1559 points at 0.02 s, PGA 0.32 g
 
 # Classical (r = 1) walls, the paper's wall size (A = 1e6 mm^2, h = 10 mm) and a smaller, thinner one:
@@ -45,7 +45,7 @@ def ops():
 
 @pytest.fixture(scope="module")
 def record():
-    path = RECORDS / RECORD
+    path = shared_record(RECORD)
     if not path.is_file():
         pytest.skip(f"recorded accelerogram {path} is absent (the ../shared/ground_motions folder next to "
                     "the repository holds the PEER records; a fresh clone does not have it)")

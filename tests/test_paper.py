@@ -9,7 +9,7 @@ import pytest
 
 from vdw_frames import FDMKDamper
 from vdw_frames import paper
-from vdw_frames.identify import identify
+from vdw_frames.paper.identification import identify
 
 PAPER_TEXT = Path(__file__).resolve().parents[2] / "shared" / "seed" / "fdmk_5plus4_vdw_paper.txt"
 COLUMNS = ("storage_modulus", "loss_modulus", "loss_factor", "storage_stiffness", "loss_stiffness",

@@ -1,4 +1,4 @@
-"""The reproduction report (vdw_frames.report): Table 5 areas, errata numbers, the report end to end."""
+"""The reproduction report (vdw_frames.paper.report): Table 5 areas, errata numbers, the report end to end."""
 
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from vdw_frames import FDMKDamper, paper, sine_test
-from vdw_frames.report import errata, parameter_sets, table5_candidates, write_paper_report
+from vdw_frames.paper.report import errata, parameter_sets, table5_candidates, write_paper_report
 
 T4 = paper.TABLE4
 

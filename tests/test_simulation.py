@@ -143,7 +143,7 @@ def test_warns_when_strain_leaves_identified_range():
         simulate(unbounded, big)
 
 
-SHARED = Path(__file__).resolve().parents[1].parent / "shared" / "ground_motions"
+from shared_data import SHARED
 RECORDS = sorted(SHARED.glob("*.[aA][tT]2")) if SHARED.is_dir() else []
 
 

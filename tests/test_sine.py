@@ -13,7 +13,7 @@ PARAMETER_SETS = [TABLE4, dict(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.3), dict(
 @pytest.mark.parametrize("params", PARAMETER_SETS)
 @pytest.mark.parametrize("frequency", [0.5, 10.0])
 def test_last_loop_is_steady(params, frequency):
-    # The docstring of vdw_frames.sine promises the default 5 cycles give the steady loop to 0.1 %.
+    # The docstring of vdw_frames.element.sine promises the default 5 cycles give the steady loop to 0.1 %.
     damper = FDMKDamper(**params)
     result = sine_test(damper, 30.0, frequency)
     assert result.loop_area == pytest.approx(np.pi * damper.loss_stiffness(frequency) * 30.0**2, rel=1e-3)

@@ -8,7 +8,7 @@ from scipy.integrate import solve_ivp
 
 from reference import discrete_transfer_error, tapered_sine, tapered_sine_error
 from vdw_frames import FDMKDamper
-from vdw_frames.fractional import DEFAULT_METHOD, METHODS, get_method
+from vdw_frames.element.fractional import DEFAULT_METHOD, METHODS, get_method
 
 TABLE4 = dict(G1=8.69, G2=3.58, eta1=0.75, eta2=0.98, r=0.60)
 

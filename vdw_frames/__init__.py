@@ -1,18 +1,34 @@
 """vdw_frames: FDMK viscoelastic damping walls and shear buildings fitted with them.
 
+Sub-packages: :mod:`~vdw_frames.element` (the FDMK wall model and its time stepping),
+:mod:`~vdw_frames.frame` (shear buildings, integration, batches), :mod:`~vdw_frames.motion` (ground
+motions) and :mod:`~vdw_frames.paper` (the paper's data, identification, report); beside them
+:mod:`~vdw_frames.config` (building files), :mod:`~vdw_frames.plotting` and :mod:`~vdw_frames.cli`.
+The public names are re-exported here; ``paper`` and ``identify`` load on first use (they pull in
+scipy.optimize, which ``import vdw_frames`` need not pay for).
+
 Units throughout: N, mm, s, tonne; moduli MPa (N/mm^2), viscosities MPa*s^r, stiffness N/mm,
 energy N*mm, frequency Hz.
 """
 
-from .batch import BatchResult, run_batch
-from .building import ShearBuilding
-from .damper import DamperState, FDMKDamper
-from .fast_memory import FastMemory
-from .fractional import BDF2, DampedTwoStep, Discretisation, GrunwaldLetnikov, Trapezoidal
-from .ground_motion import G, GroundMotion, read_at2, read_two_column, response_spectrum
+from importlib import import_module
+
+from . import element, frame, motion
+from .element import (
+    BDF2,
+    DampedTwoStep,
+    DamperState,
+    Discretisation,
+    FastMemory,
+    FDMKDamper,
+    GrunwaldLetnikov,
+    SineTestResult,
+    Trapezoidal,
+    sine_test,
+)
+from .frame import BatchResult, EnergyHistory, ShearBuilding, SimulationResult, run_batch, simulate
+from .motion import G, GroundMotion, read_at2, read_two_column, response_spectrum, write_at2
 from .plotting import plot_loops
-from .simulation import EnergyHistory, SimulationResult, simulate
-from .sine import SineTestResult, sine_test
 
 __all__ = [
     "BDF2",
@@ -30,6 +46,11 @@ __all__ = [
     "SimulationResult",
     "SineTestResult",
     "Trapezoidal",
+    "element",
+    "frame",
+    "identify",
+    "motion",
+    "paper",
     "plot_loops",
     "read_at2",
     "read_two_column",
@@ -37,4 +58,15 @@ __all__ = [
     "run_batch",
     "simulate",
     "sine_test",
+    "write_at2",
 ]
+
+_LAZY = {"paper": ("vdw_frames.paper", None), "identify": ("vdw_frames.paper", "identify")}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        module_name, attribute = _LAZY[name]
+        module = import_module(module_name)
+        return module if attribute is None else getattr(module, attribute)
+    raise AttributeError(f"module 'vdw_frames' has no attribute {name!r}")

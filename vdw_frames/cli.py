@@ -18,8 +18,8 @@ def _add_damper_options(parser: argparse.ArgumentParser) -> None:
 
 
 def _damper_from(args):
-    from .damper import FDMKDamper
-    from .paper import fitted
+    from .element.damper import FDMKDamper
+    from .paper.data import fitted
 
     base = fitted(args.strain)
     values = {name: getattr(args, name) if getattr(args, name) is not None else getattr(base, name)
@@ -29,7 +29,7 @@ def _damper_from(args):
 
 def _sine_test(args) -> int:
     from .plotting import plot_loops
-    from .sine import sine_test
+    from .element.sine import sine_test
 
     damper = _damper_from(args)
     amplitude = args.amplitude if args.amplitude is not None else args.strain / 100.0 * damper.thickness
@@ -56,8 +56,8 @@ def _simulate(args) -> int:
 
     from . import plotting
     from .config import load_building
-    from .ground_motion import G, read_at2
-    from .simulation import simulate
+    from .motion import G, read_at2
+    from .frame.simulation import simulate
 
     building = load_building(args.building)
     motion = read_at2(args.record)
@@ -90,7 +90,7 @@ def _simulate(args) -> int:
 
 
 def _paper_report(args) -> int:
-    from .report import write_paper_report
+    from .paper.report import write_paper_report
 
     path = write_paper_report(args.out)
     print(f"report: {path}")

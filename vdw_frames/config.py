@@ -24,8 +24,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from .building import ShearBuilding
-from .damper import FDMKDamper
+from .frame.building import ShearBuilding
+from .element.damper import FDMKDamper
 
 _BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "walls"}
 _WALL_KEYS = {"stories", "per_story", "parameters", "area", "thickness"}
@@ -92,7 +92,7 @@ def building_from_dict(data: dict) -> ShearBuilding:
 
 
 def _wall_group(group, stories):
-    from .paper import fitted
+    from .paper.data import fitted
 
     if not isinstance(group, dict):
         raise ValueError(f"each walls entry must be a table, got {group!r}")

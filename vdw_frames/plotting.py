@@ -21,7 +21,7 @@ def _pyplot():
 def plot_loops(results, path, labels=None, title=None) -> Path:
     """Draw force-displacement loops of sine tests to a PNG at ``path``; returns the path.
 
-    ``results`` is one :class:`~vdw_frames.sine.SineTestResult` or a sequence of them.  The whole
+    ``results`` is one :class:`~vdw_frames.element.sine.SineTestResult` or a sequence of them.  The whole
     history is drawn thin (the start-up transient shows), the last full cycle thick.
     """
     if not isinstance(results, (list, tuple)):
@@ -59,7 +59,7 @@ def _save(figure, path) -> Path:
 def plot_drift_envelope(results: dict, path) -> Path:
     """Peak interstory drift ratio (or drift in mm without story heights) per story, one line per result.
 
-    ``results`` maps a label to a :class:`~vdw_frames.simulation.SimulationResult`.
+    ``results`` maps a label to a :class:`~vdw_frames.frame.simulation.SimulationResult`.
     """
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(5.0, 5.6))
@@ -127,10 +127,10 @@ def plot_energy(result, path, title=None) -> Path:
 def plot_ida_curves(results: dict, path, title=None) -> Path:
     """IDA curves: PGA (g) against the peak interstory drift ratio (%) of each record.
 
-    ``results`` maps a label to a :class:`~vdw_frames.batch.BatchResult` with story heights; the
+    ``results`` maps a label to a :class:`~vdw_frames.frame.batch.BatchResult` with story heights; the
     first label is drawn dashed, the others solid, one colour per record.
     """
-    from .ground_motion import G
+    from .motion.record import G
 
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(6.4, 4.8))

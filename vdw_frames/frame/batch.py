@@ -17,11 +17,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validation import finite_array
+from .._validation import finite_array
 from .building import ShearBuilding
-from .damper import DEFAULT_MEMORY
-from .fractional import DEFAULT_METHOD, Discretisation
-from .ground_motion import GroundMotion
+from ..element.damper import DEFAULT_MEMORY
+from ..element.fractional import DEFAULT_METHOD, Discretisation
+from ..motion.record import GroundMotion
 from .simulation import simulate
 
 
@@ -36,7 +36,7 @@ class BatchTask:
     method: str | Discretisation
 
     def run(self) -> dict:
-        """Peak responses of this analysis (units of :class:`~vdw_frames.simulation.SimulationResult`).
+        """Peak responses of this analysis (units of :class:`~vdw_frames.frame.simulation.SimulationResult`).
 
         Warnings raised by the analysis (e.g. strain outside the identified range) travel back as
         text under "warnings", since a worker process cannot warn the caller.

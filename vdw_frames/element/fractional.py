@@ -57,9 +57,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
+from .._jit import njit
 
-from ._validation import finite_scalar, positive
+from .._validation import finite_scalar, positive
 
 
 @njit(cache=True)

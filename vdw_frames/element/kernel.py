@@ -12,7 +12,7 @@ Memory layout of one damper (arrays, so that many dampers stack into higher-dime
                      an optional exponential (geometric) representation of the weights beyond the
                      window, w_j ~= sum_k c_k rho_k^j for j > L, with mode_weight = c_k rho_k^(L+1).
                      K = 0 and L >= the number of steps gives the exact full-history convolution;
-                     :mod:`vdw_frames.fast_memory` builds L = 16 and K = 24-68 modes (the fast memory).
+                     :mod:`vdw_frames.element.fast_memory` builds L = 16 and K = 24-68 modes (the fast memory).
 
 The history at step n (``count`` = n committed steps) of channel c is
 ``sum_{j=1}^{min(n, L)} w_j past_c[n-j] + sum_k mode_weight_k * mode_state_k,c``; values leaving the
@@ -22,7 +22,7 @@ window are absorbed into ``mode_state`` as S_k <- rho_k S_k + x_{n-L}.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from .._jit import njit
 
 
 @njit(cache=True)

@@ -3,7 +3,7 @@
 Equation of motion, relative to the ground:  M u'' + C u' + K u + B^T f_d = -M 1 a_g,  with B the
 drift operator (drift_k = u_k - u_{k-1}) and f_d the damper forces.  Newmark's method with
 gamma = 1/2, beta = 1/4 (unconditionally stable, second order, no numerical damping).  Each damper is
-advanced by the shared kernel of :mod:`vdw_frames._kernel` with the trial/commit contract: its history
+advanced by the shared kernel of :mod:`vdw_frames.element.kernel` with the trial/commit contract: its history
 force is evaluated from the committed memory, the new displacements are solved, the trial force is
 evaluated at the new drift and committed.  The element is linear, so its tangent is constant and the
 effective stiffness is factorised once; no iteration is needed.
@@ -15,14 +15,14 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
+from .._jit import njit
 
-from . import _kernel
-from ._validation import positive, require_finite
+from ..element import kernel
+from .._validation import positive, require_finite
 from .building import ShearBuilding, story_matrix
-from .damper import DEFAULT_MEMORY, Memory
-from .fractional import DEFAULT_METHOD
-from .ground_motion import GroundMotion
+from ..element.damper import DEFAULT_MEMORY, Memory
+from ..element.fractional import DEFAULT_METHOD
+from ..motion.record import GroundMotion
 
 
 @njit(cache=True)
@@ -49,9 +49,9 @@ def _newmark(ground_acceleration, dt, masses, damping, stiffness, effective_inve
         story_force[:] = 0.0
         for d in range(dampers):
             G1, G2, eta1, eta2, area, thickness = damper_constants[d]
-            history[d, 0], history[d, 1] = _kernel.memory_history(
+            history[d, 0], history[d, 1] = kernel.memory_history(
                 weights[d], past[d], count, mode_weight[d], mode_state[d])
-            stress, _, _ = _kernel.fdmk_stress(0.0, history[d, 0], history[d, 1], G1, G2, eta1, eta2, weights[d, 0])
+            stress, _, _ = kernel.fdmk_stress(0.0, history[d, 0], history[d, 1], G1, G2, eta1, eta2, weights[d, 0])
             story_force[damper_story[d]] += stress * area
         for i in range(floors):
             inertia = masses[i] * (a0 * u[i] + a1 * v[i] + a[i])
@@ -71,11 +71,11 @@ def _newmark(ground_acceleration, dt, masses, damping, stiffness, effective_inve
             G1, G2, eta1, eta2, area, thickness = damper_constants[d]
             s = damper_story[d]
             drift = new[s] - (new[s - 1] if s > 0 else 0.0)
-            stress, maxwell, _ = _kernel.fdmk_stress(drift / thickness, history[d, 0], history[d, 1],
+            stress, maxwell, _ = kernel.fdmk_stress(drift / thickness, history[d, 0], history[d, 1],
                                                      G1, G2, eta1, eta2, weights[d, 0])
             damper_force[n + 1, d] = stress * area
             # Commit the accepted trial: only now does the memory advance.
-            _kernel.memory_push(past[d], count, mode_ratio[d], mode_state[d], drift / thickness, maxwell)
+            kernel.memory_push(past[d], count, mode_ratio[d], mode_state[d], drift / thickness, maxwell)
         for i in range(floors):
             increment = new[i] - u[i]
             velocity[n + 1, i] = v1 * increment - v[i]
@@ -195,7 +195,7 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
 
     tangent = np.zeros(floors)
     for (story, wall), area, mem in zip(representatives, group_area, memories):
-        _, _, modulus = _kernel.fdmk_stress(0.0, 0.0, 0.0, wall.G1, wall.G2, wall.eta1, wall.eta2, mem.weights[0])
+        _, _, modulus = kernel.fdmk_stress(0.0, 0.0, 0.0, wall.G1, wall.G2, wall.eta1, wall.eta2, mem.weights[0])
         tangent[story - 1] += modulus * area / wall.thickness
     masses = np.asarray(building.masses)
     effective = (building.stiffness_matrix + story_matrix(tangent) + (4.0 / dt**2) * building.mass_matrix

@@ -8,8 +8,8 @@ from functools import cached_property
 import numpy as np
 from scipy.linalg import eigh
 
-from ._validation import damping_ratio, finite_array, whole_number
-from .damper import FDMKDamper
+from .._validation import damping_ratio, finite_array, whole_number
+from ..element.damper import FDMKDamper
 
 
 @dataclass(frozen=True, eq=False)

@@ -20,12 +20,12 @@ The printed closed forms (NOT the model)
 ----------------------------------------
 :func:`printed_eq7_modulus` and :func:`printed_eq8_moduli` to :func:`printed_eq11_damping_coefficient`
 transcribe eqs. (6b)/(7) and (8)-(11) as printed.  They do not follow from the model's defining
-eqs. (3)-(5) (:class:`~vdw_frames.damper.FDMKDamper` implements those); they are here only so that
-:mod:`vdw_frames.report` can show what Table 4 gives under them.  Do not use them for anything else.
+eqs. (3)-(5) (:class:`~vdw_frames.element.damper.FDMKDamper` implements those); they are here only so that
+:mod:`vdw_frames.paper.report` can show what Table 4 gives under them.  Do not use them for anything else.
 
 Recommended parameter sets
 --------------------------
-:func:`fitted` returns this package's identification (:func:`vdw_frames.identify.identify`) of each
+:func:`fitted` returns this package's identification (:func:`vdw_frames.paper.identification.identify`) of each
 strain level's Tables 1-3 data, never the paper's Table 4 (which reproduces none of the tables, under
 the model or under the printed formulas).  The objective is the paper's (12) with **relative**
 residuals: sum over the six frequencies of ((G'_model - G'_test)/G'_test)^2 + ((G''_model -
@@ -70,7 +70,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from .damper import FDMKDamper
+from ..element.damper import FDMKDamper
 
 FREQUENCIES = np.array([0.5, 1.0, 1.5, 2.0, 5.0, 10.0])  # Hz
 STRAINS = (225, 300, 450)  # shear strain amplitude, %
@@ -182,7 +182,7 @@ def fitted(strain, area: float = AREA, thickness: float = THICKNESS) -> FDMKDamp
 def printed_eq7_modulus(omega, G1, G2, eta1, eta2, r):
     """sigma~/eps~ of the printed eq. (7) (= eq. (6b) with D^r -> (i omega)^r), complex, omega in rad/s.
 
-    NOT the model: (6b) does not follow from eqs. (3)-(5) (see :mod:`vdw_frames.report`).
+    NOT the model: (6b) does not follow from eqs. (3)-(5) (see :mod:`vdw_frames.paper.report`).
     """
     x = (1j * np.asarray(omega, dtype=float)) ** r
     numerator = G2 * eta1 * eta2 * x * (G1 + eta1 * x)

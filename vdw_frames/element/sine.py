@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validation import positive, require_finite, whole_number
+from .._validation import positive, require_finite, whole_number
 from .damper import FDMKDamper
 from .fractional import DEFAULT_METHOD
 

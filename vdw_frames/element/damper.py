@@ -29,8 +29,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _kernel
-from ._validation import finite_array, non_negative, positive, positive_frequencies, require_finite
+from . import kernel
+from .._validation import finite_array, non_negative, positive, positive_frequencies, require_finite
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, _check_order, get_method
 
@@ -153,15 +153,15 @@ class FDMKDamper:
 
         ``displacement[n]`` is the displacement at t = n dt; the history before t = 0 is zero
         (Riemann-Liouville derivatives from rest).  ``method`` selects the discretisation of D^r
-        (:mod:`vdw_frames.fractional`; default: the damped two-step convolution quadrature, second order).
+        (:mod:`vdw_frames.element.fractional`; default: the damped two-step convolution quadrature, second order).
         ``memory``: "fast" (default; O(1) work per step, within 3e-9 of "exact"; see
-        :mod:`vdw_frames.fast_memory`), "exact" (the full history, O(n) at step n) or a
-        :class:`~vdw_frames.fast_memory.FastMemory` with its own tolerance.
+        :mod:`vdw_frames.element.fast_memory`), "exact" (the full history, O(n) at step n) or a
+        :class:`~vdw_frames.element.fast_memory.FastMemory` with its own tolerance.
         """
         displacement = finite_array("displacement", displacement)
         dt = positive("dt", dt)
         memory_arrays = Memory.allocate(self, dt, displacement.size, method, memory)
-        stress = _kernel.strain_driven(
+        stress = kernel.strain_driven(
             displacement / self.thickness, self.G1, self.G2, self.eta1, self.eta2, *memory_arrays.arrays()
         )
         force = stress * self.area
@@ -171,7 +171,7 @@ class FDMKDamper:
 
 @dataclass
 class Memory:
-    """The fractional memory of one damper (the arrays :mod:`vdw_frames._kernel` steps)."""
+    """The fractional memory of one damper (the arrays :mod:`vdw_frames.element.kernel` steps)."""
 
     weights: np.ndarray
     past: np.ndarray
@@ -233,11 +233,11 @@ class DamperState:
         displacement = finite_array("displacement", [displacement])[0]
         memory = self._memory
         if self._history is None:
-            self._history = _kernel.memory_history(
+            self._history = kernel.memory_history(
                 memory.weights, memory.past, self.steps, memory.mode_weight, memory.mode_state
             )
         damper = self.damper
-        stress, maxwell, tangent = _kernel.fdmk_stress(
+        stress, maxwell, tangent = kernel.fdmk_stress(
             displacement / damper.thickness, *self._history,
             damper.G1, damper.G2, damper.eta1, damper.eta2, memory.weights[0],
         )
@@ -256,7 +256,7 @@ class DamperState:
                                  f"memory=FastMemory(max_steps=...) with more to new_state()")
             self._grow()
         memory = self._memory
-        self.steps = _kernel.memory_push(
+        self.steps = kernel.memory_push(
             memory.past, self.steps, memory.mode_ratio, memory.mode_state,
             displacement / self.damper.thickness, maxwell,
         )

@@ -1,12 +1,12 @@
 """Fast fractional memory: the weights beyond a short window as a sum of geometric modes.
 
-The exact convolution-quadrature memory of D^r (:mod:`vdw_frames.fractional`) keeps every past value,
+The exact convolution-quadrature memory of D^r (:mod:`vdw_frames.element.fractional`) keeps every past value,
 O(n) work at step n.  Here only the last ``window`` = L values are kept exactly; the weights beyond the
 window are replaced by K geometric (exponential) modes,
 
     w_j  ~=  sum_k c_k rho_k^j        for L < j <= max_steps,
 
-which the step kernel (:mod:`vdw_frames._kernel`) carries as ``mode_ratio`` = rho_k and
+which the step kernel (:mod:`vdw_frames.element.kernel`) carries as ``mode_ratio`` = rho_k and
 ``mode_weight`` = c_k rho_k^(L+1).  The work per step is O(L + K) whatever the record length, and K
 grows only like log(max_steps) (see the table below).
 
@@ -30,7 +30,7 @@ writing rho = 1/|zeta| = exp(-u) gives, with s = sin(pi r),
   W by exp(4 pi i r).)  At r = 1 every term vanishes: the tail is exactly zero.
 
 * damped two-step (rho_infinity = rho in (0, 1)), W = (1 - zeta)^r P^r Q^-r, P = a0 + a1 zeta,
-  Q = b0 + b1 zeta (see :class:`vdw_frames.fractional.DampedTwoStep`), for j >= 1 (W grows like |zeta|^r),
+  Q = b0 + b1 zeta (see :class:`vdw_frames.element.fractional.DampedTwoStep`), for j >= 1 (W grows like |zeta|^r),
   with z_a = -a0/a1 (= 7 at rho = 1/2) and ln(1/rho) the start of the alternating cut (zeta < -1/rho):
       w_j = -(1 / pi) [ s \\int_0^ln(z_a) e^{-j u} ((e^u - 1)(a0 + a1 e^u) / (b0 + b1 e^u))^r du
                         + sin(2 pi r) \\int_ln(z_a)^oo e^{-j u} ((e^u - 1)(-a1 e^u - a0) / (b0 + b1 e^u))^r du ]
@@ -104,7 +104,7 @@ from functools import lru_cache
 import numpy as np
 from scipy import linalg
 
-from ._validation import positive, whole_number
+from .._validation import positive, whole_number
 from .fractional import _check_order, get_method
 
 DEFAULT_WINDOW = 16
@@ -397,8 +397,8 @@ def tail_modes(method, r, dt, window=DEFAULT_WINDOW, tolerance=DEFAULT_TOLERANCE
     Parameters
     ----------
     method : str or Discretisation
-        'trapezoidal', 'bdf2', 'grunwald' or 'damped', or a :class:`~vdw_frames.fractional.DampedTwoStep`
-        with any rho_infinity (see :mod:`vdw_frames.fractional`).
+        'trapezoidal', 'bdf2', 'grunwald' or 'damped', or a :class:`~vdw_frames.element.fractional.DampedTwoStep`
+        with any rho_infinity (see :mod:`vdw_frames.element.fractional`).
     r : float
         Fractional order, 0 < r <= 1.
     dt : float
@@ -419,7 +419,7 @@ def tail_modes(method, r, dt, window=DEFAULT_WINDOW, tolerance=DEFAULT_TOLERANCE
     Returns
     -------
     (mode_ratio, mode_weight) : float64 arrays of shape (K,)
-        In the layout of :mod:`vdw_frames._kernel`: rho_k and c_k rho_k^(L+1) (s^-r), so that
+        In the layout of :mod:`vdw_frames.element.kernel`: rho_k and c_k rho_k^(L+1) (s^-r), so that
         w_j ~= sum_k mode_weight_k * mode_ratio_k^(j - L - 1) for j > L.
     """
     method = get_method(method)
@@ -441,7 +441,7 @@ def fast_memory_arrays(method, r, dt, window=DEFAULT_WINDOW, tolerance=DEFAULT_T
 
     The fast memory of one damper at rest: the first L+1 exact CQ weights (scaled by dt^-r), an empty
     ring buffer and the modes of :func:`tail_modes` with zero state, in the argument order of
-    :func:`vdw_frames._kernel.strain_driven`.  Parameters as for :func:`tail_modes`.
+    :func:`vdw_frames.element.kernel.strain_driven`.  Parameters as for :func:`tail_modes`.
     """
     mode_ratio, mode_weight = tail_modes(method, r, dt, window, tolerance, max_steps)
     weights = get_method(method).weights(r, int(window) + 1, dt)

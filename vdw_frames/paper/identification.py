@@ -8,7 +8,7 @@ and 0 < r <= 1
     residual="absolute":  S = sum_i (G'(f_i) - G'_i)^2 + (G''(f_i) - G''_i)^2                (MPa^2)
     residual="relative":  S = sum_i ((G'(f_i) - G'_i) / G'_i)^2 + ((G''(f_i) - G''_i) / G''_i)^2   (-)
 
-with G' + i G'' the complex modulus of :class:`~vdw_frames.damper.FDMKDamper` (eqs. (3)-(5)).  This
+with G' + i G'' the complex modulus of :class:`~vdw_frames.element.damper.FDMKDamper` (eqs. (3)-(5)).  This
 is the paper's (12), "the error between the model and the experimental complex modulus", written
 out for the real and imaginary parts.
 
@@ -46,8 +46,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares
 
-from ._validation import finite_array, finite_scalar
-from .damper import FDMKDamper
+from .._validation import finite_array, finite_scalar
+from ..element.damper import FDMKDamper
 
 PARAMETERS = ("G1", "G2", "eta1", "eta2", "r")
 RESIDUALS = ("absolute", "relative")

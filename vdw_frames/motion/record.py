@@ -1,0 +1,133 @@
+"""The ground-motion record: a uniformly sampled acceleration history, its scaling and resampling.
+
+Units: acceleration mm/s^2, time and time step s.  Files in g are converted with :data:`G` =
+9806.65 mm/s^2 per g.  Every value leaving this sub-package is finite: bad input is a ValueError naming
+the value (and, for files, the file and the line).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validation import finite_array, finite_scalar, non_negative, positive
+
+G = 9806.65
+"""Standard gravity, mm/s^2 per g."""
+
+STEP_TOLERANCE = 1e-9
+"""Relative tolerance within which a requested time step must divide the record step."""
+
+@dataclass(frozen=True, eq=False)
+class GroundMotion:
+    """A uniformly sampled ground acceleration record.
+
+    ``acceleration`` mm/s^2 (1-D, finite, non-empty; stored as a read-only copy), ``dt`` s (> 0),
+    ``name`` a label (file stem for records read from files).  Sample ``i`` is at time ``i * dt``.
+    """
+
+    acceleration: np.ndarray
+    dt: float
+    name: str = ""
+
+    def __post_init__(self):
+        acceleration = finite_array("acceleration", self.acceleration).copy()
+        if acceleration.size < 2:
+            raise ValueError(f"acceleration must hold at least 2 samples, got {acceleration.size}")
+        acceleration.flags.writeable = False
+        if not isinstance(self.name, str):
+            raise ValueError(f"name must be a string, got {self.name!r}")
+        object.__setattr__(self, "acceleration", acceleration)
+        object.__setattr__(self, "dt", positive("dt", self.dt))
+
+    def __repr__(self) -> str:
+        return (f"GroundMotion(name={self.name!r}, points={self.acceleration.size}, dt={self.dt!r} s, "
+                f"pga={self.pga / G:.4g} g)")
+
+    @property
+    def time(self) -> np.ndarray:
+        """Sample times, s: ``0, dt, ..., (n-1) dt``."""
+        return np.arange(self.acceleration.size) * self.dt
+
+    @property
+    def pga(self) -> float:
+        """Peak ground acceleration max |a|, mm/s^2."""
+        return float(np.max(np.abs(self.acceleration)))
+
+    @property
+    def duration(self) -> float:
+        """Time of the last sample, ``(n - 1) * dt``, s (0 for a single sample)."""
+        return (self.acceleration.size - 1) * self.dt
+
+    def scaled(self, factor: float) -> GroundMotion:
+        """A new record with acceleration x ``factor`` (dimensionless, finite); dt and name kept."""
+        factor = finite_scalar("factor", factor)
+        return GroundMotion(self.acceleration * factor, self.dt, self.name)
+
+    def scale_factor_to_pga(self, target: float) -> float:
+        """The factor (dimensionless) that brings the PGA to ``target`` mm/s^2 (> 0)."""
+        target = positive("target PGA", target)
+        return target / self._nonzero("PGA", self.pga)
+
+    def scaled_to_pga(self, target: float) -> GroundMotion:
+        """A new record scaled so that its PGA is ``target`` mm/s^2 (> 0)."""
+        return self.scaled(self.scale_factor_to_pga(target))
+
+    def scale_factor_to_spectral_acceleration(self, target: float, period: float,
+                                              damping_ratio: float = 0.05) -> float:
+        """The factor (dimensionless) that brings the pseudo-acceleration Sa(``period`` s,
+        ``damping_ratio``) of :func:`response_spectrum` to ``target`` mm/s^2 (> 0)."""
+        target = positive("target spectral acceleration", target)
+        from .spectrum import response_spectrum  # the spectrum module builds on this one
+
+        period = non_negative("period", period)
+        spectral = float(response_spectrum(self, period, damping_ratio))
+        return target / self._nonzero(f"Sa(T = {period!r} s)", spectral)
+
+    def scaled_to_spectral_acceleration(self, target: float, period: float,
+                                        damping_ratio: float = 0.05) -> GroundMotion:
+        """A new record scaled so that Sa(``period`` s, ``damping_ratio``) is ``target`` mm/s^2."""
+        return self.scaled(self.scale_factor_to_spectral_acceleration(target, period, damping_ratio))
+
+    def acceleration_at(self, dt: float) -> np.ndarray:
+        """Ground acceleration (mm/s^2, a new array) sampled every ``dt`` s from time 0.
+
+        ``dt`` must be the record step or the record step divided by a whole number (to a relative
+        1e-9); in between samples the record is interpolated linearly, and the last sample is the
+        record's last (``(n - 1) * m + 1`` values for ``m`` sub-steps).  A larger ``dt``, or one that
+        does not divide the record step, is a ValueError naming both steps.
+        """
+        substeps = self._substeps(dt)
+        acceleration = self.acceleration
+        if substeps == 1:
+            return acceleration.copy()
+        fractions = np.arange(substeps) / substeps
+        between = acceleration[:-1, None] + np.diff(acceleration)[:, None] * fractions
+        return np.concatenate([between.ravel(), acceleration[-1:]])
+
+    def resampled(self, dt: float) -> GroundMotion:
+        """The record sampled every ``dt`` s (see :meth:`acceleration_at`); its step is the record step
+        divided by the whole number of sub-steps (equal to ``dt`` within 1e-9 relative)."""
+        return GroundMotion(self.acceleration_at(dt), self.dt / self._substeps(dt), self.name)
+
+    def _substeps(self, dt) -> int:
+        dt = positive("dt", dt)
+        if dt > self.dt * (1.0 + STEP_TOLERANCE):
+            raise ValueError(f"time step dt = {dt!r} s is larger than the record step {self.dt!r} s "
+                             f"of {self._label}; use the record step or a whole fraction of it")
+        ratio = self.dt / dt
+        substeps = round(ratio)
+        if abs(ratio - substeps) > STEP_TOLERANCE * ratio:
+            raise ValueError(f"time step dt = {dt!r} s does not divide the record step {self.dt!r} s "
+                             f"of {self._label} (ratio {ratio!r} is not a whole number)")
+        return substeps
+
+    def _nonzero(self, what: str, value: float) -> float:
+        if value == 0.0:
+            raise ValueError(f"cannot scale {self._label}: its {what} is 0")
+        return value
+
+    @property
+    def _label(self) -> str:
+        return f"ground motion {self.name!r}" if self.name else "the ground motion"
