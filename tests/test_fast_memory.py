@@ -8,10 +8,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from vdw_frames.element import kernel
+from vdw_frames import FDMKDamper
+from vdw_frames.element.bank import WallBank
 from vdw_frames.element.fast_memory import (
     DEFAULT_MAX_STEPS,
     DEFAULT_TOLERANCE,
     DEFAULT_WINDOW,
+    FastMemory,
     fast_memory_arrays,
     tail_modes,
 )
@@ -71,14 +74,25 @@ def broadband_strain(steps, dt, amplitude=0.3, seed=7):
     return amplitude * strain / np.max(np.abs(strain))
 
 
+FAST = FastMemory(exact_below=0)  # the default fast memory (2^20 steps) on every record length
+
+
+def drive(strain, parameters, bank):
+    """Stress history (MPa) of the kernel for a strain history: ``bank`` holds one unit wall (area = thickness = 1)."""
+    stress, _ = bank.drive(strain)
+    return stress
+
+
+def unit_bank(parameters, r, dt, steps, method, memory):
+    """A one-wall bank of a unit wall (area = thickness = 1 mm: force = stress, displacement = strain)."""
+    return WallBank((FDMKDamper(*parameters, r=r, area=1.0, thickness=1.0),), dt, steps, method, memory)
+
+
 def stress_histories(method, r, dt, steps, parameters):
-    """(exact, fast) stress histories of kernel.strain_driven for the broadband strain."""
+    """(exact, fast) stress histories of kernel.displacement_driven for the broadband strain."""
     strain = broadband_strain(steps, dt)
-    weights = get_method(method).weights(r, steps + 1, dt)
-    exact = kernel.strain_driven(
-        strain, *parameters, weights, np.zeros((steps, 2)), np.zeros(0), np.zeros(0), np.zeros((0, 2))
-    )
-    fast = kernel.strain_driven(strain, *parameters, *fast_memory_arrays(method, r, dt))
+    exact = drive(strain, parameters, unit_bank(parameters, r, dt, steps, method, "exact"))
+    fast = drive(strain, parameters, unit_bank(parameters, r, dt, steps, method, FAST))
     return exact, fast
 
 
@@ -173,23 +187,23 @@ def test_damped_family_any_rho_infinity(rho, r):
 
 
 def test_fast_arrays_are_fresh_and_in_kernel_order():
-    weights, past, mode_weight, mode_ratio, mode_state = fast_memory_arrays("trapezoidal", 0.6, 0.01)
+    weights, mode_weight, mode_ratio = fast_memory_arrays("trapezoidal", 0.6, 0.01)
     np.testing.assert_array_equal(weights, get_method("trapezoidal").weights(0.6, DEFAULT_WINDOW + 1, 0.01))
-    assert past.shape == (DEFAULT_WINDOW, 2) and not past.any()
-    assert mode_weight.shape == mode_ratio.shape == (mode_state.shape[0],) and mode_state.shape[1] == 2
-    assert not mode_state.any()
+    assert mode_weight.shape == mode_ratio.shape
+    bank = unit_bank(TABLE4, 0.6, 0.01, 3000, "trapezoidal", FAST)
+    assert bank.w0[0] == weights[0]
+    np.testing.assert_array_equal(bank.window_weights[0], weights[:0:-1])  # w_L .. w_1: oldest value first
+    assert bank.window.shape == (1, 2, 2 * DEFAULT_WINDOW) and not bank.window.any()
+    assert bank.mode_state.shape == (1, 2, mode_ratio.size) and not bank.mode_state.any()
     strain = broadband_strain(3000, 0.01)
-    first = kernel.strain_driven(strain, *TABLE4, weights, past, mode_weight, mode_ratio, mode_state)
-    assert mode_state.any()  # stepped in place ...
-    again = kernel.strain_driven(strain, *TABLE4, *fast_memory_arrays("trapezoidal", 0.6, 0.01))
+    first = drive(strain, TABLE4, bank)
+    assert bank.mode_state.any()  # stepped in place ...
+    again = drive(strain, TABLE4, unit_bank(TABLE4, 0.6, 0.01, 3000, "trapezoidal", FAST))
     np.testing.assert_array_equal(first, again)  # ... without touching the cached modes
     # Records no longer than the window never reach the modes: identical to the exact memory.
     short = strain[:DEFAULT_WINDOW]
-    exact = kernel.strain_driven(
-        short, *TABLE4, get_method("trapezoidal").weights(0.6, short.size + 1, 0.01),
-        np.zeros((short.size, 2)), np.zeros(0), np.zeros(0), np.zeros((0, 2)),
-    )
-    fast = kernel.strain_driven(short, *TABLE4, *fast_memory_arrays("trapezoidal", 0.6, 0.01))
+    exact = drive(short, TABLE4, unit_bank(TABLE4, 0.6, 0.01, short.size, "trapezoidal", "exact"))
+    fast = drive(short, TABLE4, unit_bank(TABLE4, 0.6, 0.01, short.size, "trapezoidal", FAST))
     np.testing.assert_allclose(fast, exact, rtol=1e-14, atol=0.0)
 
 

@@ -40,4 +40,7 @@ def test_force_is_time_invariant(damper, method, delay, seed):
     u = np.random.default_rng(seed).normal(size=300).cumsum()
     delayed = damper.force(np.concatenate([np.zeros(delay), u]), 0.005, method=method)
     assert not np.any(delayed[:delay])
-    np.testing.assert_allclose(delayed[delay:], damper.force(u, 0.005, method=method), rtol=1e-12, atol=0)
+    reference = damper.force(u, 0.005, method=method)
+    # The kernel's history sums are vectorised (reassociated), so the delayed run rounds differently: equal
+    # to rounding of the sums, i.e. relative to the force scale, not element by element near a zero crossing.
+    np.testing.assert_allclose(delayed[delay:], reference, rtol=0, atol=1e-12 * np.abs(reference).max())

@@ -79,11 +79,16 @@ def test_energy_balance_and_base_shear_identity():
     energy = result.energy
     assert np.abs(energy.balance_error).max() < 1e-9 * np.abs(energy.input).max()
     assert energy.damper_work[-1] > 0 and energy.inherent_damping[-1] > 0
-    # Base shear = story-1 spring + story-1 dampers + inherent damping force at the base.
-    c_base = building.damping_matrix.sum(axis=0) @ result.velocity.T
-    first_story = building.stiffnesses[0]
-    expected = first_story * result.drift[:, 0] + result.damper_force[:, 0] + c_base
-    np.testing.assert_allclose(result.base_shear, expected, atol=1e-6 * np.abs(expected).max())
+    # Base shear = the force through story 1 = (equilibrium of all floors) the floors' inertia forces plus
+    # the mass-proportional damping forces, which act between the floors and the ground.
+    a0, a1 = building.rayleigh_coefficients
+    masses = np.asarray(building.masses)
+    expected = -(result.absolute_acceleration @ masses) - a0 * (result.velocity @ masses)
+    np.testing.assert_allclose(result.base_shear, expected, atol=1e-9 * np.abs(expected).max())
+    # ... and, term by term: story-1 spring, story-1 walls and the stiffness-proportional damping force.
+    direct = (building.stiffnesses[0] * result.drift[:, 0] + result.damper_force[:, 0]
+              + a1 * building.stiffnesses[0] * result.velocity[:, 0])
+    np.testing.assert_allclose(result.base_shear, direct, atol=1e-9 * np.abs(expected).max())
 
 
 def test_rayleigh_damping_gives_the_ratio_in_the_named_modes():

@@ -23,7 +23,9 @@ from .element import (
     FDMKDamper,
     GrunwaldLetnikov,
     SineTestResult,
+    SupportedDamper,
     Trapezoidal,
+    WallBank,
     sine_test,
 )
 from .frame import BatchResult, EnergyHistory, ShearBuilding, SimulationResult, run_batch, simulate
@@ -45,7 +47,9 @@ __all__ = [
     "ShearBuilding",
     "SimulationResult",
     "SineTestResult",
+    "SupportedDamper",
     "Trapezoidal",
+    "WallBank",
     "element",
     "frame",
     "identify",

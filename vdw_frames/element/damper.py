@@ -29,24 +29,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import kernel
 from .._validation import finite_array, non_negative, positive, positive_frequencies, require_finite
-from .fast_memory import FastMemory
+from .bank import DEFAULT_MEMORY, MEMORY_STRATEGIES, WallBank, kernel_constants, memory_strategy
 from .fractional import DEFAULT_METHOD, _check_order, get_method
 
-MEMORY_STRATEGIES = ("fast", "exact")
-DEFAULT_MEMORY = "fast"
-
-
-def memory_strategy(memory):
-    """``None`` for the exact full-history memory, else the :class:`FastMemory` to use."""
-    if isinstance(memory, FastMemory):
-        return memory
-    if memory == "fast":
-        return FastMemory()
-    if memory == "exact":
-        return None
-    raise ValueError(f"memory must be one of {MEMORY_STRATEGIES} or a FastMemory, got {memory!r}")
+__all__ = ["DEFAULT_MEMORY", "MEMORY_STRATEGIES", "DamperState", "FDMKDamper", "driven_force"]
 
 
 @dataclass(frozen=True)
@@ -143,7 +130,19 @@ class FDMKDamper:
         f = positive_frequencies("f", f)
         return self.loss_stiffness(f) / (2.0 * np.pi * f)
 
+    def stiffness_transfer(self, s):
+        """K(s) = G*(s) area / thickness (N/mm) for complex s (rad/s): the wall's Laplace-domain stiffness."""
+        return self.transfer(s) * self.stiffness_scale
+
+    def complex_stiffness(self, f):
+        """K*(f) = K' + i K'' (N/mm) at frequencies f (Hz)."""
+        return self.complex_modulus(f) * self.stiffness_scale
+
     # ------------------------------------------------------------------ time domain
+    def kernel_constants(self) -> tuple:
+        """(G1, G2, eta1, eta2, area, thickness, support flexibility = 0): the kernel's constants of this wall."""
+        return (self.G1, self.G2, self.eta1, self.eta2, self.area, self.thickness, 0.0)
+
     def new_state(self, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY) -> "DamperState":
         """A fresh (at-rest) time-stepping state with step ``dt`` (s); see :class:`DamperState`."""
         return DamperState(self, dt, method=method, memory=memory)
@@ -158,110 +157,70 @@ class FDMKDamper:
         :mod:`vdw_frames.element.fast_memory`), "exact" (the full history, O(n) at step n) or a
         :class:`~vdw_frames.element.fast_memory.FastMemory` with its own tolerance.
         """
-        displacement = finite_array("displacement", displacement)
-        dt = positive("dt", dt)
-        memory_arrays = Memory.allocate(self, dt, displacement.size, method, memory)
-        stress = kernel.strain_driven(
-            displacement / self.thickness, self.G1, self.G2, self.eta1, self.eta2, *memory_arrays.arrays()
-        )
-        force = stress * self.area
-        require_finite("force", force)
-        return force
+        return driven_force(self, displacement, dt, method, memory)
 
 
-@dataclass
-class Memory:
-    """The fractional memory of one damper (the arrays :mod:`vdw_frames.element.kernel` steps)."""
-
-    weights: np.ndarray
-    past: np.ndarray
-    mode_weight: np.ndarray
-    mode_ratio: np.ndarray
-    mode_state: np.ndarray
-    max_steps: int
-
-    @classmethod
-    def allocate(cls, damper: FDMKDamper, dt: float, steps: int, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY):
-        """Memory for ``steps`` steps of size ``dt`` (s): exact (a window of all steps) or fast."""
-        strategy = memory_strategy(memory)
-        if strategy is not None and not 0 < steps <= strategy.exact_below:
-            arrays = strategy.arrays(method, damper.r, dt, steps)
-            return cls(*arrays, max_steps=max(int(steps), strategy.max_steps))
-        window = max(int(steps), 1)
-        weights = get_method(method).weights(damper.r, window + 1, dt)
-        empty = np.zeros(0)
-        return cls(weights, np.zeros((window, 2)), empty, empty, np.zeros((0, 2)), max_steps=window)
-
-    def arrays(self):
-        """(weights, past, mode_weight, mode_ratio, mode_state) in the order the kernel takes them."""
-        return self.weights, self.past, self.mode_weight, self.mode_ratio, self.mode_state
+def driven_force(wall, displacement, dt, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY):
+    """Force history (N) of a wall assembly for a displacement history (mm) from rest (see ``force``)."""
+    displacement = finite_array("displacement", displacement)
+    dt = positive("dt", dt)
+    force, _ = WallBank((wall,), dt, displacement.size, method, memory).drive(displacement)
+    require_finite("force", force)
+    return force
 
 
-@dataclass
 class DamperState:
-    """Time-stepping state of one damper, with OpenSees ``UniaxialMaterial``-like trial/commit semantics.
+    """Time-stepping state of one wall, with OpenSees ``UniaxialMaterial``-like trial/commit semantics.
 
     ``force, tangent = state.trial(displacement)`` gives the force (N) at the next step for the given
     displacement (mm) and its derivative d(force)/d(displacement) (N/mm) without changing the memory;
     any number of trials may precede ``state.commit()``, which accepts the last trial and advances the
-    memory by one step of ``dt`` seconds.  Stepping trial/commit reproduces :meth:`FDMKDamper.force`.
+    memory by one step of ``dt`` seconds; ``revert_to_last_commit()`` discards the trial.  Stepping
+    trial/commit reproduces :meth:`FDMKDamper.force`.  ``damper`` is an :class:`FDMKDamper` or a
+    :class:`~vdw_frames.SupportedDamper`.  The exact memory grows as needed; the fast memory serves
+    ``FastMemory.max_steps`` steps (2^20 by default).
     """
-
-    damper: FDMKDamper
-    dt: float
-    method: object = DEFAULT_METHOD
-    memory: object = DEFAULT_MEMORY
-    steps: int = field(default=0, init=False)
-    _memory: Memory = field(init=False, repr=False)
-    _fast: bool = field(default=False, init=False, repr=False)
-    _history: tuple | None = field(default=None, init=False, repr=False)
-    _trial: tuple | None = field(default=None, init=False, repr=False)
-    committed_displacement: float = field(default=0.0, init=False)
-    committed_force: float = field(default=0.0, init=False)
 
     _INITIAL_CAPACITY = 1024
 
-    def __post_init__(self):
-        self.dt = positive("dt", self.dt)
-        self.method = get_method(self.method)
-        self._fast = memory_strategy(self.memory) is not None
-        self._memory = Memory.allocate(self.damper, self.dt, 0 if self._fast else self._INITIAL_CAPACITY,
-                                       self.method, self.memory)
+    def __init__(self, damper, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY):
+        kernel_constants(damper)  # refuses anything that is not a wall
+        self.damper = damper
+        self.dt = positive("dt", dt)
+        self.method = get_method(method)
+        self.memory = memory
+        self._fast = memory_strategy(memory) is not None
+        self._bank = WallBank((damper,), self.dt, 0 if self._fast else self._INITIAL_CAPACITY, self.method, memory)
+        self._trial = None
+        self.committed_displacement = 0.0
+        self.committed_force = 0.0
+
+    def __repr__(self) -> str:
+        return f"DamperState(damper={self.damper!r}, dt={self.dt!r}, steps={self.steps})"
+
+    @property
+    def steps(self) -> int:
+        """Committed steps."""
+        return self._bank.count
 
     def trial(self, displacement: float):
         """(force in N, tangent in N/mm) at the next step for ``displacement`` (mm); memory untouched."""
         displacement = finite_array("displacement", [displacement])[0]
-        memory = self._memory
-        if self._history is None:
-            self._history = kernel.memory_history(
-                memory.weights, memory.past, self.steps, memory.mode_weight, memory.mode_state
-            )
-        damper = self.damper
-        stress, maxwell, tangent = kernel.fdmk_stress(
-            displacement / damper.thickness, *self._history,
-            damper.G1, damper.G2, damper.eta1, damper.eta2, memory.weights[0],
-        )
-        force = stress * damper.area
-        self._trial = (displacement, force, maxwell)
-        return force, tangent * damper.stiffness_scale
+        self._trial = displacement
+        bank = self._bank
+        return float(bank.tangent[0] * displacement + bank.history_force[0]), float(bank.tangent[0])
 
     def commit(self) -> None:
         """Accept the last trial and advance the memory one step."""
         if self._trial is None:
             raise ValueError("commit() needs a trial() first")
-        displacement, force, maxwell = self._trial
-        if self.steps == self._memory.max_steps:
+        if self._bank.count == self._bank.max_steps:
             if self._fast:
                 raise ValueError(f"the fast memory was built for {self.steps} steps; pass "
                                  f"memory=FastMemory(max_steps=...) with more to new_state()")
             self._grow()
-        memory = self._memory
-        self.steps = kernel.memory_push(
-            memory.past, self.steps, memory.mode_ratio, memory.mode_state,
-            displacement / self.damper.thickness, maxwell,
-        )
-        self.committed_displacement, self.committed_force = displacement, force
-        self._history = None
+        force, _ = self._bank.commit([self._trial])
+        self.committed_displacement, self.committed_force = self._trial, float(force[0])
         self._trial = None
 
     def revert_to_last_commit(self) -> None:
@@ -269,8 +228,13 @@ class DamperState:
         self._trial = None
 
     def _grow(self) -> None:
-        # Exact memory keeps every step: double the window (the ring buffer has not wrapped yet).
-        old = self._memory
-        bigger = Memory.allocate(self.damper, self.dt, 2 * old.past.shape[0], self.method, self.memory)
-        bigger.past[: old.past.shape[0]] = old.past
-        self._memory = bigger
+        # Exact memory keeps every step: a bank with twice the window, holding the same values.
+        old = self._bank
+        size = old.window_weights.shape[1]
+        bigger = WallBank(old.walls, self.dt, 2 * size, self.method, self.memory)
+        values = old.window[:, :, :size]  # x_0 .. x_{size-1}: full, not yet wrapped
+        bigger.window[:, :, :size] = values
+        bigger.window[:, :, 2 * size:3 * size] = values
+        bigger.count = old.count
+        bigger.evaluate_history()
+        self._bank = bigger

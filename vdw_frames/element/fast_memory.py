@@ -437,21 +437,15 @@ def tail_modes(method, r, dt, window=DEFAULT_WINDOW, tolerance=DEFAULT_TOLERANCE
 
 
 def fast_memory_arrays(method, r, dt, window=DEFAULT_WINDOW, tolerance=DEFAULT_TOLERANCE, max_steps=DEFAULT_MAX_STEPS):
-    """Kernel arrays (weights (L+1,), past (L, 2), mode_weight (K,), mode_ratio (K,), mode_state (K, 2)).
+    """(weights (L+1,), mode_weight (K,), mode_ratio (K,)): the fast memory of one wall.
 
-    The fast memory of one damper at rest: the first L+1 exact CQ weights (scaled by dt^-r), an empty
-    ring buffer and the modes of :func:`tail_modes` with zero state, in the argument order of
-    :func:`vdw_frames.element.kernel.strain_driven`.  Parameters as for :func:`tail_modes`.
+    The first L+1 exact CQ weights w_0..w_L (scaled by dt^-r) and the modes of :func:`tail_modes`;
+    :class:`vdw_frames.element.bank.Memory` lays them out for :mod:`vdw_frames.element.kernel`.
+    Parameters as for :func:`tail_modes`.
     """
     mode_ratio, mode_weight = tail_modes(method, r, dt, window, tolerance, max_steps)
     weights = get_method(method).weights(r, int(window) + 1, dt)
-    return (
-        weights,
-        np.zeros((int(window), 2)),
-        mode_weight,
-        mode_ratio,
-        np.zeros((mode_ratio.size, 2)),
-    )
+    return weights, mode_weight, mode_ratio
 
 
 @dataclass(frozen=True)
@@ -478,5 +472,5 @@ class FastMemory:
         object.__setattr__(self, "exact_below", whole_number("exact_below", self.exact_below, 0))
 
     def arrays(self, method, r, dt, steps=0):
-        """Kernel arrays for a record of ``steps`` steps (see :func:`fast_memory_arrays`)."""
+        """(weights, mode_weight, mode_ratio) for a record of ``steps`` steps (see :func:`fast_memory_arrays`)."""
         return fast_memory_arrays(method, r, dt, self.window, self.tolerance, max(int(steps), self.max_steps))

@@ -18,6 +18,7 @@ import numpy as np
 
 from .._validation import positive, require_finite, whole_number
 from .damper import FDMKDamper
+from .supported import WALL_TYPES
 from .fractional import DEFAULT_METHOD
 
 SAMPLES_PER_CYCLE = 200  # omega*dt = 0.031: the default method's error r (omega dt)^2 / 6 <= 1.6e-4
@@ -61,8 +62,8 @@ def sine_test(damper: FDMKDamper, amplitude: float, frequency: float, dt: float 
     amplitude in mm, frequency in Hz, dt in s (default: 200 samples per cycle).  The period must be a
     whole number of steps.  Returns a :class:`SineTestResult` (N, mm, N*mm, N/mm).
     """
-    if not isinstance(damper, FDMKDamper):
-        raise ValueError(f"damper must be an FDMKDamper, got {type(damper).__name__}")
+    if not isinstance(damper, WALL_TYPES):
+        raise ValueError(f"damper must be an FDMKDamper or a SupportedDamper, got {type(damper).__name__}")
     amplitude = positive("amplitude", amplitude)
     frequency = positive("frequency", frequency)
     if dt is None:

@@ -1,118 +1,401 @@
-"""Seismic time-history analysis of a shear building with FDMK dampers (Newmark average acceleration).
+"""Seismic time-history analysis of a shear building with FDMK walls: Newmark average acceleration with
+Newton-Raphson iterations through the walls' and the stories' trial/commit.
 
-Equation of motion, relative to the ground:  M u'' + C u' + K u + B^T f_d = -M 1 a_g,  with B the
-drift operator (drift_k = u_k - u_{k-1}) and f_d the damper forces.  Newmark's method with
-gamma = 1/2, beta = 1/4 (unconditionally stable, second order, no numerical damping).  Each damper is
-advanced by the shared kernel of :mod:`vdw_frames.element.kernel` with the trial/commit contract: its history
-force is evaluated from the committed memory, the new displacements are solved, the trial force is
-evaluated at the new drift and committed.  The element is linear, so its tangent is constant and the
-effective stiffness is factorised once; no iteration is needed.
+Equation of motion, relative to the ground, at every step n+1:
+
+    M u'' + C u' + B^T [ f_s(d) + k_G d + f_w(d) ] = -M 1 a_g,        d = B u (story drifts),
+
+with f_s the story springs (:mod:`vdw_frames.frame.hysteresis`; linear, Bilinear or Bouc-Wen), k_G = -P/h
+the P-Delta stiffness, f_w the walls and C the inherent damping.  Newmark's method with gamma = 1/2,
+beta = 1/4 (unconditionally stable for linear systems, second order, no numerical damping).
+
+Per step (the trial/commit contract of OpenSees's ``UniaxialMaterial``, compiled):
+
+1. walls: their history is evaluated once from the committed memory (:func:`kernel.bank_affine`); within
+   the step a wall's trial force is exactly K_t d + H_n (the element is linear), K_t constant;
+2. Newton-Raphson on the unbalanced force R(u) with the consistent tangent
+   K_T = (4/dt^2) M + (2/dt) C + B^T diag(k_s + k_G + K_t) B, each story's force and tangent from its
+   model's trial at the current drift (state untouched); the building's tangent is tridiagonal with
+   Rayleigh damping (solved in O(n)) and dense with modal damping.  Converged when
+   ||du||_inf <= ``displacement_tolerance`` (mm) and ||R||_inf <= ``force_tolerance`` x the step's
+   largest force term (see :class:`NewtonRaphson`); a linear building needs exactly one solve;
+3. on convergence the stories and the walls commit (the walls' memory advances only now);
+4. when Newton fails, the same step is retried, at the same dt (the walls' memory is built for one
+   dt: never sub-step), with a backtracking line search, then with initial-stiffness iterations; if
+   those fail too, the analysis stops, reports ``converged = False`` and warns with the time and story.
+
+Energies (N*mm) are accumulated in the same pass with trapezoidal work increments, the rule under which
+average acceleration balances energy to the iteration tolerance.
 """
 
 from __future__ import annotations
 
+import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
-from .._jit import njit
 
+from .._jit import njit
+from .._validation import finite_scalar, non_negative, positive, require_finite, whole_number
 from ..element import kernel
-from .._validation import positive, require_finite
-from .building import ShearBuilding, story_matrix
-from ..element.damper import DEFAULT_MEMORY, Memory
-from ..element.fractional import DEFAULT_METHOD
+from ..element.bank import DEFAULT_MEMORY, WallBank, kernel_constants, memory_strategy
+from ..element.fractional import DEFAULT_METHOD, get_method
 from ..motion.record import GroundMotion
+from .building import ShearBuilding
+from .hysteresis import LINEAR, PARAMETERS, STATE, story_trial
+
+# Status codes of the compiled integrator.
+_RUNNING, _FINISHED, _COLLAPSED, _FAILED = 0, 1, 2, 3
+# Energy columns: input, kinetic, frame strain (recoverable), story work, inherent damping, wall work, P-Delta.
+_ENERGIES = 7
+# Solution strategies tried in turn on a step: Newton, Newton with line search, initial stiffness.
+_NEWTON, _LINE_SEARCH, _INITIAL = 0, 1, 2
+
+
+@dataclass(frozen=True)
+class NewtonRaphson:
+    """Convergence settings of the inelastic integration (all per time step).
+
+    ``displacement_tolerance`` (mm): bound on ||du||_inf, the last Newton correction.
+    ``force_tolerance`` (-): bound on ||R||_inf relative to the step's largest force term (inertia,
+    damping, story, P-Delta or wall force of any floor, at least 1 N).
+    ``max_iterations``: Newton iterations before the fallbacks (line search, then initial stiffness with
+    ``fallback_iterations``) are tried at the same dt.
+    """
+
+    displacement_tolerance: float = 1e-8
+    force_tolerance: float = 1e-9
+    max_iterations: int = 25
+    fallback_iterations: int = 200
+
+    def __post_init__(self):
+        object.__setattr__(self, "displacement_tolerance", positive("displacement_tolerance", self.displacement_tolerance))
+        object.__setattr__(self, "force_tolerance", positive("force_tolerance", self.force_tolerance))
+        object.__setattr__(self, "max_iterations", whole_number("max_iterations", self.max_iterations, 1))
+        object.__setattr__(self, "fallback_iterations", whole_number("fallback_iterations", self.fallback_iterations, 1))
+
+
+# ---------------------------------------------------------------------------------------------- compiled
+@njit(cache=True)
+def _story_state(kinds, parameters, committed, drift, force, tangent, trial_state):
+    """Every story's trial: force and tangent at ``drift``, the state value to commit."""
+    for s in range(drift.shape[0]):
+        force[s], tangent[s], trial_state[s] = story_trial(
+            kinds[s], parameters[s, 0], parameters[s, 1], parameters[s, 2], parameters[s, 3], parameters[s, 4],
+            parameters[s, 5], committed[s, 0], committed[s, 1], drift[s])
+
+
+@njit(cache=True, inline="always")
+def _residual(u, u_n, v_n, a_n, ground, dt, masses, damping, tridiagonal, kinds, parameters, committed,
+              geometric, wall_tangent, wall_history, drift, story_force, story_tangent, trial_state,
+              story_total, damping_force, residual):
+    """Unbalanced force R = -M a_g - (M a + C v + B^T f)(u) at trial displacements u; returns the force scale.
+
+    Fills the drifts, the stories' trial forces/tangents/states, the total story forces (spring +
+    P-Delta + walls) and the damping forces C v.
+    """
+    n = u.shape[0]
+    a0, v1 = 4.0 / dt**2, 2.0 / dt
+    for s in range(n):
+        drift[s] = u[s] - (u[s - 1] if s > 0 else 0.0)
+    _story_state(kinds, parameters, committed, drift, story_force, story_tangent, trial_state)
+    for s in range(n):
+        story_total[s] = story_force[s] + geometric[s] * drift[s] + wall_tangent[s] * drift[s] + wall_history[s]
+    scale = 1.0
+    for i in range(n):
+        increment = u[i] - u_n[i]
+        inertia = masses[i] * (a0 * increment - (4.0 / dt) * v_n[i] - a_n[i])
+        viscous = 0.0
+        if tridiagonal:
+            for j in range(max(i - 1, 0), min(i + 2, n)):
+                viscous += damping[i, j] * (v1 * (u[j] - u_n[j]) - v_n[j])
+        else:
+            for j in range(n):
+                viscous += damping[i, j] * (v1 * (u[j] - u_n[j]) - v_n[j])
+        damping_force[i] = viscous
+        above = story_total[i + 1] if i + 1 < n else 0.0
+        external = masses[i] * ground
+        residual[i] = -external - inertia - viscous - (story_total[i] - above)
+        scale = max(scale, abs(external), abs(inertia), abs(viscous), abs(story_force[i]), abs(story_total[i]))
+    return scale
+
+
+@njit(cache=True, inline="always")
+def _solve(stiffness_diagonal, masses, damping, tridiagonal, dt, rhs, work, matrix, out):
+    """Solve ((4/dt^2) M + (2/dt) C + B^T diag(k) B) x = rhs; Thomas algorithm when tridiagonal, else LU."""
+    n = rhs.shape[0]
+    a0, v1 = 4.0 / dt**2, 2.0 / dt
+    if tridiagonal:
+        # diagonal in work[0], super-diagonal in work[1]
+        for i in range(n):
+            above = stiffness_diagonal[i + 1] if i + 1 < n else 0.0
+            work[0, i] = a0 * masses[i] + v1 * damping[i, i] + stiffness_diagonal[i] + above
+            work[1, i] = (v1 * damping[i, i + 1] - stiffness_diagonal[i + 1]) if i + 1 < n else 0.0
+        # forward elimination (symmetric tridiagonal), in place
+        out[0] = rhs[0]
+        for i in range(1, n):
+            factor = work[1, i - 1] / work[0, i - 1]
+            work[0, i] -= factor * work[1, i - 1]
+            out[i] = rhs[i] - factor * out[i - 1]
+        out[n - 1] /= work[0, n - 1]
+        for i in range(n - 2, -1, -1):
+            out[i] = (out[i] - work[1, i] * out[i + 1]) / work[0, i]
+        return
+    for i in range(n):
+        for j in range(n):
+            matrix[i, j] = v1 * damping[i, j]
+        matrix[i, i] += a0 * masses[i] + stiffness_diagonal[i] + (stiffness_diagonal[i + 1] if i + 1 < n else 0.0)
+        if i + 1 < n:
+            matrix[i, i + 1] -= stiffness_diagonal[i + 1]
+            matrix[i + 1, i] -= stiffness_diagonal[i + 1]
+        out[i] = rhs[i]
+    # Gaussian elimination with partial pivoting
+    for k in range(n):
+        pivot = k
+        for i in range(k + 1, n):
+            if abs(matrix[i, k]) > abs(matrix[pivot, k]):
+                pivot = i
+        if pivot != k:
+            for j in range(n):
+                matrix[k, j], matrix[pivot, j] = matrix[pivot, j], matrix[k, j]
+            out[k], out[pivot] = out[pivot], out[k]
+        for i in range(k + 1, n):
+            factor = matrix[i, k] / matrix[k, k]
+            for j in range(k, n):
+                matrix[i, j] -= factor * matrix[k, j]
+            out[i] -= factor * out[k]
+    for i in range(n - 1, -1, -1):
+        total = out[i]
+        for j in range(i + 1, n):
+            total -= matrix[i, j] * out[j]
+        out[i] = total / matrix[i, i]
 
 
 @njit(cache=True)
-def _newmark(ground_acceleration, dt, masses, damping, stiffness, effective_inverse, damper_story,
-             damper_constants, weights, past, mode_weight, mode_ratio, mode_state,
-             displacement, velocity, acceleration, damper_force):
-    """Average-acceleration Newmark steps 1 .. N-1 (step 0 is rest), filling the output arrays in place.
+def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kinds, parameters, committed, geometric,
+               heights, collapse_ratio, linear, displacement_tolerance, force_tolerance, max_iterations,
+               fallback_iterations, group_story, constants, w0, window_weights, window, mode_weight,
+               mode_ratio, mode_state, history, values, wall_tangent_group, wall_history_group,
+               displacement, velocity, acceleration, story_shear, base_shear, group_force, group_strain,
+               energy, outcome):
+    """Newmark average acceleration with Newton-Raphson, steps 1 .. N-1 (step 0 is rest), in place.
 
-    damper_constants[d] = (G1, G2, eta1, eta2, area, thickness); damper_story[d] is 0-based.
+    Returns the number of steps filled; ``outcome`` receives (status, failed story, iterations used).
     """
-    steps, floors = displacement.shape
-    dampers = damper_story.shape[0]
-    history = np.empty((dampers, 2))
-    story_force = np.zeros(floors)
-    rhs = np.empty(floors)
-    a0, a1, v1 = 4.0 / dt**2, 4.0 / dt, 2.0 / dt
-    acceleration[0, :] = -ground_acceleration[0]
-    for n in range(steps - 1):
-        count = n + 1  # committed damper steps: 0 .. n
-        u, v, a = displacement[n], velocity[n], acceleration[n]
-        # The element's trial/commit contract, compiled: a trial at zero drift gives each damper's
-        # history force (memory untouched); being linear, the rest is the constant tangent x drift,
-        # already in the factorised effective stiffness.  A nonlinear frame would iterate trials here.
-        story_force[:] = 0.0
-        for d in range(dampers):
-            G1, G2, eta1, eta2, area, thickness = damper_constants[d]
-            history[d, 0], history[d, 1] = kernel.memory_history(
-                weights[d], past[d], count, mode_weight[d], mode_state[d])
-            stress, _, _ = kernel.fdmk_stress(0.0, history[d, 0], history[d, 1], G1, G2, eta1, eta2, weights[d, 0])
-            story_force[damper_story[d]] += stress * area
-        for i in range(floors):
-            inertia = masses[i] * (a0 * u[i] + a1 * v[i] + a[i])
-            viscous = 0.0
-            for j in range(floors):
-                viscous += damping[i, j] * (v1 * u[j] + v[j])
-            # B^T f: a story force pushes its top floor back and its bottom floor forward.
-            transmitted = story_force[i] - (story_force[i + 1] if i + 1 < floors else 0.0)
-            rhs[i] = -masses[i] * ground_acceleration[n + 1] - transmitted + inertia + viscous
-        new = displacement[n + 1]
-        for i in range(floors):
-            total = 0.0
-            for j in range(floors):
-                total += effective_inverse[i, j] * rhs[j]
-            new[i] = total
-        for d in range(dampers):
-            G1, G2, eta1, eta2, area, thickness = damper_constants[d]
-            s = damper_story[d]
-            drift = new[s] - (new[s - 1] if s > 0 else 0.0)
-            stress, maxwell, _ = kernel.fdmk_stress(drift / thickness, history[d, 0], history[d, 1],
-                                                     G1, G2, eta1, eta2, weights[d, 0])
-            damper_force[n + 1, d] = stress * area
-            # Commit the accepted trial: only now does the memory advance.
-            kernel.memory_push(past[d], count, mode_ratio[d], mode_state[d], drift / thickness, maxwell)
-        for i in range(floors):
-            increment = new[i] - u[i]
-            velocity[n + 1, i] = v1 * increment - v[i]
-            acceleration[n + 1, i] = a0 * increment - a1 * v[i] - a[i]
+    steps, n = displacement.shape
+    groups = group_story.shape[0]
+    a0, v1 = 4.0 / dt**2, 2.0 / dt
+    initial_stiffness = np.empty(n)
+    for s in range(n):
+        initial_stiffness[s] = parameters[s, 0] + geometric[s]
+    drift = np.zeros(n)
+    story_force = np.zeros(n)
+    story_tangent = np.zeros(n)
+    trial_state = np.zeros(n)
+    story_total = np.zeros(n)
+    residual = np.zeros(n)
+    correction = np.zeros(n)
+    trial = np.zeros(n)
+    stiffness_diagonal = np.zeros(n)
+    work = np.zeros((2, n))
+    matrix = np.zeros((n, n))
+    wall_tangent = np.zeros(n)
+    wall_history = np.zeros(n)
+    wall_deformation = np.zeros(groups)
+    force_out = np.zeros(groups)
+    strain_out = np.zeros(groups)
+    old_story_force = np.zeros(n)
+    old_wall_force = np.zeros(n)
+    old_drift = np.zeros(n)
+    damping_force = np.zeros(n)
+    old_damping_force = np.zeros(n)
+    acceleration[0, :] = -ground[0]
+    for i in range(n):
+        energy[0, 1] += 0.5 * masses[i] * velocity[0, i] ** 2
+    total_iterations = 0
+    count = 0
+    for step in range(steps - 1):
+        count = step + 1  # committed wall steps so far
+        u_n, v_n, a_n = displacement[step], velocity[step], acceleration[step]
+        # 1. walls: their history for this step came with the last commit; their trial force is K_t d + H_n
+        wall_tangent[:] = 0.0
+        wall_history[:] = 0.0
+        for g in range(groups):
+            wall_tangent[group_story[g]] += wall_tangent_group[g]
+            wall_history[group_story[g]] += wall_history_group[g]
+        # 2. Newton-Raphson from u_n; strategies in turn, each from u_n again
+        u = displacement[step + 1]
+        converged = False
+        failed_story = 0
+        for strategy in range(3):
+            if linear and strategy > 0:
+                break
+            u[:] = u_n
+            limit = max_iterations if strategy < _INITIAL else fallback_iterations
+            if linear:
+                limit = 1
+            last_correction = np.inf
+            for iteration in range(limit + 1):
+                scale = _residual(u, u_n, v_n, a_n, ground[step + 1], dt, masses, damping, tridiagonal, kinds,
+                                  parameters, committed, geometric, wall_tangent, wall_history, drift,
+                                  story_force, story_tangent, trial_state, story_total, damping_force, residual)
+                norm = 0.0
+                for i in range(n):
+                    norm = max(norm, abs(residual[i]))
+                if iteration > 0 and (linear or (last_correction <= displacement_tolerance
+                                                 and norm <= force_tolerance * scale)):
+                    converged = True
+                    break
+                if iteration == limit or not math.isfinite(norm):
+                    break
+                for s in range(n):
+                    if strategy == _INITIAL:
+                        stiffness_diagonal[s] = initial_stiffness[s] + wall_tangent[s]
+                    else:
+                        stiffness_diagonal[s] = story_tangent[s] + geometric[s] + wall_tangent[s]
+                _solve(stiffness_diagonal, masses, damping, tridiagonal, dt, residual, work, matrix, correction)
+                total_iterations += 1
+                step_length = 1.0
+                if strategy == _LINE_SEARCH:
+                    # Backtrack until the unbalanced force drops (at most 8 halvings).
+                    for _ in range(8):
+                        for i in range(n):
+                            trial[i] = u[i] + step_length * correction[i]
+                        trial_norm = 0.0
+                        _residual(trial, u_n, v_n, a_n, ground[step + 1], dt, masses, damping, tridiagonal,
+                                  kinds, parameters, committed, geometric, wall_tangent, wall_history, drift,
+                                  story_force, story_tangent, trial_state, story_total, damping_force, residual)
+                        for i in range(n):
+                            trial_norm = max(trial_norm, abs(residual[i]))
+                        if trial_norm < norm:
+                            break
+                        step_length *= 0.5
+                last_correction = 0.0
+                largest = 0.0
+                for i in range(n):
+                    u[i] += step_length * correction[i]
+                    last_correction = max(last_correction, abs(step_length * correction[i]))
+                for s in range(n):
+                    story_drift = abs(correction[s] - (correction[s - 1] if s > 0 else 0.0))
+                    if story_drift > largest:
+                        largest = story_drift
+                        failed_story = s
+            if converged:
+                break
+        if not converged:
+            outcome[0], outcome[1], outcome[2] = _FAILED, failed_story, total_iterations
+            return step + 1
+        # 3. commit: stories, then the walls with their drifts (memory advances only now)
+        for s in range(n):
+            committed[s, 0] = drift[s]
+            committed[s, 1] = trial_state[s]
+        for g in range(groups):
+            wall_deformation[g] = drift[group_story[g]]
+        kernel.bank_commit(constants, w0, window_weights, window, step, mode_weight, mode_ratio, mode_state,
+                           history, values, wall_deformation, force_out, strain_out, wall_tangent_group,
+                           wall_history_group)
+        for g in range(groups):
+            group_force[step + 1, g] = force_out[g]
+            group_strain[step + 1, g] = strain_out[g]
+        for i in range(n):
+            increment = u[i] - u_n[i]
+            velocity[step + 1, i] = v1 * increment - v_n[i]
+            acceleration[step + 1, i] = a0 * increment - (4.0 / dt) * v_n[i] - a_n[i]
+        # outputs and energies (trapezoidal work increments)
+        kinetic = 0.0
+        recoverable = 0.0
+        input_work = 0.0
+        story_work = 0.0
+        damping_work = 0.0
+        wall_work = 0.0
+        geometric_work = 0.0
+        story1_damping = 0.0  # the damping force through story 1: 1^T C_s v
+        for i in range(n):
+            story1_damping += story_damping_row[i] * velocity[step + 1, i]
+        for s in range(n):
+            wall_force = story_total[s] - story_force[s] - geometric[s] * drift[s]
+            change = drift[s] - old_drift[s]
+            story_work += 0.5 * (story_force[s] + old_story_force[s]) * change
+            wall_work += 0.5 * (wall_force + old_wall_force[s]) * change
+            geometric_work += 0.5 * geometric[s] * (drift[s] + old_drift[s]) * change
+            recoverable += 0.5 * story_force[s] ** 2 / parameters[s, 0]
+            story_shear[step + 1, s] = story_force[s]
+            old_story_force[s] = story_force[s]
+            old_wall_force[s] = wall_force
+            old_drift[s] = drift[s]
+        for i in range(n):
+            change = u[i] - u_n[i]
+            kinetic += 0.5 * masses[i] * velocity[step + 1, i] ** 2
+            input_work -= 0.5 * masses[i] * (ground[step + 1] + ground[step]) * change
+            damping_work += 0.5 * (damping_force[i] + old_damping_force[i]) * change
+            old_damping_force[i] = damping_force[i]
+        base_shear[step + 1] = story_total[0] + story1_damping
+        energy[step + 1, 0] = energy[step, 0] + input_work
+        energy[step + 1, 1] = kinetic
+        energy[step + 1, 2] = recoverable
+        energy[step + 1, 3] = energy[step, 3] + story_work
+        energy[step + 1, 4] = energy[step, 4] + damping_work
+        energy[step + 1, 5] = energy[step, 5] + wall_work
+        energy[step + 1, 6] = energy[step, 6] + geometric_work
+        # 4. collapse
+        if collapse_ratio > 0.0:
+            for s in range(n):
+                if abs(drift[s]) > collapse_ratio * heights[s]:
+                    outcome[0], outcome[1], outcome[2] = _COLLAPSED, s, total_iterations
+                    return step + 2
+    outcome[0], outcome[1], outcome[2] = _FINISHED, 0, total_iterations
+    return steps
 
 
+# ---------------------------------------------------------------------------------------------- results
 @dataclass(frozen=True)
 class EnergyHistory:
     """Energy histories, N*mm, relative-motion formulation, trapezoidal work increments.
 
-    ``input`` = -int (1^T M a_g) du; ``kinetic`` = v^T M v / 2; ``frame_strain`` = u^T K u / 2;
-    ``inherent_damping`` = int (C v) . du; ``damper_work`` = int f_d . d(drift) (stored + dissipated).
-    With Newmark's average acceleration these close to rounding: input = the sum of the other four.
+    ``input`` = -int (1^T M a_g) du; ``kinetic`` = v^T M v / 2; ``frame_strain`` = sum F_s^2 / (2 k0), the
+    recoverable elastic energy of the story springs; ``hysteretic`` = int F_s dd - frame_strain, the energy
+    the story springs have dissipated by yielding (and, with kinematic hardening, stored in their
+    hardening); ``inherent_damping`` = int (C v) . du; ``damper_work`` = int f_w . dd (the walls: stored and
+    dissipated); ``p_delta`` = int k_G d dd = -sum P d^2 / (2 h) (<= 0: gravity does work as the frame
+    sways).  With Newmark's average acceleration they balance to the iteration tolerance:
+    input = kinetic + frame_strain + hysteretic + inherent_damping + damper_work + p_delta.
     """
 
     input: np.ndarray
     kinetic: np.ndarray
     frame_strain: np.ndarray
+    hysteretic: np.ndarray
     inherent_damping: np.ndarray
     damper_work: np.ndarray
+    p_delta: np.ndarray
 
     @property
     def balance_error(self) -> np.ndarray:
-        """input - (kinetic + frame_strain + inherent_damping + damper_work), N*mm."""
-        return self.input - (self.kinetic + self.frame_strain + self.inherent_damping + self.damper_work)
+        """input - (kinetic + frame_strain + hysteretic + inherent_damping + damper_work + p_delta), N*mm."""
+        return self.input - (self.kinetic + self.frame_strain + self.hysteretic + self.inherent_damping
+                             + self.damper_work + self.p_delta)
 
 
 @dataclass(frozen=True)
 class SimulationResult:
-    """Response histories of :func:`simulate` (rows: time steps).
+    """Response histories of :func:`simulate` (rows: time steps; they end where the analysis stopped).
 
     time (s); displacement (mm), velocity (mm/s), acceleration (mm/s^2) relative to the ground, and
     absolute_acceleration (mm/s^2), each (steps, floors); drift (mm) and drift_ratio (-, None without
-    story heights), (steps, stories); damper_force (N, total per story) and damper_strain (-, drift /
-    thinnest wall's thickness; 0 where a story has no damper), (steps, stories); base_shear (N,
-    = sum of floor masses x absolute accelerations, opposite sign: the shear the foundation takes);
+    story heights), (steps, stories); story_shear (N, the force in each story's frame spring only,
+    (steps, stories)); damper_force (N, total of the walls of each story, (steps, stories)) and
+    damper_strain (-, the strain of each story's most strained wall group, 0 where a story has no
+    wall); wall_force (N) and wall_strain (-, the wall's own deformation / thickness: with a support
+    in series it is not drift / thickness), (steps, walls) in ``building.damper_list`` order;
+    base_shear (N): the force transmitted through story 1 -- its frame spring, walls, P-Delta force
+    and inherent damping force through the story (a1 k1 v1 with Rayleigh damping: the mass-proportional
+    term acts between the floors and the ground) -- the horizontal reaction of the ground;
     ground_acceleration (mm/s^2); energy (:class:`EnergyHistory`).
+
+    ``converged``: False when a step failed to converge (the histories end at the last converged step);
+    ``collapsed`` and ``collapse_time`` (s): a story's drift ratio exceeded ``collapse_drift_ratio``
+    (the histories end at that step); ``newton_iterations``: the total number of Newton corrections.
     """
 
     building: ShearBuilding
@@ -124,11 +407,17 @@ class SimulationResult:
     absolute_acceleration: np.ndarray
     drift: np.ndarray
     drift_ratio: np.ndarray | None
+    story_shear: np.ndarray
     damper_force: np.ndarray
     damper_strain: np.ndarray
     base_shear: np.ndarray
     energy: EnergyHistory
-    wall_force: np.ndarray  # (steps, dampers): each wall, in building.damper_list order
+    wall_force: np.ndarray
+    wall_strain: np.ndarray
+    converged: bool = True
+    collapsed: bool = False
+    collapse_time: float | None = None
+    newton_iterations: int = 0
 
     @property
     def peak_drift(self) -> np.ndarray:
@@ -139,6 +428,19 @@ class SimulationResult:
     def peak_drift_ratio(self) -> np.ndarray | None:
         """max |drift ratio| per story (-), None without story heights."""
         return None if self.drift_ratio is None else np.abs(self.drift_ratio).max(axis=0)
+
+    @property
+    def residual_drift(self) -> np.ndarray:
+        """Drift at the last step, per story, mm (append ``free_vibration`` to measure it at rest)."""
+        return self.drift[-1].copy()
+
+    @property
+    def peak_ductility(self) -> np.ma.MaskedArray:
+        """Peak |drift| / yield drift per story (-); masked for stories without a hysteresis model."""
+        yield_drifts = self.building.yield_drifts
+        elastic = yield_drifts == 0.0
+        ratio = self.peak_drift / np.where(elastic, 1.0, yield_drifts)
+        return np.ma.masked_array(ratio, mask=elastic)
 
     @property
     def peak_absolute_acceleration(self) -> np.ndarray:
@@ -152,161 +454,183 @@ class SimulationResult:
 
     @property
     def peak_damper_force(self) -> np.ndarray:
-        """max |total damper force| per story, N."""
+        """max |total wall force| per story, N."""
         return np.abs(self.damper_force).max(axis=0)
 
+    @property
+    def peak_wall_strain(self) -> np.ndarray:
+        """max |strain| of every wall (-), in ``building.damper_list`` order."""
+        return np.abs(self.wall_strain).max(axis=0) if self.wall_strain.shape[1] else np.zeros(0)
 
+
+# ---------------------------------------------------------------------------------------------- driver
 def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, method=DEFAULT_METHOD,
-             memory=DEFAULT_MEMORY) -> SimulationResult:
+             memory=DEFAULT_MEMORY, *, collapse_drift_ratio: float | None = 0.10, free_vibration: float = 0.0,
+             newton: NewtonRaphson | None = None) -> SimulationResult:
     """Integrate ``building`` under ``ground_motion`` (a :class:`~vdw_frames.GroundMotion`, mm/s^2).
 
     ``dt`` (s) defaults to the record's step; a smaller step must divide it (the ground acceleration is
     interpolated linearly); a larger or non-dividing step is a ValueError.  ``method`` and ``memory``
-    select the dampers' discretisation and memory strategy ("fast", the default, costs the same at
-    every step and stays within 3e-9 of "exact"; see :meth:`FDMKDamper.force`).  Warns
-    (``UserWarning``) when a damper's peak strain leaves its ``strain_range``.  An overflowed response
-    (absurd inputs) is a ValueError, never inf or NaN.  Returns a :class:`SimulationResult`.
+    select the walls' discretisation and memory strategy ("fast", the default, costs the same at every
+    step and stays within 3e-9 of "exact"; see :meth:`FDMKDamper.force`).
+
+    ``collapse_drift_ratio`` (-, default 0.10; None disables it; needs story heights): when any story's
+    drift ratio exceeds it, the analysis stops there with ``result.collapsed`` and
+    ``result.collapse_time``.  ``free_vibration`` (s, >= 0): seconds of zero ground acceleration appended
+    to the record, so that residual drifts are measured at rest.  ``newton``: the convergence settings
+    (:class:`NewtonRaphson`); a linear building takes one solve per step whatever they are.
+
+    A step that fails to converge even with the fallbacks stops the analysis with
+    ``result.converged = False`` and a ``RuntimeWarning`` naming the time and story; never NaN.  Warns
+    (``UserWarning``) when a wall's peak strain leaves its ``strain_range``.  Returns a
+    :class:`SimulationResult`.
     """
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
     if not isinstance(ground_motion, GroundMotion):
         raise ValueError(f"ground_motion must be a GroundMotion (see read_at2), got {type(ground_motion).__name__}")
+    method = get_method(method)
+    memory_strategy(memory)
+    newton = NewtonRaphson() if newton is None else newton
+    if not isinstance(newton, NewtonRaphson):
+        raise ValueError(f"newton must be a NewtonRaphson, got {type(newton).__name__}")
+    if collapse_drift_ratio is not None:
+        collapse_drift_ratio = positive("collapse_drift_ratio", collapse_drift_ratio)
+    free_vibration = non_negative("free_vibration", free_vibration)
     if dt is None:
         dt = ground_motion.dt
     dt = positive("dt", dt)
     ground = ground_motion.acceleration_at(dt)
+    if free_vibration > 0.0:
+        ground = np.concatenate([ground, np.zeros(int(math.ceil(free_vibration / dt - 1e-9)))])
     steps, floors = ground.size, building.stories
-    time = np.arange(steps) * dt
 
-    # Identical walls on one story see the same drift: step each group once, with the summed area.
     walls = building.damper_list
-    groups: dict[tuple, list[int]] = {}
-    for index, (story, wall) in enumerate(walls):
-        key = (story, wall.G1, wall.G2, wall.eta1, wall.eta2, wall.r, wall.thickness)
-        groups.setdefault(key, []).append(index)
-    members = list(groups.values())
-    group_area = np.array([sum(walls[i][1].area for i in group) for group in members])
-    representatives = [walls[group[0]] for group in members]
-    memories = [Memory.allocate(wall, dt, steps, method, memory) for _, wall in representatives]
-    stacked = _stack(memories)
-    damper_story = np.array([story - 1 for story, _ in representatives], dtype=np.int64)
-    constants = np.array([[w.G1, w.G2, w.eta1, w.eta2, area, w.thickness]
-                          for (_, w), area in zip(representatives, group_area)]).reshape(-1, 6)
+    groups, group_of_wall = _wall_groups(walls)
+    bank = WallBank([wall for _, wall in groups], dt, steps, method, memory)
+    group_story = np.array([story - 1 for story, _ in groups], dtype=np.int64)
 
-    tangent = np.zeros(floors)
-    for (story, wall), area, mem in zip(representatives, group_area, memories):
-        _, _, modulus = kernel.fdmk_stress(0.0, 0.0, 0.0, wall.G1, wall.G2, wall.eta1, wall.eta2, mem.weights[0])
-        tangent[story - 1] += modulus * area / wall.thickness
-    masses = np.asarray(building.masses)
-    effective = (building.stiffness_matrix + story_matrix(tangent) + (4.0 / dt**2) * building.mass_matrix
-                 + (2.0 / dt) * building.damping_matrix)
+    models = building.story_models
+    kinds = np.array([LINEAR if model is None else model.kind for model in models], dtype=np.int64)
+    parameters = np.array([[k, 0.0, 0.0, 0.0, 0.0, 0.0] if model is None else model.parameters(k)
+                           for model, k in zip(models, building.stiffnesses)]).reshape(floors, PARAMETERS)
+    committed = np.zeros((floors, STATE))
+    heights = np.asarray(building.story_heights) if building.story_heights is not None else np.ones(floors)
+    collapse_ratio = collapse_drift_ratio if (collapse_drift_ratio and building.story_heights) else 0.0
+    damping = np.ascontiguousarray(building.damping_matrix)
+    tridiagonal = building.damping_model == "rayleigh"
 
     displacement = np.zeros((steps, floors))
     velocity = np.zeros((steps, floors))
     acceleration = np.zeros((steps, floors))
-    group_force = np.zeros((steps, len(members)))
-    _newmark(ground, dt, masses, building.damping_matrix, building.stiffness_matrix, np.linalg.inv(effective),
-             damper_story, constants, *stacked, displacement, velocity, acceleration, group_force)
-    require_finite("the response", displacement)
-    # Each wall carries its area's share of its group's force; stories sum their groups.
-    share = np.zeros((len(members), len(walls)))
-    to_story = np.zeros((len(members), floors))
-    for g, group in enumerate(members):
-        to_story[g, damper_story[g]] = 1.0
-        for i in group:
-            share[g, i] = walls[i][1].area / group_area[g]
-    return _result(building, time, ground, displacement, velocity, acceleration,
-                   group_force @ share, group_force @ to_story)
+    story_shear = np.zeros((steps, floors))
+    base_shear = np.zeros(steps)
+    group_force = np.zeros((steps, len(groups)))
+    group_strain = np.zeros((steps, len(groups)))
+    energy = np.zeros((steps, _ENERGIES))
+    outcome = np.zeros(3, dtype=np.int64)
+    (constants, w0, window_weights, window, mode_weight, mode_ratio, mode_state, history, values, wall_tangent,
+     wall_history) = bank.kernel_arrays()
+    filled = _integrate(
+        ground, dt, np.asarray(building.masses), damping, building.story_damping_matrix.sum(axis=0),
+        tridiagonal, kinds, parameters, committed, np.asarray(building.geometric_stiffness), heights,
+        collapse_ratio, building.is_linear, newton.displacement_tolerance, newton.force_tolerance,
+        newton.max_iterations, newton.fallback_iterations, group_story, constants, w0, window_weights, window,
+        mode_weight, mode_ratio, mode_state, history, values, wall_tangent, wall_history,
+        displacement, velocity, acceleration, story_shear, base_shear, group_force, group_strain, energy, outcome)
+    status, story_index, iterations = (int(x) for x in outcome)
+    keep = slice(0, filled)
+    time = np.arange(filled) * dt
+    if status == _FAILED:
+        warnings.warn(f"simulate: the step to t = {filled * dt:.6g} s did not converge (story {story_index + 1} "
+                      "moved most in the last correction), even with a line search and initial-stiffness "
+                      "iterations; the analysis stops there (result.converged is False)", RuntimeWarning,
+                      stacklevel=2)
+    require_finite("the response", displacement[keep])
+    return _result(building, walls, groups, group_of_wall, group_story, time, ground[keep], displacement[keep],
+                   velocity[keep], acceleration[keep], story_shear[keep], base_shear[keep], group_force[keep],
+                   group_strain[keep], energy[keep], converged=status != _FAILED, collapsed=status == _COLLAPSED,
+                   collapse_time=float(time[-1]) if status == _COLLAPSED else None, iterations=iterations)
 
 
-def _stack(memories):
-    """Stack per-damper memories into (dampers, ...) arrays; modes padded with inert zeros."""
-    if not memories:
-        return (np.zeros((0, 1)), np.zeros((0, 1, 2)), np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, 0, 2)))
-    modes = max(m.mode_ratio.size for m in memories)
-    weights = np.stack([m.weights for m in memories])
-    past = np.stack([m.past for m in memories])
-    mode_weight = np.zeros((len(memories), modes))
-    mode_ratio = np.zeros((len(memories), modes))
-    for d, m in enumerate(memories):
-        mode_weight[d, : m.mode_weight.size] = m.mode_weight
-        mode_ratio[d, : m.mode_ratio.size] = m.mode_ratio
-    return weights, past, mode_weight, mode_ratio, np.zeros((len(memories), modes, 2))
+def _wall_groups(walls):
+    """Walls of one story that see the same strain history are stepped once, as one wall of their summed area.
+
+    Two walls in parallel on a story are one wall of the summed area when their material, order and
+    thickness agree and their supports scale with their areas (equal flexibility x area).  Returns
+    ([(story, combined wall)], group index of every wall).
+    """
+    keys: dict[tuple, int] = {}
+    members: list[list[int]] = []
+    for index, (story, wall) in enumerate(walls):
+        G1, G2, eta1, eta2, area, thickness, flexibility = (float(x) for x in kernel_constants(wall))
+        key = (story, G1, G2, eta1, eta2, wall.r, thickness, flexibility * area)
+        if key not in keys:
+            keys[key] = len(members)
+            members.append([])
+        members[keys[key]].append(index)
+    groups = []
+    group_of_wall = np.zeros(len(walls), dtype=np.int64)
+    for g, indices in enumerate(members):
+        story, first = walls[indices[0]]
+        area = sum(walls[i][1].area for i in indices)
+        groups.append((story, _CombinedWall(first, area)))
+        group_of_wall[indices] = g
+    return groups, group_of_wall
 
 
-def _result(building, time, ground, displacement, velocity, acceleration, wall_force, damper_force):
+@dataclass(frozen=True)
+class _CombinedWall:
+    """Parallel identical walls (see :func:`_wall_groups`) as one wall of the summed area, for the kernel."""
+
+    wall: object
+    area: float
+    r: float = field(init=False)
+
+    def __post_init__(self):
+        object.__setattr__(self, "r", self.wall.r)
+
+    def kernel_constants(self):
+        G1, G2, eta1, eta2, area, thickness, flexibility = kernel_constants(self.wall)
+        return (G1, G2, eta1, eta2, self.area, thickness, flexibility * area / self.area)
+
+
+def _result(building, walls, groups, group_of_wall, group_story, time, ground, displacement, velocity,
+            acceleration, story_shear, base_shear, group_force, group_strain, energy, *, converged, collapsed,
+            collapse_time, iterations):
     floors = building.stories
     drift = np.diff(displacement, axis=1, prepend=0.0)
     heights = building.story_heights
     drift_ratio = None if heights is None else drift / np.asarray(heights)
-    thinnest = np.full(floors, np.inf)
-    for story, wall in building.damper_list:
-        thinnest[story - 1] = min(thinnest[story - 1], wall.thickness)
-    damper_strain = drift / thinnest
-    masses = np.asarray(building.masses)
+    # Each wall carries its area's share of its group's force; stories sum their groups.
+    share = np.array([walls[i][1].area / groups[g][1].area for i, g in enumerate(group_of_wall)])
+    wall_force = group_force[:, group_of_wall] * share
+    wall_strain = group_strain[:, group_of_wall]
+    damper_force = np.zeros((time.size, floors))
+    damper_strain = np.zeros((time.size, floors))
+    peak_strain = np.zeros(floors)
+    for g, story in enumerate(group_story):
+        damper_force[:, story] += group_force[:, g]
+        peak = np.abs(group_strain[:, g]).max(initial=0.0)
+        if peak >= peak_strain[story]:
+            peak_strain[story] = peak
+            damper_strain[:, story] = group_strain[:, g]
     absolute = acceleration + ground[:, None]
-    base_shear = -(absolute @ masses)
-    energy = _energy(building, ground, displacement, velocity, drift, damper_force)
-    require_finite("the energy histories", np.concatenate([energy.input, energy.kinetic, energy.frame_strain,
-                                                           energy.inherent_damping, energy.damper_work]))
-    _warn_strain_range(building, np.abs(drift).max(axis=0))
+    require_finite("the energy histories", energy)
+    energy_history = EnergyHistory(energy[:, 0], energy[:, 1], energy[:, 2], energy[:, 3] - energy[:, 2],
+                                   energy[:, 4], energy[:, 5], energy[:, 6])
+    _warn_strain_range(walls, wall_strain)
     return SimulationResult(building, time, ground, displacement, velocity, acceleration, absolute, drift,
-                            drift_ratio, damper_force, damper_strain, base_shear, energy, wall_force)
+                            drift_ratio, story_shear, damper_force, damper_strain, base_shear, energy_history,
+                            wall_force, wall_strain, converged, collapsed, collapse_time, iterations)
 
 
-@njit(cache=True)
-def _energy_histories(ground, masses, stiffness, damping, displacement, velocity, drift, damper_force):
-    """One pass over the steps: (input, kinetic, frame strain, inherent damping, damper work), N*mm.
-
-    Work terms use trapezoidal increments 0.5 (f_n + f_{n+1}) . (x_{n+1} - x_n), the rule under which
-    Newmark's average acceleration conserves energy exactly.
-    """
-    steps, floors = displacement.shape
-    energy = np.zeros((5, steps))
-    damping_force = np.zeros((2, floors))
-    for n in range(steps):
-        now = n % 2
-        kinetic = 0.0
-        strain = 0.0
-        for i in range(floors):
-            kinetic += 0.5 * masses[i] * velocity[n, i] ** 2
-            restoring = 0.0
-            viscous = 0.0
-            for j in range(floors):
-                restoring += stiffness[i, j] * displacement[n, j]
-                viscous += damping[i, j] * velocity[n, j]
-            strain += 0.5 * displacement[n, i] * restoring
-            damping_force[now, i] = viscous
-        energy[1, n] = kinetic
-        energy[2, n] = strain
-        if n == 0:
-            continue
-        work_input = 0.0
-        work_damping = 0.0
-        work_damper = 0.0
-        for i in range(floors):
-            step = displacement[n, i] - displacement[n - 1, i]
-            work_input -= 0.5 * masses[i] * (ground[n] + ground[n - 1]) * step
-            work_damping += 0.5 * (damping_force[now, i] + damping_force[1 - now, i]) * step
-            work_damper += 0.5 * (damper_force[n, i] + damper_force[n - 1, i]) * (drift[n, i] - drift[n - 1, i])
-        energy[0, n] = energy[0, n - 1] + work_input
-        energy[3, n] = energy[3, n - 1] + work_damping
-        energy[4, n] = energy[4, n - 1] + work_damper
-    return energy
-
-
-def _energy(building, ground, displacement, velocity, drift, damper_force):
-    energy = _energy_histories(ground, np.asarray(building.masses), building.stiffness_matrix,
-                               building.damping_matrix, displacement, velocity, drift, damper_force)
-    return EnergyHistory(*energy)
-
-
-def _warn_strain_range(building, peak_drift):
+def _warn_strain_range(walls, wall_strain):
     outside = []
-    for story, wall in building.damper_list:
+    for index, (story, wall) in enumerate(walls):
         if wall.strain_range is None:
             continue
-        peak = peak_drift[story - 1] / wall.thickness
+        peak = float(np.abs(wall_strain[:, index]).max(initial=0.0))
         low, high = wall.strain_range
         if not low <= peak <= high:
             outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %)")

@@ -1,0 +1,106 @@
+"""A wall in series with the flexibility of its support (connection, beam, brace).
+
+A wall is never attached rigidly: the beams, the connection plates and the wall's own frame deform too.
+With a support of stiffness k_s (N/mm) in series, the assembly's Laplace-domain stiffness is
+
+    K_assembly(s) = K_wall(s) k_s / (K_wall(s) + k_s),
+
+which is softer and, when k_s is comparable to |K_wall|, dissipates less: part of the deformation goes
+into the support, which stores energy but dissipates none.
+
+Time domain: exact.  Within one step the wall's force is affine in its own deformation, so the internal
+node between wall and support is eliminated in closed form (:func:`vdw_frames.element.kernel.wall_response`);
+the wall's memory sees the wall's deformation, not the assembly's.
+
+Units: stiffness N/mm, frequency Hz, s in rad/s, displacement mm, force N.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validation import positive, positive_frequencies, require_finite
+from .damper import DEFAULT_MEMORY, DamperState, FDMKDamper, driven_force
+from .fractional import DEFAULT_METHOD
+
+
+@dataclass(frozen=True)
+class SupportedDamper:
+    """An :class:`FDMKDamper` ``damper`` in series with a support of stiffness ``support_stiffness`` (N/mm, > 0).
+
+    Accepted wherever a wall is: :class:`~vdw_frames.ShearBuilding` dampers, :func:`~vdw_frames.sine_test`,
+    :func:`~vdw_frames.simulate`, :func:`~vdw_frames.run_batch`.  It has the stiffness methods of a wall
+    (the modulus methods belong to the material, ``damper``).
+    """
+
+    damper: FDMKDamper
+    support_stiffness: float
+
+    def __post_init__(self):
+        if not isinstance(self.damper, FDMKDamper):
+            raise ValueError(f"damper must be an FDMKDamper, got {type(self.damper).__name__}")
+        object.__setattr__(self, "support_stiffness", positive("support_stiffness", self.support_stiffness))
+
+    # The wall's own properties, for code that reads them off any wall assembly.
+    @property
+    def r(self) -> float:
+        return self.damper.r
+
+    @property
+    def area(self) -> float:
+        """Shear area of the wall, mm^2."""
+        return self.damper.area
+
+    @property
+    def thickness(self) -> float:
+        """Layer thickness of the wall, mm (wall strain = wall deformation / thickness)."""
+        return self.damper.thickness
+
+    @property
+    def strain_range(self):
+        return self.damper.strain_range
+
+    # ------------------------------------------------------------------ frequency domain
+    def stiffness_transfer(self, s):
+        """K(s) = K_wall(s) k_s / (K_wall(s) + k_s) (N/mm) for complex s (rad/s)."""
+        wall = self.damper.stiffness_transfer(s)
+        stiffness = wall * self.support_stiffness / (wall + self.support_stiffness)
+        require_finite("stiffness", stiffness)
+        return stiffness
+
+    def complex_stiffness(self, f):
+        """K*(f) = K' + i K'' (N/mm) of the assembly at frequencies f (Hz)."""
+        f = positive_frequencies("f", f)
+        return self.stiffness_transfer(2j * np.pi * f)
+
+    def storage_stiffness(self, f):
+        """K' (N/mm) of the assembly at f (Hz)."""
+        return self.complex_stiffness(f).real
+
+    def loss_stiffness(self, f):
+        """K'' (N/mm) of the assembly at f (Hz)."""
+        return self.complex_stiffness(f).imag
+
+    def damping_coefficient(self, f):
+        """K'' / omega (N*s/mm) of the assembly at f (Hz)."""
+        f = positive_frequencies("f", f)
+        return self.loss_stiffness(f) / (2.0 * np.pi * f)
+
+    # ------------------------------------------------------------------ time domain
+    def kernel_constants(self) -> tuple:
+        """The wall's kernel constants with the support's flexibility 1 / k_s (mm/N)."""
+        return self.damper.kernel_constants()[:6] + (1.0 / self.support_stiffness,)
+
+    def new_state(self, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY) -> DamperState:
+        """A fresh trial/commit state on steps of ``dt`` s (displacement: the assembly's, mm)."""
+        return DamperState(self, dt, method=method, memory=memory)
+
+    def force(self, displacement, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY):
+        """Force history (N) for an assembly displacement history (mm) every ``dt`` s, from rest."""
+        return driven_force(self, displacement, dt, method, memory)
+
+
+WALL_TYPES = (FDMKDamper, SupportedDamper)
+"""The wall assemblies the time-domain and frequency-domain code accepts."""
