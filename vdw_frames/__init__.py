@@ -28,13 +28,25 @@ from .element import (
     WallBank,
     sine_test,
 )
-from .frame import BatchResult, EnergyHistory, ShearBuilding, SimulationResult, run_batch, simulate
+from .frame import (
+    BatchResult,
+    Bilinear,
+    BoucWen,
+    EnergyHistory,
+    NewtonRaphson,
+    ShearBuilding,
+    SimulationResult,
+    run_batch,
+    simulate,
+)
 from .motion import G, GroundMotion, read_at2, read_two_column, response_spectrum, write_at2
 from .plotting import plot_loops
 
 __all__ = [
     "BDF2",
     "BatchResult",
+    "Bilinear",
+    "BoucWen",
     "DampedTwoStep",
     "DamperState",
     "Discretisation",
@@ -44,6 +56,7 @@ __all__ = [
     "G",
     "GroundMotion",
     "GrunwaldLetnikov",
+    "NewtonRaphson",
     "ShearBuilding",
     "SimulationResult",
     "SineTestResult",
