@@ -23,6 +23,7 @@ from .element import (
     FDMKDamper,
     GrunwaldLetnikov,
     SineTestResult,
+    StrainDependentDamper,
     Trapezoidal,
     sine_test,
 )
@@ -45,6 +46,7 @@ __all__ = [
     "ShearBuilding",
     "SimulationResult",
     "SineTestResult",
+    "StrainDependentDamper",
     "Trapezoidal",
     "element",
     "frame",

@@ -4,7 +4,9 @@
   :class:`DamperState` (trial/commit stepping);
 - :mod:`.kernel`: the one compiled step kernel every time-domain path calls;
 - :mod:`.fractional`: convolution quadratures of D^r; :mod:`.fast_memory`: the O(1)-per-step memory;
-- :mod:`.sine`: the sinusoidal test of one damper.
+- :mod:`.sine`: the sinusoidal test of one damper;
+- :mod:`.strain_dependent`: :class:`StrainDependentDamper`, FDMK parameters as functions of the
+  strain amplitude.
 
 Units: N, mm, s; moduli MPa, viscosities MPa*s^r.
 """
@@ -13,6 +15,8 @@ from .damper import DEFAULT_MEMORY, DamperState, FDMKDamper
 from .fast_memory import FastMemory
 from .fractional import BDF2, DEFAULT_METHOD, DampedTwoStep, Discretisation, GrunwaldLetnikov, Trapezoidal
 from .sine import SineTestResult, sine_test
+from .strain_dependent import StrainDependentDamper
 
 __all__ = ["BDF2", "DEFAULT_MEMORY", "DEFAULT_METHOD", "DampedTwoStep", "DamperState", "Discretisation",
-           "FDMKDamper", "FastMemory", "GrunwaldLetnikov", "SineTestResult", "Trapezoidal", "sine_test"]
+           "FDMKDamper", "FastMemory", "GrunwaldLetnikov", "SineTestResult", "StrainDependentDamper", "Trapezoidal",
+           "sine_test"]
