@@ -27,7 +27,15 @@ from .element import (
     Trapezoidal,
     sine_test,
 )
-from .frame import BatchResult, EnergyHistory, ShearBuilding, SimulationResult, run_batch, simulate
+from .frame import (
+    BatchResult,
+    EnergyHistory,
+    ShearBuilding,
+    SimulationResult,
+    StrainCompatibleOptions,
+    run_batch,
+    simulate,
+)
 from .motion import G, GroundMotion, read_at2, read_two_column, response_spectrum, write_at2
 from .plotting import plot_loops
 
@@ -46,6 +54,7 @@ __all__ = [
     "ShearBuilding",
     "SimulationResult",
     "SineTestResult",
+    "StrainCompatibleOptions",
     "StrainDependentDamper",
     "Trapezoidal",
     "element",

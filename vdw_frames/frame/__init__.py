@@ -3,6 +3,8 @@
 - :mod:`.building`: :class:`ShearBuilding` (masses, story springs, inherent damping, walls) and its
   exact frequency-domain response;
 - :mod:`.simulation`: :func:`simulate`, Newmark's average acceleration with the walls' trial/commit;
+- :mod:`.strain_compatible`: the equivalent-linear iteration for strain-dependent walls
+  (``simulate(..., strain_compatible=True)``, :class:`StrainCompatibleOptions`);
 - :mod:`.batch`: :func:`run_batch`, many analyses on any ``concurrent.futures`` executor.
 
 Units: N, mm, s, tonne.
@@ -11,6 +13,8 @@ Units: N, mm, s, tonne.
 from .batch import BatchResult, run_batch, scale_factors_to_pga, scale_factors_to_spectral_acceleration
 from .building import ShearBuilding
 from .simulation import EnergyHistory, SimulationResult, simulate
+from .strain_compatible import StrainCompatibleOptions, energy_weighted_amplitude, strain_compatible_simulation
 
-__all__ = ["BatchResult", "EnergyHistory", "ShearBuilding", "SimulationResult", "run_batch",
-           "scale_factors_to_pga", "scale_factors_to_spectral_acceleration", "simulate"]
+__all__ = ["BatchResult", "EnergyHistory", "ShearBuilding", "SimulationResult", "StrainCompatibleOptions",
+           "energy_weighted_amplitude", "run_batch", "scale_factors_to_pga", "scale_factors_to_spectral_acceleration",
+           "simulate", "strain_compatible_simulation"]

@@ -10,6 +10,7 @@ from scipy.linalg import eigh
 
 from .._validation import damping_ratio, finite_array, whole_number
 from ..element.damper import FDMKDamper
+from ..element.strain_dependent import StrainDependentDamper
 
 
 @dataclass(frozen=True, eq=False)
@@ -30,7 +31,8 @@ class ShearBuilding:
         (1, 2), or (1, 1) for a one-story building.
     dampers : dict {story: FDMKDamper or list of FDMKDamper}
         Walls across stories (1 ... n); several on one story act in parallel.  The damper displacement
-        is the interstory drift.
+        is the interstory drift.  A wall may be a :class:`StrainDependentDamper`; such a building is
+        analysed by ``simulate(..., strain_compatible=True)`` (:mod:`vdw_frames.frame.strain_compatible`).
     story_heights : sequence of float, optional
         Story heights, mm, for drift ratios.
     """
@@ -84,8 +86,9 @@ class ShearBuilding:
                 raise ValueError(f"damper story must be a story number in 1 ... {stories}, got {story!r}")
             walls = tuple(walls) if isinstance(walls, (list, tuple)) else (walls,)
             for wall in walls:
-                if not isinstance(wall, FDMKDamper):
-                    raise ValueError(f"dampers[{story}] must be FDMKDamper objects, got {type(wall).__name__}")
+                if not isinstance(wall, (FDMKDamper, StrainDependentDamper)):
+                    raise ValueError(f"dampers[{story}] must be FDMKDamper or StrainDependentDamper objects, "
+                                     f"got {type(wall).__name__}")
             if walls:
                 normalised[int(story)] = walls
         return dict(sorted(normalised.items()))
@@ -144,6 +147,11 @@ class ShearBuilding:
         """(story, damper) for every damper, stories ascending."""
         return [(story, wall) for story, walls in self.dampers.items() for wall in walls]
 
+    @property
+    def strain_dependent(self) -> bool:
+        """True when some wall is a :class:`StrainDependentDamper` (parameters that follow its strain amplitude)."""
+        return any(isinstance(wall, StrainDependentDamper) for _, wall in self.damper_list)
+
     def without_dampers(self) -> "ShearBuilding":
         """The same frame with no dampers."""
         return ShearBuilding(self.masses, self.stiffnesses, self.damping_ratio, self.damping_modes,
@@ -153,8 +161,11 @@ class ShearBuilding:
         """Relative floor displacement per unit ground acceleration, mm/(mm/s^2), shape (len(f), floors).
 
         Solves (-w^2 M + i w C + K + K_d(w)) U = -M 1 at w = 2 pi f for frequencies f in Hz (>= 0),
-        with each damper's exact complex stiffness G*(i w) area / thickness (eqs. (3)-(5)).
+        with each damper's exact complex stiffness G*(i w) area / thickness (eqs. (3)-(5)).  Strain-dependent
+        walls are refused (their stiffness depends on the amplitude): use the equivalent-linear building
+        ``simulate(..., strain_compatible=True).building`` or walls ``wall.at(strain)``.
         """
+        require_fixed_walls(self, "frequency_response()")
         frequency = np.atleast_1d(np.asarray(frequency, dtype=float))
         if not np.isfinite(frequency).all() or (frequency < 0).any():
             raise ValueError("frequency must be finite and >= 0 Hz")
@@ -183,6 +194,15 @@ class ShearBuilding:
         spectrum = np.fft.rfft(ground, size)
         response = self.frequency_response(np.fft.rfftfreq(size, dt))
         return np.fft.irfft(response * spectrum[:, None], size, axis=0)[: ground.size]
+
+
+def require_fixed_walls(building, analysis: str) -> None:
+    """ValueError when ``building`` has strain-dependent walls, which ``analysis`` cannot take."""
+    if isinstance(building, ShearBuilding) and building.strain_dependent:
+        raise ValueError(f"{analysis} needs fixed wall parameters, but this building has strain-dependent walls "
+                         "(StrainDependentDamper): pass strain_compatible=True (to simulate or run_batch) for the "
+                         "equivalent-linear analysis, or give each wall its parameters at one strain amplitude "
+                         "with wall.at(strain)")
 
 
 def _read_only(array: np.ndarray) -> np.ndarray:

@@ -19,7 +19,8 @@ from .._jit import njit
 
 from ..element import kernel
 from .._validation import positive, require_finite
-from .building import ShearBuilding, story_matrix
+from .building import ShearBuilding, require_fixed_walls, story_matrix
+from .strain_compatible import strain_compatible_simulation
 from ..element.damper import DEFAULT_MEMORY, Memory
 from ..element.fractional import DEFAULT_METHOD
 from ..motion.record import GroundMotion
@@ -113,6 +114,12 @@ class SimulationResult:
     thinnest wall's thickness; 0 where a story has no damper), (steps, stories); base_shear (N,
     = sum of floor masses x absolute accelerations, opposite sign: the shear the foundation takes);
     ground_acceleration (mm/s^2); energy (:class:`EnergyHistory`).
+
+    Filled by a strain-compatible analysis (``simulate(..., strain_compatible=True)``, see
+    :mod:`vdw_frames.frame.strain_compatible`), else None: per wall in ``building.damper_list``
+    order, ``wall_effective_strain`` (dimensionless, the effective strain each wall's final
+    parameters were taken at) and ``wall_dampers`` (the :class:`FDMKDamper` each wall ended with);
+    ``strain_iterations`` (analyses run) and ``strain_converged``.
     """
 
     building: ShearBuilding
@@ -129,6 +136,10 @@ class SimulationResult:
     base_shear: np.ndarray
     energy: EnergyHistory
     wall_force: np.ndarray  # (steps, dampers): each wall, in building.damper_list order
+    wall_effective_strain: np.ndarray | None = None  # strain-compatible analyses only (see above)
+    wall_dampers: tuple | None = None
+    strain_iterations: int | None = None
+    strain_converged: bool | None = None
 
     @property
     def peak_drift(self) -> np.ndarray:
@@ -157,7 +168,7 @@ class SimulationResult:
 
 
 def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, method=DEFAULT_METHOD,
-             memory=DEFAULT_MEMORY) -> SimulationResult:
+             memory=DEFAULT_MEMORY, strain_compatible=False) -> SimulationResult:
     """Integrate ``building`` under ``ground_motion`` (a :class:`~vdw_frames.GroundMotion`, mm/s^2).
 
     ``dt`` (s) defaults to the record's step; a smaller step must divide it (the ground acceleration is
@@ -166,7 +177,15 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
     every step and stays within 3e-9 of "exact"; see :meth:`FDMKDamper.force`).  Warns
     (``UserWarning``) when a damper's peak strain leaves its ``strain_range``.  An overflowed response
     (absurd inputs) is a ValueError, never inf or NaN.  Returns a :class:`SimulationResult`.
+
+    ``strain_compatible``: ``True`` (or a :class:`~vdw_frames.frame.strain_compatible.StrainCompatibleOptions`)
+    runs the equivalent-linear iteration of :mod:`vdw_frames.frame.strain_compatible` for buildings with
+    :class:`~vdw_frames.StrainDependentDamper` walls, which a plain run (``False``, the default) refuses.
     """
+    if strain_compatible is not False:
+        return strain_compatible_simulation(building, ground_motion, strain_compatible, dt=dt, method=method,
+                                            memory=memory)
+    require_fixed_walls(building, "simulate()")
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
     if not isinstance(ground_motion, GroundMotion):
