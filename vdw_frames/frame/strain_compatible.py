@@ -171,13 +171,13 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion, options
         strain, previous_step = np.where(dependent, strain + step, strain), step
 
     for message in caught:
-        warnings.warn(message.message, message.category, stacklevel=2)
+        warnings.warn(message.message, message.category, stacklevel=3)
     _warn_clamped(building, walls, strain, effective / options.effective_strain_ratio)
     if not converged:
         change = np.max((np.abs(effective - strain) / np.where(strain > 0.0, strain, 1.0))[dependent])
         warnings.warn(f"strain-compatible analysis did not converge in {options.max_iterations} analyses: the "
                       f"effective strains still changed by up to {100 * change:.2g} % (tolerance "
-                      f"{100 * options.tolerance:g} %)", UserWarning, stacklevel=2)
+                      f"{100 * options.tolerance:g} %)", UserWarning, stacklevel=3)
     return dataclasses.replace(
         result, building=dataclasses.replace(building, dampers=_regroup(building, final)),
         wall_effective_strain=np.where(dependent, strain, effective), wall_dampers=tuple(final),
@@ -222,4 +222,4 @@ def _warn_clamped(building, walls, strain, peak) -> None:
                            f"{100 * reached:.0f} %), outside {100 * low:.4g}-{100 * high:.4g} %: parameters of "
                            f"{100 * wall.clamped(effective):.4g} % used")
     if outside:
-        warnings.warn("strain-compatible analysis: " + "; ".join(outside), UserWarning, stacklevel=3)
+        warnings.warn("strain-compatible analysis: " + "; ".join(outside), UserWarning, stacklevel=4)
