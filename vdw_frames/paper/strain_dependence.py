@@ -109,6 +109,8 @@ def interpolated_moduli(strain):
         raise ValueError(f"strain must be a number of % in {STRAINS[0]}-{STRAINS[-1]}, got {strain!r}") from None
     if isinstance(strain, (bool, str)) or not STRAINS[0] <= value <= STRAINS[-1]:
         raise ValueError(f"strain must be a number of % in {STRAINS[0]}-{STRAINS[-1]}, got {strain!r}")
+    if value in STRAINS:
+        return table_moduli(value)
     nodes = np.log(STRAINS)
     columns = []
     for column in (1, 2):
