@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from reference import closed_form_moduli as closed_form
 from shared_data import REPO, SHARED, shared_record
 from vdw_frames import (
     FDMKDamper,
@@ -37,15 +38,6 @@ from vdw_frames.paper.report import interpolated_optima
 
 NAMES = ("G1", "G2", "eta1", "eta2", "r")
 RECORDS = ("ARL360.at2", "HWA002-N.AT2", "IELC180.AT2", "RIO270.AT2", "elCentro.AT2")
-
-
-def closed_form(params, f):
-    """(G', G'') of eqs. (3)-(5), real closed form (independent of the package's complex arithmetic)."""
-    a = (2 * np.pi * np.asarray(f)) ** params["r"]
-    c, q = np.cos(params["r"] * np.pi / 2), np.sin(params["r"] * np.pi / 2)
-    g1, g2, e1, e2 = params["G1"], params["G2"], params["eta1"], params["eta2"]
-    d = g2**2 + 2 * g2 * e2 * a * c + e2**2 * a**2
-    return g1 + e1 * a * c + g2 * e2 * a * (g2 * c + e2 * a) / d, e1 * a * q + g2**2 * e2 * a * q / d
 
 
 def by_hand(strain):
