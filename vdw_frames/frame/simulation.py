@@ -180,7 +180,8 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
 
     ``strain_compatible``: ``True`` (or a :class:`~vdw_frames.frame.strain_compatible.StrainCompatibleOptions`)
     runs the equivalent-linear iteration of :mod:`vdw_frames.frame.strain_compatible` for buildings with
-    :class:`~vdw_frames.StrainDependentDamper` walls, which a plain run (``False``, the default) refuses.
+    :class:`~vdw_frames.StrainDependentDamper` walls, which a plain run (``False``, the default) refuses;
+    its result is the response of the equivalent-linear building (``result.building``).
     """
     if strain_compatible is not False:
         return strain_compatible_simulation(building, ground_motion, strain_compatible, dt=dt, method=method,

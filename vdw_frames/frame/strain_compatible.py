@@ -150,7 +150,7 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion, options
 
     converged, previous_step = False, np.zeros(len(walls))
     for iteration in range(1, options.max_iterations + 1):
-        final = [wall._damper(wall._parameters(s)) if isinstance(wall, StrainDependentDamper) else wall
+        final = [wall.at(wall.clamped(s)) if isinstance(wall, StrainDependentDamper) else wall  # clamped: no warning
                  for wall, s in zip(walls, strain)]
         # The strain-compatible analysis judges the range itself (effective, not peak, strain).
         run_walls = [dataclasses.replace(d, strain_range=None) if flag else d for d, flag in zip(final, dependent)]
