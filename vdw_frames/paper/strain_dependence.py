@@ -22,7 +22,7 @@ Method: a joint identification
   nodes each parameter is a convex combination of two valid values, so G1, G2, eta1, eta2 >= 0 and
   0 < r <= 1 hold at every strain of the range by construction, and with them G' >= 0 and G'' >= 0 at
   every frequency (passivity).  A single straight line in log(gamma) per parameter (10 coefficients)
-  is too stiff: its best compromise is 21 % worse than the own best fit at 300 %.
+  is too stiff: its best compromise is about 20 % worse than the own best fit at 300 %.
 * **Targets.** At the tested strains, the tables.  Between them nothing was measured; the targets
   there are the tables interpolated linearly in (log gamma, log G') and (log gamma, log G'') at each
   frequency -- a power law in the amplitude between neighbouring tests, the least assuming
