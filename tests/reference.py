@@ -5,6 +5,15 @@ from __future__ import annotations
 import numpy as np
 
 
+def closed_form_moduli(params, f):
+    """(G', G'') in MPa of eqs. (3)-(5) at f (Hz) from the real closed form (no complex arithmetic)."""
+    a = (2 * np.pi * np.asarray(f)) ** params["r"]
+    c, q = np.cos(params["r"] * np.pi / 2), np.sin(params["r"] * np.pi / 2)
+    g1, g2, e1, e2 = params["G1"], params["G2"], params["eta1"], params["eta2"]
+    d = g2**2 + 2 * g2 * e2 * a * c + e2**2 * a**2
+    return g1 + e1 * a * c + g2 * e2 * a * (g2 * c + e2 * a) / d, e1 * a * q + g2**2 * e2 * a * q / d
+
+
 def smooth_step(x):
     """C-infinity step from 0 (x <= 0) to 1 (x >= 1)."""
     x = np.clip(np.asarray(x, dtype=float), 0.0, 1.0)

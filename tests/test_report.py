@@ -5,19 +5,11 @@ import math
 import numpy as np
 import pytest
 
+from reference import closed_form_moduli as closed_form
 from vdw_frames import FDMKDamper, paper, sine_test
 from vdw_frames.paper.report import errata, parameter_sets, table5_candidates, write_paper_report
 
 T4 = paper.TABLE4
-
-
-def closed_form(params, f):
-    """(G', G'') of eqs. (3)-(5) from the real closed form, independent of the package's complex arithmetic."""
-    a = (2 * np.pi * np.asarray(f)) ** params["r"]
-    c, q = math.cos(params["r"] * math.pi / 2), math.sin(params["r"] * math.pi / 2)
-    g1, g2, e1, e2 = params["G1"], params["G2"], params["eta1"], params["eta2"]
-    d = g2**2 + 2 * g2 * e2 * a * c + e2**2 * a**2
-    return g1 + e1 * a * c + g2 * e2 * a * (g2 * c + e2 * a) / d, e1 * a * q + g2**2 * e2 * a * q / d
 
 
 @pytest.fixture(scope="module")
@@ -202,13 +194,14 @@ def test_report_end_to_end(tmp_path):
     path = write_paper_report(tmp_path / "out")
     assert path == tmp_path / "out" / "report.md"
     text = path.read_text()
-    for heading in ("## 1. Parameter sets", "## 2. Tables 1-3", "## 3. Table 5", "## 4. Errata", "## 5. Figures"):
+    for heading in ("## 1. Parameter sets", "## 2. Tables 1-3", "## 3. Table 5", "## 4. Errata", "## 5. Figures",
+                    "## 6. Strain dependence"):
         assert heading in text
     assert "Table 4 gives G'(0.5 Hz) = 10.71 MPa" in text
     assert "No candidate reproduces the printed theoretical areas" in text
     assert "-0.3090" in text  # cos(0.6 pi)
     pngs = sorted(p.name for p in (tmp_path / "out").glob("*.png"))
-    assert len(pngs) == 10
+    assert len(pngs) == 11
     for name in pngs:
         assert f"({name})" in text
         data = (tmp_path / "out" / name).read_bytes()

@@ -55,15 +55,15 @@ def _simulate(args) -> int:
     import numpy as np
 
     from . import plotting
-    from .config import load_building
+    from .config import load_analysis
     from .motion import G, read_at2
     from .frame.simulation import simulate
 
-    building = load_building(args.building)
+    building, options = load_analysis(args.building)
     motion = read_at2(args.record)
     if args.scale is not None:
         motion = motion.scaled_to_pga(args.scale * G)
-    result = simulate(building, motion, dt=args.dt)
+    result = simulate(building, motion, dt=args.dt, **options)
     print(f"{args.building}: {building.stories} stories, T1 = {building.periods[0]:.3f} s (bare frame), "
           f"{len(building.damper_list)} FDMK dampers")
     print(f"record {motion.name}: PGA = {motion.pga / G:.3f} g, dt = {result.time[1]:g} s, {result.time.size} steps")
@@ -73,6 +73,11 @@ def _simulate(args) -> int:
         print(f"{k + 1:5d} {result.peak_drift[k]:9.2f} {100 * ratio[k] if ratio is not None else np.nan:8.3f} "
               f"{result.peak_absolute_acceleration[k] / G:11.3f} {result.peak_damper_force[k] / 1e3:10.1f} "
               f"{100 * np.abs(result.damper_strain[:, k]).max():9.1f}")
+    if result.strain_iterations is not None:
+        state = "converged" if result.strain_converged else "did NOT converge"
+        print(f"strain-compatible analysis {state} in {result.strain_iterations} analyses; effective strain per wall: "
+              + ", ".join(f"story {story} {100 * strain:.0f} %"
+                          for (story, _), strain in zip(building.damper_list, result.wall_effective_strain)))
     energy = result.energy
     share = energy.damper_work[-1] / energy.input[-1] if energy.input[-1] > 0 else 0.0
     print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; dampers dissipate "

@@ -7,16 +7,38 @@ Keys (units N-mm-s-tonne)::
     story_heights = [4000, 3500, 3500]  # mm, optional
     damping_ratio = 0.05                # optional (default 0.05)
     damping_modes = [1, 2]              # optional (default [1, 2]; [1, 1] for one story)
+    strain_compatible = true            # optional (default false): equivalent-linear analysis, see below
 
     [[walls]]                           # any number of wall groups, optional
     stories = "all"                     # or a list of story numbers
     per_story = 2                       # walls in parallel in each of those stories
     parameters = "fitted-300"           # recommended set for 225, 300 or 450 % strain ...
     # parameters = {G1 = 0.0, G2 = 3.0, eta1 = 0.3, eta2 = 2.0, r = 0.5}   # ... or explicit (MPa, MPa*s^r)
+    # parameters = "strain-dependent"   # ... or the paper's strain-dependent model (225-450 %)
     area = 1.0e6                        # mm^2, optional (default: the paper's 1e6)
     thickness = 10.0                    # mm, optional (default: the paper's 10)
 
 JSON files use the same keys ("walls" a list of objects).  TOML needs Python >= 3.11 (tomllib).
+
+Strain-dependent walls
+----------------------
+``parameters = "strain-dependent"`` gives the group :func:`vdw_frames.paper.strain_dependent` walls,
+whose FDMK parameters follow their strain amplitude.  A building with such walls is analysed by the
+strain-compatible (equivalent-linear) iteration of :mod:`vdw_frames.frame.strain_compatible`, which
+the file asks for with the top-level ``strain_compatible = true`` (before any ``[[walls]]`` in TOML),
+or with a table of the iteration's settings (:class:`~vdw_frames.frame.strain_compatible.StrainCompatibleOptions`;
+any of them, the rest default)::
+
+    [strain_compatible]
+    effective_strain_ratio = 0.65       # effective / peak strain, in (0, 1]
+    initial_strain = 3.0                # starting amplitude (3.0 = 300 %); default: the middle of the range
+    tolerance = 0.01                    # converged when every effective strain changes by less than 1 %
+    max_iterations = 20
+
+:func:`load_analysis` returns the building and the keyword arguments for
+:func:`~vdw_frames.frame.simulation.simulate` that the file asks for (``vdw-frames simulate`` uses it);
+it refuses strain-dependent walls without ``strain_compatible``, which no fixed-parameter analysis
+can take.  :func:`load_building` returns the building alone.
 """
 
 from __future__ import annotations
@@ -26,14 +48,27 @@ from pathlib import Path
 
 from .frame.building import ShearBuilding
 from .element.damper import FDMKDamper
+from .frame.strain_compatible import StrainCompatibleOptions
 
-_BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "walls"}
+_BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "walls",
+                  "strain_compatible"}
+_STRAIN_COMPATIBLE_KEYS = {"effective_strain_ratio", "initial_strain", "tolerance", "max_iterations"}
 _WALL_KEYS = {"stories", "per_story", "parameters", "area", "thickness"}
 _PARAMETER_KEYS = {"G1", "G2", "eta1", "eta2", "r"}
 
 
 def load_building(path) -> ShearBuilding:
     """Read a :class:`ShearBuilding` from a ``.toml`` or ``.json`` file (format in the module docstring)."""
+    return load_analysis(path, require_analysis=False)[0]
+
+
+def load_analysis(path, require_analysis: bool = True) -> tuple[ShearBuilding, dict]:
+    """(building, keyword arguments for ``simulate``) from a ``.toml`` or ``.json`` building file.
+
+    The keywords are ``{"strain_compatible": True or StrainCompatibleOptions}`` when the file asks for a
+    strain-compatible analysis, else empty.  With ``require_analysis`` strain-dependent walls without
+    ``strain_compatible`` are refused (see the module docstring).
+    """
     path = Path(path)
     try:
         text = path.read_text()
@@ -55,7 +90,11 @@ def load_building(path) -> ShearBuilding:
             raise
         raise ValueError(f"{path}: not valid {path.suffix[1:].upper()}: {error}") from None
     try:
-        return building_from_dict(data)
+        building, options = building_from_dict(data), simulate_options(data)
+        if require_analysis and building.strain_dependent and not options:
+            raise ValueError("walls with parameters = 'strain-dependent' need strain_compatible = true (the "
+                             "equivalent-linear analysis); or give the walls fixed parameters, e.g. 'fitted-300'")
+        return building, options
     except ValueError as error:
         raise ValueError(f"{path}: {error}") from None
 
@@ -76,6 +115,7 @@ def building_from_dict(data: dict) -> ShearBuilding:
         raise ValueError(f"damping_modes must be a list of two mode numbers, got {data['damping_modes']!r}")
     if not isinstance(data.get("walls", []), list):
         raise ValueError(f"walls must be a list of wall groups, got {data['walls']!r}")
+    simulate_options(data)  # validated here too; load_analysis returns it
     stories = len(data["masses"])
     dampers: dict[int, list[FDMKDamper]] = {}
     for group in data.get("walls", []):
@@ -91,8 +131,24 @@ def building_from_dict(data: dict) -> ShearBuilding:
     )
 
 
+def simulate_options(data: dict) -> dict:
+    """The keyword arguments for ``simulate`` that a building dict's ``strain_compatible`` key asks for."""
+    value = data.get("strain_compatible", False)
+    if isinstance(value, dict):
+        unknown = set(value) - _STRAIN_COMPATIBLE_KEYS
+        if unknown:
+            raise ValueError(f"unknown strain_compatible keys {sorted(unknown)}; expected some of "
+                             f"{sorted(_STRAIN_COMPATIBLE_KEYS)}")
+        value = StrainCompatibleOptions(**value)
+    elif not isinstance(value, bool):
+        raise ValueError(f"strain_compatible must be true, false or a table of "
+                         f"{sorted(_STRAIN_COMPATIBLE_KEYS)}, got {value!r}")
+    return {"strain_compatible": value} if value is not False else {}
+
+
 def _wall_group(group, stories):
     from .paper.data import fitted
+    from .paper.strain_dependence import strain_dependent
 
     if not isinstance(group, dict):
         raise ValueError(f"each walls entry must be a table, got {group!r}")
@@ -107,11 +163,13 @@ def _wall_group(group, stories):
         except ValueError:
             raise ValueError(f"walls parameters {parameters!r}: expected e.g. 'fitted-300'") from None
         wall = fitted(strain, **geometry)
+    elif parameters == "strain-dependent":
+        wall = strain_dependent(**geometry)
     elif isinstance(parameters, dict) and set(parameters) == _PARAMETER_KEYS:
         wall = FDMKDamper(**parameters, **geometry)
     else:
-        raise ValueError(f"walls parameters must be 'fitted-225', 'fitted-300', 'fitted-450' or a table "
-                         f"with exactly {sorted(_PARAMETER_KEYS)}, got {parameters!r}")
+        raise ValueError(f"walls parameters must be 'fitted-225', 'fitted-300', 'fitted-450', 'strain-dependent' "
+                         f"or a table with exactly {sorted(_PARAMETER_KEYS)}, got {parameters!r}")
     story_numbers = group.get("stories", "all")
     if story_numbers == "all":
         story_numbers = range(1, stories + 1)

@@ -5,7 +5,9 @@
   in series with its support; :mod:`.bank`: :class:`WallBank`, many walls stepped together;
 - :mod:`.kernel`: the one compiled step kernel every time-domain path calls;
 - :mod:`.fractional`: convolution quadratures of D^r; :mod:`.fast_memory`: the O(1)-per-step memory;
-- :mod:`.sine`: the sinusoidal test of one damper.
+- :mod:`.sine`: the sinusoidal test of one damper;
+- :mod:`.strain_dependent`: :class:`StrainDependentDamper`, FDMK parameters as functions of the
+  strain amplitude.
 
 Units: N, mm, s; moduli MPa, viscosities MPa*s^r.
 """
@@ -15,8 +17,10 @@ from .fast_memory import FastMemory
 from .fractional import BDF2, DEFAULT_METHOD, DampedTwoStep, Discretisation, GrunwaldLetnikov, Trapezoidal
 from .bank import WallBank
 from .sine import SineTestResult, sine_test
+from .strain_dependent import StrainDependentDamper
 from .supported import WALL_TYPES, SupportedDamper
 
 __all__ = ["BDF2", "DEFAULT_MEMORY", "DEFAULT_METHOD", "DampedTwoStep", "DamperState", "Discretisation",
-           "FDMKDamper", "FastMemory", "GrunwaldLetnikov", "SineTestResult", "SupportedDamper", "Trapezoidal", "WALL_TYPES", "WallBank",
+           "FDMKDamper", "FastMemory", "GrunwaldLetnikov", "SineTestResult", "StrainDependentDamper",
+           "SupportedDamper", "Trapezoidal", "WALL_TYPES", "WallBank",
            "sine_test"]

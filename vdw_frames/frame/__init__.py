@@ -5,6 +5,8 @@
 - :mod:`.hysteresis`: the story models :class:`Bilinear` and :class:`BoucWen` (trial/commit materials);
 - :mod:`.simulation`: :func:`simulate`, Newmark's average acceleration with Newton-Raphson through the
   walls' and stories' trial/commit;
+- :mod:`.strain_compatible`: the equivalent-linear iteration for strain-dependent walls
+  (``simulate(..., strain_compatible=True)``, :class:`StrainCompatibleOptions`);
 - :mod:`.batch`: :func:`run_batch`, many analyses on any ``concurrent.futures`` executor.
 
 Units: N, mm, s, tonne.
@@ -14,7 +16,9 @@ from .batch import BatchResult, run_batch, scale_factors_to_pga, scale_factors_t
 from .building import ShearBuilding
 from .hysteresis import Bilinear, BoucWen, StoryState
 from .simulation import EnergyHistory, NewtonRaphson, SimulationResult, simulate
+from .strain_compatible import StrainCompatibleOptions, energy_weighted_amplitude, strain_compatible_simulation
 
 __all__ = ["BatchResult", "Bilinear", "BoucWen", "EnergyHistory", "NewtonRaphson", "ShearBuilding",
-           "SimulationResult", "StoryState", "run_batch", "scale_factors_to_pga",
-           "scale_factors_to_spectral_acceleration", "simulate"]
+           "SimulationResult", "StoryState", "StrainCompatibleOptions", "energy_weighted_amplitude", "run_batch",
+           "scale_factors_to_pga", "scale_factors_to_spectral_acceleration", "simulate",
+           "strain_compatible_simulation"]

@@ -18,11 +18,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validation import finite_array
-from .building import ShearBuilding
+from .building import ShearBuilding, require_fixed_walls
 from ..element.damper import DEFAULT_MEMORY
 from ..element.fractional import DEFAULT_METHOD, Discretisation
 from ..motion.record import GroundMotion
 from .simulation import simulate
+from .strain_compatible import strain_compatible_options
 
 
 @dataclass(frozen=True)
@@ -34,6 +35,7 @@ class BatchTask:
     scale: float
     memory: object
     method: str | Discretisation
+    strain_compatible: object = False  # simulate()'s option: False, True or StrainCompatibleOptions
 
     def run(self) -> dict:
         """Peak responses of this analysis (units of :class:`~vdw_frames.frame.simulation.SimulationResult`).
@@ -43,7 +45,8 @@ class BatchTask:
         """
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            result = simulate(self.building, self.motion.scaled(self.scale), method=self.method, memory=self.memory)
+            result = simulate(self.building, self.motion.scaled(self.scale), method=self.method, memory=self.memory,
+                              strain_compatible=self.strain_compatible)
         return {
             "warnings": [str(w.message) for w in caught],
             "peak_drift": result.peak_drift,
@@ -103,7 +106,8 @@ class BatchResult:
 
 
 def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.futures.Executor | None = None,
-              progress: bool = True, memory=DEFAULT_MEMORY, method=DEFAULT_METHOD) -> BatchResult:
+              progress: bool = True, memory=DEFAULT_MEMORY, method=DEFAULT_METHOD,
+              strain_compatible=False) -> BatchResult:
     """Run ``building`` under every motion at every scale factor.
 
     ``motions``: GroundMotion objects (mm/s^2).  ``scales``: factors (dimensionless) applied as
@@ -113,6 +117,9 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
     ``progress``: a progress bar on standard error, only when it is a terminal.  The peaks equal those
     of :func:`simulate` for the same run; warnings of the analyses are re-issued here, once per message,
     naming the motion and scale.  The first failing analysis cancels the rest and raises.
+    ``strain_compatible`` (False, True or a :class:`~vdw_frames.frame.strain_compatible.StrainCompatibleOptions`)
+    is passed to every :func:`simulate`: True runs each analysis strain-compatible (buildings with
+    strain-dependent walls need it).
     """
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
@@ -124,7 +131,10 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
         factors = np.broadcast_to(factors, (len(motions), factors.size))
     if factors.ndim != 2 or factors.shape[0] != len(motions) or factors.shape[1] == 0:
         raise ValueError(f"scales must have shape (scales,) or ({len(motions)}, scales), got {np.shape(scales)}")
-    tasks = {(m, s): BatchTask(building, motion, float(factors[m, s]), memory, method)
+    if strain_compatible is not False:
+        strain_compatible_options(strain_compatible)  # a bad value fails here, not in every worker
+    require_fixed_walls(building if strain_compatible is False else None, "run_batch()")
+    tasks = {(m, s): BatchTask(building, motion, float(factors[m, s]), memory, method, strain_compatible)
              for m, motion in enumerate(motions) for s in range(factors.shape[1])}
 
     own_executor = executor is None

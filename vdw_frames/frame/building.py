@@ -12,6 +12,7 @@ from scipy.linalg import eigh
 
 from .._validation import damping_ratio, finite_array, whole_number
 from ..element.damper import FDMKDamper
+from ..element.strain_dependent import StrainDependentDamper
 from ..element.supported import WALL_TYPES
 from .hysteresis import STORY_MODELS
 
@@ -38,7 +39,9 @@ class ShearBuilding:
     dampers : dict {story: wall or list of walls}
         Walls across stories (1 ... n): :class:`~vdw_frames.FDMKDamper` or
         :class:`~vdw_frames.SupportedDamper`; several on one story act in parallel.  A wall's
-        deformation is the interstory drift.
+        deformation is the interstory drift.  A wall may be a
+        :class:`~vdw_frames.StrainDependentDamper`; such a building is analysed by
+        ``simulate(..., strain_compatible=True)`` (:mod:`vdw_frames.frame.strain_compatible`).
     story_heights : sequence of float, optional
         Story heights, mm, for drift ratios, P-Delta and the collapse check.
     hysteresis : sequence or dict, optional
@@ -127,9 +130,9 @@ class ShearBuilding:
                 raise ValueError(f"damper story must be a story number in 1 ... {stories}, got {story!r}")
             walls = tuple(walls) if isinstance(walls, (list, tuple)) else (walls,)
             for wall in walls:
-                if not isinstance(wall, WALL_TYPES):
-                    raise ValueError(f"dampers[{story}] must be FDMKDamper or SupportedDamper objects, "
-                                     f"got {type(wall).__name__}")
+                if not isinstance(wall, WALL_TYPES + (StrainDependentDamper,)):
+                    raise ValueError(f"dampers[{story}] must be FDMKDamper, SupportedDamper or StrainDependentDamper "
+                                     f"objects, got {type(wall).__name__}")
             if walls:
                 normalised[int(story)] = walls
         return dict(sorted(normalised.items()))
@@ -256,6 +259,11 @@ class ShearBuilding:
         """(story, damper) for every damper, stories ascending."""
         return [(story, wall) for story, walls in self.dampers.items() for wall in walls]
 
+    @property
+    def strain_dependent(self) -> bool:
+        """True when some wall is a :class:`StrainDependentDamper` (parameters that follow its strain amplitude)."""
+        return any(isinstance(wall, StrainDependentDamper) for _, wall in self.damper_list)
+
     def without_dampers(self) -> "ShearBuilding":
         """The same frame (stories, P-Delta, damping) with no walls."""
         return dataclasses.replace(self, dampers=None)
@@ -270,7 +278,11 @@ class ShearBuilding:
         Solves (-w^2 M + i w C + K + K_G + K_d(w)) U = -M 1 at w = 2 pi f for frequencies f in Hz (>= 0),
         with each wall's exact complex stiffness (G*(i w) area / thickness, eqs. (3)-(5), in series with
         its support if any) and the P-Delta stiffness K_G: the linear (initial-stiffness) building.
+        Strain-dependent walls are refused (their stiffness depends on the amplitude): use the
+        equivalent-linear building ``simulate(..., strain_compatible=True).building`` or walls
+        ``wall.at(strain)``.
         """
+        require_fixed_walls(self, "frequency_response()")
         frequency = np.atleast_1d(np.asarray(frequency, dtype=float))
         if not np.isfinite(frequency).all() or (frequency < 0).any():
             raise ValueError("frequency must be finite and >= 0 Hz")
@@ -299,6 +311,15 @@ class ShearBuilding:
         spectrum = np.fft.rfft(ground, size)
         response = self.frequency_response(np.fft.rfftfreq(size, dt))
         return np.fft.irfft(response * spectrum[:, None], size, axis=0)[: ground.size]
+
+
+def require_fixed_walls(building, analysis: str) -> None:
+    """ValueError when ``building`` has strain-dependent walls, which ``analysis`` cannot take."""
+    if isinstance(building, ShearBuilding) and building.strain_dependent:
+        raise ValueError(f"{analysis} needs fixed wall parameters, but this building has strain-dependent walls "
+                         "(StrainDependentDamper): pass strain_compatible=True (to simulate or run_batch) for the "
+                         "equivalent-linear analysis, or give each wall its parameters at one strain amplitude "
+                         "with wall.at(strain)")
 
 
 def _read_only(array: np.ndarray) -> np.ndarray:

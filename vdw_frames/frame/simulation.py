@@ -42,7 +42,7 @@ from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, kernel_constants, memory_strategy
 from ..element.fractional import DEFAULT_METHOD, get_method
 from ..motion.record import GroundMotion
-from .building import ShearBuilding
+from .building import ShearBuilding, require_fixed_walls
 from .hysteresis import LINEAR, PARAMETERS, STATE, story_trial
 
 # Status codes of the compiled integrator.
@@ -396,6 +396,11 @@ class SimulationResult:
     ``converged``: False when a step failed to converge (the histories end at the last converged step);
     ``collapsed`` and ``collapse_time`` (s): a story's drift ratio exceeded ``collapse_drift_ratio``
     (the histories end at that step); ``newton_iterations``: the total number of Newton corrections.
+
+    Strain-compatible analyses (``simulate(..., strain_compatible=True)``) also report, per wall in
+    ``building.damper_list`` order, ``wall_effective_strain`` (-, the final effective strains) and
+    ``wall_dampers`` (the FDMKDamper each wall ended with), with ``strain_iterations`` and
+    ``strain_converged``; ``building`` is then the equivalent-linear building.  None otherwise.
     """
 
     building: ShearBuilding
@@ -418,6 +423,10 @@ class SimulationResult:
     collapsed: bool = False
     collapse_time: float | None = None
     newton_iterations: int = 0
+    wall_effective_strain: np.ndarray | None = None
+    wall_dampers: tuple | None = None
+    strain_iterations: int | None = None
+    strain_converged: bool | None = None
 
     @property
     def peak_drift(self) -> np.ndarray:
@@ -465,8 +474,8 @@ class SimulationResult:
 
 # ---------------------------------------------------------------------------------------------- driver
 def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, method=DEFAULT_METHOD,
-             memory=DEFAULT_MEMORY, *, collapse_drift_ratio: float | None = 0.10, free_vibration: float = 0.0,
-             newton: NewtonRaphson | None = None) -> SimulationResult:
+             memory=DEFAULT_MEMORY, strain_compatible=False, *, collapse_drift_ratio: float | None = 0.10,
+             free_vibration: float = 0.0, newton: NewtonRaphson | None = None) -> SimulationResult:
     """Integrate ``building`` under ``ground_motion`` (a :class:`~vdw_frames.GroundMotion`, mm/s^2).
 
     ``dt`` (s) defaults to the record's step; a smaller step must divide it (the ground acceleration is
@@ -480,11 +489,23 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
     to the record, so that residual drifts are measured at rest.  ``newton``: the convergence settings
     (:class:`NewtonRaphson`); a linear building takes one solve per step whatever they are.
 
+    ``strain_compatible``: ``True`` (or a :class:`~vdw_frames.StrainCompatibleOptions`) runs the
+    equivalent-linear iteration of :mod:`vdw_frames.frame.strain_compatible` for buildings with
+    :class:`~vdw_frames.StrainDependentDamper` walls, which a plain run (``False``, the default) refuses;
+    its result is the response of the equivalent-linear building (``result.building``).
+
     A step that fails to converge even with the fallbacks stops the analysis with
     ``result.converged = False`` and a ``RuntimeWarning`` naming the time and story; never NaN.  Warns
     (``UserWarning``) when a wall's peak strain leaves its ``strain_range``.  Returns a
     :class:`SimulationResult`.
     """
+    if strain_compatible is not False:
+        from .strain_compatible import strain_compatible_simulation  # it calls simulate() back
+
+        return strain_compatible_simulation(building, ground_motion, strain_compatible, dt=dt, method=method,
+                                            memory=memory, collapse_drift_ratio=collapse_drift_ratio,
+                                            free_vibration=free_vibration, newton=newton)
+    require_fixed_walls(building, "simulate()")
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
     if not isinstance(ground_motion, GroundMotion):

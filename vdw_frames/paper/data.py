@@ -61,7 +61,8 @@ test strain than to another one -- boundaries at the midpoints 262.5 % and 375 %
 than the tested envelope 225-450 %: 225 % -> [225, 262.5], 300 % -> [262.5, 375], 450 % -> [375, 450].
 The data say nothing below 225 % or above 450 % (and the moduli change strongly with strain: G' at
 0.5-10 Hz is 0.96-2.65 MPa at 225 % but 2.65-3.54 MPa at 450 %), so the outer ends are not open: a
-simulation whose peak strain leaves the interval is extrapolating and is warned about it.
+simulation whose peak strain leaves the interval is extrapolating and is warned about it.  One model
+over the whole range, for strain-compatible analyses: :func:`vdw_frames.paper.strain_dependence.strain_dependent`.
 """
 
 from __future__ import annotations

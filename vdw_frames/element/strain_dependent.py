@@ -1,0 +1,201 @@
+"""A strain-amplitude-dependent FDMK wall: FDMK parameters as functions of the shear-strain amplitude.
+
+The "5+4" wall's moduli change strongly with the strain amplitude of the test (the paper's Tables 1-3
+at 225, 300 and 450 %).  A :class:`StrainDependentDamper` holds one FDMK parameter set (paper eqs.
+(3)-(5)) at each of a few *node* amplitudes gamma_1 < ... < gamma_n and takes every parameter
+(G1, G2, eta1, eta2, r) piecewise linear in log(gamma) between them:
+
+    p(gamma) = p_k + (p_{k+1} - p_k) * log(gamma / gamma_k) / log(gamma_{k+1} / gamma_k),
+    gamma_k <= gamma <= gamma_{k+1}.
+
+Between two nodes every parameter is a convex combination of two valid values, so G1, G2, eta1,
+eta2 >= 0 and 0 < r <= 1 hold at every amplitude of the range by construction; with them every term
+of G' and G'' (see :mod:`vdw_frames.element.damper`) is non-negative: the wall is passive at every
+(f, gamma).  Outside [gamma_1, gamma_n] (``strain_range``) nothing is known: the parameters are
+clamped to the nearest end and a ``UserWarning`` names the amplitude reached.
+
+This is a model of *amplitude* dependence for steady harmonic cycles, the way the tests measured it.
+A time-history analysis uses it through the equivalent-linear (strain-compatible) iteration of
+:mod:`vdw_frames.frame.strain_compatible`, which gives each wall one fixed parameter set per analysis.
+
+Units: strain amplitude dimensionless (3.0 = 300 %), moduli MPa, viscosities MPa*s^r, area mm^2,
+thickness mm, frequency Hz, stiffness N/mm.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validation import finite_array, non_negative, positive, positive_frequencies
+from .damper import FDMKDamper
+from .fractional import _check_order
+
+PARAMETERS = ("G1", "G2", "eta1", "eta2", "r")
+
+
+def _refuse_non_numbers(name: str, values) -> None:
+    """Bools and strings are not numbers here, even though numpy would convert them."""
+    items = np.asarray(values, dtype=object).ravel() if not isinstance(values, (str, bytes)) else [values]
+    for item in items:
+        if isinstance(item, (bool, np.bool_, str, bytes)):
+            raise ValueError(f"{name} must be real numbers, got {item!r}")
+
+
+def _strain_amplitudes(name: str, values) -> np.ndarray:
+    """Strain amplitudes (dimensionless, finite, >= 0), scalar or array."""
+    _refuse_non_numbers(name, values)
+    array = finite_array(name, values, ndim=None)
+    if (array < 0.0).any():
+        raise ValueError(f"{name} must be >= 0 (an amplitude), got {array[array < 0.0].flat[0]!r}")
+    return array
+
+
+@dataclass(frozen=True)
+class StrainDependentDamper:
+    """An FDMK wall whose parameters depend on the shear-strain amplitude (see the module docstring).
+
+    Parameters
+    ----------
+    strains : sequence of float
+        Node strain amplitudes, dimensionless (3.0 = 300 %), > 0 and strictly increasing, at least two.
+        The identified range is [strains[0], strains[-1]].
+    G1, G2 : sequence of float
+        Elastic moduli at the nodes, MPa (>= 0), one per node.
+    eta1, eta2 : sequence of float
+        Viscosities at the nodes, MPa*s^r (>= 0).
+    r : sequence of float
+        Fractional orders at the nodes, 0 < r <= 1.
+    area : float
+        Total shear area of the viscoelastic layers, mm^2.
+    thickness : float
+        Thickness of one viscoelastic layer, mm; strain = displacement / thickness.
+
+    Every parameter is piecewise linear in log(strain) between the nodes.
+    :meth:`constant` makes a wall whose parameters do not vary.
+    """
+
+    strains: tuple
+    G1: tuple
+    G2: tuple
+    eta1: tuple
+    eta2: tuple
+    r: tuple
+    area: float = 1.0e6
+    thickness: float = 10.0
+
+    def __post_init__(self):
+        _refuse_non_numbers("strains", self.strains)
+        strains = finite_array("strains", self.strains)
+        if strains.size < 2:
+            raise ValueError(f"strains must hold at least two node amplitudes, got {self.strains!r}")
+        if (strains <= 0.0).any():
+            raise ValueError(f"strains must be > 0 (they are interpolated in log strain), got {self.strains!r}")
+        if (np.diff(strains) <= 0.0).any():
+            raise ValueError(f"strains must be strictly increasing, got {self.strains!r}")
+        object.__setattr__(self, "strains", tuple(strains.tolist()))
+        for name in PARAMETERS:
+            values = getattr(self, name)
+            _refuse_non_numbers(name, values)
+            array = finite_array(name, values)
+            if array.size != strains.size:
+                raise ValueError(f"{name} has {array.size} values for {strains.size} strains")
+            check = _check_order if name == "r" else (lambda v, n=name: non_negative(n, v))
+            object.__setattr__(self, name, tuple(check(v) for v in array.tolist()))
+        object.__setattr__(self, "area", positive("area", self.area))
+        object.__setattr__(self, "thickness", positive("thickness", self.thickness))
+
+    @classmethod
+    def constant(cls, damper: FDMKDamper, strain_range) -> "StrainDependentDamper":
+        """A wall with ``damper``'s parameters at every amplitude of ``strain_range`` (low, high), dimensionless."""
+        if not isinstance(damper, FDMKDamper):
+            raise ValueError(f"damper must be an FDMKDamper, got {type(damper).__name__}")
+        if not isinstance(strain_range, (tuple, list)) or len(strain_range) != 2:
+            raise ValueError(f"strain_range must be two amplitudes (low, high), got {strain_range!r}")
+        values = {name: (getattr(damper, name),) * 2 for name in PARAMETERS}
+        return cls(tuple(strain_range), **values, area=damper.area, thickness=damper.thickness)
+
+    @property
+    def strain_range(self) -> tuple:
+        """(lowest, highest) node amplitude, dimensionless: where the parameters were identified."""
+        return self.strains[0], self.strains[-1]
+
+    @property
+    def stiffness_scale(self) -> float:
+        """area / thickness (mm): converts a modulus in MPa to a stiffness in N/mm."""
+        return self.area / self.thickness
+
+    def clamped(self, strain):
+        """``strain`` (dimensionless, scalar or array, >= 0) clamped into :attr:`strain_range`; no warning."""
+        low, high = self.strain_range
+        clamped = np.clip(_strain_amplitudes("strain", strain), low, high)
+        return float(clamped) if clamped.ndim == 0 else clamped
+
+    def parameters(self, strain) -> dict:
+        """{G1, G2, eta1, eta2, r} (MPa, MPa*s^r, -) at the amplitude ``strain`` (dimensionless).
+
+        Outside :attr:`strain_range` the parameters of the nearest end, with a ``UserWarning``.
+        """
+        value = self._one_amplitude(strain)
+        self._warn_outside(value)
+        return self._parameters(float(value))
+
+    def at(self, strain) -> FDMKDamper:
+        """The :class:`FDMKDamper` for the amplitude ``strain`` (dimensionless; 3.0 = 300 %).
+
+        Clamped to :attr:`strain_range` with a ``UserWarning`` naming the amplitude when outside it.
+        The damper keeps this wall's area and thickness, and its ``strain_range`` is this wall's.
+        """
+        value = self._one_amplitude(strain)
+        self._warn_outside(value)
+        return self._damper(self._parameters(float(value)))
+
+    def complex_modulus(self, f, strain):
+        """G*(i 2 pi f) = G' + i G'' (MPa) at frequencies ``f`` (Hz, > 0) and amplitudes ``strain``.
+
+        ``f`` and ``strain`` are scalars or arrays that broadcast together; amplitudes outside
+        :attr:`strain_range` are clamped, with one ``UserWarning``.
+        """
+        f = positive_frequencies("f", f)
+        strain = _strain_amplitudes("strain", strain)
+        f, strain = np.broadcast_arrays(f, strain)
+        self._warn_outside(strain)
+        clamped = np.clip(strain, *self.strain_range)
+        modulus = np.empty(f.shape, dtype=complex)
+        for value in np.unique(clamped):
+            where = clamped == value
+            modulus[where] = self._damper(self._parameters(float(value))).complex_modulus(f[where])
+        return modulus if modulus.ndim else complex(modulus)
+
+    def complex_stiffness(self, f, strain):
+        """K* = G* area / thickness (N/mm) at frequencies ``f`` (Hz) and amplitudes ``strain`` (see :meth:`complex_modulus`)."""
+        return self.complex_modulus(f, strain) * self.stiffness_scale
+
+    # ---------------------------------------------------------------------------------------- internals
+    @staticmethod
+    def _one_amplitude(strain) -> np.ndarray:
+        value = _strain_amplitudes("strain", strain)
+        if value.ndim != 0:
+            raise ValueError(f"strain must be one amplitude, got shape {value.shape}")
+        return value
+
+    def _parameters(self, strain: float) -> dict:
+        """Parameters at ``strain`` clamped to the range, interpolated linearly in log strain."""
+        x = np.log(np.clip(strain, *self.strain_range))
+        nodes = np.log(self.strains)
+        return {name: float(np.interp(x, nodes, getattr(self, name))) for name in PARAMETERS}
+
+    def _damper(self, parameters: dict) -> FDMKDamper:
+        return FDMKDamper(**parameters, area=self.area, thickness=self.thickness, strain_range=self.strain_range)
+
+    def _warn_outside(self, strain: np.ndarray) -> None:
+        low, high = self.strain_range
+        outside = strain[(strain < low) | (strain > high)]
+        if outside.size:
+            reached = ", ".join(f"{100 * s:.4g} %" for s in np.unique(outside)[:5])
+            more = f" (and {np.unique(outside).size - 5} more)" if np.unique(outside).size > 5 else ""
+            warnings.warn(f"strain amplitude {reached}{more} outside the identified range "
+                          f"{100 * low:.4g}-{100 * high:.4g} %: the parameters of the nearest end are used",
+                          UserWarning, stacklevel=3)
