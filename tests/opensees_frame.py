@@ -6,7 +6,11 @@ can be translated: OpenSees has no fractional element.  Units are the package's 
 The model (ndm = 1, ndf = 1): node 0 (ground, fixed) and nodes 1 .. n (floors, lumped masses), and per
 story k, between nodes k-1 and k,
 
-* a ``zeroLength`` frame spring, ``Elastic`` material E = story stiffness, ``-doRayleigh 1``;
+* a ``zeroLength`` frame spring, ``-doRayleigh 1``: ``Elastic`` E = story stiffness for a linear story,
+  ``Steel01`` (F_y, E0 = k0, b = hardening) for :class:`vdw_frames.Bilinear`, ``BoucWen`` (alpha = b,
+  ko = k0, n, gamma / d_y^n, beta / d_y^n, Ao = 1, no degradation) for :class:`vdw_frames.BoucWen`;
+* with gravity loads, a ``zeroLength`` P-Delta spring, ``Elastic`` E = -P/h, no Rayleigh (the
+  linearised leaning column);
 * per wall, a ``zeroLength`` Kelvin branch: ``Elastic`` E = k1 = G1 A/h, eta = c1 = eta1 A/h (N*s/mm);
 * per wall, a ``zeroLength`` Maxwell branch: ``Maxwell`` K = k2 = G2 A/h, C = c2 = eta2 A/h, alpha = 1,
   L = 1 (omitted when G2 = 0 or eta2 = 0, which carries no stress in the FDMK model either).
@@ -91,11 +95,16 @@ def build(building, tolerance=1e-9, max_iterations=50, algorithm="Newton"):
 
     tag = 0
     frame_springs = []
-    for story, stiffness in enumerate(building.stiffnesses, start=1):
+    for story, (stiffness, model) in enumerate(zip(building.stiffnesses, building.story_models), start=1):
         tag += 1
-        ops.uniaxialMaterial("Elastic", tag, stiffness)
+        story_material(tag, stiffness, model)
         ops.element("zeroLength", tag, story - 1, story, "-mat", tag, "-dir", 1, "-doRayleigh", 1)
         frame_springs.append(tag)
+    for story, geometric in enumerate(building.geometric_stiffness, start=1):
+        if geometric != 0.0:
+            tag += 1
+            ops.uniaxialMaterial("Elastic", tag, geometric)
+            ops.element("zeroLength", tag, story - 1, story, "-mat", tag, "-dir", 1)
     for story, wall in building.damper_list:
         k1, c1, k2, c2 = damper_constants(wall)
         tag += 1
@@ -107,7 +116,8 @@ def build(building, tolerance=1e-9, max_iterations=50, algorithm="Newton"):
             ops.element("zeroLength", tag, story - 1, story, "-mat", tag, "-dir", 1)
 
     a0, a1 = building.rayleigh_coefficients
-    ops.region(1, "-eleOnly", *frame_springs, "-rayleigh", 0.0, a1, 0.0, 0.0)
+    # rayleigh(alphaM, betaK, betaKinit, betaKcomm): a1 on the springs' *initial* stiffness, as vdw_frames.
+    ops.region(1, "-eleOnly", *frame_springs, "-rayleigh", 0.0, 0.0, a1, 0.0)
     ops.region(2, "-nodeOnly", *floors, "-rayleigh", a0, 0.0, 0.0, 0.0)
 
     ops.constraints("Plain")
@@ -117,6 +127,22 @@ def build(building, tolerance=1e-9, max_iterations=50, algorithm="Newton"):
     ops.algorithm(algorithm)
     ops.integrator("Newmark", 0.5, 0.25)
     return floors
+
+
+def story_material(tag, stiffness, model):
+    """The OpenSees uniaxial material of a story spring (see the module docstring)."""
+    ops = opensees()
+    if model is None:
+        ops.uniaxialMaterial("Elastic", tag, stiffness)
+    elif type(model).__name__ == "Bilinear":
+        ops.uniaxialMaterial("Steel01", tag, model.yield_force, stiffness, model.hardening)
+    elif type(model).__name__ == "BoucWen":
+        scale = (model.yield_force / stiffness) ** model.exponent  # d_y^n
+        # alpha ko n gamma beta Ao deltaA deltaNu deltaEta tolerance maxNumIter
+        ops.uniaxialMaterial("BoucWen", tag, model.hardening, stiffness, model.exponent, model.gamma / scale,
+                             model.beta / scale, 1.0, 0.0, 0.0, 0.0, 1e-12, 100)
+    else:
+        raise ValueError(f"no OpenSees material for {model!r}")
 
 
 def _ground(acceleration, dt, floors):
@@ -136,23 +162,31 @@ def _drifts(displacement):
     return np.diff(np.hstack([np.zeros((displacement.shape[0], 1)), displacement]), axis=1)
 
 
-def run(building, acceleration, dt, **options):
+def run(building, acceleration, dt, reactions=False, **options):
     """Relative floor displacements (mm, steps x floors) under the ground acceleration (mm/s^2, every dt s).
 
     Row n is t = n dt (row 0: rest), as in :func:`vdw_frames.simulate`.  Steps one ``analyze(1, dt)`` at
-    a time and reads the nodes.
+    a time and reads the nodes.  ``reactions=True`` also returns the ground node's reaction (N, steps)
+    and the story springs' forces (N, steps x stories).
     """
     floors = build(building, **options)
     _ground(acceleration, dt, floors)
     ops = opensees()
     steps = len(acceleration)
     displacement = np.zeros((steps, len(floors)))
+    reaction = np.zeros(steps)
+    spring_force = np.zeros((steps, len(floors)))
     for n in range(1, steps):
         if ops.analyze(1, dt) != 0:
             raise RuntimeError(f"OpenSees analysis failed at step {n}")
         displacement[n] = [ops.nodeDisp(node, 1) for node in floors]
+        if reactions:
+            ops.reactions("-dynamic")
+            reaction[n] = ops.nodeReaction(0, 1)
+            # zeroLength "basicForce" is the material's force (without Rayleigh); tags 1 .. n are the springs
+            spring_force[n] = [ops.eleResponse(story, "basicForce")[0] for story in floors]
     ops.wipe()
-    return displacement
+    return (displacement, reaction, spring_force) if reactions else displacement
 
 
 def run_recorded(building, acceleration, dt, **options):

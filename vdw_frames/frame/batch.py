@@ -36,6 +36,7 @@ class BatchTask:
     memory: object
     method: str | Discretisation
     strain_compatible: object = False  # simulate()'s option: False, True or StrainCompatibleOptions
+    options: tuple = ()  # further simulate() keywords, as (name, value) pairs
 
     def run(self) -> dict:
         """Peak responses of this analysis (units of :class:`~vdw_frames.frame.simulation.SimulationResult`).
@@ -46,8 +47,11 @@ class BatchTask:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             result = simulate(self.building, self.motion.scaled(self.scale), method=self.method, memory=self.memory,
-                              strain_compatible=self.strain_compatible)
+                              strain_compatible=self.strain_compatible, **dict(self.options))
         return {
+            "collapsed": result.collapsed,
+            "converged": result.converged,
+            "residual_drift": result.residual_drift,
             "warnings": [str(w.message) for w in caught],
             "peak_drift": result.peak_drift,
             "peak_drift_ratio": result.peak_drift_ratio,
@@ -62,9 +66,12 @@ def _run(task: BatchTask) -> dict:
     return task.run()
 
 
-PEAKS = ("peak_drift", "peak_drift_ratio", "peak_absolute_acceleration", "peak_base_shear", "peak_damper_force")
+PEAKS = ("peak_drift", "peak_drift_ratio", "peak_absolute_acceleration", "peak_base_shear", "peak_damper_force",
+         "residual_drift")
 _UNITS = {"peak_drift": "mm", "peak_drift_ratio": "-", "peak_absolute_acceleration": "mm/s2",
-          "peak_base_shear": "N", "peak_damper_force": "N"}
+          "peak_base_shear": "N", "peak_damper_force": "N", "residual_drift": "mm"}
+OUTCOMES = ("collapsed", "converged")
+_SIMULATE_OPTIONS = {"collapse_drift_ratio", "free_vibration", "newton"}
 
 
 @dataclass(frozen=True)
@@ -73,7 +80,10 @@ class BatchResult:
 
     ``scales`` is (motions, scales): the factor each record was multiplied by.  Units: peak_drift mm,
     peak_drift_ratio - (None without story heights), peak_absolute_acceleration mm/s^2 (per floor),
-    peak_base_shear N, peak_damper_force N (total per story).
+    peak_base_shear N, peak_damper_force N (total per story), residual_drift mm (the drift at the last
+    step, per story).  ``collapsed`` and ``converged`` (motions, scales) are each analysis's outcome
+    (:class:`~vdw_frames.SimulationResult`): a collapsed or non-converged run is recorded, its peaks
+    being those reached before it stopped.
     """
 
     motion_names: tuple
@@ -84,14 +94,17 @@ class BatchResult:
     peak_absolute_acceleration: np.ndarray
     peak_base_shear: np.ndarray
     peak_damper_force: np.ndarray
+    residual_drift: np.ndarray
+    collapsed: np.ndarray
+    converged: np.ndarray
 
     def to_csv(self, path) -> None:
-        """One row per (motion, scale, story) with every peak; ``None`` ratios are left empty."""
+        """One row per (motion, scale, story) with every peak and the outcome; ``None`` ratios are left empty."""
         stories = self.peak_drift.shape[2]
         with open(path, "w", newline="") as handle:
             writer = csv.writer(handle)
             writer.writerow(["motion", "scale", "pga_mm_s2", "story"]
-                            + [f"{name}_{_UNITS[name]}" for name in PEAKS])
+                            + [f"{name}_{_UNITS[name]}" for name in PEAKS] + list(OUTCOMES))
             for m, name in enumerate(self.motion_names):
                 for s in range(self.scales.shape[1]):
                     for k in range(stories):
@@ -102,12 +115,12 @@ class BatchResult:
                                 row.append("")
                             else:
                                 row.append(repr(float(values[m, s, k if values.shape[2] > 1 else 0])))
-                        writer.writerow(row)
+                        writer.writerow(row + [int(getattr(self, outcome)[m, s]) for outcome in OUTCOMES])
 
 
 def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.futures.Executor | None = None,
               progress: bool = True, memory=DEFAULT_MEMORY, method=DEFAULT_METHOD,
-              strain_compatible=False) -> BatchResult:
+              strain_compatible=False, **simulate_options) -> BatchResult:
     """Run ``building`` under every motion at every scale factor.
 
     ``motions``: GroundMotion objects (mm/s^2).  ``scales``: factors (dimensionless) applied as
@@ -119,8 +132,13 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
     naming the motion and scale.  The first failing analysis cancels the rest and raises.
     ``strain_compatible`` (False, True or a :class:`~vdw_frames.frame.strain_compatible.StrainCompatibleOptions`)
     is passed to every :func:`simulate`: True runs each analysis strain-compatible (buildings with
-    strain-dependent walls need it).
+    strain-dependent walls need it).  ``simulate_options`` (``collapse_drift_ratio``,
+    ``free_vibration``, ``newton``) go to every :func:`simulate` too.  Collapse and non-convergence
+    are outcomes, recorded in ``collapsed`` and ``converged``, not failures.
     """
+    unknown = set(simulate_options) - _SIMULATE_OPTIONS
+    if unknown:
+        raise ValueError(f"unknown run_batch options {sorted(unknown)}; expected some of {sorted(_SIMULATE_OPTIONS)}")
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
     motions = list(motions)
@@ -134,7 +152,8 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
     if strain_compatible is not False:
         strain_compatible_options(strain_compatible)  # a bad value fails here, not in every worker
     require_fixed_walls(building if strain_compatible is False else None, "run_batch()")
-    tasks = {(m, s): BatchTask(building, motion, float(factors[m, s]), memory, method, strain_compatible)
+    options = tuple(sorted(simulate_options.items()))
+    tasks = {(m, s): BatchTask(building, motion, float(factors[m, s]), memory, method, strain_compatible, options)
              for m, motion in enumerate(motions) for s in range(factors.shape[1])}
 
     own_executor = executor is None
@@ -170,7 +189,8 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
         return np.array([[peaks[(m, s)][name] for s in range(factors.shape[1])] for m in range(len(motions))])
 
     pga = np.array([[abs(f) * motion.pga for f in row] for row, motion in zip(factors, motions)])
-    return BatchResult(tuple(m.name for m in motions), np.array(factors), pga, *(stack(name) for name in PEAKS))
+    return BatchResult(tuple(m.name for m in motions), np.array(factors), pga, *(stack(name) for name in PEAKS),
+                       *(stack(name).astype(bool) for name in OUTCOMES))
 
 
 def scale_factors_to_pga(motions, targets) -> np.ndarray:
