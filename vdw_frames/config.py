@@ -7,7 +7,15 @@ Keys (units N-mm-s-tonne)::
     story_heights = [4000, 3500, 3500]  # mm, optional
     damping_ratio = 0.05                # optional (default 0.05)
     damping_modes = [1, 2]              # optional (default [1, 2]; [1, 1] for one story)
+    damping_model = "rayleigh"          # optional: "rayleigh" (default) or "modal"
+    gravity_loads = [1.6e7, 1.0e7, 4.4e6]  # N per story, optional: P-Delta (needs story_heights)
     strain_compatible = true            # optional (default false): equivalent-linear analysis, see below
+
+    [hysteresis]                        # optional: yielding stories (default: all linear)
+    model = "bilinear"                  # "bilinear" (Steel01-like) or "bouc-wen"
+    yield_forces = [2e6, 1.6e6, 1e6]    # N, one per story
+    hardening = 0.03                    # post-yield stiffness / initial (optional, default 0)
+    # bouc-wen only, optional: exponent = 1.0, beta = 0.5, gamma = 0.5
 
     [[walls]]                           # any number of wall groups, optional
     stories = "all"                     # or a list of story numbers
@@ -50,8 +58,10 @@ from .frame.building import ShearBuilding
 from .element.damper import FDMKDamper
 from .frame.strain_compatible import StrainCompatibleOptions
 
-_BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "walls",
-                  "strain_compatible"}
+_BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "damping_model",
+                  "gravity_loads", "hysteresis", "walls", "strain_compatible"}
+_HYSTERESIS_KEYS = {"bilinear": {"model", "yield_forces", "hardening"},
+                    "bouc-wen": {"model", "yield_forces", "hardening", "exponent", "beta", "gamma"}}
 _STRAIN_COMPATIBLE_KEYS = {"effective_strain_ratio", "initial_strain", "tolerance", "max_iterations"}
 _WALL_KEYS = {"stories", "per_story", "parameters", "area", "thickness"}
 _PARAMETER_KEYS = {"G1", "G2", "eta1", "eta2", "r"}
@@ -128,7 +138,30 @@ def building_from_dict(data: dict) -> ShearBuilding:
         damping_modes=tuple(data["damping_modes"]) if "damping_modes" in data else None,
         dampers=dampers or None,
         story_heights=data.get("story_heights"),
+        hysteresis=_hysteresis(data.get("hysteresis"), stories),
+        gravity_loads=data.get("gravity_loads"),
+        damping_model=data.get("damping_model", "rayleigh"),
     )
+
+
+def _hysteresis(table, stories):
+    """The story models of a ``[hysteresis]`` table (module docstring), or None."""
+    from .frame.hysteresis import Bilinear, BoucWen
+
+    if table is None:
+        return None
+    if not isinstance(table, dict) or table.get("model") not in _HYSTERESIS_KEYS:
+        raise ValueError(f"hysteresis must be a table with model = 'bilinear' or 'bouc-wen', got {table!r}")
+    keys = _HYSTERESIS_KEYS[table["model"]]
+    unknown = set(table) - keys
+    if unknown:
+        raise ValueError(f"unknown hysteresis keys {sorted(unknown)}; expected some of {sorted(keys)}")
+    forces = table.get("yield_forces")
+    if not isinstance(forces, list) or len(forces) != stories:
+        raise ValueError(f"hysteresis yield_forces must be a list of {stories} forces (N), got {forces!r}")
+    options = {key: table[key] for key in keys - {"model", "yield_forces"} if key in table}
+    model = Bilinear if table["model"] == "bilinear" else BoucWen
+    return [model(force, **options) for force in forces]
 
 
 def simulate_options(data: dict) -> dict:
