@@ -1,17 +1,84 @@
-"""numba's ``njit`` with on-disk caching that degrades to no caching where no cache can be written.
+"""numba's ``njit`` for the package: an on-disk cache that follows the package's sources, and no cache
+where none can be written.
 
-numba refuses to decorate a function with ``cache=True`` when it finds no writable cache location
-(a read-only install with an unwritable HOME, for example): ``import vdw_frames`` would then fail.
-Here such a function is compiled without a cache instead, with one warning for the whole package.
+* numba's cache keys a compiled function on its own source file only: when a function it calls changes
+  in another module (the FDMK kernel, say), a cached caller keeps running the old code.  The package's
+  compiled functions are therefore cached in a sub-folder named after a fingerprint of all the
+  package's sources (``__pycache__/vdw-<fingerprint>``, or the same under ``NUMBA_CACHE_DIR`` or the
+  user-wide cache), so that any change recompiles everything; the folders of older fingerprints are
+  removed when a new one is made.
+* numba refuses to decorate a function with ``cache=True`` when it finds no writable cache location (a
+  read-only install with an unwritable HOME, for example): ``import vdw_frames`` would then fail.
+  Such a function is compiled without a cache instead, with one warning for the whole package.
 """
 
 from __future__ import annotations
 
+import hashlib
+import os
+import shutil
 import warnings
+from pathlib import Path
 
 from numba import njit as _numba_njit
+from numba.core import caching
 
+_PACKAGE = Path(__file__).resolve().parent
 _warned = False
+
+
+def _fingerprint() -> str:
+    digest = hashlib.sha1()
+    for path in sorted(_PACKAGE.rglob("*.py")):
+        digest.update(path.relative_to(_PACKAGE).as_posix().encode())
+        digest.update(path.read_bytes())
+    return "vdw-" + digest.hexdigest()[:16]
+
+
+_TAG = _fingerprint()
+_cleaned: set[str] = set()
+
+
+def _versioned(locator):
+    """A subclass of numba's ``locator`` that serves the package's files from the fingerprint's sub-folder."""
+
+    class Versioned(locator):
+        def __init__(self, py_func, py_file):
+            super().__init__(py_func, py_file)
+            self._cache_path = os.path.join(self._cache_path, _TAG)
+
+        @classmethod
+        def from_function(cls, py_func, py_file):
+            if not Path(py_file).resolve().is_relative_to(_PACKAGE):
+                return None  # other packages keep numba's own locators
+            return super().from_function(py_func, py_file)
+
+        def ensure_cache_path(self):
+            super().ensure_cache_path()
+            parent = os.path.dirname(self._cache_path)
+            if parent not in _cleaned:  # once per folder and process: drop older fingerprints
+                _cleaned.add(parent)
+                for entry in Path(parent).glob("vdw-*"):
+                    if entry.name != _TAG:
+                        shutil.rmtree(entry, ignore_errors=True)
+
+    Versioned.__name__ = f"VdwFrames{locator.__name__.lstrip('_')}"
+    return Versioned
+
+
+def _install_locators() -> None:
+    # numba >= 0.60 names these without the leading underscore; guard both, and skip if neither exists.
+    implementation = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl", None)
+    names = ("UserProvidedCacheLocator", "InTreeCacheLocator", "UserWideCacheLocator")
+    locators = [getattr(caching, name, None) or getattr(caching, "_" + name, None) for name in names]
+    if implementation is None or None in locators or getattr(implementation, "_vdw_frames", False):
+        return
+    implementation._locator_classes = [_versioned(locator) for locator in locators] + list(
+        implementation._locator_classes)
+    implementation._vdw_frames = True
+
+
+_install_locators()
 
 
 def njit(*args, cache: bool = False, **options):

@@ -86,7 +86,7 @@ def _story_state(kinds, parameters, committed, drift, force, tangent, trial_stat
             parameters[s, 5], committed[s, 0], committed[s, 1], drift[s])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _residual(u, u_n, v_n, a_n, ground, dt, masses, damping, tridiagonal, kinds, parameters, committed,
               geometric, wall_tangent, wall_history, drift, story_force, story_tangent, trial_state,
               story_total, damping_force, residual):
@@ -121,7 +121,7 @@ def _residual(u, u_n, v_n, a_n, ground, dt, masses, damping, tridiagonal, kinds,
     return scale
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _solve(stiffness_diagonal, masses, damping, tridiagonal, dt, rhs, work, matrix, out):
     """Solve ((4/dt^2) M + (2/dt) C + B^T diag(k) B) x = rhs; Thomas algorithm when tridiagonal, else LU."""
     n = rhs.shape[0]
@@ -210,8 +210,8 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
     old_drift = np.zeros(n)
     damping_force = np.zeros(n)
     old_damping_force = np.zeros(n)
-    acceleration[0, :] = -ground[0]
-    for i in range(n):
+    for i in range(n):  # (loops, not slice assignments: those compile numba's shape-error machinery)
+        acceleration[0, i] = -ground[0]
         energy[0, 1] += 0.5 * masses[i] * velocity[0, i] ** 2
     total_iterations = 0
     count = 0
@@ -219,8 +219,9 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
         count = step + 1  # committed wall steps so far
         u_n, v_n, a_n = displacement[step], velocity[step], acceleration[step]
         # 1. walls: their history for this step came with the last commit; their trial force is K_t d + H_n
-        wall_tangent[:] = 0.0
-        wall_history[:] = 0.0
+        for s in range(n):
+            wall_tangent[s] = 0.0
+            wall_history[s] = 0.0
         for g in range(groups):
             wall_tangent[group_story[g]] += wall_tangent_group[g]
             wall_history[group_story[g]] += wall_history_group[g]
@@ -231,7 +232,8 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
         for strategy in range(3):
             if linear and strategy > 0:
                 break
-            u[:] = u_n
+            for i in range(n):
+                u[i] = u_n[i]
             limit = max_iterations if strategy < _INITIAL else fallback_iterations
             if linear:
                 limit = 1
