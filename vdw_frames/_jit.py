@@ -3,8 +3,8 @@ where none can be written.
 
 * numba's cache keys a compiled function on its own source file only: when a function it calls changes
   in another module (the FDMK kernel, say), a cached caller keeps running the old code.  The package's
-  compiled functions are therefore cached in a sub-folder named after a fingerprint of all the
-  package's sources (``__pycache__/vdw-<fingerprint>``, or the same under ``NUMBA_CACHE_DIR`` or the
+  compiled functions are therefore cached in a sub-folder named after a fingerprint of the package's
+  modules that hold compiled code (``__pycache__/vdw-<fingerprint>``, or the same under ``NUMBA_CACHE_DIR`` or the
   user-wide cache), so that any change recompiles everything; the folders of older fingerprints are
   removed when a new one is made.
 * numba refuses to decorate a function with ``cache=True`` when it finds no writable cache location (a
@@ -28,10 +28,13 @@ _warned = False
 
 
 def _fingerprint() -> str:
+    """A digest of the package's modules that hold compiled code (the only ones compiled code can call)."""
     digest = hashlib.sha1()
     for path in sorted(_PACKAGE.rglob("*.py")):
-        digest.update(path.relative_to(_PACKAGE).as_posix().encode())
-        digest.update(path.read_bytes())
+        source = path.read_bytes()
+        if b"njit" in source:
+            digest.update(path.relative_to(_PACKAGE).as_posix().encode())
+            digest.update(source)
     return "vdw-" + digest.hexdigest()[:16]
 
 

@@ -107,14 +107,23 @@ def plot_damper_hysteresis(result, story: int, path, title=None) -> Path:
 
 
 def plot_energy(result, path, title=None) -> Path:
-    """Stacked energy histories (kN*m = 1e6 N*mm) with the input energy on top."""
+    """Stacked energy histories (kN*m = 1e6 N*mm) with the input energy on top.
+
+    Walls, inherent damping and story yielding (hysteretic) dissipate; frame strain and kinetic energy
+    are stored.  With P-Delta, gravity also does work (``energy.p_delta`` <= 0): the stack then reaches
+    input - p_delta, drawn dashed.
+    """
     plt = _pyplot()
     energy = result.energy
     figure, axes = plt.subplots(figsize=(8.0, 4.0))
-    parts = [("damper work", energy.damper_work), ("inherent damping", energy.inherent_damping),
-             ("frame strain", energy.frame_strain), ("kinetic", energy.kinetic)]
+    parts = [("walls", energy.damper_work), ("inherent damping", energy.inherent_damping),
+             ("story yielding", energy.hysteretic), ("frame strain", energy.frame_strain),
+             ("kinetic", energy.kinetic)]
+    parts = [(name, values) for name, values in parts if np.abs(values).max() > 0.0]
     axes.stackplot(result.time, *[values / 1e6 for _, values in parts], labels=[name for name, _ in parts], alpha=0.8)
     axes.plot(result.time, energy.input / 1e6, "k", lw=1.0, label="input")
+    if np.abs(energy.p_delta).max() > 0.0:
+        axes.plot(result.time, (energy.input - energy.p_delta) / 1e6, "k--", lw=0.8, label="input + gravity (P-Delta)")
     axes.set_xlabel("time (s)")
     axes.set_ylabel("energy (kN m)")
     axes.grid(True, alpha=0.3)
@@ -125,24 +134,77 @@ def plot_energy(result, path, title=None) -> Path:
 
 
 def plot_ida_curves(results: dict, path, title=None) -> Path:
-    """IDA curves: PGA (g) against the peak interstory drift ratio (%) of each record.
+    """IDA curves: Sa(T1) (g) against the largest story drift ratio (%) of every record, collapses marked x.
 
-    ``results`` maps a label to a :class:`~vdw_frames.frame.batch.BatchResult` with story heights; the
-    first label is drawn dashed, the others solid, one colour per record.
+    ``results`` maps a label to an :class:`~vdw_frames.frame.ida.IDAResult`; the first label is drawn
+    dashed, the others solid, one colour per record.
     """
     from .motion.record import G
 
     plt = _pyplot()
-    figure, axes = plt.subplots(figsize=(6.4, 4.8))
+    figure, axes = plt.subplots(figsize=(7.0, 5.0))
     for (label, result), style in zip(results.items(), ("--", "-", ":", "-.")):
-        drift = 100.0 * result.peak_drift_ratio.max(axis=2)
         for m, name in enumerate(result.motion_names):
-            axes.plot(drift[m], result.pga[m] / G, style, marker="o", ms=3, lw=1.0,
-                      label=f"{name} ({label})", color=f"C{m}")
-    axes.set_xlabel("peak interstory drift ratio (%)")
-    axes.set_ylabel("PGA (g)")
+            sa, drift, collapsed = result.intensities[m] / G, 100.0 * result.peak_drift_ratio[m], result.collapsed[m]
+            standing = ~collapsed
+            axes.plot(drift[standing], sa[standing], style, marker="o", ms=2.5, lw=1.0, color=f"C{m}",
+                      label=f"{name} ({label})")
+            if collapsed.any():
+                last = np.flatnonzero(standing)[-1] if standing.any() else None
+                x0 = drift[last] if last is not None else 0.0
+                y0 = sa[last] if last is not None else 0.0
+                axes.plot([x0, 10.0 * max(1.0, x0 / 10.0)], [y0, sa[collapsed][0]], style, lw=0.8, color=f"C{m}")
+                axes.plot([10.0 * max(1.0, x0 / 10.0)], [sa[collapsed][0]], "x", ms=7, mew=2, color=f"C{m}")
+    axes.set_xlabel("largest story drift ratio (%)")
+    axes.set_ylabel("Sa(T1, 5 %) (g)")
+    axes.set_xlim(0.0, 11.0)
     if title:
         axes.set_title(title)
     axes.grid(True, alpha=0.3)
     axes.legend(fontsize="x-small", ncol=2)
+    return _save(figure, path)
+
+
+def plot_fragility(results: dict, path, title=None) -> Path:
+    """Collapse fragility curves (lognormal fits) with the records' collapse intensities as steps.
+
+    ``results`` maps a label to an :class:`~vdw_frames.frame.ida.IDAResult` with at least two collapses.
+    """
+    from .motion.record import G
+
+    plt = _pyplot()
+    figure, axes = plt.subplots(figsize=(6.4, 4.6))
+    top = max(result.levels[-1] for result in results.values()) / G
+    sa = np.linspace(1e-3, top, 300)
+    for k, (label, result) in enumerate(results.items()):
+        fit = result.fragility()
+        axes.plot(sa, fit.probability(sa * G), color=f"C{k}",
+                  label=f"{label}: median {fit.median / G:.2f} g, beta {fit.dispersion:.2f}")
+        points = np.sort(result.collapse_intensity.compressed()) / G
+        count = len(result.motion_names)
+        axes.plot(points, np.arange(1, points.size + 1) / count, "o", color=f"C{k}", ms=4)
+    axes.set_xlabel("Sa(T1, 5 %) (g)")
+    axes.set_ylabel("probability of collapse")
+    axes.set_ylim(0.0, 1.0)
+    axes.grid(True, alpha=0.3)
+    axes.legend(fontsize="small", loc="lower right")
+    if title:
+        axes.set_title(title)
+    return _save(figure, path)
+
+
+def plot_story_hysteresis(result, story: int, path, title=None) -> Path:
+    """Story-spring force (kN) against drift (mm) of one story (1-based): the frame's own hysteresis."""
+    if isinstance(story, bool) or not isinstance(story, (int, np.integer)) or not 1 <= story <= result.building.stories:
+        raise ValueError(f"story must be a story number in 1 ... {result.building.stories}, got {story!r}")
+    plt = _pyplot()
+    figure, axes = plt.subplots(figsize=(5.6, 4.6))
+    axes.plot(result.drift[:, story - 1], result.story_shear[:, story - 1] / 1e3, lw=0.7)
+    axes.axhline(0.0, color="0.7", lw=0.5)
+    axes.axvline(0.0, color="0.7", lw=0.5)
+    axes.set_xlabel(f"story {story} drift (mm)")
+    axes.set_ylabel(f"story {story} frame shear (kN)")
+    axes.grid(True, alpha=0.3)
+    if title:
+        axes.set_title(title)
     return _save(figure, path)

@@ -1,0 +1,135 @@
+"""Incremental dynamic analysis (Vamvatsikos & Cornell 2002) and a lognormal collapse fragility.
+
+Every record is scaled to a spectral acceleration Sa(T, 5 %) that steps up from ``step`` by ``step``
+until the building collapses or ``cap`` is reached.  Each level is one :func:`simulate` run (through
+:func:`run_batch`, so the records of one level run in parallel on any executor).  A run *collapses*
+when a story's drift ratio exceeds ``collapse_drift_ratio`` (the building's P-Delta instability, or
+simply a drift beyond which the model means nothing) or when the analysis stops converging (numerical
+instability near collapse is collapse, as is usual in IDA practice); the record's collapse intensity is
+the first level that collapses.  Records that reach ``cap`` standing are right-censored.
+
+The collapse fragility P(collapse | Sa) = Phi(ln(Sa / theta) / beta) is fitted to the collapse
+intensities by maximum likelihood (``scipy.stats.lognorm`` on ``scipy.stats.CensoredData``, so that
+records standing at the cap count as "above the cap"): theta is the median collapse intensity and beta
+the record-to-record dispersion (FEMA P-695 fits the same form).
+
+Units: spectral acceleration mm/s^2 (divide by :data:`vdw_frames.G` for g), period s, drift ratio -.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validation import positive
+from ..motion.record import GroundMotion
+from .batch import run_batch
+from .building import ShearBuilding
+
+
+@dataclass(frozen=True)
+class Fragility:
+    """A lognormal fragility: P(collapse | Sa) = Phi(ln(Sa / median) / dispersion); ``median`` mm/s^2."""
+
+    median: float
+    dispersion: float
+
+    def probability(self, intensity):
+        """P(collapse) at spectral accelerations ``intensity`` (mm/s^2)."""
+        from scipy import stats
+
+        return stats.norm.cdf(np.log(np.asarray(intensity, dtype=float) / self.median) / self.dispersion)
+
+
+@dataclass(frozen=True)
+class IDAResult:
+    """The IDA curves of every record.
+
+    ``motion_names``; ``period`` (s) and ``levels`` (mm/s^2, the Sa steps); per record (tuples, one entry a
+    record): ``intensities`` (the levels run, mm/s^2), ``peak_drift_ratio`` (the largest story drift ratio
+    of each run, -), ``collapsed`` (bool per run: collapse or non-convergence); ``collapse_intensity``
+    (mm/s^2, masked where the record stood at the cap); ``strain_warnings``: the strain-range warnings
+    of the runs (text), counted, not silenced.
+    """
+
+    motion_names: tuple
+    period: float
+    levels: np.ndarray
+    intensities: tuple
+    peak_drift_ratio: tuple
+    collapsed: tuple
+    collapse_intensity: np.ma.MaskedArray
+    strain_warnings: tuple
+
+    @property
+    def analyses(self) -> int:
+        return sum(len(runs) for runs in self.intensities)
+
+    def fragility(self) -> Fragility:
+        """Maximum-likelihood lognormal fit of the collapse intensities (censored at the cap)."""
+        from scipy import stats
+
+        collapsed = self.collapse_intensity.compressed()
+        standing = np.array([self.intensities[m][-1] for m in range(len(self.motion_names))
+                             if self.collapse_intensity.mask[m]])
+        if collapsed.size < 2:
+            raise ValueError(f"a fragility needs at least two collapses, got {collapsed.size} "
+                             f"(raise the cap above {self.levels[-1]:g} mm/s^2)")
+        data = stats.CensoredData(uncensored=collapsed, right=standing) if standing.size else collapsed
+        shape, _, scale = stats.lognorm.fit(data, floc=0.0)
+        return Fragility(float(scale), float(shape))
+
+
+def incremental_dynamic_analysis(building: ShearBuilding, motions, step: float, cap: float, period: float | None = None,
+                                 executor=None, **options) -> IDAResult:
+    """IDA of ``building`` under ``motions`` (GroundMotion, mm/s^2): Sa(``period``, 5 %) from ``step`` in steps
+    of ``step`` up to ``cap`` (mm/s^2) or collapse, record by record (module docstring).
+
+    ``period`` (s): the intensity measure's period, default the bare elastic frame's T1.  ``executor``:
+    as for :func:`run_batch` (one pool for the whole analysis is much faster than one per level).
+    ``options`` go to :func:`run_batch` and :func:`simulate` (``collapse_drift_ratio`` (default 0.10, needs
+    story heights), ``method``, ``memory``, ``strain_compatible``, ...).
+    """
+    import warnings
+
+    if not isinstance(building, ShearBuilding):
+        raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
+    motions = list(motions)
+    if not motions or not all(isinstance(m, GroundMotion) for m in motions):
+        raise ValueError("motions must be a non-empty sequence of GroundMotion objects")
+    step, cap = positive("step", step), positive("cap", cap)
+    if cap < step:
+        raise ValueError(f"cap = {cap:g} mm/s^2 must be at least one step ({step:g} mm/s^2)")
+    period = building.periods[0] if period is None else positive("period", period)
+    levels = step * np.arange(1, math.floor(cap / step + 1e-9) + 1)
+    if levels.size > 1000:
+        raise ValueError(f"{levels.size} intensity levels (cap / step) is too many; take a larger step")
+    unit = np.array([m.scale_factor_to_spectral_acceleration(1.0, period) for m in motions])
+    intensities = [[] for _ in motions]
+    drift = [[] for _ in motions]
+    collapsed = [[] for _ in motions]
+    messages = []
+    standing = list(range(len(motions)))
+    for level in levels:
+        if not standing:
+            break
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            batch = run_batch(building, [motions[m] for m in standing], (unit[standing] * level)[:, None],
+                              executor=executor, progress=False, **options)
+        messages.extend(str(w.message) for w in caught)
+        for row, m in enumerate(standing):
+            intensities[m].append(level)
+            ratio = batch.peak_drift_ratio if batch.peak_drift_ratio is not None else batch.peak_drift
+            drift[m].append(float(ratio[row, 0].max()))
+            collapsed[m].append(bool(batch.collapsed[row, 0] or not batch.converged[row, 0]))
+        standing = [m for m in standing if not collapsed[m][-1]]
+    first = [next((sa for sa, c in zip(intensities[m], collapsed[m]) if c), None) for m in range(len(motions))]
+    collapse_intensity = np.ma.masked_array([0.0 if sa is None else sa for sa in first],
+                                            mask=[sa is None for sa in first])
+    return IDAResult(tuple(m.name for m in motions), float(period), levels,
+                     tuple(np.array(x) for x in intensities), tuple(np.array(x) for x in drift),
+                     tuple(np.array(x, dtype=bool) for x in collapsed), collapse_intensity,
+                     tuple(message for message in messages if "outside the range" in message))
