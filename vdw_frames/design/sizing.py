@@ -51,7 +51,7 @@ class SizingCurve:
     where a story has no wall); ``damping_ratios`` (-) and ``periods`` (s) of mode ``mode`` (NaN where
     that mode is no longer oscillatory); ``bare_damping_ratio`` and ``bare_period``: the frame without
     walls; ``best_factor`` and ``best_damping_ratio``: the largest ratio over factors 1e-3 ... 1e3 and
-    the factor that gives it (``best_factor`` = 1e3 means it was still growing there).
+    the factor that gives it (``best_factor`` = 1e3 means it was still growing there), with ``best_period`` (s).
     ``weights``: the distribution over the stories (largest 1); ``wall``: the template.
     """
 
@@ -68,6 +68,7 @@ class SizingCurve:
     bare_period: float
     best_factor: float
     best_damping_ratio: float
+    best_period: float
 
 
 def resized(wall, factor: float):
@@ -157,7 +158,7 @@ def damping_curve(building: ShearBuilding, wall, mode: int = 1, distribution: st
     return SizingCurve(sizer.mode, distribution, sizer.stories, wall, sizer.weights, factors, areas,
                        -poles.real / np.abs(poles), 2.0 * np.pi / np.abs(poles),
                        float(-sizer.bare.real / abs(sizer.bare)), float(2.0 * np.pi / abs(sizer.bare)),
-                       best_factor, best_ratio)
+                       best_factor, best_ratio, float(2.0 * np.pi / abs(sizer.pole(best_factor))))
 
 
 def size_walls(building: ShearBuilding, wall, target_damping: float, mode: int = 1, distribution: str = "uniform",

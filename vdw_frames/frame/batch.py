@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import concurrent.futures
 import csv
+import dataclasses
 import os
 import sys
 import warnings
@@ -73,7 +74,10 @@ class BatchResult:
 
     ``scales`` is (motions, scales): the factor each record was multiplied by.  Units: peak_drift mm,
     peak_drift_ratio - (None without story heights), peak_absolute_acceleration mm/s^2 (per floor),
-    peak_base_shear N, peak_damper_force N (total per story).
+    peak_base_shear N, peak_damper_force N (total per story).  With ``run_batch(...,
+    property_factors=...)`` the peaks are the envelope over the factors: ``property_factors`` lists
+    them and ``governing_factor`` maps each peak's name to an array of its shape holding the factor
+    that gave each value (None otherwise).
     """
 
     motion_names: tuple
@@ -84,6 +88,8 @@ class BatchResult:
     peak_absolute_acceleration: np.ndarray
     peak_base_shear: np.ndarray
     peak_damper_force: np.ndarray
+    property_factors: tuple | None = None
+    governing_factor: dict | None = None
 
     def to_csv(self, path) -> None:
         """One row per (motion, scale, story) with every peak; ``None`` ratios are left empty."""
@@ -107,7 +113,7 @@ class BatchResult:
 
 def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.futures.Executor | None = None,
               progress: bool = True, memory=DEFAULT_MEMORY, method=DEFAULT_METHOD,
-              strain_compatible=False) -> BatchResult:
+              strain_compatible=False, property_factors=None) -> BatchResult:
     """Run ``building`` under every motion at every scale factor.
 
     ``motions``: GroundMotion objects (mm/s^2).  ``scales``: factors (dimensionless) applied as
@@ -120,9 +126,16 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
     ``strain_compatible`` (False, True or a :class:`~vdw_frames.frame.strain_compatible.StrainCompatibleOptions`)
     is passed to every :func:`simulate`: True runs each analysis strain-compatible (buildings with
     strain-dependent walls need it).
+    ``property_factors`` (e.g. (0.8, 1.0, 1.2)): property-modification factors of the walls (ASCE 7-16
+    Sec. 18.2.4.5): the batch runs once per factor with every wall's moduli and viscosities scaled
+    (``wall.scaled(factor)``; supports unchanged) and returns the envelope of the peaks, with the
+    governing factor of each (:class:`BatchResult`).
     """
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
+    if property_factors is not None:
+        return _property_envelope(building, property_factors, executor, lambda variant, pool: run_batch(
+            variant, motions, scales, pool, progress, memory, method, strain_compatible))
     motions = list(motions)
     if not motions or not all(isinstance(m, GroundMotion) for m in motions):
         raise ValueError("motions must be a non-empty sequence of GroundMotion objects")
@@ -171,6 +184,33 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
 
     pga = np.array([[abs(f) * motion.pga for f in row] for row, motion in zip(factors, motions)])
     return BatchResult(tuple(m.name for m in motions), np.array(factors), pga, *(stack(name) for name in PEAKS))
+
+
+def _property_envelope(building: ShearBuilding, property_factors, executor, run) -> BatchResult:
+    """Envelope of ``run(building with walls scaled by f, executor)`` over the factors f (see run_batch)."""
+    factors = finite_array("property_factors", property_factors, ndim=None).ravel()
+    if factors.size == 0 or (factors <= 0).any():
+        raise ValueError(f"property_factors must be one or more factors > 0, got {property_factors!r}")
+    variants = [building.with_dampers({story: [wall.scaled(f) for wall in walls]
+                                       for story, walls in building.dampers.items()}) for f in factors]
+    own_executor = executor is None
+    if own_executor:
+        executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
+    try:
+        results = [run(variant, executor) for variant in variants]
+    finally:
+        if own_executor:
+            executor.shutdown(cancel_futures=True)
+    envelope, governing = {}, {}
+    for name in PEAKS:
+        if getattr(results[0], name) is None:
+            envelope[name] = None
+            continue
+        stacked = np.stack([getattr(result, name) for result in results])
+        envelope[name] = stacked.max(axis=0)
+        governing[name] = factors[np.argmax(stacked, axis=0)]
+    return dataclasses.replace(results[0], **envelope, property_factors=tuple(factors.tolist()),
+                               governing_factor=governing)
 
 
 def scale_factors_to_pga(motions, targets) -> np.ndarray:
