@@ -23,9 +23,11 @@ Method
    upper half plane (Im k(s) > 0 there for a passive wall, so a support's K_wall + k_s never vanishes),
    so the winding number of det T along the boundary of the sector
    Omega = {rho0 < |s| < rho1, pi/2 - 0.1 < arg s < pi - 0.05} is the number of its roots in Omega.
-   The phase of det T (``slogdet``) is tracked along the boundary, bisecting every step where it turns
-   by more than pi/4 or |det T| changes by more than a factor e^(1/2), so the count is an exact integer,
-   read without a quadrature error.  When it exceeds the roots found, the sector is split in four,
+   The phase of det T (``slogdet``) is tracked along the boundary, from steps of a quarter of the
+   distance to the real or imaginary axis beside each edge, bisecting every step where it turns by
+   more than pi/4 or |det T| changes by more than a factor e^(1/2), then halving every step once more
+   to check that the total does not change; the count is an exact integer, read without a quadrature
+   error.  When it exceeds the roots found, the sector is split in four,
    each part counted, and the search recurses into the parts with roots missing, trying Newton from
    each part's centre, until every counted root is found (e.g. a heavily damped root that a relaxation
    root of the Maxwell branches became for r < 1, which no undamped mode leads to).  A count that still
@@ -82,7 +84,8 @@ from .._validation import whole_number
 from ..frame.building import ShearBuilding, require_fixed_walls, story_matrix
 
 # The sector Omega of the argument principle (module docstring).
-_EDGE_RIGHT = np.pi / 2 - 0.1
+_EDGE_RIGHT_GAP = 0.1
+_EDGE_RIGHT = np.pi / 2 - _EDGE_RIGHT_GAP
 _EDGE_LEFT = np.pi - 0.05
 _CAUCHY_POINTS = 8  # points on the circle for k'(s)
 _CAUCHY_RADIUS = 1e-3  # relative to |s|
@@ -324,34 +327,44 @@ def _root_count(system: _System, box) -> int:
     argument principle with the phase tracked along its boundary (counter-clockwise)."""
     inner, outer, right, left = box
     ratio = np.log(outer / inner)
+    # Along a ray, singularities beside it (the real axis beside the edge at pi - 0.05, the imaginary axis
+    # beside the one at pi/2 - 0.1) lie at distances ~ gap x |s|: start with steps of a quarter of that.
+    gap = min(left - right, _EDGE_RIGHT_GAP, np.pi - _EDGE_LEFT)
+    ray_points = int(np.ceil(4.0 * ratio / gap)) + 1
     pieces = (
-        lambda t: inner * np.exp(ratio * t) * np.exp(1j * right),
-        lambda t: outer * np.exp(1j * (right + (left - right) * t)),
-        lambda t: inner * np.exp(ratio * (1.0 - t)) * np.exp(1j * left),
-        lambda t: inner * np.exp(1j * (left - (left - right) * t)),
+        (lambda t: inner * np.exp(ratio * t) * np.exp(1j * right), ray_points),
+        (lambda t: outer * np.exp(1j * (right + (left - right) * t)), 257),
+        (lambda t: inner * np.exp(ratio * (1.0 - t)) * np.exp(1j * left), ray_points),
+        (lambda t: inner * np.exp(1j * (left - (left - right) * t)), 257),
     )
-    winding = sum(_phase_change(system, piece) for piece in pieces) / (2.0 * np.pi)
+    winding = sum(_phase_change(system, piece, points) for piece, points in pieces) / (2.0 * np.pi)
     count = round(winding)
     if abs(winding - count) > 1e-6:
         raise RuntimeError(f"modal analysis: the argument principle gave a non-integer winding {winding!r}")
     return count
 
 
-def _phase_change(system: _System, path, max_points: int = 200_000) -> float:
-    """Total change of arg det T(path(t)) for t from 0 to 1.
+def _phase_change(system: _System, path, points: int, max_points: int = 400_000) -> float:
+    """Total change of arg det T(path(t)) for t from 0 to 1, from ``points`` samples on.
 
     Steps are bisected until arg det T turns by less than pi/4 and log |det T| changes by less than 1/2
-    across each: a cluster of zeros and poles of det T near the path (e.g. the Maxwell branches'
-    relaxation poles and the overdamped roots beside them on the negative real axis, for r = 1) can
-    turn the phase by 2 pi within one coarse step and go unseen by the phase alone, never by both.
+    across each; then every step is halved once more and the total must not change (else the bisection
+    goes on): a cluster of zeros and poles of det T beside the path (e.g. the Maxwell branches'
+    relaxation poles and the overdamped roots next to them on the negative real axis, for r = 1) can turn
+    the phase by 2 pi within one step while both ends agree.
     """
-    t = np.linspace(0.0, 1.0, 257)
+    t = np.linspace(0.0, 1.0, points)
     phase, size = _phase(system, path(t))
+    previous = None
     while True:
         step = np.angle(np.exp(1j * np.diff(phase)))
         coarse = np.flatnonzero((np.abs(step) > np.pi / 4) | (np.abs(np.diff(size)) > 0.5))
         if coarse.size == 0:
-            return float(step.sum())
+            total = float(step.sum())
+            if previous is not None and abs(total - previous) < 1e-6:
+                return total
+            previous = total
+            coarse = np.arange(t.size - 1)  # the check: halve every step
         if t.size + coarse.size > max_points or np.min(np.diff(t)[coarse]) < 1e-14:
             raise RuntimeError("modal analysis: a pole lies on the search contour; please report this building")
         middle = 0.5 * (t[coarse] + t[coarse + 1])
