@@ -320,3 +320,16 @@ def test_an_overdamped_building_has_no_modes():
     assert result.poles.size == 0 and result.pole_count == 0
     with pytest.raises(ValueError, match="no oscillatory mode"):
         modal_analysis(building, 1)
+
+
+def test_huge_maxwell_walls_beside_the_search_contour():
+    # The recommended 225 % set is classical (r = 1): at 560 x the example's area six Maxwell poles and
+    # the overdamped roots beside them sit next to the contour's edge at pi - 0.05, where a full turn of
+    # the phase once hid between two samples.  Reference: the state-space eigenvalues.
+    wall = fitted(225, area=0.5e6 * 562.34)
+    building = ShearBuilding([600.0] * 9 + [450.0], [300e3 - 15e3 * k for k in range(10)],
+                             dampers={story: wall for story in range(1, 7)})
+    expected, _ = state_space_eigenvalues(building)
+    result = modal_analysis(building)
+    assert result.pole_count == expected.size == 5
+    np.testing.assert_allclose(result.poles, expected, rtol=1e-8)
