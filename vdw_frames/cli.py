@@ -100,15 +100,16 @@ def _design(args) -> int:
     from .design import damping_curve, plot_damping_curve, resized, size_walls
     from .design.sizing import _story_text
 
+    if args.modes < 1:
+        raise ValueError(f"--modes must be >= 1, got {args.modes}")
     building = load_building(args.building)
-    rows = min(building.stories, args.modes)
-    modes = building.modal_analysis(list(range(1, min(rows, building.stories) + 1)))
+    modes = building.modal_analysis()
     walls = building.damper_list
     print(f"{args.building}: {building.stories} stories, {len(walls)} walls, inherent damping "
           f"{100 * building.damping_ratio:g} % ({building.damping_model}); the linear building, complex modes")
     print(f"{'mode':>4s} {'T bare s':>9s} {'xi bare %':>9s} {'T walls s':>9s} {'xi %':>7s} {'energy %':>8s} "
           f"{'added %':>8s} {'walls %':>8s}")
-    for k in range(modes.modes.size):
+    for k in range(min(args.modes, modes.modes.size)):
         print(f"{modes.modes[k]:4d} {modes.bare_periods[k]:9.3f} {100 * modes.bare_damping_ratios[k]:9.2f} "
               f"{modes.periods[k]:9.3f} {100 * modes.damping_ratios[k]:7.2f} {100 * modes.energy_damping_ratios[k]:8.2f} "
               f"{100 * modes.added_damping[k]:8.2f} {100 * modes.energy_added_damping[k]:8.2f}")

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
-
 from ..plotting import _pyplot, _save
 from .sizing import SizingCurve, _story_text
 

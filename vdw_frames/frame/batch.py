@@ -134,6 +134,7 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
     if property_factors is not None:
+        motions = list(motions)  # iterated once per factor
         return _property_envelope(building, property_factors, executor, lambda variant, pool: run_batch(
             variant, motions, scales, pool, progress, memory, method, strain_compatible))
     motions = list(motions)
