@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import concurrent.futures
 import csv
+import dataclasses
 import os
 import sys
 import warnings
@@ -83,7 +84,10 @@ class BatchResult:
     peak_base_shear N, peak_damper_force N (total per story), residual_drift mm (the drift at the last
     step, per story).  ``collapsed`` and ``converged`` (motions, scales) are each analysis's outcome
     (:class:`~vdw_frames.SimulationResult`): a collapsed or non-converged run is recorded, its peaks
-    being those reached before it stopped.
+    being those reached before it stopped.  With ``run_batch(..., property_factors=...)`` the peaks are
+    the envelope over the factors (residual drifts: the largest in magnitude; collapsed: any;
+    converged: all): ``property_factors`` lists them and ``governing_factor`` maps each peak's name to
+    an array of its shape holding the factor that gave each value (None otherwise).
     """
 
     motion_names: tuple
@@ -97,6 +101,8 @@ class BatchResult:
     residual_drift: np.ndarray
     collapsed: np.ndarray
     converged: np.ndarray
+    property_factors: tuple | None = None
+    governing_factor: dict | None = None
 
     def to_csv(self, path) -> None:
         """One row per (motion, scale, story) with every peak and the outcome; ``None`` ratios are left empty."""
@@ -120,7 +126,7 @@ class BatchResult:
 
 def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.futures.Executor | None = None,
               progress: bool = True, memory=DEFAULT_MEMORY, method=DEFAULT_METHOD,
-              strain_compatible=False, **simulate_options) -> BatchResult:
+              strain_compatible=False, property_factors=None, **simulate_options) -> BatchResult:
     """Run ``building`` under every motion at every scale factor.
 
     ``motions``: GroundMotion objects (mm/s^2).  ``scales``: factors (dimensionless) applied as
@@ -135,12 +141,20 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
     strain-dependent walls need it).  ``simulate_options`` (``collapse_drift_ratio``,
     ``free_vibration``, ``newton``) go to every :func:`simulate` too.  Collapse and non-convergence
     are outcomes, recorded in ``collapsed`` and ``converged``, not failures.
+    ``property_factors`` (e.g. (0.8, 1.0, 1.2)): property-modification factors of the walls (ASCE 7-16
+    Sec. 18.2.4.5): the batch runs once per factor with every wall's moduli and viscosities scaled
+    (``wall.scaled(factor)``; supports unchanged) and returns the envelope of the peaks, with the
+    governing factor of each (:class:`BatchResult`).
     """
     unknown = set(simulate_options) - _SIMULATE_OPTIONS
     if unknown:
         raise ValueError(f"unknown run_batch options {sorted(unknown)}; expected some of {sorted(_SIMULATE_OPTIONS)}")
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
+    if property_factors is not None:
+        motions = list(motions)  # iterated once per factor
+        return _property_envelope(building, property_factors, executor, lambda variant, pool: run_batch(
+            variant, motions, scales, pool, progress, memory, method, strain_compatible, **simulate_options))
     motions = list(motions)
     if not motions or not all(isinstance(m, GroundMotion) for m in motions):
         raise ValueError("motions must be a non-empty sequence of GroundMotion objects")
@@ -191,6 +205,36 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
     pga = np.array([[abs(f) * motion.pga for f in row] for row, motion in zip(factors, motions)])
     return BatchResult(tuple(m.name for m in motions), np.array(factors), pga, *(stack(name) for name in PEAKS),
                        *(stack(name).astype(bool) for name in OUTCOMES))
+
+
+def _property_envelope(building: ShearBuilding, property_factors, executor, run) -> BatchResult:
+    """Envelope of ``run(building with walls scaled by f, executor)`` over the factors f (see run_batch)."""
+    factors = finite_array("property_factors", property_factors, ndim=None).ravel()
+    if factors.size == 0 or (factors <= 0).any():
+        raise ValueError(f"property_factors must be one or more factors > 0, got {property_factors!r}")
+    variants = [building.with_dampers({story: [wall.scaled(f) for wall in walls]
+                                       for story, walls in building.dampers.items()}) for f in factors]
+    own_executor = executor is None
+    if own_executor:
+        executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
+    try:
+        results = [run(variant, executor) for variant in variants]
+    finally:
+        if own_executor:
+            executor.shutdown(cancel_futures=True)
+    envelope, governing = {}, {}
+    for name in PEAKS:
+        if getattr(results[0], name) is None:
+            envelope[name] = None
+            continue
+        stacked = np.stack([getattr(result, name) for result in results])
+        worst = np.argmax(np.abs(stacked), axis=0)  # peaks are >= 0; residual drifts keep their sign
+        envelope[name] = np.take_along_axis(stacked, worst[None], axis=0)[0]
+        governing[name] = factors[worst]
+    envelope["collapsed"] = np.any([result.collapsed for result in results], axis=0)
+    envelope["converged"] = np.all([result.converged for result in results], axis=0)
+    return dataclasses.replace(results[0], **envelope, property_factors=tuple(factors.tolist()),
+                               governing_factor=governing)
 
 
 def scale_factors_to_pga(motions, targets) -> np.ndarray:
