@@ -49,8 +49,8 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--out", type=Path, default=Path("out"), help="output folder (default ./out)")
     parser.add_argument("--records", type=Path, help="folder of AT2 records (default ../shared/ground_motions)")
-    parser.add_argument("--step", type=float, default=0.05, help="Sa(T1) step, g (default 0.05)")
-    parser.add_argument("--cap", type=float, default=2.0, help="highest Sa(T1), g (default 2.0)")
+    parser.add_argument("--step", type=float, default=0.1, help="Sa(T1) step, g (default 0.1)")
+    parser.add_argument("--cap", type=float, default=4.0, help="highest Sa(T1), g (default 4.0)")
     args = parser.parse_args(argv)
     try:
         return run(args)
