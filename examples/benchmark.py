@@ -18,10 +18,14 @@ repeats for runs under a second; numba compilation is excluded except in (d)):
 (d) numba compilation: ``import vdw_frames`` + a first ``simulate`` in a fresh subprocess with an empty
     cache (``NUMBA_CACHE_DIR`` a new temporary folder), then again in a fresh subprocess with that cache
     warm.
+(e) the OpenSees bridge (``vdw_frames.opensees``) on the same frame and record: its overhead per wall per
+    step on top of OpenSees's own step (target <= 2 us), the bridged fractional frame against OpenSees
+    running the frame with its own classical Maxwell dampers (target: no slower), and the Prony
+    material's cost per step against the bridge.  Model building is not timed; best of the repeats.
 
-``--quick``: 2 000 and 20 000 steps only (no 200 000-step runs), single repeats.  Without the
+``--quick``: 2 000 and 20 000 steps only (no 200 000-step runs), single repeats; (e) on 4 000 steps.  Without the
 ../shared/ground_motions folder (a fresh clone) a synthetic 80 s record at 0.004 s stands in for
-HWA002-N; without OpenSeesPy part (c) prints the vdw_frames times only.  Units: N, mm, s, tonne.
+HWA002-N; without OpenSeesPy part (c) prints the vdw_frames times only and part (e) is skipped.  Units: N, mm, s, tonne.
 """
 
 from __future__ import annotations
@@ -277,6 +281,84 @@ def part_d():
             print(f"    {label:<30} {imported:>10.3f}  {first:>16.3f}  {total:>17.3f}")
 
 
+def part_bridge(building, motion, source, quick, repeats):
+    """(e): the OpenSees bridge's three numbers (see the module docstring)."""
+    sys.path.insert(0, str(ROOT / "tests"))
+    try:
+        import opensees_frame
+
+        ops = opensees_frame.opensees()
+    except ImportError as error:
+        print(f"\n(e) OpenSees bridge: skipped, OpenSeesPy not available ({error})")
+        return
+    if quick:
+        motion = GroundMotion(motion.acceleration[:4000], motion.dt, motion.name)
+    steps, dt = motion.acceleration.size - 1, motion.dt
+    walls = len(building.damper_list)
+    print(f"\n(e) OpenSees bridge: 10-story frame, {walls} fractional walls (r = {WALL.r:g}), {source}: {steps} steps, "
+          f"dt = {dt:g} s; Newton, NormDispIncr 1e-9 mm")
+
+    def best(build, run):
+        """Best time (s) of ``run(model)`` over the repeats, each on a freshly built model."""
+        seconds = math.inf
+        for _ in range(repeats):
+            model = build()
+            opensees_frame._ground(motion.acceleration, dt, model[0])
+            started = time.perf_counter()
+            status = run(model)
+            seconds = min(seconds, time.perf_counter() - started)
+            result = model[1]
+            ops.wipe()
+            if status not in (0, None):
+                raise RuntimeError("an OpenSees analysis of the benchmark failed")
+        return seconds, result
+
+    def bridged():
+        return opensees_frame.build_bridged(building, dt, tolerance=1e-9)
+
+    def own_steps(model):  # the same elements, their history force never updated: OpenSees's own step
+        for _ in range(steps):
+            ops.analyze(1, dt)
+
+    warm = GroundMotion(motion.acceleration[:50], dt)  # compile, build the fast memory's modes
+    opensees_frame.run_bridged(building, warm.acceleration, dt)
+    bridge_time, bridge = best(bridged, lambda model: model[1].analyze(steps))
+    loop_time, _ = best(bridged, own_steps)
+    call_time, _ = best(bridged, lambda model: ops.analyze(steps, dt))
+    reference = simulate(building, motion, memory=FAST)
+    peak_dev, _ = deviations(bridge.deformation[:, ::2], reference.drift)  # wall 2 (k - 1): story k's first
+    overhead = (bridge_time - loop_time) / (steps * walls)
+    print(f"    {'bridge: bridge.analyze(N)':<62} {bridge_time:8.3f} s  {1e6 * bridge_time / steps:7.1f} us/step")
+    print(f"    {'same OpenSees model, analyze(1, dt) N times, no wall update':<62} {loop_time:8.3f} s  "
+          f"{1e6 * loop_time / steps:7.1f} us/step")
+    print(f"    {'same OpenSees model, one analyze(N, dt)':<62} {call_time:8.3f} s  {1e6 * call_time / steps:7.1f} us/step")
+    verdict = "meets" if overhead <= 2e-6 else "misses"
+    print(f"    1. bridge overhead per wall per step: {1e6 * overhead:.2f} us (target <= 2 us: {verdict}); "
+          f"= {overhead * walls * steps / loop_time:.2f} x OpenSees's own step time for all {walls} walls "
+          f"({1e6 * (bridge_time - call_time) / (steps * walls):.2f} us against the one-call run)")
+    print(f"       (bridge vs vdw_frames.simulate on the same frame: peak drifts within {peak_dev:.1e})")
+
+    classical = ShearBuilding(building.masses, building.stiffnesses, building.damping_ratio, building.damping_modes,
+                              {story: [dataclasses.replace(w, r=1.0) for w in ws] for story, ws in building.dampers.items()})
+    classical_time = math.inf
+    for _ in range(repeats):
+        started = time.perf_counter()
+        opensees_frame.run_recorded(classical, motion.acceleration, dt)
+        classical_time = min(classical_time, time.perf_counter() - started)
+    ratio = bridge_time / classical_time
+    verdict = "meets" if ratio <= 1.0 else "misses"
+    print(f"    {'OpenSees, classical r = 1 walls (Elastic + Maxwell), one call':<62} {classical_time:8.3f} s  "
+          f"{1e6 * classical_time / steps:7.1f} us/step")
+    print(f"    2. bridged fractional frame / OpenSees classical Maxwell frame = {ratio:.2f} (target <= 1: {verdict})")
+
+    prony_time, series = best(lambda: opensees_frame.build_prony(building, 0.1, 10.0, tolerance=1e-9),
+                              lambda model: ops.analyze(steps, dt))
+    fit = next(iter(series.values()))
+    print(f"    {f'OpenSees, Prony material ({len(fit)} branches, 0.1-10 Hz, 1 %), one call':<62} {prony_time:8.3f} s  "
+          f"{1e6 * prony_time / steps:7.1f} us/step")
+    print(f"    3. Prony material / bridge, time per step = {prony_time / bridge_time:.2f}")
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="2 000 and 20 000 steps only, single repeats")
@@ -301,6 +383,7 @@ def main(argv=None) -> int:
     part_b(timings)
     part_c(building, motion, source, fast, timings, args.quick, repeats)
     part_d()
+    part_bridge(building, motion, source, args.quick, repeats)
     return 0
 
 

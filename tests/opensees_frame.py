@@ -187,8 +187,9 @@ def build_bare(building, tolerance=1e-12, max_iterations=50, algorithm="Newton")
     for a linear story, ``Steel01`` (F_y, E0 = k0, b = hardening; no isotropic hardening) for a
     :class:`vdw_frames.Bilinear` one, which is the same law; Rayleigh a1 times the springs' *initial*
     stiffness (``-rayleigh 0 0 a1 0``: betaKinit), as :func:`vdw_frames.simulate`.  P-Delta (-P/h) is an
-    ``Elastic`` spring of that negative stiffness per story.  Returns the floor node tags (story k between
-    nodes k-1 and k; node 0 the ground).
+    ``Elastic`` spring of that negative stiffness per story.  ``algorithm``: a name or a tuple of
+    ``ops.algorithm`` arguments.  Returns the floor node tags (story k between nodes k-1 and k; node 0 the
+    ground).
     """
     from vdw_frames import Bilinear
 
@@ -222,9 +223,22 @@ def build_bare(building, tolerance=1e-12, max_iterations=50, algorithm="Newton")
     ops.numberer("Plain")
     ops.system("BandGeneral")
     ops.test("NormDispIncr", tolerance, max_iterations)
-    ops.algorithm(algorithm)
+    ops.algorithm(*((algorithm,) if isinstance(algorithm, str) else algorithm))
     ops.integrator("Newmark", 0.5, 0.25)
     return floors
+
+
+def build_bridged(building, dt, bridge_options=None, **options):
+    """The bare frame (:func:`build_bare`, ``options``) with the building's walls through a
+    :class:`vdw_frames.opensees.WallBridge` (``bridge_options``: its keyword arguments) on steps of ``dt``
+    s: (floor node tags, the bridge)."""
+    from vdw_frames.opensees import WallBridge
+
+    floors = build_bare(building, **options)
+    bridge = WallBridge(opensees(), dt, **(bridge_options or {}))
+    for story, wall in building.damper_list:
+        bridge.add_wall(story - 1, story, 1, wall)
+    return floors, bridge
 
 
 def run_bridged(building, acceleration, dt, method="damped", memory="fast", step_by_step=False, **options):
@@ -232,13 +246,8 @@ def run_bridged(building, acceleration, dt, method="damped", memory="fast", step
     (mm, steps x floors), the bridge).  ``options`` go to :func:`build_bare`; ``step_by_step`` reads the
     floors after every ``bridge.analyze(1)`` (otherwise they are the cumulative sum of the walls' drifts,
     which needs a wall on every story)."""
-    from vdw_frames.opensees import WallBridge
-
     ops = opensees()
-    floors = build_bare(building, **options)
-    bridge = WallBridge(ops, dt, method=method, memory=memory)
-    for story, wall in building.damper_list:
-        bridge.add_wall(story - 1, story, 1, wall)
+    floors, bridge = build_bridged(building, dt, {"method": method, "memory": memory}, **options)
     _ground(acceleration, dt, floors)
     steps = len(acceleration)
     if step_by_step:
@@ -255,10 +264,10 @@ def run_bridged(building, acceleration, dt, method="damped", memory="fast", step
     return displacement, bridge
 
 
-def run_prony(building, acceleration, dt, f_min, f_max, tolerance=0.01, **options):
-    """``building`` with every wall as its Prony series, a native ``Parallel`` of ``Elastic`` and
-    ``Maxwell`` materials (:func:`vdw_frames.opensees.prony_material`): (floor displacements (mm, steps x
-    floors), the series).  Stepped one ``analyze(1, dt)`` at a time."""
+def build_prony(building, f_min, f_max, prony_tolerance=0.01, **options):
+    """The bare frame (:func:`build_bare`, ``options``) with every wall as its Prony series over
+    [f_min, f_max] Hz (within ``prony_tolerance``), a native ``Parallel`` of ``Elastic`` and ``Maxwell`` materials
+    (:func:`vdw_frames.opensees.prony_material`) in a ``zeroLength`` element: (floor node tags, {wall: series})."""
     from vdw_frames.opensees import prony_material
 
     ops = opensees()
@@ -267,10 +276,18 @@ def run_prony(building, acceleration, dt, f_min, f_max, tolerance=0.01, **option
     tag = 1000
     for index, (story, wall) in enumerate(building.damper_list):
         if wall not in series:
-            series[wall] = wall.prony(f_min, f_max, tolerance)
+            series[wall] = wall.prony(f_min, f_max, prony_tolerance)
         prony_material(ops, tag, series[wall])
         ops.element("zeroLength", 1000 + index, story - 1, story, "-mat", tag, "-dir", 1)
         tag += len(series[wall]) + 2
+    return floors, series
+
+
+def run_prony(building, acceleration, dt, f_min, f_max, prony_tolerance=0.01, **options):
+    """``building`` with every wall as its Prony series (:func:`build_prony`): (floor displacements (mm,
+    steps x floors), {wall: series}).  Stepped one ``analyze(1, dt)`` at a time."""
+    ops = opensees()
+    floors, series = build_prony(building, f_min, f_max, prony_tolerance, **options)
     _ground(acceleration, dt, floors)
     steps = len(acceleration)
     displacement = np.zeros((steps, len(floors)))

@@ -83,11 +83,7 @@ def test_bridged_shear_building_equals_simulate(ops, record, bridge_memory, simu
 
 def test_wall_elements_carry_the_full_wall_force(ops, record):
     # The element's own force (K_t d + sig0) is the wall's: recorders on bridge.element_tags are right.
-    building = ten_story()
-    floors = opensees_frame.build_bare(building)
-    bridge = WallBridge(ops, record.dt)
-    for story, wall in building.damper_list:
-        bridge.add_wall(story - 1, story, 1, wall)
+    floors, bridge = opensees_frame.build_bridged(ten_story(), record.dt)
     opensees_frame._ground(record.acceleration, record.dt, floors)
     element_force = []
     for _ in range(300):
@@ -256,12 +252,9 @@ def test_a_failed_step_is_retried_with_the_fallback_and_the_run_continues(ops, r
     steps = record.acceleration.size - 1
     outcomes = {}
     for fallback in ((), ("KrylovNewton", "Newton")):
-        floors = opensees_frame.build_bare(building, tolerance=1e-12, max_iterations=6)
-        ops.algorithm("ModifiedNewton", "-initial")
         options = {"fallback_algorithms": fallback, "algorithm": ("ModifiedNewton", "-initial")} if fallback else {}
-        bridge = WallBridge(ops, record.dt, **options)
-        for story, wall in building.damper_list:
-            bridge.add_wall(story - 1, story, 1, wall)
+        floors, bridge = opensees_frame.build_bridged(building, record.dt, options, max_iterations=6,
+                                                      algorithm=("ModifiedNewton", "-initial"))
         opensees_frame._ground(record.acceleration, record.dt, floors)
         status = bridge.analyze(steps)
         outcomes[fallback] = (status, bridge, ops.getTime())
@@ -282,11 +275,8 @@ def test_the_run_can_continue_after_a_failure(ops, record):
     # A failed analyze() leaves bridge and domain at the last converged step; loosening the test lets the
     # same bridge carry on, and the result is the uninterrupted one.
     building = ten_story([Bilinear(3.0e6 * (1.0 - 0.06 * s), 0.05) for s in range(10)])
-    floors = opensees_frame.build_bare(building, tolerance=1e-12, max_iterations=6)
-    ops.algorithm("ModifiedNewton", "-initial")
-    bridge = WallBridge(ops, record.dt)
-    for story, wall in building.damper_list:
-        bridge.add_wall(story - 1, story, 1, wall)
+    floors, bridge = opensees_frame.build_bridged(building, record.dt, max_iterations=6,
+                                                  algorithm=("ModifiedNewton", "-initial"))
     opensees_frame._ground(record.acceleration, record.dt, floors)
     steps = record.acceleration.size - 1
     assert bridge.analyze(steps) < 0
@@ -307,11 +297,7 @@ def test_the_run_can_continue_after_a_failure(ops, record):
     (("LoadControl", 0.1), "not by dt"),  # a static analysis
 ])
 def test_other_integrators_are_refused(ops, record, integrator, message):
-    building = ten_story()
-    floors = opensees_frame.build_bare(building)
-    bridge = WallBridge(ops, record.dt)
-    for story, wall in building.damper_list:
-        bridge.add_wall(story - 1, story, 1, wall)
+    floors, bridge = opensees_frame.build_bridged(ten_story(), record.dt)
     if integrator[0] == "LoadControl":
         ops.timeSeries("Linear", 1)
         ops.pattern("Plain", 1, 1)
@@ -333,11 +319,7 @@ def test_other_integrators_are_refused(ops, record, integrator, message):
 def test_newmark_average_acceleration_alone_is_accepted(ops, record):
     # The same set-up with Newmark(1/2, 1/4), and with HHT(alpha = 1), which is that integrator.
     for integrator in (("Newmark", 0.5, 0.25), ("HHT", 1.0)):
-        building = ten_story()
-        floors = opensees_frame.build_bare(building)
-        bridge = WallBridge(ops, record.dt)
-        for story, wall in building.damper_list:
-            bridge.add_wall(story - 1, story, 1, wall)
+        floors, bridge = opensees_frame.build_bridged(ten_story(), record.dt)
         opensees_frame._ground(record.acceleration, record.dt, floors)
         ops.integrator(*integrator)
         assert bridge.analyze(50) == 0 and bridge._identified

@@ -2,10 +2,11 @@
 
 Sub-packages: :mod:`~vdw_frames.element` (the FDMK wall model and its time stepping),
 :mod:`~vdw_frames.frame` (shear buildings, integration, batches), :mod:`~vdw_frames.motion` (ground
-motions) and :mod:`~vdw_frames.paper` (the paper's data, identification, report); beside them
+motions), :mod:`~vdw_frames.paper` (the paper's data, identification, report) and
+:mod:`~vdw_frames.interop` (FDMK walls in OpenSees models: :mod:`vdw_frames.opensees`); beside them
 :mod:`~vdw_frames.config` (building files), :mod:`~vdw_frames.plotting` and :mod:`~vdw_frames.cli`.
 The public names are re-exported here; ``paper`` and ``identify`` load on first use (they pull in
-scipy.optimize, which ``import vdw_frames`` need not pay for).
+scipy.optimize, which ``import vdw_frames`` need not pay for), as does ``opensees`` (OpenSeesPy is optional).
 
 Units throughout: N, mm, s, tonne; moduli MPa (N/mm^2), viscosities MPa*s^r, stiffness N/mm,
 energy N*mm, frequency Hz.
@@ -22,6 +23,7 @@ from .element import (
     FastMemory,
     FDMKDamper,
     GrunwaldLetnikov,
+    PronySeries,
     SineTestResult,
     StrainDependentDamper,
     SupportedDamper,
@@ -59,6 +61,7 @@ __all__ = [
     "GroundMotion",
     "GrunwaldLetnikov",
     "NewtonRaphson",
+    "PronySeries",
     "ShearBuilding",
     "SimulationResult",
     "SineTestResult",
@@ -71,6 +74,7 @@ __all__ = [
     "frame",
     "identify",
     "motion",
+    "opensees",
     "paper",
     "plot_loops",
     "read_at2",
@@ -82,7 +86,8 @@ __all__ = [
     "write_at2",
 ]
 
-_LAZY = {"paper": ("vdw_frames.paper", None), "identify": ("vdw_frames.paper", "identify")}
+_LAZY = {"paper": ("vdw_frames.paper", None), "identify": ("vdw_frames.paper", "identify"),
+         "opensees": ("vdw_frames.opensees", None)}
 
 
 def __getattr__(name):
