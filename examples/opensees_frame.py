@@ -103,7 +103,8 @@ def build_frame(ops) -> np.ndarray:
     beams = []
     for floor in range(1, STORIES + 1):
         for column in range(1, BAYS + 2):
-            ops.element("forceBeamColumn", column_tag(floor, column), joint(floor - 1, column), joint(floor, column), 1, 1)
+            ops.element("forceBeamColumn", column_tag(floor, column), joint(floor - 1, column), joint(floor, column),
+                        1, 1)
         for bay in range(1, BAYS + 1):
             ends = [joint(floor, bay), joint(floor, bay + 1)]
             if bay == WALL_BAY:
@@ -275,8 +276,8 @@ def plot(results, out: Path) -> list[Path]:
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--record", type=Path, help=f"PEER AT2 record (default: ../shared/ground_motions/{DEFAULT_RECORD}, "
-                                                    "else the shipped synthetic record)")
+    parser.add_argument("--record", type=Path, help=f"PEER AT2 record (default: ../shared/ground_motions/"
+                                                    f"{DEFAULT_RECORD}, else the shipped synthetic record)")
     parser.add_argument("--scale", type=float, help="scale the record to this PGA, in g")
     parser.add_argument("--duration", type=float, help="use only the first DURATION seconds of the record")
     parser.add_argument("--out", type=Path, default=Path("out"), help="folder for the figures (default ./out)")
@@ -324,10 +325,11 @@ def main(argv=None) -> int:
     for story in range(STORIES):
         ratios = [100 * np.abs(results[label]["drift"][:, story]).max() / heights[story]
                   for label in ("bare", "walls (bridge)", "walls (Prony)")]
-        forces = [np.abs(results[label]["wall_force"][:, story]).max() / 1e3 for label in ("walls (bridge)", "walls (Prony)")]
+        forces = [np.abs(results[label]["wall_force"][:, story]).max() / 1e3
+                  for label in ("walls (bridge)", "walls (Prony)")]
         strain = 100 * np.abs(bridge["wall_strain"][:, story]).max()
-        print(f"  {story + 1}    {ratios[0]:6.3f}  {ratios[1]:6.3f}  {ratios[2]:6.3f}  {100 * (ratios[2] / ratios[1] - 1):+6.2f} %"
-              f"       {forces[0]:8.1f} {forces[1]:8.1f}        {strain:8.1f}")
+        print(f"  {story + 1}    {ratios[0]:6.3f}  {ratios[1]:6.3f}  {ratios[2]:6.3f}  "
+              f"{100 * (ratios[2] / ratios[1] - 1):+6.2f} %       {forces[0]:8.1f} {forces[1]:8.1f}        {strain:8.1f}")
     steps = min(bridge["drift"].shape[0], prony["drift"].shape[0])
     history = np.abs(prony["drift"][:steps] - bridge["drift"][:steps]).max() / np.abs(bridge["drift"]).max()
     bare_peak, bridge_peak = (np.abs(results[label]["drift"]).max(axis=0) / heights

@@ -52,7 +52,8 @@ def series():
 def test_the_bound_holds_on_a_dense_grid_and_the_series_is_passive(series, r):
     wall, prony = order_walls()[r], series[r]
     f = check_frequencies(*BAND)
-    storage, loss = closed_form_moduli({"G1": wall.G1, "G2": wall.G2, "eta1": wall.eta1, "eta2": wall.eta2, "r": wall.r}, f)
+    parameters = {name: getattr(wall, name) for name in ("G1", "G2", "eta1", "eta2", "r")}
+    storage, loss = closed_form_moduli(parameters, f)
     exact = (storage + 1j * loss) * wall.area / wall.thickness
     fitted_stiffness = maxwell_stiffness(f, prony.equilibrium_stiffness, prony.branches)
     error = np.abs(fitted_stiffness - exact) / np.abs(exact)
@@ -61,7 +62,8 @@ def test_the_bound_holds_on_a_dense_grid_and_the_series_is_passive(series, r):
     # Passive: every stiffness and damping coefficient >= 0 (so K'' >= 0 at every frequency).
     assert prony.equilibrium_stiffness >= 0.0 and (prony.branches >= 0.0).all()
     assert (maxwell_stiffness(np.logspace(-3, 3, 200), prony.equilibrium_stiffness, prony.branches).imag >= 0).all()
-    # Few branches, relaxation times ascending: measured 3, 4, 4, 2 for r = 0.2, 0.5, 0.8, 1.
+    # Few branches, relaxation times ascending: measured 3, 4, 4, 2 for r = 0.2, 0.5, 0.8, 1 (errors 0.95,
+    # 0.96, 0.74, 0.09 %).
     assert 1 <= len(prony) <= 5
     assert (np.diff(prony.relaxation_times) > 0).all()
     np.testing.assert_allclose(prony.complex_stiffness(f), fitted_stiffness, rtol=1e-12)
@@ -118,13 +120,13 @@ def test_opensees_prony_material_has_the_series_complex_stiffness(series):
         design = np.column_stack([np.sin(omega * t[last]), np.cos(omega * t[last])]) * 5.0
         storage, loss = np.linalg.lstsq(design, ops_force[last], rcond=None)[0]
         expected = prony.complex_stiffness(frequency)
-        assert abs(storage + 1j * loss - expected) / abs(expected) < 0.005, frequency
+        assert abs(storage + 1j * loss - expected) / abs(expected) < 1e-3, frequency  # measured 5e-6 - 3e-5
 
 
 def test_native_prony_frame_matches_simulate_within_two_percent():
     # The 10-story frame of test_opensees_bridge with fractional walls; OpenSees runs each wall as its Prony
     # series (1 % on 0.1-10 Hz), vdw_frames the exact walls; both at a quarter of the record's step, where
-    # both have converged (measured 0.08 %; 1.2 % at the record's step, where OpenSees's Maxwell is coarse).
+    # both have converged (measured 0.05 %; 1.3 % at the record's step, where OpenSees's Maxwell is coarse).
     from test_opensees_bridge import ten_story
 
     record = read_at2(shared_record("elCentro.AT2"))

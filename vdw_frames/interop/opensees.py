@@ -29,12 +29,13 @@ OpenSees semantics relied on (OpenSees/OpenSees, SRC/; OpenSeesPy 3.7):
   history force is sent as 1e-200 N.
 * ``element/zeroLength/ZeroLength.cpp``: basic deformation = u_j - u_i along the material's direction
   (global axes without ``-orient``), counted from the nodes' displacements when the element joined the
-  domain (``setDomain`` stores them as d0, and the velocities as v0), as the wall's own is; with ``-doRayleigh 0`` (the default, given explicitly) the element
-  takes no Rayleigh damping whatever ``rayleigh`` or ``region`` set (Rayleigh on K_t would add a
-  damper the wall does not have: about 4 % error), only its material's damping tangent, here 0.  Between
-  nodes that do not coincide (a wall from one floor to the next) OpenSees prints "WARNING
-  ZeroLength::setDomain(): Element ... has L= ..., which is greater than the tolerance" once; the
-  element still acts along the global direction, independent of its length, as the wall should.
+  domain (``setDomain`` stores them as d0, and the velocities as v0), as the wall's own is.  With
+  ``-doRayleigh 0`` (the default, given explicitly) the element takes no Rayleigh damping whatever
+  ``rayleigh`` or ``region`` set (Rayleigh on K_t would add a damper the wall does not have: about 4 %
+  error), only its material's damping tangent, here 0.  Between nodes that do not coincide (a wall
+  from one floor to the next) OpenSees prints "WARNING ZeroLength::setDomain(): Element ... has L= ...,
+  which is greater than the tolerance" once; the element still acts along the global direction,
+  independent of its length, as the wall should.
 * ``analysis/integrator/Newmark.cpp``: ``newStep`` applies the loads at t_{n+1} and equilibrium is
   enforced there, so H_n set before the step is the right one.  ``HHT.cpp`` (and generalized-alpha,
   Wilson-theta, ...) evaluate forces at t_n + alpha dt: H_n is then wrong, so every integrator other
@@ -133,7 +134,8 @@ class WallBridge:
 
     ``tags``: the first tag of the bridge's objects (per wall an ``Elastic`` and an ``InitStressMaterial``
     material, a ``zeroLength`` element and a parameter; once a ``Linear`` time series and an empty
-    ``Plain`` load pattern, the integrator probe); they take consecutive numbers from there.  None
+    ``Plain`` load pattern, the integrator probe, removed once the integrator is identified); they take
+    consecutive numbers from there.  None
     (default): from the first power of ten above every node, element, parameter and pattern tag in
     the domain, skipping numbers OpenSees refuses (it cannot list material and time-series tags).
     ``bridge.tags`` lists what was created.
@@ -145,6 +147,10 @@ class WallBridge:
         ...                                                 # ground motion pattern, Newmark(0.5, 0.25)
         status = bridge.analyze(steps)                      # 0 on success, like ops.analyze
         bridge.force, bridge.deformation, bridge.strain     # (steps + 1, walls): N, mm, -
+
+    Results (rows: the start, then every completed step): ``force`` (N), ``deformation`` (mm), ``strain`` (-,
+    the wall's own deformation / thickness), ``time`` (s); ``steps`` completed, ``failed_step`` (None, or
+    the step the last :meth:`analyze` stopped at), ``fallback_steps`` (the steps a fallback rescued).
 
     Requirements: Newmark's average acceleration (gamma = 1/2, beta = 1/4: any other integrator is refused
     with a ValueError on the first steps that identify it), a transient analysis, a uniform dt (the
@@ -198,32 +204,37 @@ class WallBridge:
         return list(self.tags["element"])
 
     def _claim(self, kind, create):
-        """Create an OpenSees object with the next free tag: ``create(tag)``; returns the tag."""
+        """Create an OpenSees object with the next free tag: ``create(tag)``; returns the tag.
+
+        Element, parameter and pattern tags in use are skipped (OpenSees lists them); material and time
+        series tags cannot be listed, so a number OpenSees refuses is skipped, in the default range only.
+        """
         ops = self.ops
         if self._next_tag is None:
             existing = [max(list(tags), default=0) for tags in (ops.getNodeTags(), ops.getEleTags(),
                                                                  ops.getParamTags(), ops.getPatterns())]
             self._next_tag = 10 ** (len(str(max(existing))))
-        for _ in range(1000):
+        listed = {"element": ops.getEleTags, "parameter": ops.getParamTags, "pattern": ops.getPatterns}.get(kind)
+        taken = set(listed()) if listed is not None else set()
+        for _ in range(100):
             tag = self._next_tag
             self._next_tag += 1
-            taken = ((kind == "element" and tag in ops.getEleTags()) or (kind == "parameter" and tag in ops.getParamTags())
-                     or (kind == "pattern" and tag in ops.getPatterns()))
-            if not taken:
-                try:
-                    create(tag)
-                except Exception as error:  # OpenSeesError: the tag is taken (or the call is wrong)
-                    if self._explicit_tags:
-                        raise ValueError(f"OpenSees refused {kind} tag {tag} ({error}): is it taken? The bridge "
-                                         f"numbers its objects consecutively from tags = {self.tags_start}; "
-                                         "choose a free range") from error
-                    continue
-                self.tags[kind].append(tag)
-                return tag
-            if self._explicit_tags:
-                raise ValueError(f"{kind} tag {tag} is taken: the bridge numbers its objects consecutively from "
-                                 f"tags = {self.tags_start}; choose a free range")
-        raise ValueError(f"no free {kind} tag found from {self._next_tag - 1000}; pass tags= a free range")
+            if tag in taken:
+                if self._explicit_tags:
+                    raise ValueError(f"{kind} tag {tag} is taken: the bridge numbers its objects consecutively from "
+                                     f"tags = {self.tags_start}; choose a free range")
+                continue
+            try:
+                create(tag)
+            except Exception as error:  # OpenSeesError: the tag is taken
+                if self._explicit_tags or listed is not None:
+                    raise ValueError(f"OpenSees refused {kind} tag {tag} ({error}): is it taken? The bridge numbers "
+                                     f"its objects consecutively from tags = {self.tags_start}; choose a free "
+                                     "range") from error
+                continue
+            self.tags[kind].append(tag)
+            return tag
+        raise ValueError(f"no free {kind} tag found below {self._next_tag}; pass tags= the start of a free range")
 
     @property
     def tags_start(self) -> int | None:
@@ -319,7 +330,8 @@ class WallBridge:
         if not np.array_equal(bank.tangent, self._tangent):
             raise RuntimeError("internal error: the walls' elements and memory disagree on K_t")
         self.bank = bank
-        keys = list(dict.fromkeys(key for node_i, node_j, dof, _ in self._walls for key in ((node_i, dof), (node_j, dof))))
+        keys = list(dict.fromkeys(key for node_i, node_j, dof, _ in self._walls
+                                  for key in ((node_i, dof), (node_j, dof))))
         self._node_dofs = keys
         self._index_i = np.array([keys.index((node_i, dof)) for node_i, _, dof, _ in self._walls])
         self._index_j = np.array([keys.index((node_j, dof)) for _, node_j, dof, _ in self._walls])
@@ -371,7 +383,8 @@ class WallBridge:
         with np.errstate(divide="ignore", invalid="ignore"):
             gamma = (v1 - v0 - dt * a0) / (dt * change)
             beta = (u1 - u0 - dt * v0 - 0.5 * dt * dt * a0) / (dt * dt * change)
-            gamma_error = _PARAMETER_TOLERANCE + 100 * eps * (np.abs(v0) + np.abs(v1) + dt * np.abs(a0)) / (dt * np.abs(change))
+            gamma_error = (_PARAMETER_TOLERANCE
+                           + 100 * eps * (np.abs(v0) + np.abs(v1) + dt * np.abs(a0)) / (dt * np.abs(change)))
             beta_error = _PARAMETER_TOLERANCE + 100 * eps * (np.abs(u0) + np.abs(u1) + dt * np.abs(v0)
                                                              + dt * dt * np.abs(a0)) / (dt * dt * np.abs(change))
         usable = (np.abs(change) > 0) & (gamma_error < _IDENTIFIABLE) & (beta_error < _IDENTIFIABLE)
@@ -415,7 +428,10 @@ class WallBridge:
             raise ValueError(f"the domain time is {ops.getTime()!r} s, not {self._time!r} s where the bridge left it: "
                              "step the analysis only through bridge.analyze()")
         bank = self.bank
-        if self._strategy is None and bank.count + steps > bank.max_steps:
+        if bank.count + steps > bank.max_steps:
+            if self._strategy is not None:
+                raise ValueError(f"the fast memory serves {bank.max_steps} steps in all ({bank.count} done); build the "
+                                 "bridge with memory=FastMemory(max_steps=...) for more")
             self.bank = bank = bank.resized(max(2 * bank.max_steps, bank.count + steps))
         self.failed_step = None
         count = len(self._walls)
