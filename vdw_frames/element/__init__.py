@@ -24,6 +24,5 @@ from .strain_dependent import StrainDependentDamper
 from .supported import WALL_TYPES, SupportedDamper
 
 __all__ = ["BDF2", "DEFAULT_MEMORY", "DEFAULT_METHOD", "DampedTwoStep", "DamperState", "Discretisation",
-           "FDMKDamper", "FastMemory", "GrunwaldLetnikov", "PronySeries", "SineTestResult", "StrainDependentDamper",
-           "SupportedDamper", "Trapezoidal", "WALL_TYPES", "WallBank",
-           "sine_test"]
+           "FDMKDamper", "FastMemory", "GrunwaldLetnikov", "PronySeries", "SineTestResult",
+           "StrainDependentDamper", "SupportedDamper", "Trapezoidal", "WALL_TYPES", "WallBank", "sine_test"]
