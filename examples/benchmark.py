@@ -24,10 +24,16 @@ repeats for runs under a second; numba compilation is excluded except in (d)):
 (d) numba compilation: ``import vdw_frames`` + a first ``simulate`` in a fresh subprocess with an empty
     cache (``NUMBA_CACHE_DIR`` a new temporary folder), then again in a fresh subprocess with that cache
     warm.
+(e) the OpenSees bridge (``vdw_frames.opensees``) on the same frame and record: its overhead per wall per
+    step on top of OpenSees's own step (target <= 2 us), the bridged fractional frame against OpenSees
+    running the frame with its own classical (r = 1) Elastic + Maxwell dampers (target: no slower), with
+    one element per wall and with each story's walls combined into one, and the Prony material's cost
+    per step against the bridge.  All with Newton to NormDispIncr 1e-9 mm; model building is not timed;
+    the variants take turns, best of at least three rounds.
 
-``--quick``: 2 000 and 20 000 steps only (no 200 000-step runs), single repeats.  Without the
+``--quick``: 2 000 and 20 000 steps only (no 200 000-step runs), single repeats; (e) on 4 000 steps.  Without the
 ../shared/ground_motions folder (a fresh clone) a synthetic 80 s record at 0.004 s stands in for
-HWA002-N; without OpenSeesPy part (c) prints the vdw_frames times only.  Units: N, mm, s, tonne.
+HWA002-N; without OpenSeesPy part (c) prints the vdw_frames times only and part (e) is skipped.  Units: N, mm, s, tonne.
 """
 
 from __future__ import annotations
@@ -327,6 +333,98 @@ def part_d():
             print(f"    {label:<30} {imported:>10.3f}  {first:>16.3f}  {total:>17.3f}")
 
 
+def part_bridge(building, motion, source, quick, repeats):
+    """(e): the OpenSees bridge's three numbers (see the module docstring).
+
+    Two set-ups of the same frame: one OpenSees element per wall (and per branch of a classical wall), and
+    the walls of a story as one wall of their summed area (identical walls in parallel see the same drift:
+    the same model, as fast as OpenSees users set it up).  The variants run in turn, round after round,
+    so that the machine's load varies alike for all; each keeps its best round.
+    """
+    sys.path.insert(0, str(ROOT / "tests"))
+    try:
+        import opensees_frame
+
+        ops = opensees_frame.opensees()
+    except ImportError as error:
+        print(f"\n(e) OpenSees bridge: skipped, OpenSeesPy not available ({error})")
+        return
+    if quick:
+        motion = GroundMotion(motion.acceleration[:4000], motion.dt, motion.name)
+    steps, dt = motion.acceleration.size - 1, motion.dt
+    walls = len(building.damper_list)
+    print(f"\n(e) OpenSees bridge: 10-story frame, {walls} fractional walls (r = {WALL.r:g}), {source}: {steps} steps, "
+          f"dt = {dt:g} s; Newton, NormDispIncr 1e-9 mm; time per step, best of {max(repeats, 3)} rounds")
+    combined = dataclasses.replace(building, dampers={story: dataclasses.replace(ws[0], area=sum(w.area for w in ws))
+                                                      for story, ws in building.dampers.items()})
+
+    def classical(frame):
+        return dataclasses.replace(frame, dampers={story: [dataclasses.replace(w, r=1.0) for w in ws]
+                                                   for story, ws in frame.dampers.items()})
+
+    def own_steps(model):  # the bridge's model, its history forces never updated: OpenSees's own step
+        for _ in range(steps):
+            ops.analyze(1, dt)
+
+    def bridge_run(model):
+        return model[1].analyze(steps)
+
+    def one_call(model):
+        return ops.analyze(steps, dt)
+
+    variants = {  # name: (build the model -> (floor nodes, anything), run it)
+        "bridge": (lambda: opensees_frame.build_bridged(building, dt, tolerance=1e-9), bridge_run),
+        "own": (lambda: opensees_frame.build_bridged(building, dt, tolerance=1e-9), own_steps),
+        "classical": (lambda: (opensees_frame.build(classical(building), tolerance=1e-9), None), one_call),
+        "prony": (lambda: opensees_frame.build_prony(building, 0.1, 10.0, tolerance=1e-9), one_call),
+        "bridge, combined": (lambda: opensees_frame.build_bridged(combined, dt, tolerance=1e-9), bridge_run),
+        "bridge, combined, Linear": (lambda: opensees_frame.build_bridged(combined, dt, tolerance=1e-9,
+                                                                          algorithm="Linear"), bridge_run),
+        "classical, combined": (lambda: (opensees_frame.build(classical(combined), tolerance=1e-9), None), one_call),
+    }
+    opensees_frame.run_bridged(building, motion.acceleration[:50], dt)  # compile, build the fast memory's modes
+    seconds = {name: math.inf for name in variants}
+    models = {}
+    for _ in range(max(repeats, 3)):
+        for name, (build, run) in variants.items():
+            model = build()
+            opensees_frame._ground(motion.acceleration, dt, model[0])
+            started = time.perf_counter()
+            status = run(model)
+            seconds[name] = min(seconds[name], time.perf_counter() - started)
+            ops.wipe()
+            if status not in (0, None):
+                raise RuntimeError(f"the OpenSees analysis '{name}' of the benchmark failed")
+            models[name] = model[1]
+    per_step = {name: 1e6 * value / steps for name, value in seconds.items()}
+    reference = simulate(building, motion, memory=FAST)
+    peak_dev, _ = deviations(models["bridge"].deformation[:, ::2], reference.drift)  # wall 2 (k - 1): story k's
+    linear_dev, _ = deviations(models["bridge, combined, Linear"].deformation, reference.drift)
+    series = next(iter(models["prony"].values()))
+    rows = [(f"one element per wall ({walls} walls):", None),
+            ("bridge: bridge.analyze(N)", "bridge"),
+            ("the same OpenSees model, analyze(1, dt) N times, no wall update", "own"),
+            ("OpenSees, classical r = 1 walls: Elastic + Maxwell elements, one call", "classical"),
+            (f"OpenSees, Prony material ({len(series)} branches, 0.1-10 Hz, 1 %), one call", "prony"),
+            (f"each story's walls as one of their summed area ({len(combined.damper_list)} walls):", None),
+            ("bridge", "bridge, combined"),
+            ("bridge, algorithm Linear (one solve a step: exact on a linear frame)", "bridge, combined, Linear"),
+            ("OpenSees, classical r = 1 walls, one call", "classical, combined")]
+    for label, name in rows:
+        print(f"    {label}" if name is None else f"      {label:<72} {per_step[name]:7.1f} us")
+    overhead = (seconds["bridge"] - seconds["own"]) / (steps * walls)
+    print(f"    1. bridge overhead per wall per step: {1e6 * overhead:.2f} us (target <= 2 us: "
+          f"{'meets' if overhead <= 2e-6 else 'misses'}); all walls together "
+          f"{(seconds['bridge'] - seconds['own']) / seconds['own']:.2f} x OpenSees's own step")
+    for key, label in (("", f"one element per wall"), (", combined", "walls combined per story")):
+        ratio = seconds["bridge" + key] / seconds["classical" + key]
+        print(f"    2. bridged fractional frame / OpenSees classical Maxwell frame, {label}: {ratio:.2f} (target <= 1: "
+              f"{'meets' if ratio <= 1.0 else 'misses'})")
+    print(f"       with algorithm Linear: {seconds['bridge, combined, Linear'] / seconds['classical, combined']:.2f}")
+    print(f"    3. Prony material / bridge, time per step: {seconds['prony'] / seconds['bridge']:.2f}")
+    print(f"    (bridge vs simulate on the same frame: peak drifts within {peak_dev:.1e}; Linear: {linear_dev:.1e})")
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="2 000 and 20 000 steps only, single repeats")
@@ -351,6 +449,7 @@ def main(argv=None) -> int:
     part_b(timings)
     part_c(building, motion, source, fast, timings, args.quick, repeats)
     part_d()
+    part_bridge(building, motion, source, args.quick, repeats)
     return 0
 
 

@@ -221,3 +221,123 @@ def run_recorded(building, acceleration, dt, **options):
 def drifts(displacement):
     """Interstory drifts (mm, steps x stories) from floor displacements."""
     return _drifts(np.asarray(displacement))
+
+
+# ---------------------------------------------------------------------------------------------- walls bridged
+def build_bare(building, tolerance=1e-12, max_iterations=50, algorithm="Newton"):
+    """The bare frame of ``building`` (no walls) in a fresh domain, for walls added afterwards.
+
+    As :func:`build` without the walls, with the story springs of the building's hysteresis: ``Elastic``
+    for a linear story, ``Steel01`` (F_y, E0 = k0, b = hardening; no isotropic hardening) for a
+    :class:`vdw_frames.Bilinear` one, which is the same law; Rayleigh a1 times the springs' *initial*
+    stiffness (``-rayleigh 0 0 a1 0``: betaKinit), as :func:`vdw_frames.simulate`.  P-Delta (-P/h) is an
+    ``Elastic`` spring of that negative stiffness per story.  ``algorithm``: a name or a tuple of
+    ``ops.algorithm`` arguments.  Returns the floor node tags (story k between nodes k-1 and k; node 0 the
+    ground).
+    """
+    from vdw_frames import Bilinear
+
+    ops = opensees()
+    ops.wipe()
+    ops.model("basic", "-ndm", 1, "-ndf", 1)
+    floors = list(range(1, building.stories + 1))
+    ops.node(0, 0.0)
+    ops.fix(0, 1)
+    for node, mass in zip(floors, building.masses):
+        ops.node(node, 0.0)
+        ops.mass(node, mass)
+    springs = []
+    for story, (stiffness, model) in enumerate(zip(building.stiffnesses, building.story_models), start=1):
+        if model is None:
+            ops.uniaxialMaterial("Elastic", story, stiffness)
+        elif isinstance(model, Bilinear):
+            ops.uniaxialMaterial("Steel01", story, model.yield_force, stiffness, model.hardening)
+        else:
+            raise ValueError(f"no OpenSees story material for {type(model).__name__} here")
+        ops.element("zeroLength", story, story - 1, story, "-mat", story, "-dir", 1, "-doRayleigh", 1)
+        springs.append(story)
+        geometric = building.geometric_stiffness[story - 1]
+        if geometric != 0.0:
+            ops.uniaxialMaterial("Elastic", 100 + story, geometric)
+            ops.element("zeroLength", 100 + story, story - 1, story, "-mat", 100 + story, "-dir", 1)
+    a0, a1 = building.rayleigh_coefficients
+    ops.region(1, "-eleOnly", *springs, "-rayleigh", 0.0, 0.0, a1, 0.0)
+    ops.region(2, "-nodeOnly", *floors, "-rayleigh", a0, 0.0, 0.0, 0.0)
+    ops.constraints("Plain")
+    ops.numberer("Plain")
+    ops.system("BandGeneral")
+    ops.test("NormDispIncr", tolerance, max_iterations)
+    ops.algorithm(*((algorithm,) if isinstance(algorithm, str) else algorithm))
+    ops.integrator("Newmark", 0.5, 0.25)
+    return floors
+
+
+def build_bridged(building, dt, bridge_options=None, **options):
+    """The bare frame (:func:`build_bare`, ``options``) with the building's walls through a
+    :class:`vdw_frames.opensees.WallBridge` (``bridge_options``: its keyword arguments) on steps of ``dt``
+    s: (floor node tags, the bridge)."""
+    from vdw_frames.opensees import WallBridge
+
+    floors = build_bare(building, **options)
+    bridge = WallBridge(opensees(), dt, **(bridge_options or {}))
+    for story, wall in building.damper_list:
+        bridge.add_wall(story - 1, story, 1, wall)
+    return floors, bridge
+
+
+def run_bridged(building, acceleration, dt, method="damped", memory="fast", step_by_step=False, **options):
+    """``building`` with its walls through :class:`vdw_frames.opensees.WallBridge`: (floor displacements
+    (mm, steps x floors), the bridge).  ``options`` go to :func:`build_bare`; ``step_by_step`` reads the
+    floors after every ``bridge.analyze(1)`` (otherwise they are the cumulative sum of the walls' drifts,
+    which needs a wall on every story)."""
+    ops = opensees()
+    floors, bridge = build_bridged(building, dt, {"method": method, "memory": memory}, **options)
+    _ground(acceleration, dt, floors)
+    steps = len(acceleration)
+    if step_by_step:
+        displacement = np.zeros((steps, len(floors)))
+        for n in range(1, steps):
+            if bridge.analyze(1) != 0:
+                break
+            displacement[n] = [ops.nodeDisp(node, 1) for node in floors]
+    else:
+        bridge.analyze(steps - 1)
+        first = {story: index for index, (story, _) in reversed(list(enumerate(building.damper_list)))}
+        displacement = np.cumsum(bridge.deformation[:, [first[s] for s in range(1, len(floors) + 1)]], axis=1)
+    ops.wipe()
+    return displacement, bridge
+
+
+def build_prony(building, f_min, f_max, prony_tolerance=0.01, **options):
+    """The bare frame (:func:`build_bare`, ``options``) with every wall as its Prony series over
+    [f_min, f_max] Hz (within ``prony_tolerance``), a native ``Parallel`` of ``Elastic`` and ``Maxwell`` materials
+    (:func:`vdw_frames.opensees.prony_material`) in a ``zeroLength`` element: (floor node tags, {wall: series})."""
+    from vdw_frames.opensees import prony_material
+
+    ops = opensees()
+    floors = build_bare(building, **options)
+    series = {}
+    tag = 1000
+    for index, (story, wall) in enumerate(building.damper_list):
+        if wall not in series:
+            series[wall] = wall.prony(f_min, f_max, prony_tolerance)
+        prony_material(ops, tag, series[wall])
+        ops.element("zeroLength", 1000 + index, story - 1, story, "-mat", tag, "-dir", 1)
+        tag += len(series[wall]) + 2
+    return floors, series
+
+
+def run_prony(building, acceleration, dt, f_min, f_max, prony_tolerance=0.01, **options):
+    """``building`` with every wall as its Prony series (:func:`build_prony`): (floor displacements (mm,
+    steps x floors), {wall: series}).  Stepped one ``analyze(1, dt)`` at a time."""
+    ops = opensees()
+    floors, series = build_prony(building, f_min, f_max, prony_tolerance, **options)
+    _ground(acceleration, dt, floors)
+    steps = len(acceleration)
+    displacement = np.zeros((steps, len(floors)))
+    for n in range(1, steps):
+        if ops.analyze(1, dt) != 0:
+            raise RuntimeError(f"OpenSees analysis failed at step {n}")
+        displacement[n] = [ops.nodeDisp(node, 1) for node in floors]
+    ops.wipe()
+    return displacement, series

@@ -62,15 +62,22 @@ def history_deviation(drift, reference):
 
 
 def imposed_force(ops, material, displacement, dt):
-    """Force history (N) of one zeroLength element whose free end follows ``displacement`` (mm)."""
+    """Force history (N) of one zeroLength element whose free end follows ``displacement`` (mm).
+
+    ``material``: the ``uniaxialMaterial`` arguments, or a function defining the material that returns its tag.
+    """
     ops.wipe()
     ops.model("basic", "-ndm", 1, "-ndf", 1)
     ops.node(0, 0.0)
     ops.fix(0, 1)
     ops.node(1, 0.0)
     ops.mass(1, 1.0)
-    ops.uniaxialMaterial(*material)
-    ops.element("zeroLength", 1, 0, 1, "-mat", material[1], "-dir", 1)
+    if callable(material):
+        tag = material(ops)
+    else:
+        ops.uniaxialMaterial(*material)
+        tag = material[1]
+    ops.element("zeroLength", 1, 0, 1, "-mat", tag, "-dir", 1)
     values = list(displacement)
     ops.timeSeries("Path", 1, "-dt", dt, "-values", *values, values[-1])
     ops.pattern("Plain", 1, 1)

@@ -2,11 +2,12 @@
 
 Sub-packages: :mod:`~vdw_frames.element` (the FDMK wall model and its time stepping),
 :mod:`~vdw_frames.frame` (shear buildings, integration, batches), :mod:`~vdw_frames.design` (complex
-modal analysis, wall sizing), :mod:`~vdw_frames.motion` (ground motions) and :mod:`~vdw_frames.paper`
-(the paper's data, identification, report); beside them
+modal analysis, wall sizing), :mod:`~vdw_frames.motion` (ground motions), :mod:`~vdw_frames.paper`
+(the paper's data, identification, report) and :mod:`~vdw_frames.interop` (FDMK walls in OpenSees
+models: :mod:`vdw_frames.opensees`); beside them
 :mod:`~vdw_frames.config` (building files), :mod:`~vdw_frames.plotting` and :mod:`~vdw_frames.cli`.
 The public names are re-exported here; ``paper`` and ``identify`` load on first use (they pull in
-scipy.optimize, which ``import vdw_frames`` need not pay for).
+scipy.optimize, which ``import vdw_frames`` need not pay for), as does ``opensees`` (OpenSeesPy is optional).
 
 Units throughout: N, mm, s, tonne; moduli MPa (N/mm^2), viscosities MPa*s^r, stiffness N/mm,
 energy N*mm, frequency Hz.
@@ -24,6 +25,7 @@ from .element import (
     FastMemory,
     FDMKDamper,
     GrunwaldLetnikov,
+    PronySeries,
     SineTestResult,
     StrainDependentDamper,
     SupportedDamper,
@@ -65,6 +67,7 @@ __all__ = [
     "IDAResult",
     "ModalResult",
     "NewtonRaphson",
+    "PronySeries",
     "ShearBuilding",
     "SimulationResult",
     "SineTestResult",
@@ -81,6 +84,7 @@ __all__ = [
     "identify",
     "incremental_dynamic_analysis",
     "motion",
+    "opensees",
     "paper",
     "plot_loops",
     "read_at2",
@@ -93,7 +97,8 @@ __all__ = [
     "write_at2",
 ]
 
-_LAZY = {"paper": ("vdw_frames.paper", None), "identify": ("vdw_frames.paper", "identify")}
+_LAZY = {"paper": ("vdw_frames.paper", None), "identify": ("vdw_frames.paper", "identify"),
+         "opensees": ("vdw_frames.opensees", None)}
 
 
 def __getattr__(name):

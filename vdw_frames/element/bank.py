@@ -153,6 +153,25 @@ class WallBank:
         self.count += 1
         return force, strain
 
+    def resized(self, steps: int) -> "WallBank":
+        """This bank with room for ``steps`` steps in all: the committed memory copied, the count kept.
+
+        How an exact memory grows (:class:`~vdw_frames.DamperState`, the OpenSees bridge): only a memory
+        without modes that still holds every committed step can be resized.
+        """
+        size = self.window_weights.shape[1]
+        if self.mode_weight.shape[1] or self.count > size:
+            raise ValueError("only an exact memory holding every committed step can be resized")
+        steps = whole_number("steps", steps, max(self.count, 1))
+        bigger = WallBank(self.walls, self.dt, steps, self.method, "exact")
+        values = self.window[:, :, :self.count]  # x_0 .. x_{count-1}: not yet wrapped
+        new_size = bigger.window_weights.shape[1]
+        bigger.window[:, :, :self.count] = values
+        bigger.window[:, :, new_size:new_size + self.count] = values
+        bigger.count = self.count
+        bigger.evaluate_history()
+        return bigger
+
     def drive(self, displacement) -> tuple:
         """(force N, wall strain) histories of a one-wall bank at rest for a displacement history (mm)."""
         if len(self.walls) != 1 or self.count != 0:

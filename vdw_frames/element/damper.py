@@ -33,6 +33,7 @@ import numpy as np
 from .._validation import finite_array, non_negative, positive, positive_frequencies, require_finite
 from .bank import DEFAULT_MEMORY, MEMORY_STRATEGIES, WallBank, kernel_constants, memory_strategy
 from .fractional import DEFAULT_METHOD, _check_order, get_method
+from .prony import fit_prony
 
 __all__ = ["DEFAULT_MEMORY", "MEMORY_STRATEGIES", "DamperState", "FDMKDamper", "driven_force"]
 
@@ -150,6 +151,12 @@ class FDMKDamper:
         """K*(f) = K' + i K'' (N/mm) at frequencies f (Hz)."""
         return self.complex_modulus(f) * self.stiffness_scale
 
+    def prony(self, f_min: float, f_max: float, tolerance: float = 0.01):
+        """A generalized Maxwell model (:class:`~vdw_frames.element.prony.PronySeries`) matching K*(f) within
+        ``tolerance`` (relative, on |K*|) over [``f_min``, ``f_max``] Hz with the fewest branches; passive.
+        For programs that cannot host the exact wall; see :mod:`vdw_frames.element.prony`."""
+        return fit_prony(self, f_min, f_max, tolerance)
+
     # ------------------------------------------------------------------ time domain
     def kernel_constants(self) -> tuple:
         """(G1, G2, eta1, eta2, area, thickness, support flexibility = 0): the kernel's constants of this wall."""
@@ -230,7 +237,7 @@ class DamperState:
             if self._fast:
                 raise ValueError(f"the fast memory was built for {self.steps} steps; pass "
                                  f"memory=FastMemory(max_steps=...) with more to new_state()")
-            self._grow()
+            self._bank = self._bank.resized(2 * self._bank.max_steps)  # the exact memory keeps every step
         force, _ = self._bank.commit([self._trial])
         self.committed_displacement, self.committed_force = self._trial, float(force[0])
         self._trial = None
@@ -238,15 +245,3 @@ class DamperState:
     def revert_to_last_commit(self) -> None:
         """Discard the pending trial."""
         self._trial = None
-
-    def _grow(self) -> None:
-        # Exact memory keeps every step: a bank with twice the window, holding the same values.
-        old = self._bank
-        size = old.window_weights.shape[1]
-        bigger = WallBank(old.walls, self.dt, 2 * size, self.method, self.memory)
-        values = old.window[:, :, :size]  # x_0 .. x_{size-1}: full, not yet wrapped
-        bigger.window[:, :, :size] = values
-        bigger.window[:, :, 2 * size:3 * size] = values
-        bigger.count = old.count
-        bigger.evaluate_history()
-        self._bank = bigger

@@ -24,6 +24,7 @@ import numpy as np
 from .._validation import positive, positive_frequencies, require_finite
 from .damper import DEFAULT_MEMORY, DamperState, FDMKDamper, driven_force
 from .fractional import DEFAULT_METHOD
+from .prony import fit_prony
 
 
 @dataclass(frozen=True)
@@ -91,6 +92,11 @@ class SupportedDamper:
         """K'' / omega (N*s/mm) of the assembly at f (Hz)."""
         f = positive_frequencies("f", f)
         return self.loss_stiffness(f) / (2.0 * np.pi * f)
+
+    def prony(self, f_min: float, f_max: float, tolerance: float = 0.01):
+        """A generalized Maxwell model of the assembly (wall and support) over [``f_min``, ``f_max``] Hz;
+        see :meth:`FDMKDamper.prony`."""
+        return fit_prony(self, f_min, f_max, tolerance)
 
     # ------------------------------------------------------------------ time domain
     def kernel_constants(self) -> tuple:
