@@ -80,7 +80,8 @@ def build(building, tolerance=1e-9, max_iterations=50, algorithm="Newton", paral
     The analysis is transient Newmark (gamma = 1/2, beta = 1/4, average acceleration, as in
     :func:`vdw_frames.simulate`), Newton iterations to a displacement-increment norm of ``tolerance`` mm
     (needed for the Maxwell material's non-consistent tangent; see the module docstring);
-    ``algorithm="Linear"`` takes one solve a step instead (faster, not converged with Maxwell walls).
+    ``algorithm="Linear"`` takes one solve a step instead (faster, not converged with Maxwell walls); a
+    tuple gives ``ops.algorithm`` arguments.
     ``parallel_walls=True`` models each story's walls as one ``Parallel(Elastic, Maxwell)`` material with
     the summed constants (fewer elements: how one would set OpenSees up for speed).  The ground
     motion is added by :func:`run` / :func:`run_recorded`.  Returns the floor node tags.
@@ -134,7 +135,7 @@ def build(building, tolerance=1e-9, max_iterations=50, algorithm="Newton", paral
     ops.numberer("Plain")
     ops.system("BandGeneral")
     ops.test("NormDispIncr", tolerance, max_iterations)
-    ops.algorithm(algorithm)
+    ops.algorithm(*((algorithm,) if isinstance(algorithm, str) else algorithm))
     ops.integrator("Newmark", 0.5, 0.25)
     return floors
 
@@ -225,51 +226,10 @@ def drifts(displacement):
 
 # ---------------------------------------------------------------------------------------------- walls bridged
 def build_bare(building, tolerance=1e-12, max_iterations=50, algorithm="Newton"):
-    """The bare frame of ``building`` (no walls) in a fresh domain, for walls added afterwards.
-
-    As :func:`build` without the walls, with the story springs of the building's hysteresis: ``Elastic``
-    for a linear story, ``Steel01`` (F_y, E0 = k0, b = hardening; no isotropic hardening) for a
-    :class:`vdw_frames.Bilinear` one, which is the same law; Rayleigh a1 times the springs' *initial*
-    stiffness (``-rayleigh 0 0 a1 0``: betaKinit), as :func:`vdw_frames.simulate`.  P-Delta (-P/h) is an
-    ``Elastic`` spring of that negative stiffness per story.  ``algorithm``: a name or a tuple of
-    ``ops.algorithm`` arguments.  Returns the floor node tags (story k between nodes k-1 and k; node 0 the
-    ground).
-    """
-    from vdw_frames import Bilinear
-
-    ops = opensees()
-    ops.wipe()
-    ops.model("basic", "-ndm", 1, "-ndf", 1)
-    floors = list(range(1, building.stories + 1))
-    ops.node(0, 0.0)
-    ops.fix(0, 1)
-    for node, mass in zip(floors, building.masses):
-        ops.node(node, 0.0)
-        ops.mass(node, mass)
-    springs = []
-    for story, (stiffness, model) in enumerate(zip(building.stiffnesses, building.story_models), start=1):
-        if model is None:
-            ops.uniaxialMaterial("Elastic", story, stiffness)
-        elif isinstance(model, Bilinear):
-            ops.uniaxialMaterial("Steel01", story, model.yield_force, stiffness, model.hardening)
-        else:
-            raise ValueError(f"no OpenSees story material for {type(model).__name__} here")
-        ops.element("zeroLength", story, story - 1, story, "-mat", story, "-dir", 1, "-doRayleigh", 1)
-        springs.append(story)
-        geometric = building.geometric_stiffness[story - 1]
-        if geometric != 0.0:
-            ops.uniaxialMaterial("Elastic", 100 + story, geometric)
-            ops.element("zeroLength", 100 + story, story - 1, story, "-mat", 100 + story, "-dir", 1)
-    a0, a1 = building.rayleigh_coefficients
-    ops.region(1, "-eleOnly", *springs, "-rayleigh", 0.0, 0.0, a1, 0.0)
-    ops.region(2, "-nodeOnly", *floors, "-rayleigh", a0, 0.0, 0.0, 0.0)
-    ops.constraints("Plain")
-    ops.numberer("Plain")
-    ops.system("BandGeneral")
-    ops.test("NormDispIncr", tolerance, max_iterations)
-    ops.algorithm(*((algorithm,) if isinstance(algorithm, str) else algorithm))
-    ops.integrator("Newmark", 0.5, 0.25)
-    return floors
+    """The bare frame of ``building`` (no walls: :func:`build` of ``building.without_dampers()``) in a fresh
+    domain, for walls added afterwards.  Returns the floor node tags (story k between nodes k-1 and k; node
+    0 the ground)."""
+    return build(building.without_dampers(), tolerance, max_iterations, algorithm)
 
 
 def build_bridged(building, dt, bridge_options=None, **options):

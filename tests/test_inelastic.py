@@ -36,14 +36,6 @@ def peak_deviation(drift, reference):
     return np.abs(np.abs(drift).max(axis=0) / np.abs(reference).max(axis=0) - 1.0).max()
 
 
-@pytest.fixture(scope="module")
-def ops():
-    try:
-        return opensees_frame.opensees()
-    except ImportError as error:
-        pytest.fail(str(error))
-
-
 # --------------------------------------------------------------------------------------- story materials
 def test_bilinear_follows_the_kinematic_hardening_bounds():
     k0, yield_force, b = 1000.0, 5000.0, 0.1  # yield drift 5 mm

@@ -34,14 +34,6 @@ def ten_story(dampers=True):
     return ShearBuilding([500.0] * 10, np.linspace(800e3, 400e3, 10), dampers=walls)
 
 
-@pytest.fixture(scope="module")
-def ops():
-    # A test dependency (the test extra; .ci/run installs libblas3/liblapack3): fail, never skip.
-    try:
-        return opensees_frame.opensees()
-    except ImportError as error:
-        pytest.fail(str(error))
-
 
 @pytest.fixture(scope="module")
 def record():
