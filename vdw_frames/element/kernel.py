@@ -41,7 +41,8 @@ from .._jit import njit
 
 # Reassociation lets LLVM vectorise the sums over the memory; results change by rounding only.  The
 # loops index the bank's arrays directly (no views, no calls): in numba a view or an array passed to a
-# call costs reference counting, more than the arithmetic of a short memory.
+# call costs reference counting, more than the arithmetic of a short memory.  The small per-wall
+# functions are inlined into the bank loops for the same reason.
 _FAST = {"reassoc", "contract"}
 
 
@@ -90,7 +91,7 @@ def memory_advance(window_weights, window, count, mode_weight, mode_ratio, mode_
             history[c, w] = total
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def fdmk_stress(strain, strain_history, maxwell_history, G1, G2, eta1, eta2, w0):
     """Stress (MPa), Maxwell-branch stress (MPa) and tangent modulus d(stress)/d(strain) (MPa).
 
@@ -110,7 +111,7 @@ def fdmk_stress(strain, strain_history, maxwell_history, G1, G2, eta1, eta2, w0)
     return stress + maxwell, maxwell, tangent
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def wall_affine(constants, w0, strain_history, maxwell_history):
     """(K_t in N/mm, H_n in N): the wall assembly's force this step is K_t d + H_n for deformation d (mm).
 
@@ -125,7 +126,7 @@ def wall_affine(constants, w0, strain_history, maxwell_history):
     return wall_tangent * scale, stress * area * scale
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def wall_response(constants, w0, strain_history, maxwell_history, deformation):
     """(force N, wall strain, Maxwell stress MPa) of a wall assembly at ``deformation`` (mm) this step.
 

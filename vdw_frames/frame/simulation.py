@@ -17,8 +17,10 @@ Per step (the trial/commit contract of OpenSees's ``UniaxialMaterial``, compiled
    K_T = (4/dt^2) M + (2/dt) C + B^T diag(k_s + k_G + K_t) B, each story's force and tangent from its
    model's trial at the current drift (state untouched); the building's tangent is tridiagonal with
    Rayleigh damping (solved in O(n)) and dense with modal damping.  Converged when
-   ||du||_inf <= ``displacement_tolerance`` (mm) and ||R||_inf <= ``force_tolerance`` x the step's
-   largest force term (see :class:`NewtonRaphson`); a linear building needs exactly one solve;
+   ||R||_inf <= ``force_tolerance`` x the step's largest force term and either ||du||_inf <=
+   ``displacement_tolerance`` (mm) or no story's tangent changed since the last correction (that
+   correction then solved the piecewise-linear model exactly: a Bilinear step that stays on its branches
+   takes one solve); see :class:`NewtonRaphson`.  A linear building takes exactly one solve a step;
 3. on convergence the stories and the walls commit (the walls' memory advances only now);
 4. when Newton fails, the same step is retried, at the same dt (the walls' memory is built for one
    dt: never sub-step), with a backtracking line search, then with initial-stiffness iterations; if
@@ -57,9 +59,10 @@ _NEWTON, _LINE_SEARCH, _INITIAL = 0, 1, 2
 class NewtonRaphson:
     """Convergence settings of the inelastic integration (all per time step).
 
-    ``displacement_tolerance`` (mm): bound on ||du||_inf, the last Newton correction.
     ``force_tolerance`` (-): bound on ||R||_inf relative to the step's largest force term (inertia,
-    damping, story, P-Delta or wall force of any floor, at least 1 N).
+    damping, story, P-Delta or wall force of any floor, at least 1 N); required for convergence.
+    ``displacement_tolerance`` (mm): bound on ||du||_inf, the last Newton correction; required too,
+    unless no story's tangent changed since that correction (it then solved the model exactly).
     ``max_iterations``: Newton iterations before the fallbacks (line search, then initial stiffness with
     ``fallback_iterations``) are tried at the same dt.
     """
@@ -77,7 +80,7 @@ class NewtonRaphson:
 
 
 # ---------------------------------------------------------------------------------------------- compiled
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _story_state(kinds, parameters, committed, drift, force, tangent, trial_state):
     """Every story's trial: force and tangent at ``drift``, the state value to commit."""
     for s in range(drift.shape[0]):
@@ -86,7 +89,7 @@ def _story_state(kinds, parameters, committed, drift, force, tangent, trial_stat
             parameters[s, 5], committed[s, 0], committed[s, 1], drift[s])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _residual(u, u_n, v_n, a_n, ground, dt, masses, damping, tridiagonal, kinds, parameters, committed,
               geometric, wall_tangent, wall_history, drift, story_force, story_tangent, trial_state,
               story_total, damping_force, residual):
@@ -121,7 +124,7 @@ def _residual(u, u_n, v_n, a_n, ground, dt, masses, damping, tridiagonal, kinds,
     return scale
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _solve(stiffness_diagonal, masses, damping, tridiagonal, dt, rhs, work, matrix, out):
     """Solve ((4/dt^2) M + (2/dt) C + B^T diag(k) B) x = rhs; Thomas algorithm when tridiagonal, else LU."""
     n = rhs.shape[0]
@@ -177,8 +180,8 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
                heights, collapse_ratio, linear, displacement_tolerance, force_tolerance, max_iterations,
                fallback_iterations, group_story, constants, w0, window_weights, window, mode_weight,
                mode_ratio, mode_state, history, values, wall_tangent_group, wall_history_group,
-               displacement, velocity, acceleration, story_shear, base_shear, group_force, group_strain,
-               energy, outcome):
+               displacement, velocity, acceleration, absolute, drift_out, story_shear, damper_force, base_shear,
+               group_force, group_strain, peak_group_strain, energy, outcome):
     """Newmark average acceleration with Newton-Raphson, steps 1 .. N-1 (step 0 is rest), in place.
 
     Returns the number of steps filled; ``outcome`` receives (status, failed story, iterations used).
@@ -212,6 +215,7 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
     old_damping_force = np.zeros(n)
     for i in range(n):  # (loops, not slice assignments: those compile numba's shape-error machinery)
         acceleration[0, i] = -ground[0]
+        absolute[0, i] = 0.0
         energy[0, 1] += 0.5 * masses[i] * velocity[0, i] ** 2
     total_iterations = 0
     count = 0
@@ -238,6 +242,7 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
             if linear:
                 limit = 1
             last_correction = np.inf
+            exact_solve = False  # the last correction solved the model itself (no tangent changed since)
             for iteration in range(limit + 1):
                 scale = _residual(u, u_n, v_n, a_n, ground[step + 1], dt, masses, damping, tridiagonal, kinds,
                                   parameters, committed, geometric, wall_tangent, wall_history, drift,
@@ -245,8 +250,13 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
                 norm = 0.0
                 for i in range(n):
                     norm = max(norm, abs(residual[i]))
-                if iteration > 0 and (linear or (last_correction <= displacement_tolerance
-                                                 and norm <= force_tolerance * scale)):
+                if exact_solve:
+                    for s in range(n):
+                        if story_tangent[s] + geometric[s] + wall_tangent[s] != stiffness_diagonal[s]:
+                            exact_solve = False
+                            break
+                if iteration > 0 and (linear or (norm <= force_tolerance * scale
+                                                 and (exact_solve or last_correction <= displacement_tolerance))):
                     converged = True
                     break
                 if iteration == limit or not math.isfinite(norm):
@@ -273,6 +283,7 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
                         if trial_norm < norm:
                             break
                         step_length *= 0.5
+                exact_solve = strategy != _INITIAL and step_length == 1.0
                 last_correction = 0.0
                 largest = 0.0
                 for i in range(n):
@@ -300,6 +311,7 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
         for g in range(groups):
             group_force[step + 1, g] = force_out[g]
             group_strain[step + 1, g] = strain_out[g]
+            peak_group_strain[g] = max(peak_group_strain[g], abs(strain_out[g]))
         for i in range(n):
             increment = u[i] - u_n[i]
             velocity[step + 1, i] = v1 * increment - v_n[i]
@@ -323,11 +335,14 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
             geometric_work += 0.5 * geometric[s] * (drift[s] + old_drift[s]) * change
             recoverable += 0.5 * story_force[s] ** 2 / parameters[s, 0]
             story_shear[step + 1, s] = story_force[s]
+            damper_force[step + 1, s] = wall_force
+            drift_out[step + 1, s] = drift[s]
             old_story_force[s] = story_force[s]
             old_wall_force[s] = wall_force
             old_drift[s] = drift[s]
         for i in range(n):
             change = u[i] - u_n[i]
+            absolute[step + 1, i] = acceleration[step + 1, i] + ground[step + 1]
             kinetic += 0.5 * masses[i] * velocity[step + 1, i] ** 2
             input_work -= 0.5 * masses[i] * (ground[step + 1] + ground[step]) * change
             damping_work += 0.5 * (damping_force[i] + old_damping_force[i]) * change
@@ -546,10 +561,14 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
     displacement = np.zeros((steps, floors))
     velocity = np.zeros((steps, floors))
     acceleration = np.zeros((steps, floors))
+    absolute = np.zeros((steps, floors))
+    drift = np.zeros((steps, floors))
     story_shear = np.zeros((steps, floors))
+    damper_force = np.zeros((steps, floors))
     base_shear = np.zeros(steps)
     group_force = np.zeros((steps, len(groups)))
     group_strain = np.zeros((steps, len(groups)))
+    peak_group_strain = np.zeros(len(groups))
     energy = np.zeros((steps, _ENERGIES))
     outcome = np.zeros(3, dtype=np.int64)
     (constants, w0, window_weights, window, mode_weight, mode_ratio, mode_state, history, values, wall_tangent,
@@ -560,7 +579,8 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
         collapse_ratio, building.is_linear, newton.displacement_tolerance, newton.force_tolerance,
         newton.max_iterations, newton.fallback_iterations, group_story, constants, w0, window_weights, window,
         mode_weight, mode_ratio, mode_state, history, values, wall_tangent, wall_history,
-        displacement, velocity, acceleration, story_shear, base_shear, group_force, group_strain, energy, outcome)
+        displacement, velocity, acceleration, absolute, drift, story_shear, damper_force, base_shear, group_force,
+        group_strain, peak_group_strain, energy, outcome)
     status, story_index, iterations = (int(x) for x in outcome)
     keep = slice(0, filled)
     time = np.arange(filled) * dt
@@ -571,8 +591,9 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
                       stacklevel=2)
     require_finite("the response", displacement[keep])
     return _result(building, walls, groups, group_of_wall, group_story, time, ground[keep], displacement[keep],
-                   velocity[keep], acceleration[keep], story_shear[keep], base_shear[keep], group_force[keep],
-                   group_strain[keep], energy[keep], converged=status != _FAILED, collapsed=status == _COLLAPSED,
+                   velocity[keep], acceleration[keep], absolute[keep], drift[keep], story_shear[keep],
+                   damper_force[keep], base_shear[keep], group_force[keep], group_strain[keep], peak_group_strain,
+                   energy[keep], converged=status != _FAILED, collapsed=status == _COLLAPSED,
                    collapse_time=float(time[-1]) if status == _COLLAPSED else None, iterations=iterations)
 
 
@@ -619,41 +640,37 @@ class _CombinedWall:
 
 
 def _result(building, walls, groups, group_of_wall, group_story, time, ground, displacement, velocity,
-            acceleration, story_shear, base_shear, group_force, group_strain, energy, *, converged, collapsed,
-            collapse_time, iterations):
-    floors = building.stories
-    drift = np.diff(displacement, axis=1, prepend=0.0)
+            acceleration, absolute, drift, story_shear, damper_force, base_shear, group_force, group_strain,
+            peak_group_strain, energy, *, converged, collapsed, collapse_time, iterations):
     heights = building.story_heights
     drift_ratio = None if heights is None else drift / np.asarray(heights)
-    # Each wall carries its area's share of its group's force; stories sum their groups.
+    # Each wall carries its area's share of its group's force and its group's strain.
     share = np.array([walls[i][1].area / groups[g][1].area for i, g in enumerate(group_of_wall)])
-    wall_force = group_force[:, group_of_wall] * share
-    wall_strain = group_strain[:, group_of_wall]
-    damper_force = np.zeros((time.size, floors))
-    damper_strain = np.zeros((time.size, floors))
-    peak_strain = np.zeros(floors)
+    wall_force = np.take(group_force, group_of_wall, axis=1) * share
+    wall_strain = np.take(group_strain, group_of_wall, axis=1)
+    # Each story's most strained wall group.
+    damper_strain = np.zeros((time.size, building.stories))
+    most = {}
     for g, story in enumerate(group_story):
-        damper_force[:, story] += group_force[:, g]
-        peak = np.abs(group_strain[:, g]).max(initial=0.0)
-        if peak >= peak_strain[story]:
-            peak_strain[story] = peak
-            damper_strain[:, story] = group_strain[:, g]
-    absolute = acceleration + ground[:, None]
+        if story not in most or peak_group_strain[g] > peak_group_strain[most[story]]:
+            most[story] = g
+    for story, g in most.items():
+        damper_strain[:, story] = group_strain[:, g]
     require_finite("the energy histories", energy)
     energy_history = EnergyHistory(energy[:, 0], energy[:, 1], energy[:, 2], energy[:, 3] - energy[:, 2],
                                    energy[:, 4], energy[:, 5], energy[:, 6])
-    _warn_strain_range(walls, wall_strain)
+    _warn_strain_range(walls, peak_group_strain[group_of_wall])
     return SimulationResult(building, time, ground, displacement, velocity, acceleration, absolute, drift,
                             drift_ratio, story_shear, damper_force, damper_strain, base_shear, energy_history,
                             wall_force, wall_strain, converged, collapsed, collapse_time, iterations)
 
 
-def _warn_strain_range(walls, wall_strain):
+def _warn_strain_range(walls, peak_wall_strain):
     outside = []
     for index, (story, wall) in enumerate(walls):
         if wall.strain_range is None:
             continue
-        peak = float(np.abs(wall_strain[:, index]).max(initial=0.0))
+        peak = float(peak_wall_strain[index])
         low, high = wall.strain_range
         if not low <= peak <= high:
             outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %)")
