@@ -42,9 +42,15 @@ def main(argv=None) -> int:
     parser.add_argument("--out", type=Path, default=Path("out"), help="folder for the figures (default ./out)")
     args = parser.parse_args(argv)
 
-    motion = ground_motion.read_at2(args.record or ground_motion.default_record_path())
-    if args.scale is not None:
-        motion = motion.scaled_to_pga(args.scale * ground_motion.G)
+    try:
+        motion = ground_motion.read_at2(args.record or ground_motion.default_record_path())
+        if args.scale is not None:
+            if not args.scale > 0.0:
+                raise ValueError(f"--scale must be a PGA > 0 in g, got {args.scale:g}")
+            motion = motion.scaled_to_pga(args.scale * ground_motion.G)
+    except ValueError as error:  # a missing or malformed record: one line, no traceback
+        print(f"{Path(__file__).name}: error: {error}", file=sys.stderr)
+        return 2
     walled = example_building()
     bare = walled.without_dampers()
     walls_per_story = len(walled.dampers[1])

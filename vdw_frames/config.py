@@ -17,6 +17,8 @@ Keys (units N-mm-s-tonne)::
     thickness = 10.0                    # mm, optional (default: the paper's 10)
 
 JSON files use the same keys ("walls" a list of objects).  TOML needs Python >= 3.11 (tomllib).
+Files are UTF-8 (a byte-order mark is allowed).  Story numbers are whole numbers (``2`` or ``2.0``),
+each at most once in a group.  Anything malformed is a ValueError naming the file and the key.
 """
 
 from __future__ import annotations
@@ -24,8 +26,9 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from .frame.building import ShearBuilding
+from ._validation import read_text, show, whole_number
 from .element.damper import FDMKDamper
+from .frame.building import ShearBuilding
 
 _BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "walls"}
 _WALL_KEYS = {"stories", "per_story", "parameters", "area", "thickness"}
@@ -34,11 +37,7 @@ _PARAMETER_KEYS = {"G1", "G2", "eta1", "eta2", "r"}
 
 def load_building(path) -> ShearBuilding:
     """Read a :class:`ShearBuilding` from a ``.toml`` or ``.json`` file (format in the module docstring)."""
-    path = Path(path)
-    try:
-        text = path.read_text()
-    except OSError as error:
-        raise ValueError(f"{path}: cannot read building file ({error.strerror})") from None
+    path, text = read_text(path, "building file")
     try:
         if path.suffix.lower() == ".toml":
             try:
@@ -50,7 +49,7 @@ def load_building(path) -> ShearBuilding:
             data = json.loads(text)
         else:
             raise ValueError(f"{path}: building files must end in .toml or .json")
-    except (ValueError, json.JSONDecodeError) as error:
+    except (ValueError, RecursionError) as error:  # JSONDecodeError and TOMLDecodeError are ValueErrors
         if str(error).startswith(str(path)):
             raise
         raise ValueError(f"{path}: not valid {path.suffix[1:].upper()}: {error}") from None
@@ -115,9 +114,22 @@ def _wall_group(group, stories):
     story_numbers = group.get("stories", "all")
     if story_numbers == "all":
         story_numbers = range(1, stories + 1)
-    elif not isinstance(story_numbers, list) or len(set(map(repr, story_numbers))) != len(story_numbers):
-        raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got {story_numbers!r}")
-    per_story = group.get("per_story", 1)
-    if isinstance(per_story, bool) or not isinstance(per_story, int) or per_story < 1:
-        raise ValueError(f"walls per_story must be a whole number >= 1, got {per_story!r}")
+    elif isinstance(story_numbers, list):
+        numbers = []
+        for number in story_numbers:
+            try:
+                number = whole_number("story", number, 1)
+            except ValueError:
+                raise ValueError(f"walls stories must be story numbers in 1 ... {stories}, got {show(number)} "
+                                 f"in {show(story_numbers)}") from None
+            if number > stories:
+                raise ValueError(f"damper story must be a story number in 1 ... {stories}, got {number}")
+            numbers.append(number)
+        if len(set(numbers)) != len(numbers):
+            raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got "
+                             f"{show(story_numbers)}")
+        story_numbers = numbers
+    else:
+        raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got {show(story_numbers)}")
+    per_story = whole_number("walls per_story", group.get("per_story", 1), 1)
     return wall, story_numbers, per_story

@@ -160,20 +160,37 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
              memory=DEFAULT_MEMORY) -> SimulationResult:
     """Integrate ``building`` under ``ground_motion`` (a :class:`~vdw_frames.GroundMotion`, mm/s^2).
 
-    ``dt`` (s) defaults to the record's step; a smaller step must divide it (the ground acceleration is
-    interpolated linearly); a larger or non-dividing step is a ValueError.  ``method`` and ``memory``
-    select the dampers' discretisation and memory strategy ("fast", the default, costs the same at
-    every step and stays within 3e-9 of "exact"; see :meth:`FDMKDamper.force`).  Warns
-    (``UserWarning``) when a damper's peak strain leaves its ``strain_range``.  An overflowed response
-    (absurd inputs) is a ValueError, never inf or NaN.  Returns a :class:`SimulationResult`.
+    ``dt`` (s) defaults to the record's step; a smaller step must divide it to a relative 1e-6 (the
+    ground acceleration is interpolated linearly; the step used is the record step / the whole number of
+    sub-steps, so a float32 dt works); a larger or non-dividing step, or one outside
+    ``vdw_frames._validation.SIMULATION_STEP_RANGE`` (1e-9 ... 1e3 s), is a ValueError.  So is a run
+    whose result arrays would exceed the 2 GiB memory limit, refused before allocating with its step
+    count and memory.  ``method`` and ``memory`` (validated even for a frame without walls) select the
+    dampers' discretisation and memory strategy ("fast", the default, costs the same at every step and
+    stays within 3e-9 of "exact"; see :meth:`FDMKDamper.force`).  Warns (``UserWarning``) when a
+    damper's peak strain leaves its ``strain_range``.  An overflowed response (absurd inputs) is a
+    ValueError, never inf or NaN.  Returns a :class:`SimulationResult`.
     """
+    from .._validation import SIMULATION_STEP_RANGE, check_memory, show
+    from ..element.damper import memory_strategy
+    from ..element.fractional import get_method
+
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
     if not isinstance(ground_motion, GroundMotion):
         raise ValueError(f"ground_motion must be a GroundMotion (see read_at2), got {type(ground_motion).__name__}")
-    if dt is None:
-        dt = ground_motion.dt
-    dt = positive("dt", dt)
+    get_method(method)
+    memory_strategy(memory)
+    dt = positive("dt", ground_motion.dt if dt is None else dt)
+    if not SIMULATION_STEP_RANGE[0] <= dt <= SIMULATION_STEP_RANGE[1]:
+        raise ValueError(f"time step dt = {show(dt)} s is outside the range simulate accepts "
+                         f"({SIMULATION_STEP_RANGE[0]:g} ... {SIMULATION_STEP_RANGE[1]:g} s)")
+    substeps = ground_motion.substeps(dt)
+    dt = ground_motion.dt / substeps
+    # Result histories (about 12 per floor), wall forces and exact memories, energies: float64 a step.
+    check_memory(f"simulate (dt = {dt!r} s, {building.stories} floors, {len(building.damper_list)} walls)",
+                 (ground_motion.acceleration.size - 1) * substeps + 1,
+                 8 * (12 * building.stories + 5 * len(building.damper_list) + 10), "use a larger dt")
     ground = ground_motion.acceleration_at(dt)
     steps, floors = ground.size, building.stories
     time = np.arange(steps) * dt
@@ -311,5 +328,7 @@ def _warn_strain_range(building, peak_drift):
         if not low <= peak <= high:
             outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %)")
     if outside:
-        warnings.warn("damper peak strain outside the range its parameters were identified for: "
-                      + "; ".join(dict.fromkeys(outside)), UserWarning, stacklevel=4)
+        from .._warnings import warn  # collected per task by run_batch (thread-safe)
+
+        warn("damper peak strain outside the range its parameters were identified for: "
+             + "; ".join(dict.fromkeys(outside)), UserWarning, stacklevel=4)
