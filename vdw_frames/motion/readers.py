@@ -156,7 +156,14 @@ def read_at2(path) -> GroundMotion:
             raise ValueError(f"{path}: too many values: NPTS = {npts} on line {count_line_number} but "
                              f"{values.size} values follow")
         values, line_numbers = values[:npts], line_numbers[:npts]
-    return GroundMotion(_to_mm_s2(values, G, "g", line_numbers, path), dt, path.stem)
+    return _motion(_to_mm_s2(values, G, "g", line_numbers, path), dt, path.stem, path)
+
+
+def _motion(acceleration, dt, name, path) -> GroundMotion:
+    try:
+        return GroundMotion(acceleration, dt, name)
+    except ValueError as error:  # e.g. a single sample
+        raise ValueError(f"{path}: {error}") from None
 
 
 def _npts(text: str, path: Path, line: int) -> int:
@@ -220,7 +227,7 @@ def read_two_column(path, unit: str = "g", *, skip_rows: int = 0, name: str | No
         raise ValueError(f"{path}: non-uniform time step at line {line_numbers[2 * row]}: t = {show(time[row])} s, "
                          f"expected {show(time[0] + row * dt)} s for a step of {show(dt)} s")
     acceleration = _to_mm_s2(rows[:, 1], UNITS[unit], unit, line_numbers[1::2], path)
-    return GroundMotion(acceleration, float(dt), path.stem if name is None else name)
+    return _motion(acceleration, float(dt), path.stem if name is None else name, path)
 
 
 def write_at2(motion: GroundMotion, path, header: str | Sequence[str] = ()) -> Path:

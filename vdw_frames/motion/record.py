@@ -104,6 +104,7 @@ class GroundMotion:
         2 GiB), refused before allocating with the number of steps and the memory.
         """
         substeps = self.substeps(dt)
+        self._check_memory(dt, substeps)
         acceleration = self.acceleration
         if substeps == 1:
             return acceleration.copy()
@@ -118,8 +119,8 @@ class GroundMotion:
 
     def substeps(self, dt) -> int:
         """The whole number ``m`` of steps of ``dt`` s in one record step (see :meth:`acceleration_at`);
-        ValueError for a ``dt`` that is larger, does not divide the record step, or would need more
-        samples than the memory limit allows.  The step to integrate with is ``self.dt / m``."""
+        ValueError for a ``dt`` that is larger or does not divide the record step.  The step to
+        integrate with is ``self.dt / m`` (``dt`` within 1e-6 relative)."""
         dt = positive("dt", dt)
         if dt > self.dt * (1.0 + STEP_TOLERANCE):
             raise ValueError(f"time step dt = {dt!r} s is larger than the record step {self.dt!r} s "
@@ -129,10 +130,12 @@ class GroundMotion:
         if abs(ratio - substeps) > STEP_TOLERANCE * ratio:
             raise ValueError(f"time step dt = {dt!r} s does not divide the record step {self.dt!r} s "
                              f"of {self._label} (ratio {ratio!r} is not a whole number)")
+        return substeps
+
+    def _check_memory(self, dt: float, substeps: int) -> None:
         check_memory(f"dt = {dt!r} s on {self._label} ({self.acceleration.size} samples every {self.dt!r} s)",
                      (self.acceleration.size - 1) * substeps + 1, _RESAMPLING_BYTES_PER_STEP,
                      "use a larger dt")
-        return substeps
 
     def _nonzero(self, what: str, value: float) -> float:
         if value == 0.0:
