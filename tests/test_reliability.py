@@ -562,7 +562,7 @@ def test_one_rule_for_numbers_accepts_numpy(kind):
     (lambda: ShearBuilding([1.0, True], [1.0, 1.0]), "masses must be real numbers"),
     (lambda: ShearBuilding(["1", "2"], [1.0, 1.0]), "masses must be real numbers"),
     (lambda: ShearBuilding([1.0], [1.0], damping_ratio="0.05"), "damping_ratio must be a real number"),
-    (lambda: GroundMotion(np.array([True, False]), 0.01), "acceleration must be an array of real numbers"),
+    (lambda: GroundMotion(np.array([True, False]), 0.01), "acceleration must be real numbers, got an array of dtype bool"),
     (lambda: sine_test(FDMKDamper(**WALL), 10.0, 1.0, cycles=True), "cycles must be a whole number >= 1, got True"),
     (lambda: read_two_column(REPO / "README.md", skip_rows=1.5), "skip_rows must be a whole number >= 0, got 1.5"),
 ])

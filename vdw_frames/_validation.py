@@ -95,6 +95,19 @@ def _has_bool_or_text(values) -> bool:
     return False
 
 
+def _number_array(name: str, values, dtype, kinds: str, what: str) -> np.ndarray:
+    """``values`` as an array of ``dtype``; bools and strings (which numpy would convert) refused."""
+    if isinstance(values, (bool, np.bool_, str, bytes)) or (
+            isinstance(values, (list, tuple)) and _has_bool_or_text(values)):
+        raise ValueError(f"{name} must be {what}, got {show(values)}")
+    if isinstance(values, np.ndarray) and values.dtype.kind not in kinds:
+        raise ValueError(f"{name} must be {what}, got an array of dtype {values.dtype}")
+    try:
+        return np.asarray(values, dtype=dtype)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{name} must be {what}") from None
+
+
 def finite_array(name: str, values, ndim: int | None = 1) -> np.ndarray:
     """A float64 array with only finite entries (and ``ndim`` dimensions when given).
 
@@ -103,15 +116,7 @@ def finite_array(name: str, values, ndim: int | None = 1) -> np.ndarray:
     """
     if np.iscomplexobj(values):
         raise ValueError(f"{name} must be real, got complex values")
-    if isinstance(values, (bool, np.bool_, str, bytes)) or (
-            isinstance(values, (list, tuple)) and _has_bool_or_text(values)):
-        raise ValueError(f"{name} must be real numbers, got {show(values)}")
-    if isinstance(values, np.ndarray) and values.dtype.kind not in "iuf":
-        raise ValueError(f"{name} must be an array of real numbers, got dtype {values.dtype}")
-    try:
-        array = np.asarray(values, dtype=float)
-    except (TypeError, ValueError, OverflowError):
-        raise ValueError(f"{name} must be an array of real numbers") from None
+    array = _number_array(name, values, float, "iuf", "real numbers")
     if ndim is not None and array.ndim != ndim:
         raise ValueError(f"{name} must be {ndim}-dimensional, got shape {array.shape}")
     bad = ~np.isfinite(array)
@@ -125,15 +130,7 @@ def finite_array(name: str, values, ndim: int | None = 1) -> np.ndarray:
 def finite_complex_array(name: str, values) -> np.ndarray:
     """A complex128 array (any shape; scalars become 0-d) with only finite entries; bools and strings
     are refused."""
-    if isinstance(values, (bool, np.bool_, str, bytes)) or (
-            isinstance(values, (list, tuple)) and _has_bool_or_text(values)):
-        raise ValueError(f"{name} must be numbers, got {show(values)}")
-    if isinstance(values, np.ndarray) and values.dtype.kind not in "iufc":
-        raise ValueError(f"{name} must be an array of numbers, got dtype {values.dtype}")
-    try:
-        array = np.asarray(values, dtype=complex)
-    except (TypeError, ValueError, OverflowError):
-        raise ValueError(f"{name} must be an array of numbers") from None
+    array = _number_array(name, values, complex, "iufc", "numbers")
     bad = ~np.isfinite(array)
     if bad.any():
         raise ValueError(f"{name} must be finite, got {show(array[bad].flat[0])}")
@@ -159,14 +156,10 @@ def damping_ratio(value, name: str = "damping_ratio") -> float:
     return zeta
 
 
-def require_finite(name: str, values, where: str = "") -> None:
-    """Refuse an overflowed result (inf or NaN) instead of handing it to the user.
-
-    ``where`` names the inputs that produced it (e.g. ``"at f = 1e+308 Hz"``).
-    """
+def require_finite(name: str, values) -> None:
+    """Refuse an overflowed result (inf or NaN) instead of handing it to the user."""
     if not np.all(np.isfinite(values)):
-        place = f" {where}" if where else ""
-        raise ValueError(f"{name} overflowed (inf or NaN){place}: the inputs or parameters are too large")
+        raise ValueError(f"{name} overflowed (inf or NaN): the inputs or parameters are too large")
 
 
 def positive_frequencies(name: str, values) -> np.ndarray:

@@ -39,7 +39,7 @@ def plot_loops(results, path, labels=None, title=None) -> Path:
         labels = [f"U = {res.amplitude:g} mm, f = {res.frequency:g} Hz" for res in results]
     if len(labels) != len(results):
         raise ValueError(f"labels has {len(labels)} entries for {len(results)} results")
-    path = figure_path(path, "loops.png")
+    path = _figure_path(path, "loops.png")
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(6.4, 4.8))
     for res, label in zip(results, labels):
@@ -57,7 +57,7 @@ def plot_loops(results, path, labels=None, title=None) -> Path:
     return _save(figure, path)
 
 
-def figure_path(path, default_name: str) -> Path:
+def _figure_path(path, default_name: str) -> Path:
     """Where a figure for ``path`` goes (see the module docstring); the folder is created."""
     text = os.fspath(path) if isinstance(path, (str, os.PathLike)) else path
     path = file_path(path, "figure path")
@@ -90,7 +90,7 @@ def plot_drift_envelope(results: dict, path) -> Path:
 
     ``results`` maps a label to a :class:`~vdw_frames.frame.simulation.SimulationResult`.
     """
-    path = figure_path(path, "drift_envelope.png")
+    path = _figure_path(path, "drift_envelope.png")
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(5.0, 5.6))
     for label, result in results.items():
@@ -110,7 +110,7 @@ def plot_drift_envelope(results: dict, path) -> Path:
 
 def plot_roof_displacement(results: dict, path) -> Path:
     """Roof displacement relative to the ground (mm) against time (s), one line per result."""
-    path = figure_path(path, "roof_displacement.png")
+    path = _figure_path(path, "roof_displacement.png")
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(8.0, 3.6))
     for label, result in results.items():
@@ -131,7 +131,7 @@ def plot_damper_hysteresis(result, story: int, path, title=None) -> Path:
         raise ValueError(message) from None
     if story > result.building.stories:
         raise ValueError(message)
-    path = figure_path(path, "damper_hysteresis.png")
+    path = _figure_path(path, "damper_hysteresis.png")
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(5.6, 4.6))
     axes.plot(result.drift[:, story - 1], result.damper_force[:, story - 1] / 1e3, lw=0.6)
@@ -145,7 +145,7 @@ def plot_damper_hysteresis(result, story: int, path, title=None) -> Path:
 
 def plot_energy(result, path, title=None) -> Path:
     """Stacked energy histories (kN*m = 1e6 N*mm) with the input energy on top."""
-    path = figure_path(path, "energy.png")
+    path = _figure_path(path, "energy.png")
     plt = _pyplot()
     energy = result.energy
     figure, axes = plt.subplots(figsize=(8.0, 4.0))
@@ -170,7 +170,7 @@ def plot_ida_curves(results: dict, path, title=None) -> Path:
     """
     from .motion.record import G
 
-    path = figure_path(path, "ida_curves.png")
+    path = _figure_path(path, "ida_curves.png")
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(6.4, 4.8))
     for (label, result), style in zip(results.items(), ("--", "-", ":", "-.")):
