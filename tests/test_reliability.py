@@ -217,6 +217,9 @@ def test_defect12_story_numbers_are_whole_numbers_once_each():
     as_float = building_from_dict(spec)
     spec["walls"] = [{"stories": [1], "parameters": dict(WALL)}]
     assert as_float.damper_list == building_from_dict(spec).damper_list == [(1, FDMKDamper(**WALL))]
+    spec["walls"] = [{"stories": [1], "per_story": 10**18, "parameters": dict(WALL)}]
+    with pytest.raises(ValueError, match="per_story must be at most 1000, got 1000000000000000000"):
+        building_from_dict(spec)  # refused, not a list of 10^18 walls
     for stories in ([1.5], [True], ["1"], [0], [4], {"1": 1}, 1):
         spec["walls"] = [{"stories": stories, "parameters": dict(WALL)}]
         with pytest.raises(ValueError, match="stor"):

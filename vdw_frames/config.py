@@ -10,7 +10,7 @@ Keys (units N-mm-s-tonne)::
 
     [[walls]]                           # any number of wall groups, optional
     stories = "all"                     # or a list of story numbers
-    per_story = 2                       # walls in parallel in each of those stories
+    per_story = 2                       # walls in parallel in each of those stories (1 ... 1000)
     parameters = "fitted-300"           # recommended set for 225, 300 or 450 % strain ...
     # parameters = {G1 = 0.0, G2 = 3.0, eta1 = 0.3, eta2 = 2.0, r = 0.5}   # ... or explicit (MPa, MPa*s^r)
     area = 1.0e6                        # mm^2, optional (default: the paper's 1e6)
@@ -33,6 +33,8 @@ from .frame.building import ShearBuilding
 _BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "walls"}
 _WALL_KEYS = {"stories", "per_story", "parameters", "area", "thickness"}
 _PARAMETER_KEYS = {"G1", "G2", "eta1", "eta2", "r"}
+MAX_PER_STORY = 1000
+"""Most walls one group may put in parallel on a story (a bound, so a typo cannot exhaust memory)."""
 
 
 def load_building(path) -> ShearBuilding:
@@ -132,4 +134,6 @@ def _wall_group(group, stories):
     else:
         raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got {show(story_numbers)}")
     per_story = whole_number("walls per_story", group.get("per_story", 1), 1)
+    if per_story > MAX_PER_STORY:
+        raise ValueError(f"walls per_story must be at most {MAX_PER_STORY}, got {per_story}")
     return wall, story_numbers, per_story
