@@ -1,8 +1,9 @@
 """vdw_frames: FDMK viscoelastic damping walls and shear buildings fitted with them.
 
 Sub-packages: :mod:`~vdw_frames.element` (the FDMK wall model and its time stepping),
-:mod:`~vdw_frames.frame` (shear buildings, integration, batches), :mod:`~vdw_frames.motion` (ground
-motions) and :mod:`~vdw_frames.paper` (the paper's data, identification, report); beside them
+:mod:`~vdw_frames.frame` (shear buildings, integration, batches), :mod:`~vdw_frames.design` (complex
+modal analysis, wall sizing), :mod:`~vdw_frames.motion` (ground motions) and :mod:`~vdw_frames.paper`
+(the paper's data, identification, report); beside them
 :mod:`~vdw_frames.config` (building files), :mod:`~vdw_frames.plotting` and :mod:`~vdw_frames.cli`.
 The public names are re-exported here; ``paper`` and ``identify`` load on first use (they pull in
 scipy.optimize, which ``import vdw_frames`` need not pay for).
@@ -13,7 +14,8 @@ energy N*mm, frequency Hz.
 
 from importlib import import_module
 
-from . import element, frame, motion
+from . import design, element, frame, motion
+from .design import ModalResult, SizingCurve, damping_curve, size_walls
 from .element import (
     BDF2,
     DampedTwoStep,
@@ -61,15 +63,19 @@ __all__ = [
     "GroundMotion",
     "GrunwaldLetnikov",
     "IDAResult",
+    "ModalResult",
     "NewtonRaphson",
     "ShearBuilding",
     "SimulationResult",
     "SineTestResult",
+    "SizingCurve",
     "SupportedDamper",
     "StrainCompatibleOptions",
     "StrainDependentDamper",
     "Trapezoidal",
     "WallBank",
+    "damping_curve",
+    "design",
     "element",
     "frame",
     "identify",
@@ -83,6 +89,7 @@ __all__ = [
     "run_batch",
     "simulate",
     "sine_test",
+    "size_walls",
     "write_at2",
 ]
 

@@ -1,4 +1,5 @@
-"""The ``vdw-frames`` command line: ``sine-test``, ``simulate`` and ``paper-report``.
+"""The ``vdw-frames`` command line: ``sine-test``, ``simulate``, ``design`` and
+``paper-report``.
 
 Errors are one line ``vdw-frames: error: ...`` on standard error with exit code 2; warnings are one
 line ``warning: ...`` each.
@@ -121,12 +122,87 @@ def _simulate(args) -> int:
     return 0
 
 
+def _design(args) -> int:
+    """The ``design`` command: modal table with and without walls, sizing, damping-versus-size figure."""
+    from .config import load_building
+    from .design import damping_curve, plot_damping_curve, resized, size_walls
+    from .design.sizing import _story_text
+
+    if args.modes < 1:
+        raise ValueError(f"--modes must be >= 1, got {args.modes}")
+    out = _output_folder(args.out)
+    building = load_building(args.building)
+    modes = building.modal_analysis()
+    walls = building.damper_list
+    print(f"{args.building}: {building.stories} stories, {len(walls)} walls, inherent damping "
+          f"{100 * building.damping_ratio:g} % ({building.damping_model}); the linear building, complex modes")
+    print(f"{'mode':>4s} {'T bare s':>9s} {'xi bare %':>9s} {'T walls s':>9s} {'xi %':>7s} {'energy %':>8s} "
+          f"{'added %':>8s} {'walls %':>8s}")
+    for k in range(min(args.modes, modes.modes.size)):
+        print(f"{modes.modes[k]:4d} {modes.bare_periods[k]:9.3f} {100 * modes.bare_damping_ratios[k]:9.2f} "
+              f"{modes.periods[k]:9.3f} {100 * modes.damping_ratios[k]:7.2f} {100 * modes.energy_damping_ratios[k]:8.2f} "
+              f"{100 * modes.added_damping[k]:8.2f} {100 * modes.energy_added_damping[k]:8.2f}")
+    print("xi: complex modes, -Re s/|s|; energy: xi_inherent + sum W_c/(4 pi W_s) in the real mode (FEMA 356 "
+          "eq. 9-36 form); added: xi - xi bare; walls: the walls' own share sum W_c/(4 pi W_s)")
+    if not walls:
+        print("no walls in the building file: add a [[walls]] group to size them")
+        return 0
+    # The template: the lowest walled story's walls as one (identical walls in parallel add their areas).
+    lowest = building.dampers[min(building.dampers)]
+    template = resized(lowest[0], len(lowest)) if all(wall == lowest[0] for wall in lowest) else lowest[0]
+    stories = sorted(building.dampers)
+    curve = damping_curve(building, template, args.mode, args.distribution, stories)
+    area = template.area / 1e6
+    per = "per story" if args.distribution == "uniform" else "in the story with the largest weight"
+    print(f"\nsizing mode {args.mode}: the template wall (story {min(building.dampers)}'s walls, A = {area:.4g} m^2) "
+          f"scaled, {args.distribution} over {_story_text(tuple(stories))}")
+    own = building.modal_analysis(args.mode)
+    print(f"  the file's walls: xi = {100 * own.damping_ratios[0]:.2f} %, T = {own.periods[0]:.3f} s")
+    print(f"  largest achievable: xi = {100 * curve.best_damping_ratio:.2f} % at {curve.best_factor:.3g} x "
+          f"({curve.best_factor * area:.4g} m^2 {per}), T = {curve.best_period:.3f} s; larger walls stiffen the "
+          "frame more than they damp it")
+    # The file's walls lie on the uniform curve (at 1 x) when every walled story holds the same walls.
+    uniform_file = all(building.dampers[story] == lowest for story in stories)
+    marks = {"file's walls": 1.0} if uniform_file and args.distribution == "uniform" else {}
+    unreachable = None
+    if args.target is not None:
+        try:
+            sized = size_walls(building, template, args.target, args.mode, args.distribution, stories)
+        except ValueError as error:  # reported after the figure, as the command's error
+            unreachable = error
+        else:
+            result = sized.modal_analysis(args.mode)
+            factor = max(wall.area for _, wall in sized.damper_list) / template.area
+            marks["target"] = factor
+            print(f"  target {100 * args.target:g} %: {factor:.3g} x ({factor * area:.4g} m^2 {per}): xi = "
+                  f"{100 * result.damping_ratios[0]:.2f} %, T = {result.periods[0]:.3f} s")
+    path = plot_damping_curve(curve, out / "design_damping.png", target=args.target, marks=marks,
+                              title=f"{Path(args.building).name}: mode {args.mode} against the wall size")
+    print(f"figure: {path}")
+    if unreachable is not None:
+        raise unreachable
+    return 0
+
+
 def _paper_report(args) -> int:
     from .paper.report import write_paper_report
 
     path = write_paper_report(args.out)
     print(f"report: {path}")
     return 0
+
+
+def _add_design_command(commands) -> None:
+    design = commands.add_parser("design", help="what the walls add (complex modes, with and without walls) and "
+                                                "how large they must be for a target damping ratio")
+    design.add_argument("building", help="building file, .toml or .json, with walls (format: vdw_frames.config)")
+    design.add_argument("--target", type=float, help="target total damping ratio of the mode, e.g. 0.15")
+    design.add_argument("--mode", type=int, default=1, help="mode to size the walls for (default 1)")
+    design.add_argument("--distribution", default="uniform", choices=("uniform", "stiffness", "drift"),
+                        help="wall area over the walled stories (default uniform)")
+    design.add_argument("--modes", type=int, default=5, help="modes in the table (default 5)")
+    design.add_argument("--out", default="out", help="folder for the figure (default ./out)")
+    design.set_defaults(run=_design)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -148,6 +224,8 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--dt", type=float, help="time step, s (default: the record's; must divide it)")
     run.add_argument("--out", help="folder for figures (default: none)")
     run.set_defaults(run=_simulate)
+
+    _add_design_command(commands)
 
     report = commands.add_parser("paper-report", help="reproduce the paper's tables and figures into DIR/report.md")
     report.add_argument("--out", default="paper_report", help="output folder (default ./paper_report)")

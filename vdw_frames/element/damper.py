@@ -25,6 +25,7 @@ frequency Hz, stiffness N/mm, damping coefficient N*s/mm, time s.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -81,6 +82,17 @@ class FDMKDamper:
             if low > high:
                 raise ValueError(f"strain_range must have low <= high, got {show(self.strain_range)}")
             object.__setattr__(self, "strain_range", (low, high))
+
+    def scaled(self, factor) -> "FDMKDamper":
+        """This wall with its moduli and viscosities (G1, G2, eta1, eta2) times ``factor`` (> 0, -).
+
+        The property-modification factors of ASCE 7-16 Sec. 18.2.4.5 (upper- and lower-bound damper
+        properties, e.g. 1.2 and 0.8): K*(f) scales by ``factor`` at every frequency, the loss factor
+        G''/G' does not change.  r, area, thickness and strain_range are kept.
+        """
+        factor = positive("factor", factor)
+        return dataclasses.replace(self, G1=self.G1 * factor, G2=self.G2 * factor, eta1=self.eta1 * factor,
+                                   eta2=self.eta2 * factor)
 
     # ------------------------------------------------------------------ frequency domain
     @property

@@ -24,6 +24,7 @@ thickness mm, frequency Hz, stiffness N/mm.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -116,6 +117,13 @@ class StrainDependentDamper:
             raise ValueError(f"strain_range must be two amplitudes (low, high), got {strain_range!r}")
         values = {name: (getattr(damper, name),) * 2 for name in PARAMETERS}
         return cls(tuple(strain_range), **values, area=damper.area, thickness=damper.thickness)
+
+    def scaled(self, factor) -> "StrainDependentDamper":
+        """This wall with its moduli and viscosities (G1, G2, eta1, eta2) times ``factor`` (> 0) at every node
+        amplitude: the property-modification factors of ASCE 7-16 Sec. 18.2.4.5 (see :meth:`FDMKDamper.scaled`)."""
+        factor = positive("factor", factor)
+        return dataclasses.replace(self, **{name: tuple(v * factor for v in getattr(self, name))
+                                            for name in ("G1", "G2", "eta1", "eta2")})
 
     @property
     def strain_range(self) -> tuple:

@@ -62,6 +62,10 @@ class SupportedDamper:
     def strain_range(self):
         return self.damper.strain_range
 
+    def scaled(self, factor) -> "SupportedDamper":
+        """The wall's moduli and viscosities times ``factor`` (:meth:`FDMKDamper.scaled`); the support unchanged."""
+        return SupportedDamper(self.damper.scaled(factor), self.support_stiffness)
+
     # ------------------------------------------------------------------ frequency domain
     def stiffness_transfer(self, s):
         """K(s) = K_wall(s) k_s / (K_wall(s) + k_s) (N/mm) for complex s (rad/s)."""

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import concurrent.futures
 import csv
+import dataclasses
 import os
 import sys
 from dataclasses import dataclass
@@ -84,7 +85,10 @@ class BatchResult:
     peak_base_shear N, peak_damper_force N (total per story), residual_drift mm (the drift at the last
     step, per story).  ``collapsed`` and ``converged`` (motions, scales) are each analysis's outcome
     (:class:`~vdw_frames.SimulationResult`): a collapsed or non-converged run is recorded, its peaks
-    being those reached before it stopped.
+    being those reached before it stopped.  With ``run_batch(..., property_factors=...)`` the peaks are
+    the envelope over the factors (residual drifts: the largest in magnitude; collapsed: any;
+    converged: all): ``property_factors`` lists them and ``governing_factor`` maps each peak's name to
+    an array of its shape holding the factor that gave each value (None otherwise).
     """
 
     motion_names: tuple
@@ -98,6 +102,8 @@ class BatchResult:
     residual_drift: np.ndarray
     collapsed: np.ndarray
     converged: np.ndarray
+    property_factors: tuple | None = None
+    governing_factor: dict | None = None
 
     def to_csv(self, path) -> None:
         """One row per (motion, scale, story) with every peak and the outcome; ``None`` ratios are left empty."""
@@ -121,7 +127,7 @@ class BatchResult:
 
 def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.futures.Executor | None = None,
               progress: bool = True, memory=DEFAULT_MEMORY, method=DEFAULT_METHOD,
-              strain_compatible=False, **simulate_options) -> BatchResult:
+              strain_compatible=False, property_factors=None, **simulate_options) -> BatchResult:
     """Run ``building`` under every motion at every scale factor.
 
     ``motions``: GroundMotion objects (mm/s^2).  ``scales``: factors (dimensionless) applied as
@@ -138,6 +144,10 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
     ``free_vibration``, ``newton``) go to every :func:`simulate` too.  Collapse and non-convergence
     are outcomes, recorded in ``collapsed`` and ``converged``, not failures.  ``method`` and ``memory``
     are checked before anything is submitted.
+    ``property_factors`` (e.g. (0.8, 1.0, 1.2)): property-modification factors of the walls (ASCE 7-16
+    Sec. 18.2.4.5): the batch runs once per factor with every wall's moduli and viscosities scaled
+    (``wall.scaled(factor)``; supports unchanged) and returns the envelope of the peaks, with the
+    governing factor of each (:class:`BatchResult`).
     """
     from ..element.damper import memory_strategy
     from ..element.fractional import get_method
@@ -154,6 +164,9 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
         motions = list(motions)
     except TypeError:
         raise ValueError(f"motions must be a list of GroundMotion objects, got {show(motions)}") from None
+    if property_factors is not None:  # motions: listed above, iterated once per factor
+        return _property_envelope(building, property_factors, executor, lambda variant, pool: run_batch(
+            variant, motions, scales, pool, progress, memory, method, strain_compatible, **simulate_options))
     if not motions or not all(isinstance(m, GroundMotion) for m in motions):
         bad = next((m for m in motions if not isinstance(m, GroundMotion)), None)
         raise ValueError("motions must be a non-empty sequence of GroundMotion objects"
@@ -223,6 +236,36 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
 
 def _label(motions, m: int) -> str:
     return motions[m].name or f"motion {m}"
+
+
+def _property_envelope(building: ShearBuilding, property_factors, executor, run) -> BatchResult:
+    """Envelope of ``run(building with walls scaled by f, executor)`` over the factors f (see run_batch)."""
+    factors = finite_array("property_factors", property_factors, ndim=None).ravel()
+    if factors.size == 0 or (factors <= 0).any():
+        raise ValueError(f"property_factors must be one or more factors > 0, got {property_factors!r}")
+    variants = [building.with_dampers({story: [wall.scaled(f) for wall in walls]
+                                       for story, walls in building.dampers.items()}) for f in factors]
+    own_executor = executor is None
+    if own_executor:
+        executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
+    try:
+        results = [run(variant, executor) for variant in variants]
+    finally:
+        if own_executor:
+            executor.shutdown(cancel_futures=True)
+    envelope, governing = {}, {}
+    for name in PEAKS:
+        if getattr(results[0], name) is None:
+            envelope[name] = None
+            continue
+        stacked = np.stack([getattr(result, name) for result in results])
+        worst = np.argmax(np.abs(stacked), axis=0)  # peaks are >= 0; residual drifts keep their sign
+        envelope[name] = np.take_along_axis(stacked, worst[None], axis=0)[0]
+        governing[name] = factors[worst]
+    envelope["collapsed"] = np.any([result.collapsed for result in results], axis=0)
+    envelope["converged"] = np.all([result.converged for result in results], axis=0)
+    return dataclasses.replace(results[0], **envelope, property_factors=tuple(factors.tolist()),
+                               governing_factor=governing)
 
 
 def scale_factors_to_pga(motions, targets) -> np.ndarray:

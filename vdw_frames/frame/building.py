@@ -282,6 +282,15 @@ class ShearBuilding:
         """The same frame with ``dampers`` (a dict as for the constructor) instead of its walls."""
         return dataclasses.replace(self, dampers=dampers)
 
+    def modal_analysis(self, modes=None):
+        """Complex modes of this linear building with its walls: :func:`vdw_frames.design.modal_analysis`.
+
+        Returns a :class:`~vdw_frames.design.ModalResult` (poles rad/s, periods s, damping ratios -).
+        """
+        from ..design.modal import modal_analysis  # the design layer sits above the frame
+
+        return modal_analysis(self, modes)
+
     def frequency_response(self, frequency) -> np.ndarray:
         """Relative floor displacement per unit ground acceleration, mm/(mm/s^2), shape (len(f), floors).
 
