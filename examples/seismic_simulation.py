@@ -58,6 +58,8 @@ def main(argv=None) -> int:
 def run(args) -> int:
     motion = read_at2(args.record) if args.record else default_record()
     if args.scale is not None:
+        if not args.scale > 0.0:
+            raise ValueError(f"--scale must be a PGA > 0 in g, got {args.scale:g}")
         motion = motion.scaled_to_pga(args.scale * G)
     walled = example_building()
     bare = walled.without_dampers()

@@ -133,7 +133,7 @@ def test_read_at2_free_text_header_and_eight_values_a_line(tmp_path):
     (at2_text("NPTS= seven, DT= .01 SEC"), "NPTS must be a positive whole number"),
     (at2_text("NPTS= 0, DT= .01 SEC", values=[]), "NPTS must be a positive whole number"),
     (at2_text(values=VALUES[:3] + ["0.1x"] + VALUES[4:]), r"non-numeric value '0\.1x' on line 5"),
-    (at2_text(values=VALUES[:6] + ["1.0D-02"]), "non-numeric value '1.0D-02' on line 6"),
+    (at2_text(values=VALUES[:6] + ["1.0-2"]), "non-numeric value '1.0-2' on line 6"),  # E-less exponent?
     (at2_text(values=VALUES[:6] + ["nan"]), "non-finite value 'nan' on line 6"),
     (at2_text(values=["-inf"] + VALUES[1:]), "non-finite value '-inf' on line 5"),
     ("", "empty file"),
@@ -261,7 +261,7 @@ def test_resampling_is_linear_interpolation():
 
 
 @pytest.mark.parametrize("dt, problem", [
-    (0.015, "does not divide"), (0.0066, "does not divide"), (0.02 / 3 * (1 + 1e-7), "does not divide"),
+    (0.015, "does not divide"), (0.0066, "does not divide"), (0.02 / 3 * (1 + 1e-5), "does not divide"),
     (0.04, "is larger than"), (0.0, "dt must be > 0"), (np.nan, "dt must be finite"),
 ])
 def test_resampling_rejects(dt, problem):
@@ -346,7 +346,7 @@ def test_write_at2_round_trip(tmp_path):
     back = gm.read_at2(path)
     np.testing.assert_allclose(back.acceleration, motion.acceleration, rtol=5e-8)
     assert back.dt == 0.0025 and back.name == "rt"
-    with pytest.raises(ValueError, match="must not contain 'NPTS='"):
+    with pytest.raises(ValueError, match="would be read as the NPTS/DT line"):
         gm.write_at2(motion, tmp_path / "x.AT2", header=["NPTS= 6"])
     with pytest.raises(ValueError, match="at most 2 single lines"):
         gm.write_at2(motion, tmp_path / "x.AT2", header=["a", "b", "c"])

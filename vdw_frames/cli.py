@@ -1,9 +1,17 @@
-"""The ``vdw-frames`` command line: ``sine-test``, ``simulate``, ``design`` and ``paper-report``."""
+"""The ``vdw-frames`` command line: ``sine-test``, ``simulate``, ``design`` and
+``paper-report``.
+
+Errors are one line ``vdw-frames: error: ...`` on standard error with exit code 2; warnings are one
+line ``warning: ...`` each.
+"""
 
 from __future__ import annotations
 
 import argparse
+import math
+import os
 import sys
+import warnings
 from pathlib import Path
 
 
@@ -27,10 +35,25 @@ def _damper_from(args):
     return FDMKDamper(**values, area=args.area, thickness=args.thickness)
 
 
+def _output_folder(out) -> Path:
+    """The --out folder, created and checked before any analysis runs."""
+    folder = Path(out)
+    if folder.exists() and not folder.is_dir():
+        raise ValueError(f"--out {out}: exists and is not a folder")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise ValueError(f"--out {out}: cannot create the folder ({error.strerror or error})") from None
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise ValueError(f"--out {out}: the folder is not writable")
+    return folder
+
+
 def _sine_test(args) -> int:
     from .plotting import plot_loops
     from .element.sine import sine_test
 
+    out = _output_folder(args.out)
     damper = _damper_from(args)
     amplitude = args.amplitude if args.amplitude is not None else args.strain / 100.0 * damper.thickness
     result = sine_test(damper, amplitude, args.frequency, cycles=args.cycles)
@@ -45,7 +68,7 @@ def _sine_test(args) -> int:
           f"   (pi K'' U^2 = {3.141592653589793 * damper.loss_stiffness(args.frequency) * amplitude**2 / 1e3:.1f})")
     print(f"  effective stiffness   = {result.effective_stiffness / 1e3:10.2f} kN/mm, "
           f"equivalent damping ratio = {result.equivalent_damping_ratio:.3f}")
-    path = plot_loops(result, Path(args.out) / "sine_test_loop.png",
+    path = plot_loops(result, out / "sine_test_loop.png",
                       title=f"FDMK damper, U = {amplitude:g} mm, f = {args.frequency:g} Hz")
     print(f"loop figure: {path}")
     return 0
@@ -59,6 +82,9 @@ def _simulate(args) -> int:
     from .motion import G, read_at2
     from .frame.simulation import simulate
 
+    if args.scale is not None and not (math.isfinite(args.scale) and args.scale > 0.0):
+        raise ValueError(f"--scale must be a PGA > 0 in g, got {args.scale:g}")
+    out = _output_folder(args.out) if args.out else None
     building, options = load_analysis(args.building)
     motion = read_at2(args.record)
     if args.scale is not None:
@@ -70,9 +96,12 @@ def _simulate(args) -> int:
     print(f"{'story':>5s} {'drift mm':>9s} {'ratio %':>8s} {'floor acc g':>11s} {'damper kN':>10s} {'strain %':>9s}")
     ratio = result.peak_drift_ratio
     for k in range(building.stories):
-        print(f"{k + 1:5d} {result.peak_drift[k]:9.2f} {100 * ratio[k] if ratio is not None else np.nan:8.3f} "
-              f"{result.peak_absolute_acceleration[k] / G:11.3f} {result.peak_damper_force[k] / 1e3:10.1f} "
-              f"{100 * np.abs(result.damper_strain[:, k]).max():9.1f}")
+        walled = k + 1 in building.dampers  # '-' where a value does not exist (no heights, no walls)
+        print(f"{k + 1:5d} {result.peak_drift[k]:9.2f} "
+              f"{f'{100 * ratio[k]:8.3f}' if ratio is not None else '-':>8s} "
+              f"{result.peak_absolute_acceleration[k] / G:11.3f} "
+              f"{f'{result.peak_damper_force[k] / 1e3:10.1f}' if walled else '-':>10s} "
+              f"{f'{100 * np.abs(result.damper_strain[:, k]).max():9.1f}' if walled else '-':>9s}")
     if result.strain_iterations is not None:
         state = "converged" if result.strain_converged else "did NOT converge"
         print(f"strain-compatible analysis {state} in {result.strain_iterations} analyses; effective strain per wall: "
@@ -82,8 +111,7 @@ def _simulate(args) -> int:
     share = energy.damper_work[-1] / energy.input[-1] if energy.input[-1] > 0 else 0.0
     print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; dampers dissipate "
           f"{100 * share:.0f} % of the input energy")
-    if args.out:
-        out = Path(args.out)
+    if out is not None:
         paths = [plotting.plot_drift_envelope({"response": result}, out / "drift_envelope.png"),
                  plotting.plot_roof_displacement({"response": result}, out / "roof_displacement.png"),
                  plotting.plot_energy(result, out / "energy.png")]
@@ -102,6 +130,7 @@ def _design(args) -> int:
 
     if args.modes < 1:
         raise ValueError(f"--modes must be >= 1, got {args.modes}")
+    out = _output_folder(args.out)
     building = load_building(args.building)
     modes = building.modal_analysis()
     walls = building.damper_list
@@ -147,7 +176,7 @@ def _design(args) -> int:
             marks["target"] = factor
             print(f"  target {100 * args.target:g} %: {factor:.3g} x ({factor * area:.4g} m^2 {per}): xi = "
                   f"{100 * result.damping_ratios[0]:.2f} %, T = {result.periods[0]:.3f} s")
-    path = plot_damping_curve(curve, Path(args.out) / "design_damping.png", target=args.target, marks=marks,
+    path = plot_damping_curve(curve, out / "design_damping.png", target=args.target, marks=marks,
                               title=f"{Path(args.building).name}: mode {args.mode} against the wall size")
     print(f"figure: {path}")
     if unreachable is not None:
@@ -204,13 +233,21 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _print_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    print("warning: " + " ".join(str(message).split()), file=sys.stderr)
+
+
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
-    try:
-        return args.run(args)
-    except (ValueError, OSError) as error:
-        print(f"vdw-frames: error: {error}", file=sys.stderr)
-        return 2
+    # The command's own warnings as plain lines; catch_warnings restores the display afterwards (a
+    # command runs in one thread).
+    with warnings.catch_warnings():
+        warnings.showwarning = _print_warning
+        try:
+            return args.run(args)
+        except (ValueError, OSError) as error:
+            print(f"vdw-frames: error: {error}", file=sys.stderr)
+            return 2
 
 
 if __name__ == "__main__":

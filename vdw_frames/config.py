@@ -19,7 +19,7 @@ Keys (units N-mm-s-tonne)::
 
     [[walls]]                           # any number of wall groups, optional
     stories = "all"                     # or a list of story numbers
-    per_story = 2                       # walls in parallel in each of those stories
+    per_story = 2                       # walls in parallel in each of those stories (1 ... 1000)
     parameters = "fitted-300"           # recommended set for 225, 300 or 450 % strain ...
     # parameters = {G1 = 0.0, G2 = 3.0, eta1 = 0.3, eta2 = 2.0, r = 0.5}   # ... or explicit (MPa, MPa*s^r)
     # parameters = "strain-dependent"   # ... or the paper's strain-dependent model (225-450 %)
@@ -47,15 +47,18 @@ any of them, the rest default)::
 :func:`~vdw_frames.frame.simulation.simulate` that the file asks for (``vdw-frames simulate`` uses it);
 it refuses strain-dependent walls without ``strain_compatible``, which no fixed-parameter analysis
 can take.  :func:`load_building` returns the building alone.
+
+Files are UTF-8 (a byte-order mark is allowed).  Story numbers are whole numbers (``2`` or ``2.0``),
+each at most once in a group.  Anything malformed is a ValueError naming the file and the key.
 """
 
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
-from .frame.building import ShearBuilding
+from ._validation import read_text, show, whole_number
 from .element.damper import FDMKDamper
+from .frame.building import ShearBuilding
 from .frame.strain_compatible import StrainCompatibleOptions
 
 _BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "damping_model",
@@ -65,6 +68,8 @@ _HYSTERESIS_KEYS = {"bilinear": {"model", "yield_forces", "hardening"},
 _STRAIN_COMPATIBLE_KEYS = {"effective_strain_ratio", "initial_strain", "tolerance", "max_iterations"}
 _WALL_KEYS = {"stories", "per_story", "parameters", "area", "thickness"}
 _PARAMETER_KEYS = {"G1", "G2", "eta1", "eta2", "r"}
+MAX_PER_STORY = 1000
+"""Most walls one group may put in parallel on a story (a bound, so a typo cannot exhaust memory)."""
 
 
 def load_building(path) -> ShearBuilding:
@@ -79,11 +84,7 @@ def load_analysis(path, require_analysis: bool = True) -> tuple[ShearBuilding, d
     strain-compatible analysis, else empty.  With ``require_analysis`` strain-dependent walls without
     ``strain_compatible`` are refused (see the module docstring).
     """
-    path = Path(path)
-    try:
-        text = path.read_text()
-    except OSError as error:
-        raise ValueError(f"{path}: cannot read building file ({error.strerror})") from None
+    path, text = read_text(path, "building file")
     try:
         if path.suffix.lower() == ".toml":
             try:
@@ -95,7 +96,7 @@ def load_analysis(path, require_analysis: bool = True) -> tuple[ShearBuilding, d
             data = json.loads(text)
         else:
             raise ValueError(f"{path}: building files must end in .toml or .json")
-    except (ValueError, json.JSONDecodeError) as error:
+    except (ValueError, RecursionError) as error:  # JSONDecodeError and TOMLDecodeError are ValueErrors
         if str(error).startswith(str(path)):
             raise
         raise ValueError(f"{path}: not valid {path.suffix[1:].upper()}: {error}") from None
@@ -206,9 +207,24 @@ def _wall_group(group, stories):
     story_numbers = group.get("stories", "all")
     if story_numbers == "all":
         story_numbers = range(1, stories + 1)
-    elif not isinstance(story_numbers, list) or len(set(map(repr, story_numbers))) != len(story_numbers):
-        raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got {story_numbers!r}")
-    per_story = group.get("per_story", 1)
-    if isinstance(per_story, bool) or not isinstance(per_story, int) or per_story < 1:
-        raise ValueError(f"walls per_story must be a whole number >= 1, got {per_story!r}")
+    elif isinstance(story_numbers, list):
+        numbers = []
+        for number in story_numbers:
+            try:
+                number = whole_number("story", number, 1)
+            except ValueError:
+                raise ValueError(f"walls stories must be story numbers in 1 ... {stories}, got {show(number)} "
+                                 f"in {show(story_numbers)}") from None
+            if number > stories:
+                raise ValueError(f"damper story must be a story number in 1 ... {stories}, got {number}")
+            numbers.append(number)
+        if len(set(numbers)) != len(numbers):
+            raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got "
+                             f"{show(story_numbers)}")
+        story_numbers = numbers
+    else:
+        raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got {show(story_numbers)}")
+    per_story = whole_number("walls per_story", group.get("per_story", 1), 1)
+    if per_story > MAX_PER_STORY:
+        raise ValueError(f"walls per_story must be at most {MAX_PER_STORY}, got {per_story}")
     return wall, story_numbers, per_story

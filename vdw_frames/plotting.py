@@ -1,11 +1,20 @@
-"""Figures (matplotlib, Agg backend: no display needed).  Forces are drawn in kN, displacements in mm."""
+"""Figures (matplotlib, Agg backend: no display needed).  Forces are drawn in kN, displacements in mm.
+
+Every function writes one figure to ``path`` and returns the path it wrote: the format follows the
+suffix (``.png``, ``.pdf``, ``.svg``, ...); a path without one gets ``.png`` added; an existing folder
+(or a path ending in a separator) gets the function's default file name inside it.
+"""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
 
+from ._validation import file_path, show, whole_number
+
+_FORMATS = {"eps", "jpeg", "jpg", "pdf", "pgf", "png", "ps", "raw", "rgba", "svg", "svgz", "tif", "tiff", "webp"}
 
 
 def _pyplot():
@@ -30,6 +39,7 @@ def plot_loops(results, path, labels=None, title=None) -> Path:
         labels = [f"U = {res.amplitude:g} mm, f = {res.frequency:g} Hz" for res in results]
     if len(labels) != len(results):
         raise ValueError(f"labels has {len(labels)} entries for {len(results)} results")
+    path = _figure_path(path, "loops.png")
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(6.4, 4.8))
     for res, label in zip(results, labels):
@@ -47,12 +57,42 @@ def plot_loops(results, path, labels=None, title=None) -> Path:
     return _save(figure, path)
 
 
-def _save(figure, path) -> Path:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
+def _figure_path(path, default_name: str) -> Path:
+    """Where a figure for ``path`` goes (see the module docstring); the folder is created."""
+    text = os.fspath(path) if isinstance(path, (str, os.PathLike)) else path
+    path = file_path(path, "figure path")
+    if path.is_dir() or (isinstance(text, str) and text.endswith(("/", os.sep))):
+        path = path / default_name
+    if path.suffix.lower().lstrip(".") not in _FORMATS:
+        path = path.with_name(path.name + ".png")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise ValueError(f"{path}: cannot create the folder {path.parent} ({error.strerror or error})") from None
+    if path.is_dir():
+        raise ValueError(f"{path}: is a folder")
+    return path
+
+
+def _story_number(result, story) -> int:
+    message = f"story must be a story number in 1 ... {result.building.stories}, got {show(story)}"
+    try:
+        story = whole_number("story", story, 1)
+    except ValueError:
+        raise ValueError(message) from None
+    if story > result.building.stories:
+        raise ValueError(message)
+    return story
+
+
+def _save(figure, path: Path) -> Path:
     figure.tight_layout()
-    figure.savefig(path, dpi=120)
-    _pyplot().close(figure)
+    try:
+        figure.savefig(path, dpi=120)
+    except OSError as error:
+        raise ValueError(f"{path}: cannot write the figure ({error.strerror or error})") from None
+    finally:
+        _pyplot().close(figure)
     return path
 
 
@@ -61,6 +101,7 @@ def plot_drift_envelope(results: dict, path) -> Path:
 
     ``results`` maps a label to a :class:`~vdw_frames.frame.simulation.SimulationResult`.
     """
+    path = _figure_path(path, "drift_envelope.png")
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(5.0, 5.6))
     for label, result in results.items():
@@ -80,6 +121,7 @@ def plot_drift_envelope(results: dict, path) -> Path:
 
 def plot_roof_displacement(results: dict, path) -> Path:
     """Roof displacement relative to the ground (mm) against time (s), one line per result."""
+    path = _figure_path(path, "roof_displacement.png")
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(8.0, 3.6))
     for label, result in results.items():
@@ -93,8 +135,8 @@ def plot_roof_displacement(results: dict, path) -> Path:
 
 def plot_damper_hysteresis(result, story: int, path, title=None) -> Path:
     """Total damper force (kN) against drift (mm) of one story (1-based) of a simulation result."""
-    if isinstance(story, bool) or not isinstance(story, (int, np.integer)) or not 1 <= story <= result.building.stories:
-        raise ValueError(f"story must be a story number in 1 ... {result.building.stories}, got {story!r}")
+    story = _story_number(result, story)
+    path = _figure_path(path, "damper_hysteresis.png")
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(5.6, 4.6))
     axes.plot(result.drift[:, story - 1], result.damper_force[:, story - 1] / 1e3, lw=0.6)
@@ -113,6 +155,7 @@ def plot_energy(result, path, title=None) -> Path:
     are stored.  With P-Delta, gravity also does work (``energy.p_delta`` <= 0): the stack then reaches
     input - p_delta, drawn dashed.
     """
+    path = _figure_path(path, "energy.png")
     plt = _pyplot()
     energy = result.energy
     figure, axes = plt.subplots(figsize=(8.0, 4.0))
@@ -141,6 +184,7 @@ def plot_ida_curves(results: dict, path, title=None) -> Path:
     """
     from .motion.record import G
 
+    path = _figure_path(path, "ida_curves.png")
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(7.0, 5.0))
     for (label, result), style in zip(results.items(), ("--", "-", ":", "-.")):
@@ -172,6 +216,7 @@ def plot_fragility(results: dict, path, title=None) -> Path:
     """
     from .motion.record import G
 
+    path = _figure_path(path, "fragility.png")
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(6.4, 4.6))
     top = max(result.levels[-1] for result in results.values()) / G
@@ -195,8 +240,8 @@ def plot_fragility(results: dict, path, title=None) -> Path:
 
 def plot_story_hysteresis(result, story: int, path, title=None) -> Path:
     """Story-spring force (kN) against drift (mm) of one story (1-based): the frame's own hysteresis."""
-    if isinstance(story, bool) or not isinstance(story, (int, np.integer)) or not 1 <= story <= result.building.stories:
-        raise ValueError(f"story must be a story number in 1 ... {result.building.stories}, got {story!r}")
+    story = _story_number(result, story)
+    path = _figure_path(path, "story_hysteresis.png")
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(5.6, 4.6))
     axes.plot(result.drift[:, story - 1], result.story_shear[:, story - 1] / 1e3, lw=0.7)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..plotting import _pyplot, _save
+from ..plotting import _figure_path, _pyplot, _save
 from .sizing import SizingCurve, _story_text
 
 
@@ -18,8 +18,7 @@ def plot_damping_curve(curve: SizingCurve, path, target: float | None = None, ma
     """
     if not isinstance(curve, SizingCurve):
         raise ValueError(f"curve must be a SizingCurve (from damping_curve), got {type(curve).__name__}")
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
+    path = _figure_path(path, "design_damping.png")
     plt = _pyplot()
     area = curve.factors * curve.wall.area / 1e6
     figure, (top, bottom) = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=True)

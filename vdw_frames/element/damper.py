@@ -30,7 +30,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validation import finite_array, non_negative, positive, positive_frequencies, require_finite
+from .._validation import (finite_array, finite_complex_array, non_negative, positive, positive_frequencies,
+                           require_finite, show)
 from .bank import DEFAULT_MEMORY, MEMORY_STRATEGIES, WallBank, kernel_constants, memory_strategy
 from .fractional import DEFAULT_METHOD, _check_order, get_method
 from .prony import fit_prony
@@ -77,10 +78,10 @@ class FDMKDamper:
         if self.strain_range is not None:
             bounds = self.strain_range if isinstance(self.strain_range, (tuple, list)) else ()
             if len(bounds) != 2:
-                raise ValueError(f"strain_range must be two numbers (low, high), got {self.strain_range!r}")
+                raise ValueError(f"strain_range must be two numbers (low, high), got {show(self.strain_range)}")
             low, high = (non_negative("strain_range", value) for value in bounds)
             if low > high:
-                raise ValueError(f"strain_range must have low <= high, got {self.strain_range!r}")
+                raise ValueError(f"strain_range must have low <= high, got {show(self.strain_range)}")
             object.__setattr__(self, "strain_range", (low, high))
 
     def scaled(self, factor) -> "FDMKDamper":
@@ -103,18 +104,43 @@ class FDMKDamper:
     def transfer(self, s):
         """G*(s) = G1 + eta1 s^r + G2 eta2 s^r / (G2 + eta2 s^r) (MPa) for complex s (rad/s).
 
-        The Laplace transform of eqs. (3)-(5); principal branch of s^r.
+        The Laplace transform of eqs. (3)-(5); principal branch of s^r.  ``s`` must be finite; a
+        result that overflows is a ValueError naming the s where it does.
         """
-        s_r = np.asarray(s, dtype=complex) ** self.r
-        modulus = self.G1 + self.eta1 * s_r
-        if self.G2 > 0.0 and self.eta2 > 0.0:
-            modulus = modulus + self.G2 * self.eta2 * s_r / (self.G2 + self.eta2 * s_r)
+        s = finite_complex_array("s", s)
+        return self._checked("G*(s)", self._transfer(s), s, "s", "rad/s")
+
+    def _transfer(self, s):
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
+            s_r = np.asarray(s, dtype=complex) ** self.r
+            modulus = self.G1 + self.eta1 * s_r
+            if self.G2 > 0.0 and self.eta2 > 0.0:
+                viscous = self.eta2 * s_r
+                # G2 x / (G2 + x) written so that neither G2 x nor G2 + x overflows for large |x|.
+                large = np.abs(viscous) > self.G2
+                safe = np.where(large, viscous, 1.0)
+                modulus = modulus + np.where(large, self.G2 / (1.0 + self.G2 / safe),
+                                             self.G2 * viscous / (self.G2 + viscous))
         return modulus
 
+    def _checked(self, name, values, inputs, label="f", unit="Hz"):
+        """``values`` if all finite, else a ValueError naming the first input where they are not."""
+        if not np.all(np.isfinite(values)):
+            bad = ~np.isfinite(np.asarray(values))
+            where = np.broadcast_to(np.asarray(inputs), bad.shape)[bad].flat[0]
+            raise ValueError(f"{name} overflowed (inf or NaN) at {label} = {show(where)} {unit} for G1 = {self.G1!r}, "
+                             f"G2 = {self.G2!r}, eta1 = {self.eta1!r}, eta2 = {self.eta2!r}, r = {self.r!r}: "
+                             f"the {'frequency' if label == 'f' else label} or the parameters are too large")
+        return values
+
     def complex_modulus(self, f):
-        """G*(i 2 pi f) = G' + i G'' in MPa for frequencies f in Hz (scalar or array)."""
+        """G*(i 2 pi f) = G' + i G'' in MPa for frequencies f in Hz (scalar or array, finite, > 0).
+
+        ValueError naming the frequency where the result overflows (e.g. f = 1e308 Hz)."""
         f = positive_frequencies("f", f)
-        return self.transfer(2j * np.pi * f)
+        with np.errstate(over="ignore"):
+            s = 2j * np.pi * f
+        return self._checked("G*(i 2 pi f)", self._transfer(s), f)
 
     def storage_modulus(self, f):
         """G' (MPa) at f (Hz)."""
@@ -125,31 +151,48 @@ class FDMKDamper:
         return self.complex_modulus(f).imag
 
     def loss_factor(self, f):
-        """G''/G' (dimensionless) at f (Hz); 0 where the damper has no modulus at all (G* = 0)."""
+        """G''/G' (dimensionless) at f (Hz); 0 where the damper has no modulus at all (G* = 0).
+
+        Where G' = 0 but G'' > 0 (a pure dashpot, r = 1, or G' below the smallest float at a tiny f)
+        the loss factor is unbounded: a ValueError naming the frequency."""
         modulus = self.complex_modulus(f)
         silent = modulus == 0.0
-        return np.where(silent, 0.0, modulus.imag / np.where(silent, 1.0, modulus.real))
+        unbounded = (modulus.real == 0.0) & ~silent
+        if np.any(unbounded):
+            where = np.broadcast_to(np.asarray(f), np.shape(unbounded))[np.asarray(unbounded)].flat[0]
+            raise ValueError(f"the loss factor G''/G' is unbounded at f = {show(where)} Hz: G' = 0 there "
+                             f"(G'' = {show(np.asarray(modulus.imag)[np.asarray(unbounded)].flat[0])} MPa)")
+        with np.errstate(over="ignore"):
+            ratio = np.where(silent, 0.0, modulus.imag / np.where(silent, 1.0, modulus.real))
+        return self._checked("the loss factor", ratio, f)
 
     def storage_stiffness(self, f):
         """K' = G' area / thickness (N/mm) at f (Hz)."""
-        return self.storage_modulus(f) * self.stiffness_scale
+        with np.errstate(over="ignore"):
+            return self._checked("K'", self.storage_modulus(f) * self.stiffness_scale, f)
 
     def loss_stiffness(self, f):
         """K'' = G'' area / thickness (N/mm) at f (Hz)."""
-        return self.loss_modulus(f) * self.stiffness_scale
+        with np.errstate(over="ignore"):
+            return self._checked("K''", self.loss_modulus(f) * self.stiffness_scale, f)
 
     def damping_coefficient(self, f):
         """C_d = K'' / omega (N*s/mm) at f (Hz)."""
         f = positive_frequencies("f", f)
-        return self.loss_stiffness(f) / (2.0 * np.pi * f)
+        with np.errstate(over="ignore"):
+            return self._checked("C_d", self.loss_stiffness(f) / (2.0 * np.pi * f), f)
 
     def stiffness_transfer(self, s):
         """K(s) = G*(s) area / thickness (N/mm) for complex s (rad/s): the wall's Laplace-domain stiffness."""
-        return self.transfer(s) * self.stiffness_scale
+        s = finite_complex_array("s", s)
+        with np.errstate(over="ignore", invalid="ignore"):
+            return self._checked("K(s)", self._transfer(s) * self.stiffness_scale, s, "s", "rad/s")
 
     def complex_stiffness(self, f):
         """K*(f) = K' + i K'' (N/mm) at frequencies f (Hz)."""
-        return self.complex_modulus(f) * self.stiffness_scale
+        f = positive_frequencies("f", f)
+        with np.errstate(over="ignore", invalid="ignore"):
+            return self._checked("K*(f)", self.complex_modulus(f) * self.stiffness_scale, f)
 
     def prony(self, f_min: float, f_max: float, tolerance: float = 0.01):
         """A generalized Maxwell model (:class:`~vdw_frames.element.prony.PronySeries`) matching K*(f) within

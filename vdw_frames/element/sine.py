@@ -16,12 +16,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import positive, require_finite, whole_number
+from .._validation import check_memory, positive, whole_number
 from .damper import FDMKDamper
 from .supported import WALL_TYPES
-from .fractional import DEFAULT_METHOD
+from .fractional import DEFAULT_METHOD, get_method
 
 SAMPLES_PER_CYCLE = 200  # omega*dt = 0.031: the default method's error r (omega dt)^2 / 6 <= 1.6e-4
+MIN_SAMPLES_PER_CYCLE = 8
+_BYTES_PER_STEP = 64  # time, displacement, force and the element's work arrays
 
 
 @dataclass(frozen=True)
@@ -31,7 +33,9 @@ class SineTestResult:
     time (s), displacement (mm), force (N); loop_area (N*mm, energy dissipated in the last cycle);
     storage_stiffness and loss_stiffness (N/mm, least-squares fit F ~ K' u + (K''/omega) du/dt + c on the
     last cycle); effective_stiffness (N/mm, peak-to-peak force / peak-to-peak displacement);
-    equivalent_damping_ratio (-, W_D / (2 pi K_eff U^2)).
+    equivalent_damping_ratio (-, W_D / (2 pi K_eff U^2)).  ``dt`` is the step used (s) and
+    ``requested_dt`` the one asked for (None for the default): when the asked step does not divide the
+    period into a whole number of steps, the nearest one that does is used, and the two differ.
     """
 
     damper: FDMKDamper
@@ -47,6 +51,7 @@ class SineTestResult:
     loss_stiffness: float
     effective_stiffness: float
     equivalent_damping_ratio: float
+    requested_dt: float | None = None
 
     @property
     def last_cycle(self) -> slice:
@@ -59,40 +64,65 @@ def sine_test(damper: FDMKDamper, amplitude: float, frequency: float, dt: float 
               cycles: int = 5, method=DEFAULT_METHOD) -> SineTestResult:
     """Drive ``damper`` with u(t) = amplitude * sin(2 pi frequency t) from rest for ``cycles`` cycles.
 
-    amplitude in mm, frequency in Hz, dt in s (default: 200 samples per cycle).  The period must be a
-    whole number of steps.  Returns a :class:`SineTestResult` (N, mm, N*mm, N/mm).
+    amplitude in mm, frequency in Hz, dt in s (default: 200 samples per cycle).  The period is sampled by
+    a whole number (>= 8) of steps: a ``dt`` that does not divide it is replaced by the nearest step
+    that does (``result.dt``; ``result.requested_dt`` keeps the one asked for).  A test whose arrays
+    would exceed the 2 GiB memory limit is refused before allocating; one whose force or loop overflows
+    (absurd amplitudes) is a ValueError naming the amplitude and frequency.  Returns a
+    :class:`SineTestResult` (N, mm, N*mm, N/mm).
     """
     if not isinstance(damper, WALL_TYPES):
         raise ValueError(f"damper must be an FDMKDamper or a SupportedDamper, got {type(damper).__name__}")
     amplitude = positive("amplitude", amplitude)
     frequency = positive("frequency", frequency)
-    if dt is None:
-        dt = 1.0 / (frequency * SAMPLES_PER_CYCLE)
-    dt = positive("dt", dt)
+    requested_dt = None if dt is None else positive("dt", dt)
     cycles = whole_number("cycles", cycles, 1)
-    steps_per_cycle = 1.0 / (frequency * dt)
-    samples = round(steps_per_cycle)
-    if samples < 8 or abs(steps_per_cycle - samples) > 1e-6 * steps_per_cycle:
-        raise ValueError(
-            f"dt = {dt!r} s must divide the period 1/{frequency!r} Hz into a whole number (>= 8) of steps; "
-            f"e.g. dt = {1.0 / (frequency * max(round(steps_per_cycle), 8))!r}"
-        )
+    method = get_method(method)
+    samples, dt = _steps_per_cycle(frequency, requested_dt, cycles)
+    steps = cycles * samples + 1
 
     omega = 2.0 * np.pi * frequency
-    time = np.arange(cycles * samples + 1) * dt
+    time = np.arange(steps) * dt
     displacement = amplitude * np.sin(omega * time)
-    force = damper.force(displacement, dt, method=method)
-    require_finite("sine-test force", force)
-
+    overflow = (f"the sine test overflowed (inf or NaN) at amplitude = {amplitude!r} mm, frequency = "
+                f"{frequency!r} Hz: the amplitude or the damper's parameters are too large")
+    try:
+        force = damper.force(displacement, dt, method=method)
+    except ValueError:  # the force overflowed
+        raise ValueError(overflow) from None
     last = slice(time.size - 1 - samples, time.size)
     u, F = displacement[last], force[last]
-    loop_area = float(np.sum(0.5 * (F[1:] + F[:-1]) * np.diff(u)))
-    # One period sampled without its repeated end point: sin and cos are orthogonal there.
-    phase = omega * time[last][:-1]
-    basis = np.column_stack([amplitude * np.sin(phase), amplitude * np.cos(phase), np.ones_like(phase)])
-    (storage, loss, _), *_ = np.linalg.lstsq(basis, F[:-1], rcond=None)
-    effective = float((F.max() - F.min()) / (u.max() - u.min()))
-    # A damper with no stiffness and no viscosity dissipates nothing: ratio 0, not 0/0.
-    damping_ratio = loop_area / (2.0 * np.pi * effective * amplitude**2) if effective > 0.0 else 0.0
+    with np.errstate(over="ignore", invalid="ignore"):
+        loop_area = np.sum(0.5 * (F[1:] + F[:-1]) * np.diff(u))
+        # One period sampled without its repeated end point: sin and cos are orthogonal there.
+        phase = omega * time[last][:-1]
+        basis = np.column_stack([np.sin(phase), np.cos(phase), np.ones_like(phase)])
+        (storage, loss, _), *_ = np.linalg.lstsq(basis, F[:-1] / amplitude, rcond=None)
+        effective = (F.max() - F.min()) / (u.max() - u.min())
+        # A damper with no stiffness and no viscosity dissipates nothing: ratio 0, not 0/0.
+        damping_ratio = loop_area / (2.0 * np.pi * effective * np.float64(amplitude) ** 2) if effective > 0.0 else 0.0
+    if not np.all(np.isfinite([loop_area, storage, loss, effective, damping_ratio])):
+        raise ValueError(overflow)
     return SineTestResult(damper, amplitude, frequency, dt, cycles, time, displacement, force,
-                          loop_area, float(storage), float(loss), effective, float(damping_ratio))
+                          float(loop_area), float(storage), float(loss), float(effective), float(damping_ratio),
+                          requested_dt)
+
+
+def _steps_per_cycle(frequency: float, dt: float | None, cycles: int) -> tuple[int, float]:
+    """(steps a cycle, step in s): the default 200 steps, or the whole number nearest 1/(frequency dt)
+    with the step that gives exactly that many (dt itself when it divides the period to 1e-9); the
+    test's memory is checked before anything is allocated."""
+    with np.errstate(over="ignore", divide="ignore"):
+        steps_per_cycle = (np.float64(SAMPLES_PER_CYCLE) if dt is None
+                           else np.float64(1.0) / (np.float64(frequency) * np.float64(dt)))
+    check_memory(f"sine_test({cycles:,} cycles of {steps_per_cycle:,.0f} steps)",
+                 cycles * steps_per_cycle + 1, _BYTES_PER_STEP, "use fewer cycles or a larger dt")
+    samples = round(float(steps_per_cycle))
+    if samples < MIN_SAMPLES_PER_CYCLE:
+        raise ValueError(f"dt = {dt!r} s leaves fewer than {MIN_SAMPLES_PER_CYCLE} steps in the period "
+                         f"1/{frequency!r} Hz; use dt <= {1.0 / (frequency * MIN_SAMPLES_PER_CYCLE)!r} s")
+    if dt is None or abs(steps_per_cycle - samples) > 1e-9 * steps_per_cycle:
+        dt = 1.0 / (frequency * samples)
+    if not (np.isfinite(dt) and dt > 0.0):
+        raise ValueError(f"frequency = {frequency!r} Hz is beyond what a time step can resolve")
+    return samples, dt

@@ -25,11 +25,11 @@ thickness mm, frequency Hz, stiffness N/mm.
 from __future__ import annotations
 
 import dataclasses
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
+from .. import _warnings
 from .._validation import finite_array, non_negative, positive, positive_frequencies
 from .damper import FDMKDamper
 from .fractional import _check_order
@@ -204,6 +204,6 @@ class StrainDependentDamper:
         if outside.size:
             reached = ", ".join(f"{100 * s:.4g} %" for s in np.unique(outside)[:5])
             more = f" (and {np.unique(outside).size - 5} more)" if np.unique(outside).size > 5 else ""
-            warnings.warn(f"strain amplitude {reached}{more} outside the identified range "
-                          f"{100 * low:.4g}-{100 * high:.4g} %: the parameters of the nearest end are used",
-                          UserWarning, stacklevel=3)
+            _warnings.warn(f"strain amplitude {reached}{more} outside the identified range "
+                           f"{100 * low:.4g}-{100 * high:.4g} %: the parameters of the nearest end are used",
+                           UserWarning, stacklevel=3)

@@ -13,12 +13,12 @@ import csv
 import dataclasses
 import os
 import sys
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import finite_array
+from .. import _warnings
+from .._validation import finite_array, show
 from .building import ShearBuilding, require_fixed_walls
 from ..element.damper import DEFAULT_MEMORY
 from ..element.fractional import DEFAULT_METHOD, Discretisation
@@ -42,18 +42,19 @@ class BatchTask:
     def run(self) -> dict:
         """Peak responses of this analysis (units of :class:`~vdw_frames.frame.simulation.SimulationResult`).
 
-        Warnings raised by the analysis (e.g. strain outside the identified range) travel back as
-        text under "warnings", since a worker process cannot warn the caller.
+        The package's warnings raised by the analysis (e.g. strain outside the identified range) travel
+        back as (category, text) under "warnings", since a worker process cannot warn the caller.  They
+        are collected per task with :func:`vdw_frames._warnings.collect` (a context variable), which is
+        safe with any number of threads and leaves ``warnings.filters`` alone.
         """
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
+        with _warnings.collect() as caught:
             result = simulate(self.building, self.motion.scaled(self.scale), method=self.method, memory=self.memory,
                               strain_compatible=self.strain_compatible, **dict(self.options))
         return {
             "collapsed": result.collapsed,
             "converged": result.converged,
             "residual_drift": result.residual_drift,
-            "warnings": [str(w.message) for w in caught],
+            "warnings": [(w.category, w.message) for w in caught],
             "peak_drift": result.peak_drift,
             "peak_drift_ratio": result.peak_drift_ratio,
             "peak_absolute_acceleration": result.peak_absolute_acceleration,
@@ -134,30 +135,47 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
     per motion (shape (motions, scales)), e.g. from :func:`scale_factors_to_pga`.  ``executor``: any
     :class:`concurrent.futures.Executor` (default: a process pool over all cores, shut down after).
     ``progress``: a progress bar on standard error, only when it is a terminal.  The peaks equal those
-    of :func:`simulate` for the same run; warnings of the analyses are re-issued here, once per message,
-    naming the motion and scale.  The first failing analysis cancels the rest and raises.
+    of :func:`simulate` for the same run; the package's warnings of every analysis are re-issued here,
+    once per message, naming the motion and scale (collected per task, safe with thread executors).
+    The first failing analysis cancels the rest and raises, its message naming the motion and scale.
     ``strain_compatible`` (False, True or a :class:`~vdw_frames.frame.strain_compatible.StrainCompatibleOptions`)
     is passed to every :func:`simulate`: True runs each analysis strain-compatible (buildings with
     strain-dependent walls need it).  ``simulate_options`` (``collapse_drift_ratio``,
     ``free_vibration``, ``newton``) go to every :func:`simulate` too.  Collapse and non-convergence
-    are outcomes, recorded in ``collapsed`` and ``converged``, not failures.
+    are outcomes, recorded in ``collapsed`` and ``converged``, not failures.  ``method`` and ``memory``
+    are checked before anything is submitted.
     ``property_factors`` (e.g. (0.8, 1.0, 1.2)): property-modification factors of the walls (ASCE 7-16
     Sec. 18.2.4.5): the batch runs once per factor with every wall's moduli and viscosities scaled
     (``wall.scaled(factor)``; supports unchanged) and returns the envelope of the peaks, with the
     governing factor of each (:class:`BatchResult`).
     """
+    from ..element.damper import memory_strategy
+    from ..element.fractional import get_method
+
     unknown = set(simulate_options) - _SIMULATE_OPTIONS
     if unknown:
         raise ValueError(f"unknown run_batch options {sorted(unknown)}; expected some of {sorted(_SIMULATE_OPTIONS)}")
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
-    if property_factors is not None:
-        motions = list(motions)  # iterated once per factor
+    if isinstance(motions, GroundMotion):
+        raise ValueError(f"motions must be a list of GroundMotion objects, got one GroundMotion ({motions.name!r}); "
+                         f"pass [motion]")
+    try:
+        motions = list(motions)
+    except TypeError:
+        raise ValueError(f"motions must be a list of GroundMotion objects, got {show(motions)}") from None
+    if property_factors is not None:  # motions: listed above, iterated once per factor
         return _property_envelope(building, property_factors, executor, lambda variant, pool: run_batch(
             variant, motions, scales, pool, progress, memory, method, strain_compatible, **simulate_options))
-    motions = list(motions)
     if not motions or not all(isinstance(m, GroundMotion) for m in motions):
-        raise ValueError("motions must be a non-empty sequence of GroundMotion objects")
+        bad = next((m for m in motions if not isinstance(m, GroundMotion)), None)
+        raise ValueError("motions must be a non-empty sequence of GroundMotion objects"
+                         + (f", got {type(bad).__name__} {show(bad)}" if motions else ", got none"))
+    if executor is not None and not (isinstance(executor, concurrent.futures.Executor)
+                                     or callable(getattr(executor, "submit", None))):
+        raise ValueError(f"executor must be a concurrent.futures.Executor (or None), got {show(executor)}")
+    get_method(method)
+    memory_strategy(memory)
     factors = finite_array("scales", scales, ndim=None)
     if factors.ndim == 1:
         factors = np.broadcast_to(factors, (len(motions), factors.size))
@@ -179,7 +197,16 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
         peaks = {}
         bar = _ProgressBar(len(futures)) if progress and sys.stderr.isatty() else None
         for future in concurrent.futures.as_completed(futures):
-            peaks[futures[future]] = future.result()
+            m, s = futures[future]
+            try:
+                peaks[(m, s)] = future.result()
+            except Exception as error:
+                run = f"run_batch: the analysis of {_label(motions, m)} x {factors[m, s]:g} failed"
+                if isinstance(error, ValueError):
+                    raise ValueError(f"{run}: {error}") from error
+                if hasattr(error, "add_note"):  # Python >= 3.11
+                    error.add_note(run)
+                raise
             if bar:
                 bar.advance()
     except BaseException:
@@ -191,11 +218,11 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
             executor.shutdown(cancel_futures=True)
     reported = set()
     for (m, s), peak in sorted(peaks.items()):
-        for message in peak["warnings"]:
-            if message not in reported:
-                reported.add(message)
-                warnings.warn(f"{motions[m].name or f'motion {m}'} x {factors[m, s]:g}: {message}", UserWarning,
-                              stacklevel=2)
+        for category, message in peak["warnings"]:
+            text = f"{_label(motions, m)} x {factors[m, s]:g}: {message}"
+            if text not in reported:
+                reported.add(text)
+                _warnings.warn(text, category, stacklevel=2)
 
     def stack(name):
         if peaks[(0, 0)][name] is None:
@@ -205,6 +232,10 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
     pga = np.array([[abs(f) * motion.pga for f in row] for row, motion in zip(factors, motions)])
     return BatchResult(tuple(m.name for m in motions), np.array(factors), pga, *(stack(name) for name in PEAKS),
                        *(stack(name).astype(bool) for name in OUTCOMES))
+
+
+def _label(motions, m: int) -> str:
+    return motions[m].name or f"motion {m}"
 
 
 def _property_envelope(building: ShearBuilding, property_factors, executor, run) -> BatchResult:

@@ -10,13 +10,16 @@ from functools import cached_property
 import numpy as np
 from scipy.linalg import eigh
 
-from .._validation import damping_ratio, finite_array, whole_number
+from .._validation import check_memory, damping_ratio, finite_array, positive, show, whole_number
 from ..element.damper import FDMKDamper
 from ..element.strain_dependent import StrainDependentDamper
 from ..element.supported import WALL_TYPES
 from .hysteresis import STORY_MODELS
 
 DAMPING_MODELS = ("rayleigh", "modal")
+
+
+_FREQUENCY_CHUNK = 2048  # frequencies solved at once by frequency_response
 
 
 @dataclass(frozen=True, eq=False)
@@ -82,9 +85,9 @@ class ShearBuilding:
         if masses.size == 0:
             raise ValueError("masses must hold at least one floor")
         if (masses <= 0).any():
-            raise ValueError(f"masses must be > 0 tonne, got {masses[masses <= 0][0]!r}")
+            raise ValueError(f"masses must be > 0 tonne, got {show(masses[masses <= 0][0])}")
         if (stiffnesses <= 0).any():
-            raise ValueError(f"stiffnesses must be > 0 N/mm, got {stiffnesses[stiffnesses <= 0][0]!r}")
+            raise ValueError(f"stiffnesses must be > 0 N/mm, got {show(stiffnesses[stiffnesses <= 0][0])}")
         if stiffnesses.size != masses.size:
             raise ValueError(f"stiffnesses has {stiffnesses.size} stories for {masses.size} floors (masses)")
         object.__setattr__(self, "masses", tuple(masses.tolist()))
@@ -93,11 +96,13 @@ class ShearBuilding:
         if self.damping_modes is None:
             object.__setattr__(self, "damping_modes", (1, min(2, masses.size)))
         modes = self.damping_modes
+        if isinstance(modes, np.ndarray):
+            modes = tuple(modes.tolist()) if modes.ndim == 1 else None
         if not isinstance(modes, (tuple, list)) or len(modes) != 2:
-            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, got {modes!r}")
+            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, got {show(self.damping_modes)}")
         modes = tuple(whole_number("damping_modes", m, 1) for m in modes)
         if max(modes) > masses.size:
-            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, got {self.damping_modes!r}")
+            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, got {modes}")
         object.__setattr__(self, "damping_modes", modes)
         object.__setattr__(self, "dampers", self._normalise_dampers(self.dampers, masses.size))
         if self.story_heights is not None:
@@ -105,7 +110,7 @@ class ShearBuilding:
             if heights.size != masses.size:
                 raise ValueError(f"story_heights has {heights.size} entries for {masses.size} stories")
             if (heights <= 0).any():
-                raise ValueError(f"story_heights must be > 0 mm, got {heights[heights <= 0][0]!r}")
+                raise ValueError(f"story_heights must be > 0 mm, got {show(heights[heights <= 0][0])}")
             object.__setattr__(self, "story_heights", tuple(heights.tolist()))
         object.__setattr__(self, "hysteresis", self._normalise_hysteresis(self.hysteresis, masses.size))
         if self.gravity_loads is not None:
@@ -126,8 +131,13 @@ class ShearBuilding:
             raise ValueError(f"dampers must be a dict {{story: FDMKDamper or list}}, got {type(dampers).__name__}")
         normalised = {}
         for story, walls in (dampers or {}).items():
-            if isinstance(story, bool) or not isinstance(story, (int, np.integer)) or not 1 <= story <= stories:
-                raise ValueError(f"damper story must be a story number in 1 ... {stories}, got {story!r}")
+            message = f"damper story must be a story number in 1 ... {stories}, got {show(story)}"
+            try:
+                story = whole_number("damper story", story, 1)
+            except ValueError:
+                raise ValueError(message) from None
+            if story > stories:
+                raise ValueError(message)
             walls = tuple(walls) if isinstance(walls, (list, tuple)) else (walls,)
             for wall in walls:
                 if not isinstance(wall, WALL_TYPES + (StrainDependentDamper,)):
@@ -284,39 +294,77 @@ class ShearBuilding:
     def frequency_response(self, frequency) -> np.ndarray:
         """Relative floor displacement per unit ground acceleration, mm/(mm/s^2), shape (len(f), floors).
 
-        Solves (-w^2 M + i w C + K + K_G + K_d(w)) U = -M 1 at w = 2 pi f for frequencies f in Hz (>= 0),
-        with each wall's exact complex stiffness (G*(i w) area / thickness, eqs. (3)-(5), in series with
-        its support if any) and the P-Delta stiffness K_G: the linear (initial-stiffness) building.
+        Solves (-w^2 M + i w C + K + K_G + K_d(w)) U = -M 1 at w = 2 pi f for frequencies f in Hz (a
+        scalar or a 1-D array, finite, >= 0), with each wall's exact complex stiffness (G*(i w) area /
+        thickness, eqs. (3)-(5), in series with its support if any) and the P-Delta stiffness K_G: the
+        linear (initial-stiffness) building.
         Strain-dependent walls are refused (their stiffness depends on the amplitude): use the
         equivalent-linear building ``simulate(..., strain_compatible=True).building`` or walls
-        ``wall.at(strain)``.
+        ``wall.at(strain)``.  ValueError, naming the frequency, where the system is singular (an
+        undamped frame at a natural frequency: the response is unbounded) or the result overflows.
         """
         require_fixed_walls(self, "frequency_response()")
-        frequency = np.atleast_1d(np.asarray(frequency, dtype=float))
-        if not np.isfinite(frequency).all() or (frequency < 0).any():
-            raise ValueError("frequency must be finite and >= 0 Hz")
-        omega = 2.0 * np.pi * frequency
-        load = -np.asarray(self.masses)
-        response = np.empty((omega.size, self.stories), dtype=complex)
-        base = (self.stiffness_matrix + story_matrix(self.geometric_stiffness)).astype(complex)
-        for k, w in enumerate(omega):
-            per_story = np.zeros(self.stories, dtype=complex)
+        frequency = finite_array("frequency", frequency, ndim=None)
+        if frequency.ndim > 1:
+            raise ValueError(f"frequency must be a scalar or 1-dimensional, got shape {frequency.shape}")
+        frequency = np.atleast_1d(frequency)
+        if (frequency < 0).any():
+            raise ValueError(f"frequency must be >= 0 Hz, got {show(frequency[frequency < 0][0])}")
+        response = np.empty((frequency.size, self.stories), dtype=complex)
+        for start in range(0, frequency.size, _FREQUENCY_CHUNK):  # chunks bound the (f, n, n) stack
+            chunk = slice(start, start + _FREQUENCY_CHUNK)
+            response[chunk] = self._solve_dynamic(frequency[chunk])
+        return response
+
+    def _solve_dynamic(self, frequency):
+        with np.errstate(over="ignore", invalid="ignore"):
+            omega = 2.0 * np.pi * frequency
+            if not np.isfinite(omega).all():
+                raise ValueError(f"the dynamic stiffness overflows at f = {show(frequency[~np.isfinite(omega)][0])} Hz")
+            per_story = np.zeros((omega.size, self.stories), dtype=complex)
             for story, wall in self.damper_list:
-                per_story[story - 1] += wall.stiffness_transfer(1j * w)
-            dynamic = base + story_matrix(per_story) - w**2 * self.mass_matrix + 1j * w * self.damping_matrix
-            response[k] = np.linalg.solve(dynamic, load)
+                per_story[:, story - 1] += wall.stiffness_transfer(1j * omega)
+            base = self.stiffness_matrix + story_matrix(np.asarray(self.geometric_stiffness, dtype=float))
+            dynamic = (story_matrix(per_story) + base - (omega**2)[:, None, None] * self.mass_matrix
+                       + (1j * omega)[:, None, None] * self.damping_matrix)
+        finite = np.isfinite(dynamic).all(axis=(1, 2))
+        if not finite.all():
+            raise ValueError(f"the dynamic stiffness overflows at f = {show(frequency[~finite][0])} Hz")
+        # Only a frame without damping (no imaginary part) can be singular, at a natural frequency;
+        # there the result has no correct digit once cond * eps reaches 1e-2.
+        undamped = np.flatnonzero(~np.any(dynamic.imag, axis=(1, 2)))
+        if undamped.size:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                condition = np.linalg.cond(dynamic[undamped].real)
+            singular = undamped[~(condition < 1e-2 / np.finfo(float).eps)]
+            if singular.size:
+                raise ValueError(f"the frame has no bounded steady response at f = {show(frequency[singular[0]])} Hz: "
+                                 f"without damping, that is a natural frequency (the dynamic stiffness is "
+                                 f"singular there)")
+        load = np.broadcast_to(-np.asarray(self.masses, dtype=complex), (omega.size, self.stories))
+        response = np.linalg.solve(dynamic, load[..., None])[..., 0]
+        finite = np.isfinite(response).all(axis=1)
+        if not finite.all():
+            raise ValueError(f"the frequency response overflows at f = {show(frequency[~finite][0])} Hz")
         return response
 
     def stationary_response(self, ground_acceleration, dt: float, pad_factor: int = 8) -> np.ndarray:
         """Relative displacements (mm, steps x floors) from the frequency-domain solution (FFT).
 
-        ``ground_acceleration`` (mm/s^2, sampled every ``dt`` s) is zero padded to ``pad_factor`` times its
-        length; the result is the exact continuous response of the linear frame with FDMK dampers to the
-        band-limited input, up to the wrap-around of what remains of the response after the padding.
-        Useful for stationary (e.g. harmonic or long random) excitation and as a check of :func:`simulate`.
+        ``ground_acceleration`` (mm/s^2, sampled every ``dt`` s, dt > 0) is zero padded to
+        ``pad_factor`` (a whole number >= 1) times its length; the result is the exact continuous
+        response of the linear frame with FDMK dampers to the band-limited input, up to the wrap-around
+        of what remains of the response after the padding.  Useful for stationary (e.g. harmonic or
+        long random) excitation and as a check of :func:`simulate`.  A padded length whose arrays would
+        exceed the 2 GiB memory limit is refused before allocating.
         """
         ground = finite_array("ground_acceleration", ground_acceleration)
-        size = int(pad_factor) * ground.size
+        dt = positive("dt", dt)
+        pad_factor = whole_number("pad_factor", pad_factor, 1)
+        size = pad_factor * ground.size
+        # Per frequency: the complex dynamic stiffness (floors^2) and response; plus the real FFTs.
+        check_memory(f"stationary_response (pad_factor = {pad_factor}, {ground.size} samples)", size,
+                     8 * (self.stories**2 + 4 * self.stories + 4), "use a smaller pad_factor")
         spectrum = np.fft.rfft(ground, size)
         response = self.frequency_response(np.fft.rfftfreq(size, dt))
         return np.fft.irfft(response * spectrum[:, None], size, axis=0)[: ground.size]
@@ -338,11 +386,13 @@ def _read_only(array: np.ndarray) -> np.ndarray:
 
 
 def story_matrix(per_story: np.ndarray) -> np.ndarray:
-    """Assemble story springs (story k between floors k-1 and k, floor 0 the ground) into a matrix."""
-    n = per_story.size
-    matrix = np.zeros((n, n), dtype=per_story.dtype)
-    matrix[np.arange(n), np.arange(n)] = per_story
-    matrix[np.arange(n - 1), np.arange(n - 1)] += per_story[1:]
-    matrix[np.arange(n - 1), np.arange(1, n)] = -per_story[1:]
-    matrix[np.arange(1, n), np.arange(n - 1)] = -per_story[1:]
+    """Assemble story springs (story k between floors k-1 and k, floor 0 the ground) into a matrix
+    (a stack of matrices for leading axes: (..., n) -> (..., n, n))."""
+    n = per_story.shape[-1]
+    matrix = np.zeros(per_story.shape + (n,), dtype=per_story.dtype)
+    diagonal, upper = np.arange(n), np.arange(n - 1)
+    matrix[..., diagonal, diagonal] = per_story
+    matrix[..., upper, upper] += per_story[..., 1:]
+    matrix[..., upper, upper + 1] = -per_story[..., 1:]
+    matrix[..., upper + 1, upper] = -per_story[..., 1:]
     return matrix

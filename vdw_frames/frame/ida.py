@@ -92,7 +92,7 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions, step: float, 
     ``options`` go to :func:`run_batch` and :func:`simulate` (``collapse_drift_ratio`` (default 0.10, needs
     story heights), ``method``, ``memory``, ``strain_compatible``, ...).
     """
-    import warnings
+    from .. import _warnings
 
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
@@ -115,11 +115,10 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions, step: float, 
     for level in levels:
         if not standing:
             break
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
+        with _warnings.collect() as caught:  # run_batch's re-issued warnings, per thread
             batch = run_batch(building, [motions[m] for m in standing], (unit[standing] * level)[:, None],
                               executor=executor, progress=False, **options)
-        messages.extend(str(w.message) for w in caught)
+        messages.extend(w.message for w in caught)
         for row, m in enumerate(standing):
             intensities[m].append(level)
             ratio = batch.peak_drift_ratio if batch.peak_drift_ratio is not None else batch.peak_drift

@@ -33,13 +33,14 @@ average acceleration balances energy to the iteration tolerance.
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from .._jit import njit
-from .._validation import finite_scalar, non_negative, positive, require_finite, whole_number
+from .. import _warnings
+from .._validation import (SIMULATION_STEP_RANGE, check_memory, finite_scalar, non_negative, positive,
+                           require_finite, show, whole_number)
 from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, kernel_constants, memory_strategy
 from ..element.fractional import DEFAULT_METHOD, get_method
@@ -495,10 +496,14 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
              free_vibration: float = 0.0, newton: NewtonRaphson | None = None) -> SimulationResult:
     """Integrate ``building`` under ``ground_motion`` (a :class:`~vdw_frames.GroundMotion`, mm/s^2).
 
-    ``dt`` (s) defaults to the record's step; a smaller step must divide it (the ground acceleration is
-    interpolated linearly); a larger or non-dividing step is a ValueError.  ``method`` and ``memory``
-    select the walls' discretisation and memory strategy ("fast", the default, costs the same at every
-    step and stays within 3e-9 of "exact"; see :meth:`FDMKDamper.force`).
+    ``dt`` (s) defaults to the record's step; a smaller step must divide it to a relative 1e-6 (the
+    ground acceleration is interpolated linearly; the step used is the record step / the whole number of
+    sub-steps, so a float32 dt works); a larger or non-dividing step, or one outside
+    ``vdw_frames._validation.SIMULATION_STEP_RANGE`` (1e-9 ... 1e3 s), is a ValueError.  So is a run
+    whose result arrays would exceed the 2 GiB memory limit, refused before allocating with its step
+    count and memory.  ``method`` and ``memory`` (validated even for a frame without walls) select the
+    walls' discretisation and memory strategy ("fast", the default, costs the same at every step and
+    stays within 3e-9 of "exact"; see :meth:`FDMKDamper.force`).
 
     ``collapse_drift_ratio`` (-, default 0.10; None disables it; needs story heights): when any story's
     drift ratio exceeds it, the analysis stops there with ``result.collapsed`` and
@@ -535,9 +540,17 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
     if collapse_drift_ratio is not None:
         collapse_drift_ratio = positive("collapse_drift_ratio", collapse_drift_ratio)
     free_vibration = non_negative("free_vibration", free_vibration)
-    if dt is None:
-        dt = ground_motion.dt
-    dt = positive("dt", dt)
+    dt = positive("dt", ground_motion.dt if dt is None else dt)
+    if not SIMULATION_STEP_RANGE[0] <= dt <= SIMULATION_STEP_RANGE[1]:
+        raise ValueError(f"time step dt = {show(dt)} s is outside the range simulate accepts "
+                         f"({SIMULATION_STEP_RANGE[0]:g} ... {SIMULATION_STEP_RANGE[1]:g} s)")
+    substeps = ground_motion.substeps(dt)
+    dt = ground_motion.dt / substeps
+    # Response and result histories (about 14 per floor), each wall's force, strain and exact memory,
+    # energies: float64 a step.
+    check_memory(f"simulate (dt = {dt!r} s, {building.stories} floors, {len(building.damper_list)} walls)",
+                 (ground_motion.acceleration.size - 1) * substeps + 1 + math.ceil(free_vibration / dt),
+                 8 * (14 * building.stories + 6 * len(building.damper_list) + 12), "use a larger dt")
     ground = ground_motion.acceleration_at(dt)
     if free_vibration > 0.0:
         ground = np.concatenate([ground, np.zeros(int(math.ceil(free_vibration / dt - 1e-9)))])
@@ -585,10 +598,10 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
     keep = slice(0, filled)
     time = np.arange(filled) * dt
     if status == _FAILED:
-        warnings.warn(f"simulate: the step to t = {filled * dt:.6g} s did not converge (story {story_index + 1} "
-                      "moved most in the last correction), even with a line search and initial-stiffness "
-                      "iterations; the analysis stops there (result.converged is False)", RuntimeWarning,
-                      stacklevel=2)
+        _warnings.warn(f"simulate: the step to t = {filled * dt:.6g} s did not converge (story {story_index + 1} "
+                       "moved most in the last correction), even with a line search and initial-stiffness "
+                       "iterations; the analysis stops there (result.converged is False)", RuntimeWarning,
+                       stacklevel=2)
     require_finite("the response", displacement[keep])
     return _result(building, walls, groups, group_of_wall, group_story, time, ground[keep], displacement[keep],
                    velocity[keep], acceleration[keep], absolute[keep], drift[keep], story_shear[keep],
@@ -675,5 +688,5 @@ def _warn_strain_range(walls, peak_wall_strain):
         if not low <= peak <= high:
             outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %)")
     if outside:
-        warnings.warn("damper peak strain outside the range its parameters were identified for: "
-                      + "; ".join(dict.fromkeys(outside)), UserWarning, stacklevel=4)
+        _warnings.warn("damper peak strain outside the range its parameters were identified for: "
+                       + "; ".join(dict.fromkeys(outside)), UserWarning, stacklevel=4)

@@ -71,11 +71,11 @@ Units: strain dimensionless (3.0 = 300 %), drift and thickness mm.
 from __future__ import annotations
 
 import dataclasses
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
+from .. import _warnings
 from .._validation import finite_array, positive, whole_number
 from ..element.strain_dependent import StrainDependentDamper, _refuse_non_numbers
 from .building import ShearBuilding
@@ -159,8 +159,7 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion, options
                  for wall, s in zip(walls, strain)]
         # The strain-compatible analysis judges the range itself (effective, not peak, strain).
         run_walls = [dataclasses.replace(d, strain_range=None) if flag else d for d, flag in zip(final, dependent)]
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
+        with _warnings.collect() as caught:  # per thread: safe under run_batch's thread executors
             result = simulate(dataclasses.replace(building, dampers=_regroup(building, run_walls)), ground_motion,
                               **simulate_options)
         effective = options.effective_strain_ratio * result.peak_drift[stories] / thickness
@@ -180,11 +179,11 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion, options
         strain, previous_step = np.where(dependent, strain + step, strain), step
 
     for message in caught:
-        warnings.warn(message.message, message.category, stacklevel=3)
+        _warnings.warn(message.message, message.category, stacklevel=3)
     _warn_clamped(building, walls, strain, effective / options.effective_strain_ratio)
     if not converged:
         change = np.max((np.abs(effective - strain) / np.where(strain > 0.0, strain, 1.0))[dependent])
-        warnings.warn(f"strain-compatible analysis did not converge in {options.max_iterations} analyses: the "
+        _warnings.warn(f"strain-compatible analysis did not converge in {options.max_iterations} analyses: the "
                       f"effective strains still changed by up to {100 * change:.2g} % (tolerance "
                       f"{100 * options.tolerance:g} %)", UserWarning, stacklevel=3)
     return dataclasses.replace(
@@ -231,4 +230,4 @@ def _warn_clamped(building, walls, strain, peak) -> None:
                            f"{100 * reached:.0f} %), outside {100 * low:.4g}-{100 * high:.4g} %: parameters of "
                            f"{100 * wall.clamped(effective):.4g} % used")
     if outside:
-        warnings.warn("strain-compatible analysis: " + "; ".join(outside), UserWarning, stacklevel=4)
+        _warnings.warn("strain-compatible analysis: " + "; ".join(outside), UserWarning, stacklevel=4)

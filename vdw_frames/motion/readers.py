@@ -1,22 +1,33 @@
 """Ground-motion files: PEER AT2 and two-column text readers, and an AT2 writer.
 
 Units: files in g (AT2) or the stated unit (two-column) are converted to mm/s^2 with :data:`G`.
-Bad files are a ValueError naming the file and, where it applies, the line.
+Bad files are a ValueError naming the file and, where it applies, the line; a reader returns a
+:class:`GroundMotion` (finite values) or raises ValueError, nothing else.
+
+Real-world variants accepted by both readers: line ends "\\n", "\\r\\n", "\\r\\r\\n" and "\\r"; a UTF-8
+byte-order mark; a DOS end-of-file mark (^Z) at the end; Fortran output, i.e. ``D`` exponents
+(``1.0D-03``) and fixed-width values written without a separator (``-.39E-02-.33E-02``: each value
+has a decimal point or an exponent letter, and each after the first starts with its sign, so a split
+is never a guess).  Gzip, zip, UTF-16 and other binary files get a message that says so.
 """
 
 from __future__ import annotations
 
-import math
+import os
 import re
+import secrets
+import shutil
 from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
+from .._validation import file_path, read_text, show, whole_number
 from .record import G, GroundMotion
 
-TWO_COLUMN_TOLERANCE = 1e-6
-"""Two-column files: each time must lie within this fraction of dt of t0 + i dt."""
+TWO_COLUMN_TOLERANCE = 1e-3
+"""Two-column files: each time must lie within this fraction of dt of t0 + i dt (float32 time columns,
+e.g. 0.09999999 at dt = 0.01, are off by ~1e-6 dt)."""
 
 UNITS = {"g": G, "mm/s2": 1.0, "cm/s2": 10.0, "m/s2": 1000.0}
 """Acceleration units accepted by :func:`read_two_column`, with their factor to mm/s^2."""
@@ -24,91 +35,151 @@ UNITS = {"g": G, "mm/s2": 1.0, "cm/s2": 10.0, "m/s2": 1000.0}
 AT2_HEADER_LINES = 10  # the NPTS/DT line must be among the first 10 non-blank lines
 _NPTS = re.compile(r"\bNPTS\s*=\s*([^\s,]*)", re.IGNORECASE)
 _DT = re.compile(r"\bDT\s*=\s*([^\s,]*)", re.IGNORECASE)
+# The legacy PEER (and FEMA P695, NGA-West1) count line: the numbers first, then their labels.
+_LEGACY_COUNT = re.compile(r"^\s*([^\s,]+)[\s,]+([^\s,]+)[\s,]+NPTS\s*,?\s*DT\b", re.IGNORECASE)
 _NEWLINE = re.compile(r"\r*\n|\r")  # "\n", "\r\n", "\r\r\n" and a lone "\r" all end one line
+_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:([EeDd])([+-]?)(\d+))?")
+_CONTROL = re.compile(r"[\x00-\x1f\x7f]")
 
 
-def _lines(path: Path) -> list[str]:
-    return _NEWLINE.split(path.read_text(encoding="utf-8", errors="replace"))
+def _record_lines(path, what: str) -> tuple[Path, list[str]]:
+    """The file's lines (a trailing DOS ^Z and blank lines dropped); header bytes that are not UTF-8
+    (e.g. a Latin-1 station name) are replaced, since only numbers are read from the file."""
+    path, text = read_text(path, what, strict=False)
+    text = text.rstrip()
+    while text.endswith("\x1a"):
+        text = text[:-1].rstrip()
+    return path, _NEWLINE.split(text)
 
 
-def _floats(tokens: list[str], line_numbers: list[int], source: Path) -> np.ndarray:
-    """``tokens`` as floats; a non-numeric or non-finite token is a ValueError naming file and line."""
+def _number_texts(token: str) -> list[str] | None:
+    """The Python float texts of one whitespace-free token, or None if it is not numeric.
+
+    A plain number gives itself; Fortran's ``1.0D-03`` gives ``1.0E-03``; values written without a
+    separator (``-.39E-02-.33E-02``) give each value, provided each has a decimal point or an exponent
+    letter and each after the first starts with its sign.  Anything else is refused rather than guessed
+    (``12.34512.345`` has no unique split; ``0.1234-100`` may be Fortran's E-less exponent).
+    """
+    parts = list(_NUMBER.finditer(token))
+    if not parts or parts[0].start() != 0 or any(a.end() != b.start() for a, b in zip(parts, parts[1:])) \
+            or parts[-1].end() != len(token):
+        return None
+    if len(parts) > 1 and not all(("." in part.group(0) or part.group(1)) and (k == 0 or part.group(0)[0] in "+-")
+                                  for k, part in enumerate(parts)):
+        return None
+    return [part.group(0).replace("D", "E").replace("d", "e") for part in parts]
+
+
+def _floats(tokens: list[str], line_numbers: list[int], source: Path) -> tuple[np.ndarray, list[int]]:
+    """``tokens`` as floats and the line of each; a non-numeric or non-finite token is a ValueError
+    naming file and line."""
     try:
         values = np.array(tokens, dtype=float)
     except ValueError:
-        values = np.array([_float(token, line, source) for token, line in zip(tokens, line_numbers)])
+        texts, lines = [], []
+        for token, line in zip(tokens, line_numbers):
+            numbers = _number_texts(token)
+            if numbers is None:
+                raise ValueError(f"{source}: non-numeric value {token!r} on line {line}") from None
+            texts.extend(numbers)
+            lines.extend([line] * len(numbers))
+        tokens, line_numbers = texts, lines
+        values = np.array(texts, dtype=float)
     bad = ~np.isfinite(values)
     if bad.any():
         index = int(np.argmax(bad))
         raise ValueError(f"{source}: non-finite value {tokens[index]!r} on line {line_numbers[index]}")
-    return values
+    return values, line_numbers
 
 
-def _float(token: str, line: int, source: Path) -> float:
-    try:
-        return float(token)
-    except ValueError:
-        raise ValueError(f"{source}: non-numeric value {token!r} on line {line}") from None
+def _to_mm_s2(values: np.ndarray, factor: float, unit: str, line_numbers: list[int], source: Path) -> np.ndarray:
+    with np.errstate(over="ignore"):
+        converted = values * factor
+    overflow = ~np.isfinite(converted)
+    if overflow.any():
+        index = int(np.argmax(overflow))
+        raise ValueError(f"{source}: value {show(values[index])} {unit} on line {line_numbers[index]} "
+                         f"overflows when converted to mm/s^2")
+    return converted
 
 
 def read_at2(path) -> GroundMotion:
     """Read a PEER ``.AT2`` acceleration file (values in g) into a :class:`GroundMotion` (mm/s^2, s).
 
-    The header is free text; the first line (among the first 10 non-blank ones) holding ``NPTS=`` is
-    the count line, e.g. ``NPTS=  4000, DT= .01000 SEC`` or NGA-West2's ``NPTS=   5590, DT=   .0050
-    SEC`` (spaces, trailing commas and lower-case keys accepted; DT in s).  The values, any number a
-    line, follow that line.  Line ends "\\n", "\\r\\n", "\\r\\r\\n" and "\\r" are accepted.  ValueError,
-    naming the file, for an empty file, a missing or bad NPTS or DT, fewer or more values than NPTS, or a
-    non-numeric or non-finite value.  The record's name is the file stem.
+    The header is free text; the count line is the first line (among the first 10 non-blank ones) that
+    is either
+
+    - a keyword line holding ``NPTS=``: e.g. ``NPTS=  4000, DT= .01000 SEC`` or NGA-West2's
+      ``NPTS=   5590, DT=   .0050 SEC`` (spaces, trailing commas, lower-case keys accepted), or
+    - a legacy line with the numbers first: ``  3930   0.01000    NPTS, DT`` (older PEER downloads,
+      NGA-West1, the FEMA P695 set).
+
+    DT (s) is taken from that line only.  The values, any number a line, follow it; surplus zeros on
+    the last line of values (padding to a full line) are ignored.  The module docstring lists the other
+    variants accepted.  ValueError, naming the file, for a missing, unreadable or binary file, an empty
+    file, a missing or bad NPTS or DT, fewer or more values than NPTS, or a non-numeric or non-finite
+    value (naming its line).  The record's name is the file stem.
     """
-    path = Path(path)
-    lines = _lines(path)
+    path, lines = _record_lines(path, "AT2 file")
     numbered = [(number, line) for number, line in enumerate(lines, start=1) if line.strip()]
     if not numbered:
         raise ValueError(f"{path}: empty file")
-    header = None
-    for index, (number, line) in enumerate(numbered[:AT2_HEADER_LINES]):
-        if _NPTS.search(line):
-            header = index
-            break
+    header = next((index for index, (_, line) in enumerate(numbered[:AT2_HEADER_LINES])
+                   if _NPTS.search(line) or _LEGACY_COUNT.match(line)), None)
     if header is None:
-        raise ValueError(f"{path}: missing NPTS (no 'NPTS=' in the first {AT2_HEADER_LINES} lines)")
+        raise ValueError(f"{path}: missing NPTS (no 'NPTS= n, DT= dt' line and no legacy 'n dt NPTS, DT' "
+                         f"line in the first {AT2_HEADER_LINES} lines)")
     count_line_number, count_line = numbered[header]
-    npts = _npts(_NPTS.search(count_line).group(1), path)
-    dt = _dt(count_line, [line for _, line in numbered[:header]], path)
+    keyword = _NPTS.search(count_line)
+    if keyword:
+        npts = _npts(keyword.group(1), path, count_line_number)
+        dt_match = _DT.search(count_line)
+        if not dt_match:
+            raise ValueError(f"{path}: missing DT (no 'DT=' on the NPTS line, line {count_line_number})")
+        dt = _dt(dt_match.group(1), path, count_line_number)
+    else:
+        legacy = _LEGACY_COUNT.match(count_line)
+        npts = _npts(legacy.group(1), path, count_line_number)
+        dt = _dt(legacy.group(2), path, count_line_number)
     tokens, line_numbers = [], []
     for number, line in numbered[header + 1:]:
         words = line.split()
         tokens.extend(words)
         line_numbers.extend([number] * len(words))
-    values = _floats(tokens, line_numbers, path)
+    values, line_numbers = _floats(tokens, line_numbers, path)
     if values.size < npts:
         raise ValueError(f"{path}: too few values: NPTS = {npts} on line {count_line_number} but "
                          f"{values.size} values follow")
     if values.size > npts:
-        raise ValueError(f"{path}: too many values: NPTS = {npts} on line {count_line_number} but "
-                         f"{values.size} values follow")
-    return GroundMotion(values * G, dt, path.stem)
+        padding = values[npts:]
+        if np.any(padding != 0.0) or line_numbers[-1] != line_numbers[npts - 1]:
+            raise ValueError(f"{path}: too many values: NPTS = {npts} on line {count_line_number} but "
+                             f"{values.size} values follow")
+        values, line_numbers = values[:npts], line_numbers[:npts]
+    return _motion(_to_mm_s2(values, G, "g", line_numbers, path), dt, path.stem, path)
 
 
-def _npts(text: str, path: Path) -> int:
+def _motion(acceleration, dt, name, path) -> GroundMotion:
+    try:
+        return GroundMotion(acceleration, dt, name)
+    except ValueError as error:  # e.g. a single sample
+        raise ValueError(f"{path}: {error}") from None
+
+
+def _npts(text: str, path: Path, line: int) -> int:
     if not re.fullmatch(r"[0-9]+", text) or int(text) == 0:
-        raise ValueError(f"{path}: NPTS must be a positive whole number, got {text!r}")
+        raise ValueError(f"{path}: NPTS must be a positive whole number, got {text!r} on line {line}")
     return int(text)
 
 
-def _dt(count_line: str, other_header_lines: list[str], path: Path) -> float:
-    for line in [count_line, *other_header_lines]:
-        match = _DT.search(line)
-        if match:
-            try:
-                dt = float(match.group(1))
-            except ValueError:
-                dt = math.nan
-            if not (math.isfinite(dt) and dt > 0.0):
-                raise ValueError(f"{path}: DT must be a positive number of seconds, got {match.group(1)!r}")
-            return dt
-    raise ValueError(f"{path}: missing DT (no 'DT=' next to NPTS)")
+def _dt(text: str, path: Path, line: int) -> float:
+    """DT from its text: a number, optionally followed by a unit word (``.0050SEC``)."""
+    match = _NUMBER.match(text)
+    unit = text[match.end():] if match else None
+    dt = float(_number_texts(match.group(0))[0]) if match and (unit == "" or unit.isalpha()) else float("nan")
+    if not (np.isfinite(dt) and dt > 0.0):
+        raise ValueError(f"{path}: DT must be a positive number of seconds, got {text!r} on line {line}")
+    return dt
 
 
 def read_two_column(path, unit: str = "g", *, skip_rows: int = 0, name: str | None = None) -> GroundMotion:
@@ -117,59 +188,120 @@ def read_two_column(path, unit: str = "g", *, skip_rows: int = 0, name: str | No
     ``unit`` is one of ``"g"``, ``"mm/s2"``, ``"cm/s2"``, ``"m/s2"``.  Columns are separated by
     whitespace and/or commas; ``#`` starts a comment; blank lines are skipped, and so are the first
     ``skip_rows`` lines (e.g. a column-title line).  Every other line must hold exactly two finite
-    numbers.  Times must increase uniformly: each within 1e-6 dt of ``t0 + i dt`` (dt the mean step),
-    else a ValueError naming the line.  The record starts at the first row (times are shifted to start
-    at 0).  ``name`` defaults to the file stem.
+    numbers (the variants of the module docstring accepted).  Times must increase uniformly: each within
+    :data:`TWO_COLUMN_TOLERANCE` (1e-3) dt of ``t0 + i dt`` (dt the mean step), else a ValueError
+    naming the line.  The record starts at the first row (times are shifted to start at 0).  ``name``
+    defaults to the file stem.
     """
-    if unit not in UNITS:
+    if not isinstance(unit, str) or unit not in UNITS:
         raise ValueError(f"unknown unit {unit!r}; use one of {', '.join(map(repr, UNITS))}")
-    path = Path(path)
-    if not isinstance(skip_rows, int) or skip_rows < 0:
-        raise ValueError(f"skip_rows must be a whole number >= 0, got {skip_rows!r}")
+    skip_rows = whole_number("skip_rows", skip_rows, 0)
+    if name is not None and not isinstance(name, str):
+        raise ValueError(f"name must be a string, got {show(name)}")
+    path, lines = _record_lines(path, "two-column file")
     tokens, line_numbers = [], []
-    for number, line in enumerate(_lines(path)[skip_rows:], start=skip_rows + 1):
+    for number, line in enumerate(lines[skip_rows:], start=skip_rows + 1):
         words = re.split(r"[\s,]+", line.split("#", 1)[0].strip())
         if words == [""]:
             continue
+        if len(words) != 2:  # maybe values written without a separator
+            split = [_number_texts(word) for word in words]
+            if all(split):
+                words = [text for texts in split for text in texts]
         if len(words) != 2:
             raise ValueError(f"{path}: line {number} has {len(words)} values, expected 2 (time, acceleration)")
         tokens.extend(words)
         line_numbers.extend([number, number])
-    rows = _floats(tokens, line_numbers, path).reshape(-1, 2)
+    values, line_numbers = _floats(tokens, line_numbers, path)
+    rows = values.reshape(-1, 2)
     if rows.shape[0] < 2:
         raise ValueError(f"{path}: needs at least 2 rows (time, acceleration), found {rows.shape[0]}")
     time = rows[:, 0]
-    dt = (time[-1] - time[0]) / (time.size - 1)
-    if not dt > 0.0:
-        raise ValueError(f"{path}: times must increase, got {time[0]!r} s to {time[-1]!r} s")
+    with np.errstate(over="ignore", invalid="ignore"):
+        dt = (time[-1] - time[0]) / (time.size - 1)
+    if not (np.isfinite(dt) and dt > 0.0):
+        raise ValueError(f"{path}: times must increase, got {show(time[0])} s to {show(time[-1])} s")
     off = np.abs(time - time[0] - np.arange(time.size) * dt) > TWO_COLUMN_TOLERANCE * dt
     if off.any():
         row = int(np.argmax(off))
-        raise ValueError(f"{path}: non-uniform time step at line {line_numbers[2 * row]}: t = {time[row]!r} s, "
-                         f"expected {time[0] + row * dt!r} s for a step of {dt!r} s")
-    return GroundMotion(rows[:, 1] * UNITS[unit], dt, path.stem if name is None else name)
+        raise ValueError(f"{path}: non-uniform time step at line {line_numbers[2 * row]}: t = {show(time[row])} s, "
+                         f"expected {show(time[0] + row * dt)} s for a step of {show(dt)} s")
+    acceleration = _to_mm_s2(rows[:, 1], UNITS[unit], unit, line_numbers[1::2], path)
+    return _motion(acceleration, float(dt), path.stem if name is None else name, path)
 
 
 def write_at2(motion: GroundMotion, path, header: str | Sequence[str] = ()) -> Path:
     """Write ``motion`` (mm/s^2) as a PEER-layout ``.AT2`` file in g; returns the path.
 
-    Layout: up to two free-text ``header`` lines (padded with the record's name), then ``ACCELERATION
-    TIME HISTORY IN UNITS OF G``, then ``NPTS= n, DT= dt SEC`` (the 4th line, dt s written exactly),
-    then the values, 5 a line, to 8 significant digits (so a read-back differs by < 5e-8 relative).
+    Layout: up to two free-text ``header`` lines (padded with ``GROUND MOTION <name>``), then
+    ``ACCELERATION TIME HISTORY IN UNITS OF G``, then ``NPTS= n, DT= dt SEC`` (the 4th line, dt s
+    written exactly), then the values, 5 a line, to 8 significant digits (so a read-back differs by
+    < 5e-8 relative).  Text is UTF-8 (plain ASCII unless the header or name is not).
+
+    Everything is checked before the file is touched: header lines must be single lines without
+    control characters, and neither they nor the name line may look like a count line (``NPTS=``,
+    ``DT=`` or ``n dt NPTS, DT``), which :func:`read_at2` would take for one.  The file is written to a
+    temporary file in the same folder and renamed over ``path``, so a failure never destroys an existing
+    file.  ValueError for a bad argument, a missing folder or a folder given as ``path``.
     """
     if not isinstance(motion, GroundMotion):
         raise ValueError(f"motion must be a GroundMotion, got {type(motion).__name__}")
-    lines = header.splitlines() if isinstance(header, str) else [str(line) for line in header]
-    if len(lines) > 2 or any("\n" in line or "\r" in line for line in lines):
-        raise ValueError(f"header must be at most 2 single lines, got {header!r}")
+    if isinstance(header, str):
+        lines = header.splitlines()
+    elif isinstance(header, Sequence) and all(isinstance(line, str) for line in header):
+        lines = list(header)
+    else:
+        raise ValueError(f"header must be a string or a sequence of strings, got {show(header)}")
+    if len(lines) > 2 or any(_CONTROL.search(line) for line in lines):
+        raise ValueError(f"header must be at most 2 single lines without control characters, got {header!r}")
+    name_line = f"GROUND MOTION {motion.name or 'RECORD'}"
+    lines = (lines + [name_line, ""])[:2]
     for line in lines:
-        if _NPTS.search(line) or _DT.search(line):
-            raise ValueError(f"header lines must not contain 'NPTS=' or 'DT=', got {line!r}")
-    lines = (lines + [f"GROUND MOTION {motion.name or 'RECORD'}", ""])[:2]
+        if _CONTROL.search(line):
+            raise ValueError(f"record name {motion.name!r} has a control character; rename the record "
+                             f"or pass header=[line1, line2]")
+        if _NPTS.search(line) or _DT.search(line) or _LEGACY_COUNT.match(line):
+            what = f"record name {motion.name!r}" if line == name_line else f"header line {line!r}"
+            raise ValueError(f"{what} would be read as the NPTS/DT line (it contains 'NPTS=', 'DT=' or "
+                             f"'n dt NPTS, DT'); rename the record or pass other header lines")
     values = motion.acceleration / G
     rows = [" ".join(f"{value:15.7E}" for value in values[i:i + 5]) for i in range(0, values.size, 5)]
     text = "\n".join([*lines, "ACCELERATION TIME HISTORY IN UNITS OF G",
                       f"NPTS= {values.size:6d}, DT= {motion.dt!r} SEC", *rows]) + "\n"
-    path = Path(path)
-    path.write_text(text, encoding="ascii")
+    path = file_path(path, "AT2 file")
+    _replace_file(path, text.encode("utf-8"))
     return path
+
+
+def _replace_file(path: Path, data: bytes) -> None:
+    """Write ``data`` to a temporary file beside ``path`` and rename it over ``path`` (atomic on POSIX
+    and Windows): the old file stays whole until the new one is complete."""
+    target = path.resolve() if path.is_symlink() else path  # replace the file a link points to, not the link
+    folder = target.parent
+    if target.is_dir():
+        raise ValueError(f"{path}: is a folder; give a file name")
+    if not folder.is_dir():
+        raise ValueError(f"{path}: folder {folder} does not exist")
+    if target.exists() and not os.access(target, os.W_OK):
+        raise ValueError(f"{path}: not writable")
+    while True:
+        temporary = folder / f".{target.name}.{secrets.token_hex(4)}.tmp"
+        try:
+            # 0o666 minus the umask: the permissions a plainly created file would get.
+            descriptor = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+            break
+        except FileExistsError:
+            continue
+        except OSError as error:
+            raise ValueError(f"{path}: cannot write in {folder} ({error.strerror or error})") from None
+    try:
+        with os.fdopen(descriptor, "wb") as handle:
+            handle.write(data)
+        if target.exists():
+            shutil.copymode(target, temporary)
+        os.replace(temporary, target)
+    except BaseException as error:
+        temporary.unlink(missing_ok=True)
+        if isinstance(error, OSError):
+            raise ValueError(f"{path}: cannot write ({error.strerror or error})") from None
+        raise

@@ -11,13 +11,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import finite_array, finite_scalar, non_negative, positive
+from .._validation import check_memory, finite_array, finite_scalar, non_negative, positive, show
 
 G = 9806.65
 """Standard gravity, mm/s^2 per g."""
 
-STEP_TOLERANCE = 1e-9
-"""Relative tolerance within which a requested time step must divide the record step."""
+STEP_TOLERANCE = 1e-6
+"""Relative tolerance within which a requested time step must divide the record step (a float32 step,
+e.g. ``np.float32(0.01)``, is within 3e-8 of the float64 one)."""
+
+_RESAMPLING_BYTES_PER_STEP = 24  # the interpolated array, its temporaries and the record's copy
 
 @dataclass(frozen=True, eq=False)
 class GroundMotion:
@@ -37,7 +40,7 @@ class GroundMotion:
             raise ValueError(f"acceleration must hold at least 2 samples, got {acceleration.size}")
         acceleration.flags.writeable = False
         if not isinstance(self.name, str):
-            raise ValueError(f"name must be a string, got {self.name!r}")
+            raise ValueError(f"name must be a string, got {show(self.name)}")
         object.__setattr__(self, "acceleration", acceleration)
         object.__setattr__(self, "dt", positive("dt", self.dt))
 
@@ -83,7 +86,7 @@ class GroundMotion:
 
         period = non_negative("period", period)
         spectral = float(response_spectrum(self, period, damping_ratio))
-        return target / self._nonzero(f"Sa(T = {period!r} s)", spectral)
+        return target / self._nonzero(f"Sa(T = {show(period)} s)", spectral)
 
     def scaled_to_spectral_acceleration(self, target: float, period: float,
                                         damping_ratio: float = 0.05) -> GroundMotion:
@@ -93,12 +96,15 @@ class GroundMotion:
     def acceleration_at(self, dt: float) -> np.ndarray:
         """Ground acceleration (mm/s^2, a new array) sampled every ``dt`` s from time 0.
 
-        ``dt`` must be the record step or the record step divided by a whole number (to a relative
-        1e-9); in between samples the record is interpolated linearly, and the last sample is the
-        record's last (``(n - 1) * m + 1`` values for ``m`` sub-steps).  A larger ``dt``, or one that
-        does not divide the record step, is a ValueError naming both steps.
+        ``dt`` must be the record step or the record step divided by a whole number ``m`` (to a
+        relative :data:`STEP_TOLERANCE` = 1e-6); in between samples the record is interpolated
+        linearly, and the last sample is the record's last (``(n - 1) * m + 1`` values).  A larger
+        ``dt``, or one that does not divide the record step, is a ValueError naming both steps; so is a
+        ``dt`` whose samples would exceed the memory limit (``vdw_frames._validation.MEMORY_LIMIT_BYTES``,
+        2 GiB), refused before allocating with the number of steps and the memory.
         """
-        substeps = self._substeps(dt)
+        substeps = self.substeps(dt)
+        self._check_memory(dt, substeps)
         acceleration = self.acceleration
         if substeps == 1:
             return acceleration.copy()
@@ -108,10 +114,13 @@ class GroundMotion:
 
     def resampled(self, dt: float) -> GroundMotion:
         """The record sampled every ``dt`` s (see :meth:`acceleration_at`); its step is the record step
-        divided by the whole number of sub-steps (equal to ``dt`` within 1e-9 relative)."""
-        return GroundMotion(self.acceleration_at(dt), self.dt / self._substeps(dt), self.name)
+        divided by the whole number of sub-steps (equal to ``dt`` within 1e-6 relative)."""
+        return GroundMotion(self.acceleration_at(dt), self.dt / self.substeps(dt), self.name)
 
-    def _substeps(self, dt) -> int:
+    def substeps(self, dt) -> int:
+        """The whole number ``m`` of steps of ``dt`` s in one record step (see :meth:`acceleration_at`);
+        ValueError for a ``dt`` that is larger or does not divide the record step.  The step to
+        integrate with is ``self.dt / m`` (``dt`` within 1e-6 relative)."""
         dt = positive("dt", dt)
         if dt > self.dt * (1.0 + STEP_TOLERANCE):
             raise ValueError(f"time step dt = {dt!r} s is larger than the record step {self.dt!r} s "
@@ -122,6 +131,11 @@ class GroundMotion:
             raise ValueError(f"time step dt = {dt!r} s does not divide the record step {self.dt!r} s "
                              f"of {self._label} (ratio {ratio!r} is not a whole number)")
         return substeps
+
+    def _check_memory(self, dt: float, substeps: int) -> None:
+        check_memory(f"dt = {dt!r} s on {self._label} ({self.acceleration.size} samples every {self.dt!r} s)",
+                     (self.acceleration.size - 1) * substeps + 1, _RESAMPLING_BYTES_PER_STEP,
+                     "use a larger dt")
 
     def _nonzero(self, what: str, value: float) -> float:
         if value == 0.0:

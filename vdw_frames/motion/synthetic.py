@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from .._validation import damping_ratio as _damping_ratio
-from .._validation import finite_array, finite_scalar, non_negative, positive
+from .._validation import check_memory, finite_array, finite_scalar, non_negative, positive, show
 from .record import G, GroundMotion
 from .spectrum import sdof_history
 
@@ -66,8 +66,9 @@ def synthetic_ground_motion(duration: float = 25.0, dt: float = 0.01, pga: float
     (``rise_time`` s, ``strong_motion_end`` s, ``decay_rate`` 1/s) and scaled to ``pga`` mm/s^2.
 
     ``duration`` s is the time of the last sample (``round(duration / dt) + 1`` samples every ``dt``
-    s).  The white noise is ``numpy.random.default_rng(seed).standard_normal``, taken as linear between
-    samples, and the filters are integrated exactly (the recurrence of :func:`response_spectrum`).
+    s; more than the 2 GiB memory limit would take is refused before allocating).  The white noise is
+    ``numpy.random.default_rng(seed).standard_normal``, taken as linear between samples, and the filters
+    are integrated exactly (the recurrence of :func:`response_spectrum`).
     """
     duration = positive("duration", duration)
     dt = positive("dt", dt)
@@ -76,9 +77,11 @@ def synthetic_ground_motion(duration: float = 25.0, dt: float = 0.01, pga: float
         raise ValueError(f"duration = {duration!r} s must be at least one step dt = {dt!r} s")
     for label, value in (("ground_frequency", ground_frequency), ("high_pass_frequency", high_pass_frequency)):
         if non_negative(label, value) >= 0.5 / dt:
-            raise ValueError(f"{label} = {value!r} Hz must be below the Nyquist frequency {0.5 / dt!r} Hz")
+            raise ValueError(f"{label} = {show(value)} Hz must be below the Nyquist frequency {0.5 / dt!r} Hz")
     positive("ground_frequency", ground_frequency)
     samples = round(duration / dt) + 1
+    check_memory(f"synthetic_ground_motion(duration = {duration!r} s, dt = {dt!r} s)", samples, 64,
+                 "use a larger dt or a shorter duration")
     noise = np.random.default_rng(seed).standard_normal(samples)
     acceleration = _filtered(noise, dt, ground_frequency, _damping_ratio(ground_damping, "ground_damping"))
     if high_pass_frequency > 0.0:

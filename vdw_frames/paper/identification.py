@@ -46,7 +46,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares
 
-from .._validation import finite_array, finite_scalar
+from .._validation import finite_array, finite_scalar, show
 from ..element.damper import FDMKDamper
 
 PARAMETERS = ("G1", "G2", "eta1", "eta2", "r")
@@ -202,7 +202,7 @@ class _Problem:
             raise ValueError(f"frequency, storage_modulus and loss_modulus must have equal lengths, got "
                              f"{f.size}, {storage.size} and {loss.size}")
         if (f <= 0.0).any():
-            raise ValueError(f"frequency must be > 0 Hz, got {f[f <= 0.0][0]!r}")
+            raise ValueError(f"frequency must be > 0 Hz, got {show(f[f <= 0.0][0])}")
         if residual not in RESIDUALS:
             raise ValueError(f"residual must be one of {RESIDUALS}, got {residual!r}")
         if residual == "relative":
