@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -181,7 +182,7 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
                heights, collapse_ratio, linear, displacement_tolerance, force_tolerance, max_iterations,
                fallback_iterations, group_story, constants, w0, window_weights, window, mode_weight,
                mode_ratio, mode_state, history, values, wall_tangent_group, wall_history_group,
-               displacement, velocity, acceleration, absolute, drift_out, story_shear, damper_force, base_shear,
+               displacement, velocity, acceleration, drift_out, story_shear, damper_force, base_shear,
                group_force, group_strain, peak_group_strain, energy, outcome):
     """Newmark average acceleration with Newton-Raphson, steps 1 .. N-1 (step 0 is rest), in place.
 
@@ -216,7 +217,6 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
     old_damping_force = np.zeros(n)
     for i in range(n):  # (loops, not slice assignments: those compile numba's shape-error machinery)
         acceleration[0, i] = -ground[0]
-        absolute[0, i] = 0.0
         energy[0, 1] += 0.5 * masses[i] * velocity[0, i] ** 2
     total_iterations = 0
     count = 0
@@ -343,7 +343,6 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
             old_drift[s] = drift[s]
         for i in range(n):
             change = u[i] - u_n[i]
-            absolute[step + 1, i] = acceleration[step + 1, i] + ground[step + 1]
             kinetic += 0.5 * masses[i] * velocity[step + 1, i] ** 2
             input_work -= 0.5 * masses[i] * (ground[step + 1] + ground[step]) * change
             damping_work += 0.5 * (damping_force[i] + old_damping_force[i]) * change
@@ -409,7 +408,9 @@ class SimulationResult:
     base_shear (N): the force transmitted through story 1 -- its frame spring, walls, P-Delta force
     and inherent damping force through the story (a1 k1 v1 with Rayleigh damping: the mass-proportional
     term acts between the floors and the ground) -- the horizontal reaction of the ground;
-    ground_acceleration (mm/s^2); energy (:class:`EnergyHistory`).
+    ground_acceleration (mm/s^2); energy (:class:`EnergyHistory`).  absolute_acceleration, drift_ratio,
+    damper_strain, wall_force and wall_strain are computed on first use (from the stored histories and
+    the wall groups: identical walls of a story are stepped once, as one of their summed area).
 
     ``converged``: False when a step failed to converge (the histories end at the last converged step);
     ``collapsed`` and ``collapse_time`` (s): a story's drift ratio exceeded ``collapse_drift_ratio``
@@ -427,16 +428,17 @@ class SimulationResult:
     displacement: np.ndarray
     velocity: np.ndarray
     acceleration: np.ndarray
-    absolute_acceleration: np.ndarray
     drift: np.ndarray
-    drift_ratio: np.ndarray | None
     story_shear: np.ndarray
     damper_force: np.ndarray
-    damper_strain: np.ndarray
     base_shear: np.ndarray
     energy: EnergyHistory
-    wall_force: np.ndarray
-    wall_strain: np.ndarray
+    # Walls stepped together (identical walls of a story: one group of their summed area); the per-wall and
+    # derived histories are computed from these on first use, not stored by every analysis.
+    group_force: np.ndarray = field(repr=False)  # (steps, groups), N
+    group_strain: np.ndarray = field(repr=False)  # (steps, groups), -
+    wall_group: np.ndarray = field(repr=False)  # (walls,): the group of each wall of building.damper_list
+    wall_share: np.ndarray = field(repr=False)  # (walls,): each wall's share of its group's area
     converged: bool = True
     collapsed: bool = False
     collapse_time: float | None = None
@@ -445,6 +447,42 @@ class SimulationResult:
     wall_dampers: tuple | None = None
     strain_iterations: int | None = None
     strain_converged: bool | None = None
+
+    @cached_property
+    def absolute_acceleration(self) -> np.ndarray:
+        """Relative acceleration + ground acceleration, mm/s^2, (steps, floors)."""
+        return self.acceleration + self.ground_acceleration[:, None]
+
+    @cached_property
+    def drift_ratio(self) -> np.ndarray | None:
+        """Drift / story height (-), (steps, stories); None without story heights."""
+        heights = self.building.story_heights
+        return None if heights is None else self.drift / np.asarray(heights)
+
+    @cached_property
+    def wall_force(self) -> np.ndarray:
+        """Force of every wall (N), (steps, walls) in ``building.damper_list`` order."""
+        return np.take(self.group_force, self.wall_group, axis=1) * self.wall_share
+
+    @cached_property
+    def wall_strain(self) -> np.ndarray:
+        """Strain of every wall (-: its own deformation / thickness), (steps, walls)."""
+        return np.take(self.group_strain, self.wall_group, axis=1)
+
+    @cached_property
+    def damper_strain(self) -> np.ndarray:
+        """The strain of each story's most strained wall group (-), (steps, stories); 0 without walls."""
+        strain = np.zeros((self.time.size, self.building.stories))
+        peaks = np.abs(self.group_strain).max(axis=0, initial=0.0)
+        stories = np.array([story - 1 for story, _ in self.building.damper_list], dtype=int)
+        most = {}
+        for wall, group in enumerate(self.wall_group):
+            story = stories[wall]
+            if story not in most or peaks[group] > peaks[most[story]]:
+                most[story] = group
+        for story, group in most.items():
+            strain[:, story] = self.group_strain[:, group]
+        return strain
 
     @property
     def peak_drift(self) -> np.ndarray:
@@ -574,7 +612,6 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
     displacement = np.zeros((steps, floors))
     velocity = np.zeros((steps, floors))
     acceleration = np.zeros((steps, floors))
-    absolute = np.zeros((steps, floors))
     drift = np.zeros((steps, floors))
     story_shear = np.zeros((steps, floors))
     damper_force = np.zeros((steps, floors))
@@ -592,7 +629,7 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
         collapse_ratio, building.is_linear, newton.displacement_tolerance, newton.force_tolerance,
         newton.max_iterations, newton.fallback_iterations, group_story, constants, w0, window_weights, window,
         mode_weight, mode_ratio, mode_state, history, values, wall_tangent, wall_history,
-        displacement, velocity, acceleration, absolute, drift, story_shear, damper_force, base_shear, group_force,
+        displacement, velocity, acceleration, drift, story_shear, damper_force, base_shear, group_force,
         group_strain, peak_group_strain, energy, outcome)
     status, story_index, iterations = (int(x) for x in outcome)
     keep = slice(0, filled)
@@ -603,8 +640,8 @@ def simulate(building: ShearBuilding, ground_motion, dt: float | None = None, me
                        "iterations; the analysis stops there (result.converged is False)", RuntimeWarning,
                        stacklevel=2)
     require_finite("the response", displacement[keep])
-    return _result(building, walls, groups, group_of_wall, group_story, time, ground[keep], displacement[keep],
-                   velocity[keep], acceleration[keep], absolute[keep], drift[keep], story_shear[keep],
+    return _result(building, walls, groups, group_of_wall, time, ground[keep], displacement[keep],
+                   velocity[keep], acceleration[keep], drift[keep], story_shear[keep],
                    damper_force[keep], base_shear[keep], group_force[keep], group_strain[keep], peak_group_strain,
                    energy[keep], converged=status != _FAILED, collapsed=status == _COLLAPSED,
                    collapse_time=float(time[-1]) if status == _COLLAPSED else None, iterations=iterations)
@@ -652,30 +689,17 @@ class _CombinedWall:
         return (G1, G2, eta1, eta2, self.area, thickness, flexibility * area / self.area)
 
 
-def _result(building, walls, groups, group_of_wall, group_story, time, ground, displacement, velocity,
-            acceleration, absolute, drift, story_shear, damper_force, base_shear, group_force, group_strain,
-            peak_group_strain, energy, *, converged, collapsed, collapse_time, iterations):
-    heights = building.story_heights
-    drift_ratio = None if heights is None else drift / np.asarray(heights)
-    # Each wall carries its area's share of its group's force and its group's strain.
+def _result(building, walls, groups, group_of_wall, time, ground, displacement, velocity, acceleration, drift,
+            story_shear, damper_force, base_shear, group_force, group_strain, peak_group_strain, energy, *,
+            converged, collapsed, collapse_time, iterations):
     share = np.array([walls[i][1].area / groups[g][1].area for i, g in enumerate(group_of_wall)])
-    wall_force = np.take(group_force, group_of_wall, axis=1) * share
-    wall_strain = np.take(group_strain, group_of_wall, axis=1)
-    # Each story's most strained wall group.
-    damper_strain = np.zeros((time.size, building.stories))
-    most = {}
-    for g, story in enumerate(group_story):
-        if story not in most or peak_group_strain[g] > peak_group_strain[most[story]]:
-            most[story] = g
-    for story, g in most.items():
-        damper_strain[:, story] = group_strain[:, g]
     require_finite("the energy histories", energy)
     energy_history = EnergyHistory(energy[:, 0], energy[:, 1], energy[:, 2], energy[:, 3] - energy[:, 2],
                                    energy[:, 4], energy[:, 5], energy[:, 6])
     _warn_strain_range(walls, peak_group_strain[group_of_wall])
-    return SimulationResult(building, time, ground, displacement, velocity, acceleration, absolute, drift,
-                            drift_ratio, story_shear, damper_force, damper_strain, base_shear, energy_history,
-                            wall_force, wall_strain, converged, collapsed, collapse_time, iterations)
+    return SimulationResult(building, time, ground, displacement, velocity, acceleration, drift, story_shear,
+                            damper_force, base_shear, energy_history, group_force, group_strain, group_of_wall,
+                            share, converged, collapsed, collapse_time, iterations)
 
 
 def _warn_strain_range(walls, peak_wall_strain):
