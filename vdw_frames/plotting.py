@@ -135,13 +135,20 @@ def plot_roof_displacement(results: dict, path) -> Path:
 
 def plot_damper_hysteresis(result, story: int, path, title=None) -> Path:
     """Total damper force (kN) against drift (mm) of one story (1-based) of a simulation result."""
+    return _story_loop(result, story, path, "damper_hysteresis.png", result.damper_force, "damper force", title)
+
+
+def _story_loop(result, story, path, default_name, force, what, title) -> Path:
+    """``force`` (N, steps x stories) of one story (1-based) against its drift (mm), drawn in kN."""
     story = _story_number(result, story)
-    path = _figure_path(path, "damper_hysteresis.png")
+    path = _figure_path(path, default_name)
     plt = _pyplot()
     figure, axes = plt.subplots(figsize=(5.6, 4.6))
-    axes.plot(result.drift[:, story - 1], result.damper_force[:, story - 1] / 1e3, lw=0.6)
+    axes.plot(result.drift[:, story - 1], force[:, story - 1] / 1e3, lw=0.7)
+    axes.axhline(0.0, color="0.7", lw=0.5)
+    axes.axvline(0.0, color="0.7", lw=0.5)
     axes.set_xlabel(f"story {story} drift (mm)")
-    axes.set_ylabel(f"story {story} damper force (kN)")
+    axes.set_ylabel(f"story {story} {what} (kN)")
     axes.grid(True, alpha=0.3)
     if title:
         axes.set_title(title)
@@ -240,16 +247,4 @@ def plot_fragility(results: dict, path, title=None) -> Path:
 
 def plot_story_hysteresis(result, story: int, path, title=None) -> Path:
     """Story-spring force (kN) against drift (mm) of one story (1-based): the frame's own hysteresis."""
-    story = _story_number(result, story)
-    path = _figure_path(path, "story_hysteresis.png")
-    plt = _pyplot()
-    figure, axes = plt.subplots(figsize=(5.6, 4.6))
-    axes.plot(result.drift[:, story - 1], result.story_shear[:, story - 1] / 1e3, lw=0.7)
-    axes.axhline(0.0, color="0.7", lw=0.5)
-    axes.axvline(0.0, color="0.7", lw=0.5)
-    axes.set_xlabel(f"story {story} drift (mm)")
-    axes.set_ylabel(f"story {story} frame shear (kN)")
-    axes.grid(True, alpha=0.3)
-    if title:
-        axes.set_title(title)
-    return _save(figure, path)
+    return _story_loop(result, story, path, "story_hysteresis.png", result.story_shear, "frame shear", title)
