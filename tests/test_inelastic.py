@@ -12,7 +12,7 @@ from scipy.integrate import solve_ivp
 import opensees_frame
 from shared_data import SHARED, shared_record
 from vdw_frames import Bilinear, BoucWen, FDMKDamper, G, GroundMotion, NewtonRaphson, ShearBuilding, read_at2
-from vdw_frames import run_batch, simulate
+from vdw_frames import incremental_dynamic_analysis, run_batch, simulate
 from vdw_frames.frame.hysteresis import StoryState
 
 MASSES = [600.0] * 9 + [450.0]  # tonne
@@ -38,26 +38,20 @@ def peak_deviation(drift, reference):
 
 # --------------------------------------------------------------------------------------- story materials
 def test_bilinear_follows_the_kinematic_hardening_bounds():
-    k0, yield_force, b = 1000.0, 5000.0, 0.1  # yield drift 5 mm
-    state = Bilinear(yield_force, b).new_state(k0)
+    # k0 = 1000 N/mm, F_y = 5000 N (yield drift 5 mm), b = 0.1: bounds 0.1 k0 d +- 4500 N.  Values by hand:
+    # elastic to 2 mm; yielded at 8 mm (5000 + 100 x 3); 20 mm on the upper bound (2000 + 4500); elastic
+    # unloading from (20, 6500) by k0 to 10 mm (-3500) and on to -5 mm, where it meets the lower bound
+    # (-500 - 4500 = -5000 < 6500 - 25000); on the lower bound to -20 mm (-6500); elastic back to 0 (13500
+    # above -6500 reaches the upper bound 4500 first: 4500).
+    state = Bilinear(5000.0, 0.1).new_state(1000.0)
     path = [2.0, 8.0, 20.0, 10.0, -5.0, -20.0, 0.0]
-    expected = []
-    committed = (0.0, 0.0)
-    for drift in path:  # hand-written return map of the bilinear law
-        elastic = committed[1] + k0 * (drift - committed[0])
-        bound = (1 - b) * yield_force
-        force = min(max(elastic, b * k0 * drift - bound), b * k0 * drift + bound)
-        expected.append(force)
-        committed = (drift, force)
+    expected = [2000.0, 5300.0, 6500.0, -3500.0, -5000.0, -6500.0, 4500.0]
     forces = []
     for drift in path:
         force, _ = state.trial(drift)
         state.commit()
         forces.append(force)
     assert forces == pytest.approx(expected, rel=1e-15)
-    # yield at 5 mm: 5000 + 0.1 * 1000 * 3 at 8 mm; elastic unloading from 20 mm (F = 6500) by 2 F_y (1 - b)
-    assert forces[1] == pytest.approx(5300.0) and forces[2] == pytest.approx(6500.0)
-    assert forces[3] == pytest.approx(6500.0 - 10 * k0 if 6500.0 - 10 * k0 > -4500 + 1000 else -4500.0 + 1000)
 
 
 @pytest.mark.parametrize("exponent, beta, gamma", [(1.0, 0.5, 0.5), (2.0, 0.7, 0.3), (5.0, 0.9, 0.1), (1.0, 0.5, -0.2)])
@@ -84,13 +78,45 @@ def test_bouc_wen_integrates_its_evolution_equation(exponent, beta, gamma):
         z = solution.sol(end)[0]
 
 
+def test_bouc_wen_update_is_bounded_and_accurate_for_any_increment():
+    # Against the exact solution of dz/dx = 1 - |z|^n (beta sgn(dx z) + gamma) (solve_ivp), for sharp
+    # knees (n up to 100) and increments up to 50 yield drifts in one call: never NaN, never beyond the
+    # strength bound (beta + gamma)^(-1/n), within 2 % of z (measured: 0.4e-3 for n = 1, 1.9e-2 for
+    # n = 100 over 50 yield drifts), and the tangent equals a finite difference of the update.
+    from vdw_frames.frame.hysteresis import _bouc_wen_update
+
+    rng = np.random.default_rng(5)
+    for _ in range(300):
+        n = float(rng.choice([1.0, 2.0, 10.0, 100.0]))
+        beta, gamma = [(0.5, 0.5), (0.7, 0.3), (0.9, -0.1)][rng.integers(3)]
+        bound = (beta + gamma) ** (-1.0 / n)
+        z0 = rng.uniform(-1.0, 1.0) * bound
+        x = rng.choice([-1.0, 1.0]) * 10 ** rng.uniform(-2.0, 1.7)
+        z, tangent = _bouc_wen_update(z0, x, n, beta, gamma)
+        assert np.isfinite(z) and np.isfinite(tangent) and abs(z) <= bound * (1 + 1e-12)
+
+        def rate(t, y, direction=np.sign(x)):
+            z = min(abs(y[0]), 2.0)  # (the solver's probes far outside would overflow |z|^100)
+            return [1.0 - z**n * (beta * np.sign(direction * y[0]) + gamma)]
+
+        exact = solve_ivp(rate, (0.0, x), [z0], rtol=1e-11, atol=1e-13, method="LSODA").y[0, -1]
+        assert z == pytest.approx(exact, abs=0.02)
+        step = 1e-7 * max(1.0, abs(x))
+        numerical = (_bouc_wen_update(z0, x + step, n, beta, gamma)[0]
+                     - _bouc_wen_update(z0, x - step, n, beta, gamma)[0]) / (2 * step)
+        if abs(abs(z) - bound) > 1e-6:  # (clamped on the bound: dz/dx = 0 there, a kink)
+            assert tangent == pytest.approx(numerical, rel=1e-4, abs=1e-6)
+
+
 @pytest.mark.parametrize("model", [Bilinear(5000.0, 0.1), BoucWen(5000.0, 0.1, 2.0, 0.6, 0.4)])
 def test_story_tangent_is_consistent(model):
     state = model.new_state(1000.0)
     for drift in (3.0, 9.0, 2.0):
         state.trial(drift)
         state.commit()
-    for trial in (4.0, -0.5, 12.0, 2.1):  # (-1.0 would sit exactly on the yield bound: a kink)
+    # (-1.0 would sit exactly on the Bilinear's yield bound, and increments of whole 0.5 mm (d_y / 10) on
+    # a whole number of the Bouc-Wen update's sub-increments: small kinks where no tangent is the derivative)
+    for trial in (4.03, -0.53, 12.07, 2.1):
         force, tangent = state.trial(trial)
         step = 1e-6
         numerical = (state.trial(trial + step)[0] - state.trial(trial - step)[0]) / (2 * step)
@@ -264,6 +290,30 @@ def test_weak_frame_with_p_delta_collapses_cleanly():
     assert np.abs(free.drift_ratio).max() > 1.0 and np.isfinite(free.displacement).all()
 
 
+def test_sharp_bouc_wen_story_at_the_record_step_converges():
+    # Increments of several yield drifts a step through a knee of exponent 50 (a near-bilinear story): the
+    # update once returned a non-root there, and a NaN state passed Newton's norm.
+    motion = read_at2(shared_record("elCentro.AT2"))
+    weight = 100.0 * 9806.65
+    building = ShearBuilding([100.0], [1e5], story_heights=[3000.0], hysteresis=[BoucWen(0.1 * weight, 0.02, 50.0)])
+    result = simulate(building, motion)
+    assert result.converged and not result.collapsed and np.isfinite(result.displacement).all()
+    assert result.peak_ductility[0] > 2.0
+    assert np.abs(result.energy.balance_error).max() < 1e-6 * result.energy.input.max()
+
+
+@pytest.mark.parametrize("divisions, free_vibration, gravity", [(128, 0.0, True), (1, 60.0, False)])
+def test_small_steps_and_long_rest_converge(divisions, free_vibration, gravity):
+    # The force test's scale includes the inertia terms before they cancel (m 4/dt^2 |u|): at dt / 128, and
+    # at rest after a record without P-Delta, the tolerance stays above the residual's round-off.
+    motion = read_at2(shared_record("elCentro.AT2")).scaled(1.2)
+    motion = GroundMotion(motion.acceleration[:400], motion.dt, motion.name)  # 8 s
+    building = frame(walls=FRACTIONAL_WALL, gravity=gravity)
+    result = simulate(building, motion, dt=motion.dt / divisions, free_vibration=free_vibration)
+    assert result.converged and result.peak_ductility.max() > 1.0
+    assert result.time[-1] == pytest.approx(motion.duration + free_vibration)
+
+
 def test_free_vibration_appends_rest_and_residual_drift_is_measured_at_rest():
     motion = read_at2(shared_record("RIO270.AT2")).scaled_to_pga(0.6 * G)
     building = frame(walls=FRACTIONAL_WALL)
@@ -289,6 +339,12 @@ def test_nonconvergence_is_reported_not_raised():
         with concurrent.futures.ThreadPoolExecutor(1) as pool:
             batch = run_batch(building, [motion], [0.5, 1.0], executor=pool, progress=False, newton=hopeless)
     assert batch.converged.tolist() == [[False, False]]
+
+
+def test_ida_refuses_a_building_without_story_heights():
+    building = ShearBuilding(MASSES, STIFFNESSES, hysteresis=[Bilinear(1e6)] * 10)
+    with pytest.raises(ValueError, match="needs story_heights"):
+        incremental_dynamic_analysis(building, [read_at2(shared_record("RIO270.AT2"))], 0.1 * G, 1.0 * G)
 
 
 def test_run_batch_reports_collapse_convergence_and_residual_drift():

@@ -83,7 +83,7 @@ class BatchResult:
     ``scales`` is (motions, scales): the factor each record was multiplied by.  Units: peak_drift mm,
     peak_drift_ratio - (None without story heights), peak_absolute_acceleration mm/s^2 (per floor),
     peak_base_shear N, peak_damper_force N (total per story), residual_drift mm (the drift at the last
-    step, per story).  ``collapsed`` and ``converged`` (motions, scales) are each analysis's outcome
+    step, per story; for a collapsed or non-converged run, the drift where it stopped).  ``collapsed`` and ``converged`` (motions, scales) are each analysis's outcome
     (:class:`~vdw_frames.SimulationResult`): a collapsed or non-converged run is recorded, its peaks
     being those reached before it stopped.  With ``run_batch(..., property_factors=...)`` the peaks are
     the envelope over the factors (residual drifts: the largest in magnitude; collapsed: any;

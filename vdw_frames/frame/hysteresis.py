@@ -16,10 +16,12 @@ Models:
   bounds and b k0 on them.  Exact for any drift increment (the return map of a piecewise-linear law).
 * :class:`BoucWen` -- smooth hysteresis (see its docstring for the form and the mapping to OpenSees's
   ``BoucWen``).  The evolution equation is integrated in the drift increment by the L-stable,
-  second-order TR-BDF2 rule (a trapezoidal stage to 2 - sqrt(2) of the increment, then BDF2), each
-  stage solved by safeguarded Newton, with the consistent tangent dF/dd of the whole update, so that a
-  global Newton iteration converges quadratically and the frame keeps Newmark's second order.  OpenSees
-  integrates the same equation by backward Euler (first order); both converge to the same response.
+  second-order TR-BDF2 rule (a trapezoidal stage to 2 - sqrt(2) of the increment, then BDF2), over
+  sub-increments of at most a tenth of the yield drift (one step over a larger increment would
+  overshoot the knee and the strength bound), each stage solved by safeguarded Newton, with the
+  consistent tangent dF/dd of the whole update, so that a global Newton iteration converges
+  quadratically and the frame keeps Newmark's second order.  OpenSees integrates the same equation by
+  backward Euler (first order); both converge to the same response.
 
 Units: drift mm, force N, stiffness N/mm.
 """
@@ -39,8 +41,9 @@ PARAMETERS = 6  # row of story_trial's parameters: k0, F_y, hardening, exponent,
 STATE = 2  # row of its committed state: drift, then force (Bilinear) or z (Bouc-Wen)
 
 _TR_FRACTION = 2.0 - math.sqrt(2.0)  # TR-BDF2's intermediate point (L-stable, second order)
-_LOCAL_TOLERANCE = 1e-13  # relative Newton tolerance on z (|z| <= about 1)
-_LOCAL_ITERATIONS = 60
+_LOCAL_TOLERANCE = 1e-13  # on the stage residual, which bounds the error of z (|z| <= about 1)
+_LOCAL_ITERATIONS = 200  # Newton, or bisection of a bracket as wide as the increment (2^-200 of it)
+_SUB_INCREMENT = 0.1  # largest drift increment of one TR-BDF2 step, in yield drifts
 
 
 @dataclass(frozen=True)
@@ -197,18 +200,20 @@ def story_trial(kind, k0, yield_force, hardening, exponent, beta, gamma, committ
 def _rate(z, direction, exponent, beta, gamma):
     """(Phi, dPhi/dz) of dz/dx = Phi(z) = 1 - |z|^n (beta sgn(dx z) + gamma), x = d / d_y."""
     magnitude = abs(z)
-    if magnitude == 0.0:
-        return 1.0, 0.0
     psi = gamma + beta if direction * z > 0.0 else gamma - beta
+    if magnitude == 0.0 or psi == 0.0:  # (psi = 0: no |z|^n at all, which could overflow to inf * 0)
+        return 1.0, 0.0
     power = magnitude**exponent
     return 1.0 - power * psi, -exponent * power / magnitude * (1.0 if z > 0.0 else -1.0) * psi
 
 
 @njit(cache=True)
 def _solve_stage(start, step, exponent, beta, gamma, direction):
-    """Root z of g(z) = z - start - step Phi(z), and 1 - step Phi'(z) there (g' >= 1: one root).
+    """Root z of g(z) = z - start - step Phi(z), with 1 - step Phi'(z) there; NaN if not found.
 
-    Safeguarded Newton: |g(z) - g(y)| >= |z - y| brackets the root within |g(start)| of ``start``.
+    g' >= 1 (beta >= gamma), so the root is unique, |z - root| <= |g(z)| for any z, and it lies within
+    |g(start)| of ``start``: safeguarded Newton, bisecting whenever Newton leaves the bracket, stopped on
+    the residual itself.
     """
     z = start
     phi, slope = _rate(z, direction, exponent, beta, gamma)
@@ -216,48 +221,84 @@ def _solve_stage(start, step, exponent, beta, gamma, direction):
     low, high = start - abs(residual), start + abs(residual)
     for _ in range(_LOCAL_ITERATIONS):
         derivative = 1.0 - step * slope
+        if abs(residual) <= _LOCAL_TOLERANCE * (1.0 + abs(z)):
+            return z, derivative
         if residual > 0.0:
             high = z
-        elif residual < 0.0:
-            low = z
         else:
-            return z, derivative
+            low = z
         candidate = z - residual / derivative
-        if not low < candidate < high:
+        if not low <= candidate <= high:  # (also NaN)
             candidate = 0.5 * (low + high)
-        change = abs(candidate - z)
         z = candidate
         phi, slope = _rate(z, direction, exponent, beta, gamma)
         residual = z - start - step * phi
-        if change <= _LOCAL_TOLERANCE * max(1.0, abs(z)):
-            break
-    return z, 1.0 - step * slope
+    return np.nan, np.nan
+
+
+@njit(cache=True)
+def _tr_bdf2(z_start, increment, exponent, beta, gamma, direction):
+    """One TR-BDF2 step of dz/dx = Phi(z) over ``increment``: (z, dz/dz_start, dz/dincrement).
+
+    Stage 1, trapezoidal over g x: z_g = z_0 + (g x / 2)(Phi(z_0) + Phi(z_g)).
+    Stage 2, BDF2: z = c1 z_g - c2 z_0 + c3 x Phi(z), c1 = 1 / (g (2 - g)), c2 = (1 - g)^2 / (g (2 - g)),
+    c3 = (1 - g) / (2 - g); the derivatives follow both stages by implicit differentiation.
+    """
+    g = _TR_FRACTION
+    phi_0, slope_0 = _rate(z_start, direction, exponent, beta, gamma)
+    half = 0.5 * g * increment
+    z_g, stage1 = _solve_stage(z_start + half * phi_0, half, exponent, beta, gamma, direction)
+    phi_g, _ = _rate(z_g, direction, exponent, beta, gamma)
+    dzg_dz0 = (1.0 + half * slope_0) / stage1
+    dzg_dx = 0.5 * g * (phi_0 + phi_g) / stage1
+    c1 = 1.0 / (g * (2.0 - g))
+    c2 = (1.0 - g) ** 2 / (g * (2.0 - g))
+    c3 = (1.0 - g) / (2.0 - g)
+    z, stage2 = _solve_stage(c1 * z_g - c2 * z_start, c3 * increment, exponent, beta, gamma, direction)
+    phi, _ = _rate(z, direction, exponent, beta, gamma)
+    return z, (c1 * dzg_dz0 - c2) / stage2, (c1 * dzg_dx + c3 * phi) / stage2
+
+
+@njit(cache=True)
+def _pieces(z_committed, increment, pieces, exponent, beta, gamma, direction, bound):
+    """(z, dz/dincrement) after ``pieces`` equal TR-BDF2 steps over ``increment``, the tangent chained
+    through them; a step that would leave the strength bound from inside is clamped on it (dz = 0)."""
+    piece = increment / pieces
+    z = z_committed
+    dz_dx = 0.0
+    for _ in range(pieces):
+        inside = abs(z) <= bound
+        z_new, dz_dz0, dz_dpiece = _tr_bdf2(z, piece, exponent, beta, gamma, direction)
+        if inside and abs(z_new) > bound:
+            z, dz_dx = (bound if z_new > 0.0 else -bound), 0.0
+        else:
+            z, dz_dx = z_new, dz_dz0 * dz_dx + dz_dpiece / pieces
+    return z, dz_dx
 
 
 @njit(cache=True)
 def _bouc_wen_update(z_committed, increment, exponent, beta, gamma):
-    """(z, dz/dd * d_y) after a drift increment of ``increment`` yield drifts, by TR-BDF2.
+    """(z, dz/dd * d_y) after a drift increment of ``increment`` yield drifts.
 
-    Stage 1, trapezoidal over g x: z_g = z_n + (g x / 2)(Phi(z_n) + Phi(z_g)).
-    Stage 2, BDF2: z = c1 z_g - c2 z_n + c3 x Phi(z), c1 = 1 / (g (2 - g)), c2 = (1 - g)^2 / (g (2 - g)),
-    c3 = (1 - g) / (2 - g); the tangent follows both stages by implicit differentiation.
+    TR-BDF2 (:func:`_tr_bdf2`) over sub-increments of about ``_SUB_INCREMENT`` yield drifts: one step up
+    to it; beyond, the results of m and m + 1 equal steps (m = floor(|x| / h)) blended linearly in |x| / h
+    - m, so that z stays a continuous function of the drift (a jump in the number of steps would make the
+    trial force jump, which Newton cannot settle), the blend included in the consistent tangent (at a
+    whole |x| / h the slope has a small kink; the tangent there is the one of larger increments).  The
+    exact solution never leaves |z| <= (beta + gamma)^(-1/n) once inside; a step that would is clamped.
     """
     if increment == 0.0:
         # No increment: the unloading branch's slope, the stiffer one (direction opposite to z).
         phi, _ = _rate(z_committed, -1.0 if z_committed > 0.0 else 1.0, exponent, beta, gamma)
         return z_committed, phi
     direction = 1.0 if increment > 0.0 else -1.0
-    g = _TR_FRACTION
-    phi_n, _ = _rate(z_committed, direction, exponent, beta, gamma)
-    half = 0.5 * g * increment
-    z_g, stage1_derivative = _solve_stage(z_committed + half * phi_n, half, exponent, beta, gamma, direction)
-    phi_g, _ = _rate(z_g, direction, exponent, beta, gamma)
-    dzg_dx = 0.5 * g * (phi_n + phi_g) / stage1_derivative
-    c1 = 1.0 / (g * (2.0 - g))
-    c2 = (1.0 - g) ** 2 / (g * (2.0 - g))
-    c3 = (1.0 - g) / (2.0 - g)
-    z, stage2_derivative = _solve_stage(c1 * z_g - c2 * z_committed, c3 * increment, exponent, beta, gamma,
-                                        direction)
-    phi, _ = _rate(z, direction, exponent, beta, gamma)
-    dz_dx = (c1 * dzg_dx + c3 * phi) / stage2_derivative
-    return z, dz_dx
+    bound = (beta + gamma) ** (-1.0 / exponent)
+    size = abs(increment) / _SUB_INCREMENT
+    if size <= 1.0:
+        return _pieces(z_committed, increment, 1, exponent, beta, gamma, direction, bound)
+    fewer = int(size)
+    weight = size - fewer
+    z_a, dz_a = _pieces(z_committed, increment, fewer, exponent, beta, gamma, direction, bound)
+    z_b, dz_b = _pieces(z_committed, increment, fewer + 1, exponent, beta, gamma, direction, bound)
+    z = (1.0 - weight) * z_a + weight * z_b
+    return z, (1.0 - weight) * dz_a + weight * dz_b + (z_b - z_a) * direction / _SUB_INCREMENT

@@ -96,6 +96,9 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions, step: float, 
 
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
+    if building.story_heights is None:
+        raise ValueError("an incremental dynamic analysis needs story_heights: collapse is a story drift ratio "
+                         "beyond collapse_drift_ratio, and the curves are drift ratios")
     motions = list(motions)
     if not motions or not all(isinstance(m, GroundMotion) for m in motions):
         raise ValueError("motions must be a non-empty sequence of GroundMotion objects")
@@ -121,8 +124,7 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions, step: float, 
         messages.extend(w.message for w in caught)
         for row, m in enumerate(standing):
             intensities[m].append(level)
-            ratio = batch.peak_drift_ratio if batch.peak_drift_ratio is not None else batch.peak_drift
-            drift[m].append(float(ratio[row, 0].max()))
+            drift[m].append(float(batch.peak_drift_ratio[row, 0].max()))
             collapsed[m].append(bool(batch.collapsed[row, 0] or not batch.converged[row, 0]))
         standing = [m for m in standing if not collapsed[m][-1]]
     first = [next((sa for sa, c in zip(intensities[m], collapsed[m]) if c), None) for m in range(len(motions))]

@@ -122,7 +122,10 @@ def _residual(u, u_n, v_n, a_n, ground, dt, masses, damping, tridiagonal, kinds,
         above = story_total[i + 1] if i + 1 < n else 0.0
         external = masses[i] * ground
         residual[i] = -external - inertia - viscous - (story_total[i] - above)
-        scale = max(scale, abs(external), abs(inertia), abs(viscous), abs(story_force[i]), abs(story_total[i]))
+        # The residual's round-off is relative to its largest terms, including the inertia terms before
+        # they cancel (m a0 |u| for the increment u - u_n): the force tolerance is relative to them all.
+        inertia_terms = masses[i] * (a0 * abs(u[i]) + (4.0 / dt) * abs(v_n[i]) + abs(a_n[i]))
+        scale = max(scale, abs(external), inertia_terms, abs(viscous), abs(story_force[i]), abs(story_total[i]))
     return scale
 
 
@@ -219,9 +222,7 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
         acceleration[0, i] = -ground[0]
         energy[0, 1] += 0.5 * masses[i] * velocity[0, i] ** 2
     total_iterations = 0
-    count = 0
     for step in range(steps - 1):
-        count = step + 1  # committed wall steps so far
         u_n, v_n, a_n = displacement[step], velocity[step], acceleration[step]
         # 1. walls: their history for this step came with the last commit; their trial force is K_t d + H_n
         for s in range(n):
@@ -250,7 +251,8 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
                                   story_force, story_tangent, trial_state, story_total, damping_force, residual)
                 norm = 0.0
                 for i in range(n):
-                    norm = max(norm, abs(residual[i]))
+                    if not abs(residual[i]) <= norm:  # (NaN included: it must fail the step, not vanish)
+                        norm = abs(residual[i])
                 if exact_solve:
                     for s in range(n):
                         if story_tangent[s] + geometric[s] + wall_tangent[s] != stiffness_diagonal[s]:
@@ -280,16 +282,18 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
                                   kinds, parameters, committed, geometric, wall_tangent, wall_history, drift,
                                   story_force, story_tangent, trial_state, story_total, damping_force, residual)
                         for i in range(n):
-                            trial_norm = max(trial_norm, abs(residual[i]))
+                            if not abs(residual[i]) <= trial_norm:
+                                trial_norm = abs(residual[i])
                         if trial_norm < norm:
                             break
-                        step_length *= 0.5
+                        step_length *= 0.5  # (after 8 halvings the 1/256 step is taken; the next residual judges it)
                 exact_solve = strategy != _INITIAL and step_length == 1.0
                 last_correction = 0.0
                 largest = 0.0
                 for i in range(n):
                     u[i] += step_length * correction[i]
-                    last_correction = max(last_correction, abs(step_length * correction[i]))
+                    if not abs(step_length * correction[i]) <= last_correction:
+                        last_correction = abs(step_length * correction[i])
                 for s in range(n):
                     story_drift = abs(correction[s] - (correction[s - 1] if s > 0 else 0.0))
                     if story_drift > largest:
@@ -407,8 +411,9 @@ class SimulationResult:
     in series it is not drift / thickness), (steps, walls) in ``building.damper_list`` order;
     base_shear (N): the force transmitted through story 1 -- its frame spring, walls, P-Delta force
     and inherent damping force through the story (a1 k1 v1 with Rayleigh damping: the mass-proportional
-    term acts between the floors and the ground) -- the horizontal reaction of the ground;
-    ground_acceleration (mm/s^2); energy (:class:`EnergyHistory`).  absolute_acceleration, drift_ratio,
+    term acts between the floors and the ground) -- the horizontal reaction of the ground (with P-Delta
+    it is less than the story-1 frame and wall shears, story_shear + damper_force, which are what the
+    structure must resist); ground_acceleration (mm/s^2); energy (:class:`EnergyHistory`).  absolute_acceleration, drift_ratio,
     damper_strain, wall_force and wall_strain are computed on first use (from the stored histories and
     the wall groups: identical walls of a story are stepped once, as one of their summed area).
 
@@ -496,7 +501,8 @@ class SimulationResult:
 
     @property
     def residual_drift(self) -> np.ndarray:
-        """Drift at the last step, per story, mm (append ``free_vibration`` to measure it at rest)."""
+        """Drift at the last step, per story, mm (append ``free_vibration`` to measure it at rest).  For an
+        analysis that collapsed or stopped converging it is the drift where it stopped, not a residual."""
         return self.drift[-1].copy()
 
     @property
