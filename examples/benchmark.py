@@ -243,7 +243,7 @@ def part_c(building, motion, source, fast, timings, quick, repeats):
         rows.append(("OpenSeesPy, classical r = 1 (Steel01, Parallel(Elastic, Maxwell), Newton)", os_time))
         r1_time, r1 = timed(lambda: simulate(classical, strong, memory=memory), 3)
         peak_dev, _ = deviations(r1.drift, os_drift)
-        rows.append((f"vdw_frames simulate(), same r = 1 frame", r1_time))
+        rows.append(("vdw_frames simulate(), same r = 1 frame", r1_time))
     linear_time, _ = timed(lambda: simulate(building, motion, memory=memory), 3)
     rows.append(("vdw_frames simulate(), the frame kept elastic (linear path)", linear_time))
     for name, seconds in rows:
@@ -416,7 +416,7 @@ def part_bridge(building, motion, source, quick, repeats):
     print(f"    1. bridge overhead per wall per step: {1e6 * overhead:.2f} us (target <= 2 us: "
           f"{'meets' if overhead <= 2e-6 else 'misses'}); all walls together "
           f"{(seconds['bridge'] - seconds['own']) / seconds['own']:.2f} x OpenSees's own step")
-    for key, label in (("", f"one element per wall"), (", combined", "walls combined per story")):
+    for key, label in (("", "one element per wall"), (", combined", "walls combined per story")):
         ratio = seconds["bridge" + key] / seconds["classical" + key]
         print(f"    2. bridged fractional frame / OpenSees classical Maxwell frame, {label}: {ratio:.2f} (target <= 1: "
               f"{'meets' if ratio <= 1.0 else 'misses'})")

@@ -90,7 +90,7 @@ def run(args) -> int:
                 print(f"  {len(result.strain_warnings)} of {result.analyses} runs took walls outside the strain range "
                       f"of their parameters, e.g.: {result.strain_warnings[0]}")
             elif len(building.damper_list):
-                print(f"  every run kept the walls inside the strain range of their parameters")
+                print("  every run kept the walls inside the strain range of their parameters")
 
         fits = {}
         for label, result in results.items():

@@ -3,6 +3,8 @@
 import pytest
 
 import opensees_frame
+from shared_data import shared_record
+from vdw_frames import read_at2
 
 
 @pytest.fixture(scope="module")
@@ -13,3 +15,9 @@ def ops():
         return opensees_frame.opensees()
     except ImportError as error:
         pytest.fail(str(error))
+
+
+@pytest.fixture(scope="module")
+def record():
+    """El Centro 1940 N-S (elCentro.AT2: 1559 points at 0.02 s, PGA 0.32 g) from ../shared, or a skip."""
+    return read_at2(shared_record("elCentro.AT2"))

@@ -7,7 +7,6 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from vdw_frames.element import kernel
 from vdw_frames import FDMKDamper
 from vdw_frames.element.bank import WallBank
 from vdw_frames.element.fast_memory import (

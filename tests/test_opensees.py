@@ -8,17 +8,13 @@ relies on.  Both sides integrate with Newmark's average acceleration, so the bar
 rounding; with walls the only differences are the dampers' own time discretisations.
 """
 
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import opensees_frame
 from vdw_frames import FDMKDamper, ShearBuilding, simulate
-from vdw_frames.motion import read_at2
 
-from shared_data import shared_record
-RECORD = "elCentro.AT2"  # Imperial Valley 1940, N-S: 1559 points at 0.02 s, PGA 0.32 g
 
 # Classical (r = 1) walls, the paper's wall size (A = 1e6 mm^2, h = 10 mm) and a smaller, thinner one:
 # k1 = 1e5 N/mm, c1 = 1e4 N*s/mm, k2 = 1e5 N/mm, c2 = 2e4 N*s/mm (tau = 0.2 s) and
@@ -33,15 +29,6 @@ def ten_story(dampers=True):
     walls = {story: [WALL_A, WALL_B] if story <= 5 else [WALL_A] for story in range(1, 11)} if dampers else None
     return ShearBuilding([500.0] * 10, np.linspace(800e3, 400e3, 10), dampers=walls)
 
-
-
-@pytest.fixture(scope="module")
-def record():
-    path = shared_record(RECORD)
-    if not path.is_file():
-        pytest.skip(f"recorded accelerogram {path} is absent (the ../shared/ground_motions folder next to "
-                    "the repository holds the PEER records; a fresh clone does not have it)")
-    return read_at2(path)
 
 
 def peak_deviation(drift, reference):

@@ -17,7 +17,6 @@ import pytest
 
 import opensees_frame
 from test_opensees import WALL_A as R1_WALL_A, history_deviation, peak_deviation
-from test_opensees import record  # noqa: F401  (the fixture: El Centro 1940 N-S; ops is in conftest)
 from test_opensees import ten_story as r1_ten_story
 from vdw_frames import Bilinear, FastMemory, FDMKDamper, NewtonRaphson, ShearBuilding, SupportedDamper, simulate
 from vdw_frames.opensees import WallBridge, opensees_module

@@ -15,7 +15,7 @@ import opensees_frame
 from reference import closed_form_moduli
 from shared_data import shared_record
 from test_opensees import peak_deviation
-from vdw_frames import FDMKDamper, ShearBuilding, SupportedDamper, simulate
+from vdw_frames import FDMKDamper, SupportedDamper, simulate
 from vdw_frames.element.prony import PronySeries, fit_prony
 from vdw_frames.motion import read_at2
 from vdw_frames.opensees import prony_material

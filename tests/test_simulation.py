@@ -1,7 +1,6 @@
 """Shear building + Newmark integrator with FDMK dampers, against independent solutions."""
 
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest

@@ -11,7 +11,6 @@ import dataclasses
 import json
 import math
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -19,9 +18,7 @@ import pytest
 from reference import closed_form_moduli as closed_form
 from shared_data import REPO, SHARED, shared_record
 from vdw_frames import (
-    FDMKDamper,
     GroundMotion,
-    ShearBuilding,
     StrainCompatibleOptions,
     StrainDependentDamper,
     cli,

@@ -40,7 +40,7 @@ import numpy as np
 
 from .._jit import njit
 from .. import _warnings
-from .._validation import (SIMULATION_STEP_RANGE, check_memory, finite_scalar, non_negative, positive,
+from .._validation import (SIMULATION_STEP_RANGE, check_memory, non_negative, positive,
                            require_finite, show, whole_number)
 from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, kernel_constants, memory_strategy

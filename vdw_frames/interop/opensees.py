@@ -60,7 +60,6 @@ model must use N, mm, s too (and tonne for masses), the package's units.
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 
