@@ -269,8 +269,7 @@ class DamperState:
         """(force in N, tangent in N/mm) at the next step for ``displacement`` (mm); memory untouched."""
         displacement = finite_array("displacement", [displacement])[0]
         self._trial = displacement
-        bank = self._bank
-        return float(bank.tangent[0] * displacement + bank.history_force[0]), float(bank.tangent[0])
+        return float(self._bank.trial_forces([displacement])[0]), float(self._bank.tangent[0])
 
     def commit(self) -> None:
         """Accept the last trial and advance the memory one step."""

@@ -171,15 +171,15 @@ def bank_commit(constants, w0, window_weights, window, count, mode_weight, mode_
 @njit(cache=True)
 def displacement_driven(constants, w0, window_weights, window, mode_weight, mode_ratio, mode_state, displacement):
     """(force N, wall strain) histories of one wall assembly (a bank of W = 1) for a displacement history
-    (mm) from rest."""
+    (mm) from rest: :func:`bank_commit` step after step."""
     steps = displacement.shape[0]
     force = np.empty(steps)
     strain = np.empty(steps)
-    history = np.zeros((2, 1))
+    history = np.zeros((2, 1))  # at rest
     values = np.zeros((2, 1))
+    tangent = np.zeros(1)
+    history_force = np.zeros(1)
     for n in range(steps):
-        force[n], strain[n], values[1, 0] = wall_response(constants[0], w0[0], history[0, 0], history[1, 0],
-                                                          displacement[n])
-        values[0, 0] = strain[n]
-        memory_advance(window_weights, window, n, mode_weight, mode_ratio, mode_state, values, history)
+        bank_commit(constants, w0, window_weights, window, n, mode_weight, mode_ratio, mode_state, history, values,
+                    displacement[n:n + 1], force[n:n + 1], strain[n:n + 1], tangent, history_force)
     return force, strain

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _warnings
-from .._validation import finite_array, show
+from .._validation import finite_array, positive, show
 from .building import ShearBuilding, require_fixed_walls
 from ..element.damper import DEFAULT_MEMORY
 from ..element.fractional import DEFAULT_METHOD, Discretisation
@@ -275,10 +275,13 @@ def scale_factors_to_pga(motions, targets) -> np.ndarray:
 
 
 def scale_factors_to_spectral_acceleration(motions, targets, period: float, damping_ratio: float = 0.05) -> np.ndarray:
-    """Factors (motions, targets) that scale each motion to each target Sa(period) (mm/s^2, s)."""
-    targets = finite_array("targets", targets)
-    return np.array([[motion.scale_factor_to_spectral_acceleration(t, period, damping_ratio) for t in targets]
-                     for motion in motions])
+    """Factors (motions, targets) that scale each motion to each target Sa(period) (mm/s^2, s).
+
+    Sa is linear in the scale factor: one response spectrum per motion serves every target.
+    """
+    targets = np.array([positive("target spectral acceleration", t) for t in finite_array("targets", targets)])
+    unit = np.array([motion.scale_factor_to_spectral_acceleration(1.0, period, damping_ratio) for motion in motions])
+    return unit[:, None] * targets
 
 
 class _ProgressBar:

@@ -25,7 +25,7 @@ import numpy as np
 
 from .._validation import positive
 from ..motion.record import GroundMotion
-from .batch import run_batch
+from .batch import run_batch, scale_factors_to_spectral_acceleration
 from .building import ShearBuilding
 
 
@@ -109,17 +109,17 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions, step: float, 
     levels = step * np.arange(1, math.floor(cap / step + 1e-9) + 1)
     if levels.size > 1000:
         raise ValueError(f"{levels.size} intensity levels (cap / step) is too many; take a larger step")
-    unit = np.array([m.scale_factor_to_spectral_acceleration(1.0, period) for m in motions])
+    factors = scale_factors_to_spectral_acceleration(motions, levels, period)  # (motions, levels)
     intensities = [[] for _ in motions]
     drift = [[] for _ in motions]
     collapsed = [[] for _ in motions]
     messages = []
     standing = list(range(len(motions)))
-    for level in levels:
+    for index, level in enumerate(levels):
         if not standing:
             break
         with _warnings.collect() as caught:  # run_batch's re-issued warnings, per thread
-            batch = run_batch(building, [motions[m] for m in standing], (unit[standing] * level)[:, None],
+            batch = run_batch(building, [motions[m] for m in standing], factors[standing, index][:, None],
                               executor=executor, progress=False, **options)
         messages.extend(w.message for w in caught)
         for row, m in enumerate(standing):

@@ -130,6 +130,16 @@ def _residual(u, u_n, v_n, a_n, ground, dt, masses, damping, tridiagonal, kinds,
 
 
 @njit(cache=True, inline="always")
+def _largest(values):
+    """max |value| (a NaN anywhere gives NaN: it must fail the step, not vanish as numba's max would)."""
+    largest = 0.0
+    for value in values:
+        if not abs(value) <= largest:
+            largest = abs(value)
+    return largest
+
+
+@njit(cache=True, inline="always")
 def _solve(stiffness_diagonal, masses, damping, tridiagonal, dt, rhs, work, matrix, out):
     """Solve ((4/dt^2) M + (2/dt) C + B^T diag(k) B) x = rhs; Thomas algorithm when tridiagonal, else LU."""
     n = rhs.shape[0]
@@ -213,9 +223,6 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
     wall_deformation = np.zeros(groups)
     force_out = np.zeros(groups)
     strain_out = np.zeros(groups)
-    old_story_force = np.zeros(n)
-    old_wall_force = np.zeros(n)
-    old_drift = np.zeros(n)
     damping_force = np.zeros(n)
     old_damping_force = np.zeros(n)
     for i in range(n):  # (loops, not slice assignments: those compile numba's shape-error machinery)
@@ -234,7 +241,6 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
         # 2. Newton-Raphson from u_n; strategies in turn, each from u_n again
         u = displacement[step + 1]
         converged = False
-        failed_story = 0
         for strategy in range(3):
             if linear and strategy > 0:
                 break
@@ -249,10 +255,7 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
                 scale = _residual(u, u_n, v_n, a_n, ground[step + 1], dt, masses, damping, tridiagonal, kinds,
                                   parameters, committed, geometric, wall_tangent, wall_history, drift,
                                   story_force, story_tangent, trial_state, story_total, damping_force, residual)
-                norm = 0.0
-                for i in range(n):
-                    if not abs(residual[i]) <= norm:  # (NaN included: it must fail the step, not vanish)
-                        norm = abs(residual[i])
+                norm = _largest(residual)
                 if exact_solve:
                     for s in range(n):
                         if story_tangent[s] + geometric[s] + wall_tangent[s] != stiffness_diagonal[s]:
@@ -277,31 +280,24 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
                     for _ in range(8):
                         for i in range(n):
                             trial[i] = u[i] + step_length * correction[i]
-                        trial_norm = 0.0
                         _residual(trial, u_n, v_n, a_n, ground[step + 1], dt, masses, damping, tridiagonal,
                                   kinds, parameters, committed, geometric, wall_tangent, wall_history, drift,
                                   story_force, story_tangent, trial_state, story_total, damping_force, residual)
-                        for i in range(n):
-                            if not abs(residual[i]) <= trial_norm:
-                                trial_norm = abs(residual[i])
-                        if trial_norm < norm:
+                        if _largest(residual) < norm:
                             break
                         step_length *= 0.5  # (after 8 halvings the 1/256 step is taken; the next residual judges it)
                 exact_solve = strategy != _INITIAL and step_length == 1.0
-                last_correction = 0.0
-                largest = 0.0
+                last_correction = step_length * _largest(correction)
                 for i in range(n):
                     u[i] += step_length * correction[i]
-                    if not abs(step_length * correction[i]) <= last_correction:
-                        last_correction = abs(step_length * correction[i])
-                for s in range(n):
-                    story_drift = abs(correction[s] - (correction[s - 1] if s > 0 else 0.0))
-                    if story_drift > largest:
-                        largest = story_drift
-                        failed_story = s
             if converged:
                 break
         if not converged:
+            failed_story, largest = 0, 0.0  # the story the last correction moved most
+            for s in range(n):
+                story_drift = abs(correction[s] - (correction[s - 1] if s > 0 else 0.0))
+                if story_drift > largest:
+                    failed_story, largest = s, story_drift
             outcome[0], outcome[1], outcome[2] = _FAILED, failed_story, total_iterations
             return step + 1
         # 3. commit: stories, then the walls with their drifts (memory advances only now)
@@ -332,19 +328,16 @@ def _integrate(ground, dt, masses, damping, story_damping_row, tridiagonal, kind
         story1_damping = 0.0  # the damping force through story 1: 1^T C_s v
         for i in range(n):
             story1_damping += story_damping_row[i] * velocity[step + 1, i]
-        for s in range(n):
+        for s in range(n):  # (row ``step`` of the outputs holds the previous step's values; row 0 is rest)
             wall_force = story_total[s] - story_force[s] - geometric[s] * drift[s]
-            change = drift[s] - old_drift[s]
-            story_work += 0.5 * (story_force[s] + old_story_force[s]) * change
-            wall_work += 0.5 * (wall_force + old_wall_force[s]) * change
-            geometric_work += 0.5 * geometric[s] * (drift[s] + old_drift[s]) * change
+            change = drift[s] - drift_out[step, s]
+            story_work += 0.5 * (story_force[s] + story_shear[step, s]) * change
+            wall_work += 0.5 * (wall_force + damper_force[step, s]) * change
+            geometric_work += 0.5 * geometric[s] * (drift[s] + drift_out[step, s]) * change
             recoverable += 0.5 * story_force[s] ** 2 / parameters[s, 0]
             story_shear[step + 1, s] = story_force[s]
             damper_force[step + 1, s] = wall_force
             drift_out[step + 1, s] = drift[s]
-            old_story_force[s] = story_force[s]
-            old_wall_force[s] = wall_force
-            old_drift[s] = drift[s]
         for i in range(n):
             change = u[i] - u_n[i]
             kinetic += 0.5 * masses[i] * velocity[step + 1, i] ** 2
@@ -531,7 +524,7 @@ class SimulationResult:
     @property
     def peak_wall_strain(self) -> np.ndarray:
         """max |strain| of every wall (-), in ``building.damper_list`` order."""
-        return np.abs(self.wall_strain).max(axis=0) if self.wall_strain.shape[1] else np.zeros(0)
+        return np.abs(self.group_strain).max(axis=0, initial=0.0)[self.wall_group]
 
 
 # ---------------------------------------------------------------------------------------------- driver
