@@ -234,7 +234,7 @@ def load_motion(record, scale, duration):
 
 
 def plot(results, out: Path) -> list[Path]:
-    from vdw_frames.plotting import _pyplot
+    from vdw_frames.plotting._figure import pyplot as _pyplot
 
     plt = _pyplot()
     out.mkdir(parents=True, exist_ok=True)

@@ -125,8 +125,9 @@ def _simulate(args) -> int:
 def _design(args) -> int:
     """The ``design`` command: modal table with and without walls, sizing, damping-versus-size figure."""
     from .config import load_building
-    from .design import damping_curve, plot_damping_curve, resized, size_walls
-    from .design.sizing import _story_text
+    from .design import damping_curve, resized, size_walls
+    from .plotting import plot_damping_curve
+    from .design.sizing import story_text
 
     if args.modes < 1:
         raise ValueError(f"--modes must be >= 1, got {args.modes}")
@@ -155,7 +156,7 @@ def _design(args) -> int:
     area = template.area / 1e6
     per = "per story" if args.distribution == "uniform" else "in the story with the largest weight"
     print(f"\nsizing mode {args.mode}: the template wall (story {min(building.dampers)}'s walls, A = {area:.4g} m^2) "
-          f"scaled, {args.distribution} over {_story_text(tuple(stories))}")
+          f"scaled, {args.distribution} over {story_text(tuple(stories))}")
     own = building.modal_analysis(args.mode)
     print(f"  the file's walls: xi = {100 * own.damping_ratios[0]:.2f} %, T = {own.periods[0]:.3f} s")
     print(f"  largest achievable: xi = {100 * curve.best_damping_ratio:.2f} % at {curve.best_factor:.3g} x "

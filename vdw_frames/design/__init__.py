@@ -5,15 +5,12 @@
   checked complete by the argument principle), with the design-code energy estimate beside it;
   :class:`ModalResult`;
 - :mod:`.sizing`: :func:`size_walls` (walls for a target damping ratio of one mode),
-  :func:`damping_curve` (:class:`SizingCurve`: period and damping ratio against the wall size);
-- :mod:`.plots`: :func:`plot_damping_curve`.
+  :func:`damping_curve` (:class:`SizingCurve`: period and damping ratio against the wall size).
 
 Units: N, mm, s, tonne; poles rad/s, periods s, areas mm^2.
 """
 
 from .modal import ModalResult, modal_analysis
-from .plots import plot_damping_curve
 from .sizing import DISTRIBUTIONS, SizingCurve, damping_curve, resized, size_walls
 
-__all__ = ["DISTRIBUTIONS", "ModalResult", "SizingCurve", "damping_curve", "modal_analysis", "plot_damping_curve",
-           "resized", "size_walls"]
+__all__ = ["DISTRIBUTIONS", "ModalResult", "SizingCurve", "damping_curve", "modal_analysis", "resized", "size_walls"]

@@ -135,10 +135,10 @@ class _Sizer:
 
     def describe(self, factor: float) -> str:
         area = factor * self.wall.area
-        story_text = _story_text(self.stories)
+        stories = story_text(self.stories)
         per = "per story" if self.distribution == "uniform" else "in the story with the largest weight"
         return (f"{factor:.3g} x the wall's area ({area:.4g} mm^2 {per}; {self.distribution} distribution over "
-                f"{story_text})")
+                f"{stories})")
 
 
 def damping_curve(building: ShearBuilding, wall, mode: int = 1, distribution: str = "uniform", stories=None,
@@ -228,7 +228,7 @@ def _weights(building: ShearBuilding, distribution: str, stories: tuple, mode: i
     return weights / weights.max()
 
 
-def _story_text(stories: tuple) -> str:
+def story_text(stories: tuple) -> str:
     if len(stories) > 1 and stories == tuple(range(stories[0], stories[-1] + 1)):
         return f"stories {stories[0]}-{stories[-1]}"
     return "story " + ", ".join(map(str, stories)) if len(stories) == 1 else "stories " + ", ".join(map(str, stories))

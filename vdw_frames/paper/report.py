@@ -23,7 +23,8 @@ from .identification import identify
 from .data import FREQUENCIES, STRAINS, TABLE4, TABLE5, TABLES
 from . import strain_dependence
 from ..element.strain_dependent import PARAMETERS, StrainDependentDamper
-from ..plotting import _pyplot, plot_loops
+from ..plotting import plot_loops
+from ..plotting._figure import pyplot as _pyplot
 from ..element.sine import sine_test
 
 N_PER_KN = 1.0e3

@@ -1,11 +1,11 @@
-"""Figure of the wall sizing: a mode's damping ratio and period against the wall size (matplotlib Agg)."""
+"""Figures of wall design: a mode's damping ratio and period against the wall size."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from ..plotting import _figure_path, _pyplot, _save
-from .sizing import SizingCurve, _story_text
+from ..design.sizing import SizingCurve, story_text
+from ._figure import figure_path, pyplot, save
 
 
 def plot_damping_curve(curve: SizingCurve, path, target: float | None = None, marks=None, title=None) -> Path:
@@ -18,8 +18,8 @@ def plot_damping_curve(curve: SizingCurve, path, target: float | None = None, ma
     """
     if not isinstance(curve, SizingCurve):
         raise ValueError(f"curve must be a SizingCurve (from damping_curve), got {type(curve).__name__}")
-    path = _figure_path(path, "design_damping.png")
-    plt = _pyplot()
+    path = figure_path(path, "design_damping.png")
+    plt = pyplot()
     area = curve.factors * curve.wall.area / 1e6
     figure, (top, bottom) = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=True)
     top.semilogx(area, 100.0 * curve.damping_ratios, "C0", lw=1.8, label="with walls (complex modes)")
@@ -39,10 +39,10 @@ def plot_damping_curve(curve: SizingCurve, path, target: float | None = None, ma
     top.set_ylabel(f"mode {curve.mode} damping ratio (%)")
     bottom.set_ylabel(f"mode {curve.mode} period (s)")
     per = "per story" if curve.distribution == "uniform" else "largest story"
-    bottom.set_xlabel(f"wall shear area, m$^2$ ({per}; {curve.distribution} over {_story_text(curve.stories)})")
+    bottom.set_xlabel(f"wall shear area, m$^2$ ({per}; {curve.distribution} over {story_text(curve.stories)})")
     for axes in (top, bottom):
         axes.grid(True, which="both", alpha=0.3)
         axes.legend(fontsize="small")
     if title:
         top.set_title(title)
-    return _save(figure, path)
+    return save(figure, path)
