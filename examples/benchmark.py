@@ -24,7 +24,7 @@ repeats for runs under a second; numba compilation is excluded except in (d)):
 (d) numba compilation: ``import vdw_frames`` + a first ``simulate`` in a fresh subprocess with an empty
     cache (``NUMBA_CACHE_DIR`` a new temporary folder), then again in a fresh subprocess with that cache
     warm.
-(e) the OpenSees bridge (``vdw_frames.opensees``) on the same frame and record: its overhead per wall per
+(e) the OpenSees bridge (``vdw_frames.interop.opensees``) on the same frame and record: its overhead per wall per
     step on top of OpenSees's own step (target <= 2 us), the bridged fractional frame against OpenSees
     running the frame with its own classical (r = 1) Elastic + Maxwell dampers (target: no slower), with
     one element per wall and with each story's walls combined into one, and the Prony material's cost
@@ -62,7 +62,8 @@ try:
     import vdw_frames  # noqa: F401
 except ImportError:  # run from a checkout without an install
     sys.path.insert(0, str(ROOT))
-from vdw_frames import Bilinear, FastMemory, FDMKDamper, ShearBuilding, run_batch, simulate
+from vdw_frames import Bilinear, FDMKDamper, ShearBuilding, run_batch, simulate
+from vdw_frames.element import FastMemory
 from vdw_frames.motion import G, GroundMotion, read_at2
 
 # The fast memory on every record length (by default records under 2 048 steps use the exact memory).
@@ -78,7 +79,7 @@ HEIGHTS = np.array([4000.0] + [3500.0] * 9)  # mm
 
 
 def ten_story(wall=WALL) -> ShearBuilding:
-    return ShearBuilding(MASSES, np.linspace(900e3, 450e3, 10), dampers={story: [wall, wall] for story in range(1, 11)})
+    return ShearBuilding(MASSES, np.linspace(900e3, 450e3, 10), walls={story: [wall, wall] for story in range(1, 11)})
 
 
 def inelastic(building: ShearBuilding) -> ShearBuilding:
@@ -90,7 +91,7 @@ def inelastic(building: ShearBuilding) -> ShearBuilding:
     forces = 0.05 * weight.sum() * weight * elevation**exponent / np.sum(weight * elevation**exponent)
     strengths = 2.5 * np.cumsum(forces[::-1])[::-1]
     return ShearBuilding(building.masses, building.stiffnesses, building.damping_ratio, building.damping_modes,
-                         building.dampers, HEIGHTS, hysteresis=[Bilinear(f, 0.03) for f in strengths],
+                         building.walls, HEIGHTS, hysteresis=[Bilinear(f, 0.03) for f in strengths],
                          gravity_loads=np.cumsum(weight[::-1])[::-1])
 
 
@@ -231,7 +232,7 @@ def part_c(building, motion, source, fast, timings, quick, repeats):
     vdw_time, result = timed(lambda: simulate(frame, strong, memory=memory), 3)
     classical = ShearBuilding(frame.masses, frame.stiffnesses, frame.damping_ratio, frame.damping_modes,
                               {story: [dataclasses.replace(w, r=1.0) for w in walls]
-                               for story, walls in frame.dampers.items()}, frame.story_heights,
+                               for story, walls in frame.walls.items()}, frame.story_heights,
                               frame.hysteresis, frame.gravity_loads)
     opensees, problem = opensees_time(classical, strong.acceleration, strong.dt, 3, tolerance=1e-10,
                                       max_iterations=20, parallel_walls=True)
@@ -290,7 +291,7 @@ def ida_throughput(quick):
         seconds = time.perf_counter() - started
     kind = "elastic" if building.is_linear else "inelastic"
     print(f"    IDA throughput: {factors.size} analyses of the example frame ({record.acceleration.size} steps, "
-          f"{len(building.damper_list)} walls, {kind} stories) in {seconds:.2f} s = {factors.size / seconds:.1f} "
+          f"{len(building.wall_list)} walls, {kind} stories) in {seconds:.2f} s = {factors.size / seconds:.1f} "
           f"analyses/s on {os.cpu_count()} cores")
 
 
@@ -304,7 +305,7 @@ from vdw_frames.motion import GroundMotion
 imported = time.perf_counter()
 wall = FDMKDamper(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.5)
 building = ShearBuilding([600.0] * 9 + [450.0], np.linspace(900e3, 450e3, 10),
-                         dampers={story: [wall, wall] for story in range(1, 11)})
+                         walls={story: [wall, wall] for story in range(1, 11)})
 t = np.arange(500) * 0.01
 simulate(building, GroundMotion(1000.0 * np.sin(2 * np.pi * t), 0.01))
 done = time.perf_counter()
@@ -352,15 +353,15 @@ def part_bridge(building, motion, source, quick, repeats):
     if quick:
         motion = GroundMotion(motion.acceleration[:4000], motion.dt, motion.name)
     steps, dt = motion.acceleration.size - 1, motion.dt
-    walls = len(building.damper_list)
+    walls = len(building.wall_list)
     print(f"\n(e) OpenSees bridge: 10-story frame, {walls} fractional walls (r = {WALL.r:g}), {source}: {steps} steps, "
           f"dt = {dt:g} s; Newton, NormDispIncr 1e-9 mm; time per step, best of {max(repeats, 3)} rounds")
-    combined = dataclasses.replace(building, dampers={story: dataclasses.replace(ws[0], area=sum(w.area for w in ws))
-                                                      for story, ws in building.dampers.items()})
+    combined = dataclasses.replace(building, walls={story: dataclasses.replace(ws[0], area=sum(w.area for w in ws))
+                                                      for story, ws in building.walls.items()})
 
     def classical(frame):
-        return dataclasses.replace(frame, dampers={story: [dataclasses.replace(w, r=1.0) for w in ws]
-                                                   for story, ws in frame.dampers.items()})
+        return dataclasses.replace(frame, walls={story: [dataclasses.replace(w, r=1.0) for w in ws]
+                                                   for story, ws in frame.walls.items()})
 
     def own_steps(model):  # the bridge's model, its history forces never updated: OpenSees's own step
         for _ in range(steps):
@@ -406,7 +407,7 @@ def part_bridge(building, motion, source, quick, repeats):
             ("the same OpenSees model, analyze(1, dt) N times, no wall update", "own"),
             ("OpenSees, classical r = 1 walls: Elastic + Maxwell elements, one call", "classical"),
             (f"OpenSees, Prony material ({len(series)} branches, 0.1-10 Hz, 1 %), one call", "prony"),
-            (f"each story's walls as one of their summed area ({len(combined.damper_list)} walls):", None),
+            (f"each story's walls as one of their summed area ({len(combined.wall_list)} walls):", None),
             ("bridge", "bridge, combined"),
             ("bridge, algorithm Linear (one solve a step: exact on a linear frame)", "bridge, combined, Linear"),
             ("OpenSees, classical r = 1 walls, one call", "classical, combined")]

@@ -65,8 +65,8 @@ def run(args) -> int:
     motions = [read_at2(path) for path in sorted(folder.glob("*.[aA][tT]2"))] if folder else []
     motions.append(default_record())
     walled = load_building(BUILDING_FILE)
-    buildings = {"bare frame": walled.without_dampers(), "with VDW": walled}
-    period = walled.without_dampers().periods[0]
+    buildings = {"bare frame": walled.without_walls(), "with VDW": walled}
+    period = walled.without_walls().periods[0]
     args.out.mkdir(parents=True, exist_ok=True)
     print(f"IDA: {len(motions)} records ({', '.join(m.name for m in motions)}), Sa(T1 = {period:.2f} s) from "
           f"{args.step:g} g in steps of {args.step:g} g up to {args.cap:g} g or collapse")
@@ -89,7 +89,7 @@ def run(args) -> int:
             if result.strain_warnings:
                 print(f"  {len(result.strain_warnings)} of {result.analyses} runs took walls outside the strain range "
                       f"of their parameters, e.g.: {result.strain_warnings[0]}")
-            elif len(building.damper_list):
+            elif len(building.wall_list):
                 print("  every run kept the walls inside the strain range of their parameters")
 
         fits = {}
@@ -118,8 +118,8 @@ def run(args) -> int:
 
 def _strain_dependent_comparison(walled, motions, period, pool):
     """Peak drifts with strain-compatible strain-dependent walls against the fixed 300 % set."""
-    dependent = walled.with_dampers({story: [paper.strain_dependent(area=wall.area, thickness=wall.thickness)
-                                             for wall in walls] for story, walls in walled.dampers.items()})
+    dependent = walled.with_walls({story: [paper.strain_dependent(area=wall.area, thickness=wall.thickness)
+                                             for wall in walls] for story, walls in walled.walls.items()})
     print("\nstrain-dependent walls (paper.strain_dependent, strain-compatible) against the fixed 300 % set:")
     for level in COMPARISON_LEVELS:
         factors = np.array([[m.scale_factor_to_spectral_acceleration(level * G, period)] for m in motions])

@@ -1,4 +1,4 @@
-"""A 2-D steel moment frame in OpenSees with FDMK walls, exactly (vdw_frames.opensees.WallBridge), and
+"""A 2-D steel moment frame in OpenSees with FDMK walls, exactly (vdw_frames.interop.opensees.WallBridge), and
 with each wall as its Prony series (a native OpenSees material), against the bare frame.
 
 Frame (N-mm-s-tonne): 4 stories x 3 bays of 6 m, story heights 4.2 m (first) and 3.6 m; columns and
@@ -38,7 +38,7 @@ import numpy as np
 
 import vdw_frames as vdw
 from vdw_frames import motion as ground_motion
-from vdw_frames.opensees import WallBridge, opensees_module, prony_material
+from vdw_frames.interop.opensees import WallBridge, opensees_module, prony_material
 from vdw_frames.paper import fitted
 
 SHARED = Path(__file__).resolve().parents[1].parent / "shared" / "ground_motions"

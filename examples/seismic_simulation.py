@@ -62,18 +62,18 @@ def run(args) -> int:
             raise ValueError(f"--scale must be a PGA > 0 in g, got {args.scale:g}")
         motion = motion.scaled_to_pga(args.scale * G)
     walled = example_building()
-    bare = walled.without_dampers()
+    bare = walled.without_walls()
     print(f"record {motion.name}: {motion.acceleration.size} points, dt = {motion.dt:g} s, PGA = {motion.pga / G:.3f} g")
     weight = float(np.sum(walled.masses)) * G
     strengths = np.array([model.yield_force for model in walled.story_models])
     print(f"frame: T1 = {bare.periods[0]:.2f} s (bare, elastic), story strengths {strengths[0] / weight:.3f} W at the "
           f"base to {strengths[-1] / weight:.3f} W at the top (W = {weight / 1e6:.1f} MN), 3 % hardening, P-Delta")
-    stories = sorted(walled.dampers)
-    wall = walled.damper_list[0][1]
-    print(f"walls: {len(walled.damper_list)} in stories {stories[0]}-{stories[-1]}, recommended 300 % set "
-          f"(r = {wall.r:.2f}); areas {min(w.area for _, w in walled.damper_list) / 1e6:.2f}-"
-          f"{max(w.area for _, w in walled.damper_list) / 1e6:.2f} m^2, layers "
-          f"{min(w.thickness for _, w in walled.damper_list):g}-{max(w.thickness for _, w in walled.damper_list):g} mm")
+    stories = sorted(walled.walls)
+    wall = walled.wall_list[0][1]
+    print(f"walls: {len(walled.wall_list)} in stories {stories[0]}-{stories[-1]}, recommended 300 % set "
+          f"(r = {wall.r:.2f}); areas {min(w.area for _, w in walled.wall_list) / 1e6:.2f}-"
+          f"{max(w.area for _, w in walled.wall_list) / 1e6:.2f} m^2, layers "
+          f"{min(w.thickness for _, w in walled.wall_list):g}-{max(w.thickness for _, w in walled.wall_list):g} mm")
 
     started = time.perf_counter()
     results = {"bare frame": vdw.simulate(bare, motion, free_vibration=FREE_VIBRATION),
@@ -85,7 +85,7 @@ def run(args) -> int:
             print(f"{label}: {'collapsed' if result.collapsed else 'did not converge'} at t = {result.time[-1]:.2f} s")
 
     def peak_walls(result):
-        return float(np.abs(result.damper_force[:, 0]).max()) / 1e3
+        return float(np.abs(result.story_wall_force[:, 0]).max()) / 1e3
 
     rows = [
         ("peak drift ratio (%)", 100 * without.peak_drift_ratio.max(), 100 * with_walls.peak_drift_ratio.max()),
@@ -105,7 +105,7 @@ def run(args) -> int:
         change = f"{100 * (b / a - 1):+8.1f}%" if a > 0 else f"{'-':>9s}"
         print(f"{name:34s} {a:10.3f} {b:10.3f} {change}")
     energy = with_walls.energy
-    print(f"with VDW: walls dissipate {100 * energy.damper_work[-1] / energy.input[-1]:.0f} % of the input energy, "
+    print(f"with VDW: walls dissipate {100 * energy.wall_work[-1] / energy.input[-1]:.0f} % of the input energy, "
           f"story yielding {100 * energy.hysteretic[-1] / energy.input[-1]:.0f} % (bare frame: "
           f"{100 * without.energy.hysteretic[-1] / without.energy.input[-1]:.0f} %); peak wall strain "
           f"{100 * with_walls.peak_wall_strain.min():.0f}-{100 * with_walls.peak_wall_strain.max():.0f} %; "
@@ -113,14 +113,14 @@ def run(args) -> int:
 
     out = args.out
     ductile = int(np.argmax(without.peak_ductility.filled(0.0))) + 1
-    story = int(np.argmax(with_walls.peak_damper_force)) + 1
+    story = int(np.argmax(with_walls.peak_story_wall_force)) + 1
     figures = [
         plotting.plot_drift_envelope(results, out / "drift_envelope.png"),
         plotting.plot_roof_displacement(results, out / "roof_displacement.png"),
         plotting.plot_story_hysteresis(without, ductile, out / "story_hysteresis.png",
                                        title=f"bare frame, most ductile story ({ductile}): "
                                              f"ductility {without.peak_ductility[ductile - 1]:.1f}"),
-        plotting.plot_damper_hysteresis(with_walls, story, out / "damper_hysteresis.png",
+        plotting.plot_wall_hysteresis(with_walls, story, out / "damper_hysteresis.png",
                                         title=f"most loaded story ({story}): walls"),
         plotting.plot_energy(with_walls, out / "energy.png", title="energy, with VDW"),
     ]

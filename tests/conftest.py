@@ -1,9 +1,9 @@
 """Fixtures shared by the test modules."""
 
-import pytest
-
 import opensees_frame
+import pytest
 from shared_data import shared_record
+
 from vdw_frames import read_at2
 
 

@@ -109,14 +109,14 @@ def build(building, tolerance=1e-9, max_iterations=50, algorithm="Newton", paral
             ops.uniaxialMaterial("Elastic", tag, geometric)
             ops.element("zeroLength", tag, story - 1, story, "-mat", tag, "-dir", 1)
     if parallel_walls:
-        for story, walls in building.dampers.items():
+        for story, walls in building.walls.items():
             k1, c1, k2, c2 = np.sum([damper_constants(wall) for wall in walls], axis=0)
             elastic, maxwell, tag = tag + 1, tag + 2, tag + 3
             ops.uniaxialMaterial("Elastic", elastic, k1, c1)
             ops.uniaxialMaterial("Maxwell", maxwell, k2, c2, 1.0, 1.0)
             ops.uniaxialMaterial("Parallel", tag, elastic, maxwell)
             ops.element("zeroLength", tag, story - 1, story, "-mat", tag, "-dir", 1)
-    for story, wall in [] if parallel_walls else building.damper_list:
+    for story, wall in [] if parallel_walls else building.wall_list:
         k1, c1, k2, c2 = damper_constants(wall)
         tag += 1
         ops.uniaxialMaterial("Elastic", tag, k1, c1)  # E, eta: stress = E strain + eta strain rate
@@ -226,21 +226,21 @@ def drifts(displacement):
 
 # ---------------------------------------------------------------------------------------------- walls bridged
 def build_bare(building, tolerance=1e-12, max_iterations=50, algorithm="Newton"):
-    """The bare frame of ``building`` (no walls: :func:`build` of ``building.without_dampers()``) in a fresh
+    """The bare frame of ``building`` (no walls: :func:`build` of ``building.without_walls()``) in a fresh
     domain, for walls added afterwards.  Returns the floor node tags (story k between nodes k-1 and k; node
     0 the ground)."""
-    return build(building.without_dampers(), tolerance, max_iterations, algorithm)
+    return build(building.without_walls(), tolerance, max_iterations, algorithm)
 
 
 def build_bridged(building, dt, bridge_options=None, **options):
     """The bare frame (:func:`build_bare`, ``options``) with the building's walls through a
     :class:`vdw_frames.opensees.WallBridge` (``bridge_options``: its keyword arguments) on steps of ``dt``
     s: (floor node tags, the bridge)."""
-    from vdw_frames.opensees import WallBridge
+    from vdw_frames.interop.opensees import WallBridge
 
     floors = build_bare(building, **options)
     bridge = WallBridge(opensees(), dt, **(bridge_options or {}))
-    for story, wall in building.damper_list:
+    for story, wall in building.wall_list:
         bridge.add_wall(story - 1, story, 1, wall)
     return floors, bridge
 
@@ -262,7 +262,7 @@ def run_bridged(building, acceleration, dt, method="damped", memory="fast", step
             displacement[n] = [ops.nodeDisp(node, 1) for node in floors]
     else:
         bridge.analyze(steps - 1)
-        first = {story: index for index, (story, _) in reversed(list(enumerate(building.damper_list)))}
+        first = {story: index for index, (story, _) in reversed(list(enumerate(building.wall_list)))}
         displacement = np.cumsum(bridge.deformation[:, [first[s] for s in range(1, len(floors) + 1)]], axis=1)
     ops.wipe()
     return displacement, bridge
@@ -272,13 +272,13 @@ def build_prony(building, f_min, f_max, prony_tolerance=0.01, **options):
     """The bare frame (:func:`build_bare`, ``options``) with every wall as its Prony series over
     [f_min, f_max] Hz (within ``prony_tolerance``), a native ``Parallel`` of ``Elastic`` and ``Maxwell`` materials
     (:func:`vdw_frames.opensees.prony_material`) in a ``zeroLength`` element: (floor node tags, {wall: series})."""
-    from vdw_frames.opensees import prony_material
+    from vdw_frames.interop.opensees import prony_material
 
     ops = opensees()
     floors = build_bare(building, **options)
     series = {}
     tag = 1000
-    for index, (story, wall) in enumerate(building.damper_list):
+    for index, (story, wall) in enumerate(building.wall_list):
         if wall not in series:
             series[wall] = wall.prony(f_min, f_max, prony_tolerance)
         prony_material(ops, tag, series[wall])

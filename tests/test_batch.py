@@ -5,8 +5,8 @@ import csv
 
 import numpy as np
 import pytest
-
 from reference import tapered_sine
+
 from vdw_frames import FDMKDamper, GroundMotion, ShearBuilding, simulate
 from vdw_frames.frame.batch import run_batch, scale_factors_to_pga, scale_factors_to_spectral_acceleration
 
@@ -14,7 +14,7 @@ WALL = FDMKDamper(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.5, area=2.0e5)
 
 
 def building(heights=True):
-    return ShearBuilding([300.0, 300.0, 250.0], [2e5, 1.8e5, 1.5e5], dampers={1: [WALL, WALL], 3: WALL},
+    return ShearBuilding([300.0, 300.0, 250.0], [2e5, 1.8e5, 1.5e5], walls={1: [WALL, WALL], 3: WALL},
                          story_heights=[3500.0] * 3 if heights else None)
 
 
@@ -34,7 +34,7 @@ def test_batch_peaks_equal_simulate():
             np.testing.assert_array_equal(result.peak_drift[m, s], single.peak_drift)
             np.testing.assert_array_equal(result.peak_drift_ratio[m, s], single.peak_drift_ratio)
             np.testing.assert_array_equal(result.peak_absolute_acceleration[m, s], single.peak_absolute_acceleration)
-            np.testing.assert_array_equal(result.peak_damper_force[m, s], single.peak_damper_force)
+            np.testing.assert_array_equal(result.peak_story_wall_force[m, s], single.peak_story_wall_force)
             assert result.peak_base_shear[m, s, 0] == single.peak_base_shear
             assert result.pga[m, s] == pytest.approx(scale * motion.pga)
 
@@ -73,9 +73,9 @@ def test_batch_on_a_dask_local_cluster():
 
 def test_batch_reports_worker_warnings_and_failures():
     bounded = FDMKDamper(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.5, area=2.0e5, strain_range=(2.0, 3.0))
-    frame = ShearBuilding([300.0], [2e5], dampers={1: bounded})
+    frame = ShearBuilding([300.0], [2e5], walls={1: bounded})
     with concurrent.futures.ThreadPoolExecutor(2) as pool:
-        with pytest.warns(UserWarning, match=r"sine 1.1 Hz x 0.5: damper peak strain outside"):
+        with pytest.warns(UserWarning, match=r"sine 1.1 Hz x 0.5: wall peak strain outside"):
             run_batch(frame, motions()[:1], [0.5], executor=pool, progress=False)
         with pytest.raises(ValueError, match="overflowed"):
             run_batch(frame, motions()[:1], [1.0, 1e200], executor=pool, progress=False)

@@ -4,8 +4,8 @@ import math
 
 import numpy as np
 import pytest
-
 import reference
+
 from vdw_frames import FDMKDamper
 from vdw_frames.element.fractional import DEFAULT_METHOD, METHODS, DampedTwoStep, get_method
 

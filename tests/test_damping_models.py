@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import vdw_frames as vdw
-from vdw_frames.frame.simulation import ENERGY_BALANCE_TOLERANCE, EnergyHistory, _check_energy_balance
+from vdw_frames.frame.results import ENERGY_BALANCE_TOLERANCE, EnergyHistory, check_energy_balance
 
 DAMPING_MODELS = ("rayleigh", "modal")
 
@@ -115,7 +115,7 @@ def test_yielding_building_equals_an_independent_newmark(damping_model, p_delta)
 
 @pytest.mark.parametrize("damping_model", DAMPING_MODELS)
 def test_linear_building_with_walls_matches_the_frequency_domain(damping_model):
-    building = frame(6, damping_model, yielding=False).with_dampers(
+    building = frame(6, damping_model, yielding=False).with_walls(
         {1: vdw.FDMKDamper(0.0, 1.2, 0.05, 0.3, 0.6, area=2e5, thickness=10.0)})
     time = np.arange(0.0, 40.0, 0.0025)
     rng = np.random.default_rng(3)
@@ -134,8 +134,8 @@ def test_a_broken_energy_balance_warns_naming_it():
     balanced = EnergyHistory(ramp, ramp / 2, ramp / 4, ramp / 8, ramp / 8, 0 * ramp, 0 * ramp)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        _check_energy_balance(balanced)
+        check_energy_balance(balanced)
     broken = EnergyHistory(ramp, ramp / 2, ramp / 4, ramp / 8, ramp / 8, ramp * 3 * ENERGY_BALANCE_TOLERANCE,
                            0 * ramp)
     with pytest.warns(RuntimeWarning, match="energy balance misses by 0.0003"):
-        _check_energy_balance(broken)
+        check_energy_balance(broken)

@@ -7,13 +7,23 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from scipy.linalg import eigh
-
 import reference
+from scipy.linalg import eigh
 from test_modal import state_space_eigenvalues
-from vdw_frames import (FDMKDamper, GroundMotion, ShearBuilding, SupportedDamper, cli, damping_curve, run_batch,
-                        simulate, size_walls)
+
+from vdw_frames import (
+    FDMKDamper,
+    GroundMotion,
+    ShearBuilding,
+    SupportedDamper,
+    cli,
+    modal_analysis,
+    run_batch,
+    simulate,
+    size_walls,
+)
 from vdw_frames.config import load_building
+from vdw_frames.design import damping_curve
 from vdw_frames.paper import fitted, strain_dependent
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -21,7 +31,7 @@ KELVIN_MAXWELL = FDMKDamper(G1=0.5, G2=3.0, eta1=0.4, eta2=2.0, r=1.0, area=5e4)
 
 
 def five_story(walls=None):
-    return ShearBuilding([300.0, 300.0, 280.0, 250.0, 200.0], [2.0e5, 1.8e5, 1.6e5, 1.4e5, 1.1e5], dampers=walls)
+    return ShearBuilding([300.0, 300.0, 280.0, 250.0, 200.0], [2.0e5, 1.8e5, 1.6e5, 1.4e5, 1.1e5], walls=walls)
 
 
 def state_space_ratio(building, mode=1):
@@ -36,9 +46,9 @@ def test_sized_r1_walls_meet_the_target_by_the_state_space_eigenvalues(distribut
     # dashpots' internal degrees of freedom (tests/test_modal.py).
     building = five_story()
     sized = size_walls(building, KELVIN_MAXWELL, 0.12, mode=1, distribution=distribution, stories=[1, 2, 3])
-    assert sorted(sized.dampers) == [1, 2, 3]
+    assert sorted(sized.walls) == [1, 2, 3]
     assert state_space_ratio(sized) == pytest.approx(0.12, abs=1e-6)  # the issue asks 1e-3
-    areas = np.array([sized.dampers[story][0].area for story in (1, 2, 3)])
+    areas = np.array([sized.walls[story][0].area for story in (1, 2, 3)])
     if distribution == "uniform":
         np.testing.assert_allclose(areas, areas[0], rtol=1e-14)
     elif distribution == "stiffness":
@@ -48,22 +58,22 @@ def test_sized_r1_walls_meet_the_target_by_the_state_space_eigenvalues(distribut
         drift = np.abs(np.diff(shapes[:, 0], prepend=0.0))[:3]
         np.testing.assert_allclose(areas / areas.max(), drift / drift.max(), rtol=1e-10)
     for story in (1, 2, 3):  # only the area changes
-        wall = sized.dampers[story][0]
+        wall = sized.walls[story][0]
         assert dataclasses.replace(wall, area=KELVIN_MAXWELL.area) == KELVIN_MAXWELL
 
 
 def test_sizing_the_example_frame_meets_the_target_and_keeps_everything_else():
     building = load_building(ROOT / "examples" / "ten_story.toml")
-    wall = building.damper_list[0][1]
+    wall = building.wall_list[0][1]
     sized = size_walls(building, wall, 0.10)
-    result = sized.modal_analysis(1)
+    result = modal_analysis(sized, 1)
     assert result.damping_ratios[0] == pytest.approx(0.10, abs=1e-3)
-    assert sorted(sized.dampers) == sorted(building.dampers)  # default: the stories that had walls
+    assert sorted(sized.walls) == sorted(building.walls)  # default: the stories that had walls
     assert (sized.masses, sized.stiffnesses, sized.damping_ratio) == (building.masses, building.stiffnesses,
                                                                       building.damping_ratio)
     # The smallest walls reaching the target: below the largest achievable size.
     curve = damping_curve(building, wall)
-    assert sized.damper_list[0][1].area < curve.best_factor * wall.area
+    assert sized.wall_list[0][1].area < curve.best_factor * wall.area
 
 
 def test_damping_saturates_then_falls_and_an_unreachable_target_names_the_maximum():
@@ -88,8 +98,8 @@ def test_damping_saturates_then_falls_and_an_unreachable_target_names_the_maximu
 def test_supported_template_scales_its_support_with_the_area():
     template = SupportedDamper(KELVIN_MAXWELL, 3e4)
     sized = size_walls(five_story(), template, 0.08, stories="all")
-    assert sorted(sized.dampers) == [1, 2, 3, 4, 5]
-    wall = sized.dampers[1][0]
+    assert sorted(sized.walls) == [1, 2, 3, 4, 5]
+    wall = sized.walls[1][0]
     factor = wall.area / KELVIN_MAXWELL.area
     assert wall.support_stiffness == pytest.approx(3e4 * factor, rel=1e-14)
     assert state_space_ratio(sized) == pytest.approx(0.08, abs=1e-6)
@@ -141,7 +151,7 @@ def test_strain_dependent_walls_scale_at_every_amplitude():
 
 def test_batch_envelope_over_property_factors():
     wall = FDMKDamper(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.5, area=2.0e5)
-    building = ShearBuilding([300.0, 300.0, 250.0], [2e5, 1.8e5, 1.5e5], dampers={1: [wall, wall], 3: wall},
+    building = ShearBuilding([300.0, 300.0, 250.0], [2e5, 1.8e5, 1.5e5], walls={1: [wall, wall], 3: wall},
                              story_heights=[3500.0] * 3)
     t = np.arange(801) * 0.01
     motions = [GroundMotion(reference.tapered_sine(t, f, 1500.0, 2.0, 8.0), 0.01, name=f"sine {f} Hz")
@@ -152,17 +162,17 @@ def test_batch_envelope_over_property_factors():
     assert result.property_factors == factors
     for m, motion in enumerate(motions):
         for s, scale in enumerate((1.0, 2.0)):
-            runs = [simulate(building.with_dampers({1: [wall.scaled(f)] * 2, 3: wall.scaled(f)}), motion.scaled(scale))
+            runs = [simulate(building.with_walls({1: [wall.scaled(f)] * 2, 3: wall.scaled(f)}), motion.scaled(scale))
                     for f in factors]
             drifts = np.array([run.peak_drift for run in runs])
             np.testing.assert_array_equal(result.peak_drift[m, s], drifts.max(axis=0))
             np.testing.assert_array_equal(result.governing_factor["peak_drift"][m, s],
                                           np.array(factors)[drifts.argmax(axis=0)])
-            forces = np.array([run.peak_damper_force for run in runs])
-            np.testing.assert_array_equal(result.peak_damper_force[m, s], forces.max(axis=0))
+            forces = np.array([run.peak_story_wall_force for run in runs])
+            np.testing.assert_array_equal(result.peak_story_wall_force[m, s], forces.max(axis=0))
             assert result.peak_base_shear[m, s, 0] == max(run.peak_base_shear for run in runs)
     # Stiffer, more viscous walls carry more force: the upper bound governs the wall forces of story 1.
-    assert np.all(result.governing_factor["peak_damper_force"][:, :, 0] == 1.2)
+    assert np.all(result.governing_factor["peak_story_wall_force"][:, :, 0] == 1.2)
     with pytest.raises(ValueError, match="property_factors"):
         run_batch(building, motions, [1.0], property_factors=(1.0, -0.8), progress=False)
 
@@ -171,8 +181,8 @@ def test_batch_envelope_over_property_factors():
 def test_design_command_on_the_example(tmp_path, capsys):
     path = ROOT / "examples" / "ten_story.toml"
     building = load_building(path)
-    expected = building.modal_analysis([1, 2, 3, 4, 5])
-    curve = damping_curve(building, building.damper_list[0][1])
+    expected = modal_analysis(building, [1, 2, 3, 4, 5])
+    curve = damping_curve(building, building.wall_list[0][1])
     target = round(0.5 * (expected.damping_ratios[0] + curve.best_damping_ratio), 3)
     assert cli.main(["design", str(path), "--target", str(target), "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out

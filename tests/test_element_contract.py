@@ -1,4 +1,4 @@
-"""Trial/commit contract of DamperState and every ValueError at the boundary."""
+"""Trial/commit contract of WallState and every ValueError at the boundary."""
 
 import math
 

@@ -9,13 +9,13 @@ import warnings
 
 import numpy as np
 import pytest
+from shared_data import REPO as ROOT
+from shared_data import shared_record
 
-from vdw_frames import Bilinear, cli, paper, simulate, size_walls
+from vdw_frames import Bilinear, cli, modal_analysis, paper, simulate, size_walls
 from vdw_frames.config import building_from_dict, load_building
 from vdw_frames.motion import G, default_record_path, read_at2
 
-from shared_data import REPO as ROOT
-from shared_data import shared_record
 FIGURES = ("drift_envelope.png", "roof_displacement.png", "story_hysteresis.png", "damper_hysteresis.png",
            "energy.png")
 
@@ -34,7 +34,7 @@ def test_seismic_example_runs_on_the_shipped_record_without_warnings(tmp_path, c
     # The printed changes are the package's own results for the same analyses.
     building = _example()["example_building"]()
     motion = read_at2(default_record_path())
-    bare = simulate(building.without_dampers(), motion, free_vibration=10.0)
+    bare = simulate(building.without_walls(), motion, free_vibration=10.0)
     walls = simulate(building, motion, free_vibration=10.0)
     rows = {line[:34].strip(): line.split() for line in printed.splitlines() if line[:34].strip()}
     assert float(rows["peak drift ratio (%)"][-3]) == pytest.approx(100 * bare.peak_drift_ratio.max(), abs=6e-4)
@@ -42,7 +42,7 @@ def test_seismic_example_runs_on_the_shipped_record_without_warnings(tmp_path, c
     assert float(rows["peak story ductility (-)"][-2]) == pytest.approx(walls.peak_ductility.max(), abs=6e-4)
     residual = 100 * np.abs(walls.residual_drift / np.asarray(building.story_heights)).max()
     assert float(rows["residual drift ratio (%)"][-2]) == pytest.approx(residual, abs=6e-4)
-    assert float(rows["story-1 walls (kN)"][-2]) == pytest.approx(np.abs(walls.damper_force[:, 0]).max() / 1e3, abs=6e-4)
+    assert float(rows["story-1 walls (kN)"][-2]) == pytest.approx(np.abs(walls.story_wall_force[:, 0]).max() / 1e3, abs=6e-4)
     # The walls earn their place: less drift, less yielding, less residual drift; the frame yields without them.
     assert bare.peak_ductility.max() > 2.0
     assert walls.peak_drift_ratio.max() < 0.7 * bare.peak_drift_ratio.max()
@@ -80,13 +80,13 @@ def test_example_building_file_matches_its_description():
     assert all(isinstance(m, Bilinear) and m.hardening == 0.03 for m in building.story_models)
     # Walls: one a story, the 300 % set, A / h as size_walls gives for 10 % damping in mode 1 (to the
     # rounding of the file: areas to 1000 mm^2, thicknesses to 0.1 mm).
-    assert [story for story, _ in building.damper_list] == list(range(1, 11))
-    assert all(w == paper.fitted(300, area=w.area, thickness=w.thickness) for _, w in building.damper_list)
-    sized = size_walls(building.without_dampers(), paper.fitted(300, area=0.5e6, thickness=10.0), 0.10,
+    assert [story for story, _ in building.wall_list] == list(range(1, 11))
+    assert all(w == paper.fitted(300, area=w.area, thickness=w.thickness) for _, w in building.wall_list)
+    sized = size_walls(building.without_walls(), paper.fitted(300, area=0.5e6, thickness=10.0), 0.10,
                        distribution="drift", stories=range(1, 11))
-    for (_, wall), (_, reference) in zip(building.damper_list, sized.damper_list):
+    for (_, wall), (_, reference) in zip(building.wall_list, sized.wall_list):
         assert wall.area / wall.thickness == pytest.approx(reference.area / reference.thickness, rel=0.012)
-    assert building.modal_analysis(modes=[1]).damping_ratios[0] == pytest.approx(0.10, abs=1e-3)
+    assert modal_analysis(building, modes=[1]).damping_ratios[0] == pytest.approx(0.10, abs=1e-3)
     # Thicknesses: the shipped record's peak strains lie inside the 300 % set's identified range.
     walls = simulate(building, read_at2(default_record_path()), free_vibration=10.0)
     low, high = paper.fitted(300).strain_range
@@ -101,13 +101,13 @@ def test_cli_simulate_with_a_json_building(tmp_path, capsys):
     path.write_text(json.dumps(spec))
     assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert "2 stories" in out and "2 FDMK dampers" in out
+    assert "2 stories" in out and "2 FDMK walls" in out
     assert (tmp_path / "damper_hysteresis.png").exists()
     # The printed table is the package's own result for the same building and record.
     expected = simulate(building_from_dict(spec), read_at2(default_record_path()))
     row = next(line.split() for line in out.splitlines() if line.strip().startswith("1 "))
     assert float(row[1]) == pytest.approx(expected.peak_drift[0], abs=0.006)
-    assert float(row[4]) == pytest.approx(expected.peak_damper_force[0] / 1e3, abs=0.06)
+    assert float(row[4]) == pytest.approx(expected.peak_story_wall_force[0] / 1e3, abs=0.06)
 
 
 def test_cli_sine_test_prints_stiffness_and_writes_the_loop(tmp_path, capsys):
@@ -125,7 +125,7 @@ def test_cli_reports_bad_input_as_an_error(tmp_path, capsys):
     bad.write_text(json.dumps({"masses": [1.0, 1.0], "stiffnesses": [1.0, 1.0],
                                "walls": [{"stories": [3], "parameters": "fitted-300"}]}))
     assert cli.main(["simulate", str(bad), "--record", str(default_record_path())]) == 2
-    assert "bad.json: damper story must be a story number in 1 ... 2, got 3" in capsys.readouterr().err
+    assert "bad.json: wall story must be a story number in 1 ... 2, got 3" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("command", ["simulate", "sine-test", "paper-report"])
@@ -164,8 +164,8 @@ def test_ida_example_steps_records_to_collapse(tmp_path, capsys):
     assert ida["main"](["--out", str(tmp_path), "--records", str(records), "--step", "0.5", "--cap", "4.0"]) == 0
     printed = capsys.readouterr().out
     building = load_building(ROOT / "examples" / "ten_story.toml")
-    period = building.without_dampers().periods[0]
-    for label, frame in (("bare_frame", building.without_dampers()), ("with_VDW", building)):
+    period = building.without_walls().periods[0]
+    for label, frame in (("bare_frame", building.without_walls()), ("with_VDW", building)):
         rows = list(csv.DictReader((tmp_path / f"ida_{label}.csv").open()))
         assert {row["record"] for row in rows} == {"synthetic", "synthetic_kt_035g"}  # the folder's and the shipped one
         # Each row is the package's own analysis at that Sa(T1); the last level of each record collapsed.

@@ -190,13 +190,14 @@ def test_fast_arrays_are_fresh_and_in_kernel_order():
     np.testing.assert_array_equal(weights, get_method("trapezoidal").weights(0.6, DEFAULT_WINDOW + 1, 0.01))
     assert mode_weight.shape == mode_ratio.shape
     bank = unit_bank(TABLE4, 0.6, 0.01, 3000, "trapezoidal", FAST)
-    assert bank.w0[0] == weights[0]
-    np.testing.assert_array_equal(bank.window_weights[0], weights[:0:-1])  # w_L .. w_1: oldest value first
-    assert bank.window.shape == (1, 2, 2 * DEFAULT_WINDOW) and not bank.window.any()
-    assert bank.mode_state.shape == (1, 2, mode_ratio.size) and not bank.mode_state.any()
+    arrays = bank.arrays
+    assert arrays.w0[0] == weights[0]
+    np.testing.assert_array_equal(arrays.window_weights[0], weights[:0:-1])  # w_L .. w_1: oldest value first
+    assert arrays.window.shape == (1, 2, 2 * DEFAULT_WINDOW) and not arrays.window.any()
+    assert arrays.mode_state.shape == (1, 2, mode_ratio.size) and not arrays.mode_state.any()
     strain = broadband_strain(3000, 0.01)
     first = drive(strain, TABLE4, bank)
-    assert bank.mode_state.any()  # stepped in place ...
+    assert arrays.mode_state.any()  # stepped in place ...
     again = drive(strain, TABLE4, unit_bank(TABLE4, 0.6, 0.01, 3000, "trapezoidal", FAST))
     np.testing.assert_array_equal(first, again)  # ... without touching the cached modes
     # Records no longer than the window never reach the modes: identical to the exact memory.

@@ -10,11 +10,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 from scipy import signal
+from shared_data import REPO, shared_record
 
 from vdw_frames import motion as gm
 from vdw_frames.motion import G, GroundMotion
-
-from shared_data import REPO, shared_record
 
 # From the table in ../shared/ground_motions/README.md: file -> (NPTS, DT s).
 SHARED_RECORDS = {
@@ -243,7 +242,7 @@ def test_scaling_to_spectral_acceleration():
     motion = gm.read_at2(shared("ARL360.at2"))
     target, period = 0.8 * G, 0.7
     scaled = motion.scaled_to_spectral_acceleration(target, period, damping_ratio=0.03)
-    assert float(gm.response_spectrum(scaled, period, 0.03)) == pytest.approx(target, rel=1e-12)
+    assert float(scaled.spectrum(period, 0.03)) == pytest.approx(target, rel=1e-12)
     factor = motion.scale_factor_to_spectral_acceleration(target, period, 0.03)
     assert factor == pytest.approx(target / sdof_peak_lsim(motion, period, 0.03), rel=1e-8)
     assert motion.scale_factor_to_spectral_acceleration(G, 0.0) == pytest.approx(G / motion.pga, rel=1e-15)
@@ -280,7 +279,7 @@ def test_response_spectrum_against_lsim():
     motion = gm.read_at2(shared("IELC180.AT2"))
     periods = np.array([0.1, 0.3, 1.0, 3.0])
     for damping_ratio in (0.0, 0.05, 0.2):
-        spectrum = gm.response_spectrum(motion, periods, damping_ratio)
+        spectrum = motion.spectrum(periods, damping_ratio)
         reference = [sdof_peak_lsim(motion, period, damping_ratio) for period in periods]
         np.testing.assert_allclose(spectrum, reference, rtol=1e-8)
 
@@ -293,22 +292,22 @@ def test_response_spectrum_resonant_harmonic_steady_state():
     time = np.arange(6001) * dt  # 60 s: the transient has decayed by exp(-zeta w 60) ~ 6e-9
     motion = GroundMotion(amplitude * np.sin(omega * time), dt)
     expected = amplitude / (2.0 * zeta) * np.sinc(omega * dt / (2.0 * math.pi)) ** 2
-    assert float(gm.response_spectrum(motion, period, zeta)) == pytest.approx(expected, rel=1e-6)
+    assert float(motion.spectrum(period, zeta)) == pytest.approx(expected, rel=1e-6)
 
 
 def test_response_spectrum_limits_and_shape():
     motion = gm.read_at2(shared("elCentro.AT2"))
-    spectrum = gm.response_spectrum(motion, [[0.0, 1e-4], [0.5, 1.0]])
+    spectrum = motion.spectrum([[0.0, 1e-4], [0.5, 1.0]])
     assert spectrum.shape == (2, 2)
     assert spectrum[0, 0] == motion.pga
     assert spectrum[0, 1] == pytest.approx(motion.pga, rel=1e-3)  # rigid oscillator follows the ground
-    assert float(gm.response_spectrum(motion, 2.0)) == pytest.approx(sdof_peak_lsim(motion, 2.0, 0.05), rel=1e-8)
+    assert float(motion.spectrum(2.0)) == pytest.approx(sdof_peak_lsim(motion, 2.0, 0.05), rel=1e-8)
     for periods, damping_ratio, match in [([-1.0], 0.05, "periods must be >= 0"),
                                           ([np.nan], 0.05, "periods must be finite"),
                                           ([1.0], 1.0, r"damping_ratio must lie in \[0, 1\), got 1\.0"),
                                           ([1.0], -0.1, "damping_ratio must lie in")]:
         with pytest.raises(ValueError, match=match):
-            gm.response_spectrum(motion, periods, damping_ratio)
+            motion.spectrum(periods, damping_ratio)
 
 
 # --------------------------------------------------------------------------------------------------

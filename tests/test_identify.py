@@ -4,8 +4,7 @@ import numpy as np
 import pytest
 from scipy.optimize import least_squares, minimize, nnls
 
-from vdw_frames import FDMKDamper
-from vdw_frames import paper
+from vdw_frames import FDMKDamper, paper
 from vdw_frames.paper.identification import IdentificationResult, identify
 
 F_WIDE = np.geomspace(0.1, 50.0, 14)

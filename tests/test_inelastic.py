@@ -6,13 +6,24 @@ import concurrent.futures
 import warnings
 
 import numpy as np
+import opensees_frame
 import pytest
 from scipy.integrate import solve_ivp
-
-import opensees_frame
 from shared_data import SHARED, shared_record
-from vdw_frames import Bilinear, BoucWen, FDMKDamper, G, GroundMotion, NewtonRaphson, ShearBuilding, read_at2
-from vdw_frames import incremental_dynamic_analysis, run_batch, simulate
+
+from vdw_frames import (
+    Bilinear,
+    BoucWen,
+    FDMKDamper,
+    G,
+    GroundMotion,
+    ShearBuilding,
+    incremental_dynamic_analysis,
+    read_at2,
+    run_batch,
+    simulate,
+)
+from vdw_frames.frame import NewtonRaphson
 from vdw_frames.frame.hysteresis import StoryState
 
 MASSES = [600.0] * 9 + [450.0]  # tonne
@@ -29,7 +40,7 @@ def frame(model=Bilinear, strength=0.08, hardening=0.03, walls=R1_WALL, gravity=
     return ShearBuilding(MASSES, STIFFNESSES, story_heights=HEIGHTS,
                          hysteresis=[model(f, hardening) for f in yield_forces],
                          gravity_loads=GRAVITY if gravity else None,
-                         dampers={story: walls for story in range(1, 7)} if walls else None, **options)
+                         walls={story: walls for story in range(1, 7)} if walls else None, **options)
 
 
 def peak_deviation(drift, reference):
@@ -183,7 +194,7 @@ def test_modal_damping_gives_the_same_ratio_in_every_mode():
 
 def test_linear_limit_equals_the_linear_path():
     motion = read_at2(shared_record("RIO270.AT2")).scaled_to_pga(0.4 * G)
-    linear = ShearBuilding(MASSES, STIFFNESSES, story_heights=HEIGHTS, dampers={s: FRACTIONAL_WALL for s in range(1, 7)})
+    linear = ShearBuilding(MASSES, STIFFNESSES, story_heights=HEIGHTS, walls={s: FRACTIONAL_WALL for s in range(1, 7)})
     strong = frame(strength=1e3, walls=FRACTIONAL_WALL, gravity=False)  # never yields
     expected, result = simulate(linear, motion), simulate(strong, motion)
     scale = np.abs(expected.displacement).max()

@@ -10,11 +10,10 @@ rounding; with walls the only differences are the dampers' own time discretisati
 
 
 import numpy as np
+import opensees_frame
 import pytest
 
-import opensees_frame
 from vdw_frames import FDMKDamper, ShearBuilding, simulate
-
 
 # Classical (r = 1) walls, the paper's wall size (A = 1e6 mm^2, h = 10 mm) and a smaller, thinner one:
 # k1 = 1e5 N/mm, c1 = 1e4 N*s/mm, k2 = 1e5 N/mm, c2 = 2e4 N*s/mm (tau = 0.2 s) and
@@ -23,11 +22,11 @@ WALL_A = FDMKDamper(G1=1.0, G2=1.0, eta1=0.1, eta2=0.2, r=1.0, area=1.0e6, thick
 WALL_B = FDMKDamper(G1=0.4, G2=1.6, eta1=0.04, eta2=0.4, r=1.0, area=1.0e6, thickness=8.0)
 
 
-def ten_story(dampers=True):
+def ten_story(walls=True):
     """500 t floors, story stiffness 800 -> 400 kN/mm (T1 = 1.15 s bare), 5 % Rayleigh on modes 1, 2;
     walls A + B on stories 1-5, wall A on stories 6-10."""
-    walls = {story: [WALL_A, WALL_B] if story <= 5 else [WALL_A] for story in range(1, 11)} if dampers else None
-    return ShearBuilding([500.0] * 10, np.linspace(800e3, 400e3, 10), dampers=walls)
+    walls = {story: [WALL_A, WALL_B] if story <= 5 else [WALL_A] for story in range(1, 11)} if walls else None
+    return ShearBuilding([500.0] * 10, np.linspace(800e3, 400e3, 10), walls=walls)
 
 
 
@@ -103,7 +102,7 @@ def test_bare_frame_equals_opensees(ops, record):
     # Same Newmark, same Rayleigh matrix (a0 M on nodes, a1 K on the story springs), same initial state:
     # equal to rounding (measured 3e-14 on the peaks, 2e-12 on the histories).  This pins down the
     # region/Rayleigh set-up of the OpenSees model.
-    building = ten_story(dampers=False)
+    building = ten_story(walls=False)
     expected = opensees_frame.drifts(opensees_frame.run(building, record.acceleration, record.dt))
     result = simulate(building, record)
     assert peak_deviation(result.drift, expected) < 1e-3  # the issue's "tighter" bar: 0.1 %
@@ -127,7 +126,7 @@ def test_frame_with_r1_walls_matches_opensees_within_one_percent(ops, record, me
     assert deviation < bar, (method, deviation, measured)
     assert deviation < 0.01  # the issue's bar: peak drifts per story within 1 %
     # The walls matter: they cut the peak drifts by 26-52 % against the bare frame.
-    bare = simulate(building.without_dampers(), record)
+    bare = simulate(building.without_walls(), record)
     assert (result.peak_drift < 0.85 * bare.peak_drift).all()
 
 

@@ -3,7 +3,6 @@
 import runpy
 
 import numpy as np
-
 from shared_data import REPO
 
 

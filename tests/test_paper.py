@@ -7,8 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from vdw_frames import FDMKDamper
-from vdw_frames import paper
+from vdw_frames import FDMKDamper, paper
 from vdw_frames.paper.identification import identify
 
 PAPER_TEXT = Path(__file__).resolve().parents[2] / "shared" / "seed" / "fdmk_5plus4_vdw_paper.txt"

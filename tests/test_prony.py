@@ -9,16 +9,16 @@ sine test of OpenSees's own ``Parallel``/``Maxwell`` materials, and :func:`vdw_f
 import warnings
 
 import numpy as np
-import pytest
-
 import opensees_frame
+import pytest
 from reference import closed_form_moduli
 from shared_data import shared_record
 from test_opensees import peak_deviation
+
 from vdw_frames import FDMKDamper, SupportedDamper, simulate
 from vdw_frames.element.prony import PronySeries, fit_prony
+from vdw_frames.interop.opensees import prony_material
 from vdw_frames.motion import read_at2
-from vdw_frames.opensees import prony_material
 from vdw_frames.paper import fitted
 
 BAND = (0.1, 10.0)  # Hz: the band of a building's first few modes

@@ -6,7 +6,6 @@ import re
 import warnings
 
 import pytest
-
 from shared_data import REPO, SHARED
 
 README = REPO / "README.md"

@@ -4,10 +4,11 @@ import math
 
 import numpy as np
 import pytest
-
 from reference import closed_form_moduli as closed_form
+
 from vdw_frames import FDMKDamper, paper, sine_test
-from vdw_frames.paper.report import errata, parameter_sets, table5_candidates, write_paper_report
+from vdw_frames.paper.errata import errata, parameter_sets, table5_candidates
+from vdw_frames.paper.report import write_paper_report
 
 T4 = paper.TABLE4
 

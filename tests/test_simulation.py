@@ -4,18 +4,18 @@ import warnings
 
 import numpy as np
 import pytest
+from reference import tapered_sine
 from scipy import signal
 
-from reference import tapered_sine
 from vdw_frames import FDMKDamper, GroundMotion, ShearBuilding, read_at2, simulate
 
 WALL = FDMKDamper(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.5, area=2.0e5, thickness=10.0)
 
 
-def ten_story(dampers=True):
+def ten_story(walls=True):
     stiffness = [300e3 * (1 - 0.05 * i) for i in range(10)]
-    walls = {story: [WALL, WALL] for story in range(1, 11)} if dampers else None
-    return ShearBuilding([300.0] * 10, stiffness, dampers=walls, story_heights=[3500.0] * 10)
+    walls = {story: [WALL, WALL] for story in range(1, 11)} if walls else None
+    return ShearBuilding([300.0] * 10, stiffness, walls=walls, story_heights=[3500.0] * 10)
 
 
 def smooth_motion(dt, duration=20.0):
@@ -50,7 +50,7 @@ def test_peak_drifts_match_frequency_domain_solution_with_second_order(exact_dri
 
 
 def test_frame_without_dampers_matches_lsim():
-    building = ten_story(dampers=False)
+    building = ten_story(walls=False)
     motion = smooth_motion(0.002, duration=12.0)
     n = building.stories
     minv = np.linalg.inv(building.mass_matrix)
@@ -66,10 +66,10 @@ def test_damper_forces_equal_the_element_alone_under_the_same_drift():
     # One kernel: the frame's trial/commit stepping equals FDMKDamper.force on the drift history.
     building = ten_story()
     result = simulate(building, smooth_motion(0.01))
-    for d, (story, wall) in enumerate(building.damper_list[:4]):
+    for d, (story, wall) in enumerate(building.wall_list[:4]):
         alone = wall.force(result.drift[:, story - 1], 0.01)
         np.testing.assert_allclose(result.wall_force[:, d], alone, rtol=1e-9, atol=1e-9 * np.abs(alone).max())
-    np.testing.assert_allclose(result.damper_force[:, 0], result.wall_force[:, 0] + result.wall_force[:, 1])
+    np.testing.assert_allclose(result.story_wall_force[:, 0], result.wall_force[:, 0] + result.wall_force[:, 1])
 
 
 def test_energy_balance_and_base_shear_identity():
@@ -77,7 +77,7 @@ def test_energy_balance_and_base_shear_identity():
     result = simulate(building, smooth_motion(0.01))
     energy = result.energy
     assert np.abs(energy.balance_error).max() < 1e-9 * np.abs(energy.input).max()
-    assert energy.damper_work[-1] > 0 and energy.inherent_damping[-1] > 0
+    assert energy.wall_work[-1] > 0 and energy.inherent_damping[-1] > 0
     # Base shear = the force through story 1 = (equilibrium of all floors) the floors' inertia forces plus
     # the mass-proportional damping forces, which act between the floors and the ground.
     a0, a1 = building.rayleigh_coefficients
@@ -85,7 +85,7 @@ def test_energy_balance_and_base_shear_identity():
     expected = -(result.absolute_acceleration @ masses) - a0 * (result.velocity @ masses)
     np.testing.assert_allclose(result.base_shear, expected, atol=1e-9 * np.abs(expected).max())
     # ... and, term by term: story-1 spring, story-1 walls and the stiffness-proportional damping force.
-    direct = (building.stiffnesses[0] * result.drift[:, 0] + result.damper_force[:, 0]
+    direct = (building.stiffnesses[0] * result.drift[:, 0] + result.story_wall_force[:, 0]
               + a1 * building.stiffnesses[0] * result.velocity[:, 0])
     np.testing.assert_allclose(result.base_shear, direct, atol=1e-9 * np.abs(expected).max())
 
@@ -102,7 +102,7 @@ def test_rayleigh_damping_gives_the_ratio_in_the_named_modes():
 
 
 def test_time_step_rules():
-    building = ten_story(dampers=False)
+    building = ten_story(walls=False)
     motion = smooth_motion(0.01, duration=4.0)
     coarse = simulate(building, motion)
     fine = simulate(building, motion, dt=0.005)
@@ -121,11 +121,11 @@ def test_time_step_rules():
     (dict(masses=[1.0, -2.0]), "masses must be > 0"), (dict(masses=[1.0, np.nan]), "masses must be finite"),
     (dict(stiffnesses=[1.0, 0.0]), "stiffnesses must be > 0"), (dict(stiffnesses=[1.0]), "stiffnesses has 1"),
     (dict(damping_ratio=1.0), "damping_ratio"), (dict(damping_ratio=-0.1), "damping_ratio"),
-    (dict(damping_modes=(1, 3)), "damping_modes"), (dict(dampers={3: WALL}), "story"),
-    (dict(dampers={0: WALL}), "story"), (dict(dampers={1: "wall"}), "FDMKDamper"),
+    (dict(damping_modes=(1, 3)), "damping_modes"), (dict(walls={3: WALL}), "story"),
+    (dict(walls={0: WALL}), "story"), (dict(walls={1: "wall"}), "FDMKDamper"),
     (dict(story_heights=[3000.0]), "story_heights"), (dict(story_heights=[3000.0, -1.0]), "story_heights"),
     (dict(damping_modes=(1, None)), "damping_modes"), (dict(damping_modes=(1, np.inf)), "damping_modes"),
-    (dict(damping_modes=2), "damping_modes"), (dict(dampers=[WALL]), "dampers must be a dict"),
+    (dict(damping_modes=2), "damping_modes"), (dict(walls=[WALL]), "walls must be a dict"),
 ])
 def test_building_validation(kwargs, match):
     arguments = dict(masses=[1.0, 1.0], stiffnesses=[1.0, 1.0]) | kwargs
@@ -135,7 +135,7 @@ def test_building_validation(kwargs, match):
 
 def test_warns_when_strain_leaves_identified_range():
     wall = FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5, area=2e5, strain_range=(2.0, 3.0))
-    building = ShearBuilding([300.0], [3e5], dampers={1: wall})
+    building = ShearBuilding([300.0], [3e5], walls={1: wall})
     with pytest.warns(UserWarning, match=r"outside the range.*story 1: 6 % \(range 200-300 %\)"):
         simulate(building, smooth_motion(0.01, duration=4.0))
     with pytest.warns(UserWarning, match=r"story 1: 582 % \(range 200-300 %\)"):
@@ -143,11 +143,12 @@ def test_warns_when_strain_leaves_identified_range():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         big = smooth_motion(0.01, duration=4.0).scaled(1.0)
-        unbounded = ShearBuilding([300.0], [3e5], damping_modes=(1, 1), dampers={1: FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5)})
+        unbounded = ShearBuilding([300.0], [3e5], damping_modes=(1, 1), walls={1: FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5)})
         simulate(unbounded, big)
 
 
 from shared_data import SHARED
+
 RECORDS = sorted(SHARED.glob("*.[aA][tT]2")) if SHARED.is_dir() else []
 
 
@@ -160,12 +161,12 @@ def test_energy_balance_closes_on_every_shared_record(name):
     energy = result.energy
     # The issue's bar is 0.5 % of the peak input energy; average acceleration closes it to rounding.
     assert np.abs(energy.balance_error).max() < 1e-9 * np.abs(energy.input).max()
-    assert energy.damper_work[-1] > 0.2 * energy.input[-1]  # the walls do real work
+    assert energy.wall_work[-1] > 0.2 * energy.input[-1]  # the walls do real work
 
 
 def _fast_versus_exact(r, dt, duration):
     wall = FDMKDamper(G1=0.5, G2=3.0, eta1=0.3, eta2=2.0, r=r, area=2.0e5)
-    building = ShearBuilding([300.0, 300.0, 250.0], [2e5, 1.8e5, 1.5e5], dampers={1: [wall, wall], 3: wall})
+    building = ShearBuilding([300.0, 300.0, 250.0], [2e5, 1.8e5, 1.5e5], walls={1: [wall, wall], 3: wall})
     t = np.arange(round(duration / dt) + 1) * dt
     # Broadband and long: a chirp from 0.2 to 8 Hz under a slow envelope, so the whole memory matters.
     ground = 3000.0 * np.sin(2 * np.pi * (0.2 + 3.9 * t / duration) * t) * np.sin(np.pi * t / duration) ** 2

@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from vdw_frames import FDMKDamper, plot_loops, sine_test
+from vdw_frames import FDMKDamper, sine_test
+from vdw_frames.plotting import plot_loops
 
 TABLE4 = dict(G1=8.69, G2=3.58, eta1=0.75, eta2=0.98, r=0.60)
 PARAMETER_SETS = [TABLE4, dict(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.3), dict(G1=1.0, G2=2.0, eta1=0.5, eta2=0.5, r=0.9),

@@ -14,12 +14,11 @@ import warnings
 
 import numpy as np
 import pytest
-
 from reference import closed_form_moduli as closed_form
 from shared_data import REPO, SHARED, shared_record
+
 from vdw_frames import (
     GroundMotion,
-    StrainCompatibleOptions,
     StrainDependentDamper,
     cli,
     paper,
@@ -28,10 +27,10 @@ from vdw_frames import (
     simulate,
 )
 from vdw_frames.config import building_from_dict, load_analysis, load_building
-from vdw_frames.frame import energy_weighted_amplitude
+from vdw_frames.frame import StrainCompatibleOptions, energy_weighted_amplitude
 from vdw_frames.motion import G
 from vdw_frames.paper import strain_dependence
-from vdw_frames.paper.report import interpolated_optima
+from vdw_frames.paper.errata import interpolated_optima
 
 NAMES = ("G1", "G2", "eta1", "eta2", "r")
 RECORDS = ("ARL360.at2", "HWA002-N.AT2", "IELC180.AT2", "RIO270.AT2", "elCentro.AT2")
@@ -225,7 +224,7 @@ def ten_story(wall=None, elastic=False):
     if elastic:
         frame = dataclasses.replace(frame, hysteresis=None, gravity_loads=None)
     wall = paper.strain_dependent(area=0.5e6, thickness=10.0) if wall is None else wall
-    return dataclasses.replace(frame, dampers={story: (wall,) for story in range(1, 7)})
+    return dataclasses.replace(frame, walls={story: (wall,) for story in range(1, 7)})
 
 
 def run(building, motion, **options):
@@ -235,7 +234,7 @@ def run(building, motion, **options):
 
 
 def peak_wall_strain(result):
-    return np.array([result.peak_drift[story - 1] / wall.thickness for story, wall in result.building.damper_list])
+    return np.array([result.peak_drift[story - 1] / wall.thickness for story, wall in result.building.wall_list])
 
 
 @pytest.mark.parametrize("pga", [0.1, 0.4, 0.8])
@@ -246,10 +245,10 @@ def test_iteration_converges_to_a_fixed_point_on_every_shared_record(name, pga):
     building = ten_story()
     result = run(building, motion, strain_compatible=True)
     assert result.strain_converged and 2 <= result.strain_iterations <= 15  # measured 3-12 (yielding frame)
-    wall = building.damper_list[0][1]
-    for damper, strain in zip(result.wall_dampers, result.wall_effective_strain):
+    wall = building.wall_list[0][1]
+    for damper, strain in zip(result.equivalent_walls, result.wall_effective_strain):
         assert damper == wall.at(wall.clamped(strain))
-    fixed = dataclasses.replace(building, dampers={s: (d,) for s, d in zip(range(1, 7), result.wall_dampers)})
+    fixed = dataclasses.replace(building, walls={s: (d,) for s, d in zip(range(1, 7), result.equivalent_walls)})
     rerun = run(fixed, motion)
     chose = result.wall_effective_strain / 0.65
     np.testing.assert_allclose(peak_wall_strain(rerun), chose, rtol=0.01)
@@ -261,10 +260,10 @@ def test_a_wall_with_constant_parameters_gives_exactly_the_fixed_set_result():
     damper = paper.fitted(300, area=0.5e6, thickness=10.0)
     fixed = run(ten_story(damper), motion)
     constant = run(ten_story(StrainDependentDamper.constant(damper, (2.25, 4.5))), motion, strain_compatible=True)
-    for field in ("displacement", "velocity", "acceleration", "drift", "damper_force", "wall_force", "base_shear"):
+    for field in ("displacement", "velocity", "acceleration", "drift", "story_wall_force", "wall_force", "base_shear"):
         np.testing.assert_array_equal(getattr(constant, field), getattr(fixed, field))
     assert constant.strain_converged and constant.strain_iterations == 2  # the second run repeats the first
-    assert all(d == damper for d in constant.wall_dampers)
+    assert all(d == damper for d in constant.equivalent_walls)
 
 
 def test_one_iteration_at_a_given_strain_is_the_fixed_set_at_that_strain():
@@ -284,26 +283,26 @@ def test_clamping_warns_with_the_wall_and_the_strain_reached():
                                          r"225-450 %: parameters of 225 % used"):
         result = simulate(building, motion, strain_compatible=True)
     assert np.all(result.wall_effective_strain < 2.25)
-    assert all(d == paper.strain_dependent(area=0.5e6).at(2.25) for d in result.wall_dampers)
+    assert all(d == paper.strain_dependent(area=0.5e6).at(2.25) for d in result.equivalent_walls)
 
 
 def test_result_fields_and_the_equivalent_linear_building():
     motion = read_at2(shared_record("IELC180.AT2")).scaled_to_pga(0.8 * G)
     building = dataclasses.replace(ten_story(), damping_ratio=0.03, damping_modes=(1, 3))
-    mixed = dict(building.dampers)
+    mixed = dict(building.walls)
     mixed[7] = (paper.fitted(300, area=0.25e6),)  # a fixed wall keeps its parameters
-    building = dataclasses.replace(building, dampers=mixed)
+    building = dataclasses.replace(building, walls=mixed)
     result = run(building, motion, strain_compatible=True)
-    assert result.wall_dampers[-1] == paper.fitted(300, area=0.25e6)
+    assert result.equivalent_walls[-1] == paper.fitted(300, area=0.25e6)
     assert result.wall_effective_strain[-1] == pytest.approx(0.65 * result.peak_drift[6] / 10.0)
     equivalent = result.building
     assert (equivalent.damping_ratio, equivalent.damping_modes, equivalent.story_heights) == \
         (0.03, (1, 3), building.story_heights)
-    assert [w for _, w in equivalent.damper_list] == list(result.wall_dampers)
+    assert [w for _, w in equivalent.wall_list] == list(result.equivalent_walls)
     assert not equivalent.strain_dependent and building.strain_dependent
     equivalent.frequency_response([0.5, 1.0])  # works: fixed walls
     plain = run(ten_story(paper.fitted(300, area=0.5e6)), motion)
-    assert (plain.wall_effective_strain, plain.wall_dampers, plain.strain_iterations, plain.strain_converged) == \
+    assert (plain.wall_effective_strain, plain.equivalent_walls, plain.strain_iterations, plain.strain_converged) == \
         (None, None, None, None)
 
 
@@ -406,7 +405,7 @@ def test_building_files_with_strain_dependent_walls(tmp_path, capsys):
                     '[[walls]]\nstories = "all"\nparameters = "strain-dependent"\narea = 0.5e6\n')
     building, options = load_analysis(path)
     assert options == {"strain_compatible": True}
-    assert [w for _, w in building.damper_list] == [paper.strain_dependent(area=0.5e6)] * 2
+    assert [w for _, w in building.wall_list] == [paper.strain_dependent(area=0.5e6)] * 2
     record = str(shared_record("elCentro.AT2"))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)

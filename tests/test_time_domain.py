@@ -4,9 +4,9 @@ import math
 
 import numpy as np
 import pytest
+from reference import discrete_transfer_error, tapered_sine, tapered_sine_error
 from scipy.integrate import solve_ivp
 
-from reference import discrete_transfer_error, tapered_sine, tapered_sine_error
 from vdw_frames import FDMKDamper
 from vdw_frames.element.fractional import DEFAULT_METHOD, METHODS, get_method
 

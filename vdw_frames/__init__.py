@@ -1,109 +1,65 @@
 """vdw_frames: FDMK viscoelastic damping walls and shear buildings fitted with them.
 
-Sub-packages: :mod:`~vdw_frames.element` (the FDMK wall model and its time stepping),
-:mod:`~vdw_frames.frame` (shear buildings, integration, batches), :mod:`~vdw_frames.design` (complex
-modal analysis, wall sizing), :mod:`~vdw_frames.motion` (ground motions), :mod:`~vdw_frames.paper`
-(the paper's data, identification, report) and :mod:`~vdw_frames.interop` (FDMK walls in OpenSees
-models: :mod:`vdw_frames.opensees`); beside them
-:mod:`~vdw_frames.config` (building files), :mod:`~vdw_frames.plotting` and :mod:`~vdw_frames.cli`.
-The public names are re-exported here; ``paper`` and ``identify`` load on first use (they pull in
-scipy.optimize, which ``import vdw_frames`` need not pay for), as does ``opensees`` (OpenSeesPy is optional).
+What a user touches is here; everything else stays in its sub-package:
+:mod:`~vdw_frames.element` (the wall model and its time stepping), :mod:`~vdw_frames.motion` (ground
+motions), :mod:`~vdw_frames.frame` (shear buildings, their analyses, batches), :mod:`~vdw_frames.design`
+(wall sizing), :mod:`~vdw_frames.paper` (the paper's data, identification, report),
+:mod:`~vdw_frames.interop` (OpenSees), :mod:`~vdw_frames.plotting` (figures), and beside them
+:mod:`~vdw_frames.config` (building files) and :mod:`~vdw_frames.cli`.  ``paper``, ``identify`` and
+the sub-packages above the frame load on first use (they pull in scipy.optimize and matplotlib, which
+``import vdw_frames`` need not pay for).
 
 Units throughout: N, mm, s, tonne; moduli MPa (N/mm^2), viscosities MPa*s^r, stiffness N/mm,
 energy N*mm, frequency Hz.
 """
 
 from importlib import import_module
+from importlib.metadata import PackageNotFoundError, version
 
-from . import design, element, frame, motion
-from .design import ModalResult, SizingCurve, damping_curve, size_walls
-from .element import (
-    BDF2,
-    DampedTwoStep,
-    DamperState,
-    Discretisation,
-    FastMemory,
-    FDMKDamper,
-    GrunwaldLetnikov,
-    PronySeries,
-    SineTestResult,
-    StrainDependentDamper,
-    SupportedDamper,
-    Trapezoidal,
-    WallBank,
-    sine_test,
-)
-from .frame import (
-    BatchResult,
-    Bilinear,
-    BoucWen,
-    EnergyHistory,
-    IDAResult,
-    NewtonRaphson,
-    ShearBuilding,
-    SimulationResult,
-    StrainCompatibleOptions,
-    incremental_dynamic_analysis,
-    run_batch,
-    simulate,
-)
-from .motion import G, GroundMotion, read_at2, read_two_column, response_spectrum, write_at2
-from .plotting import plot_loops
+from .element import FDMKDamper, StrainDependentDamper, SupportedDamper, sine_test
+from .frame import Bilinear, BoucWen, ShearBuilding, incremental_dynamic_analysis, modal_analysis, run_batch, simulate
+from .motion import G, GroundMotion, read_at2, read_two_column
+
+try:
+    __version__ = version("vdw-frames")
+except PackageNotFoundError:  # a source tree that was never installed
+    __version__ = "0+unknown"
 
 __all__ = [
-    "BDF2",
-    "BatchResult",
     "Bilinear",
     "BoucWen",
-    "DampedTwoStep",
-    "DamperState",
-    "Discretisation",
-    "EnergyHistory",
     "FDMKDamper",
-    "FastMemory",
     "G",
     "GroundMotion",
-    "GrunwaldLetnikov",
-    "IDAResult",
-    "ModalResult",
-    "NewtonRaphson",
-    "PronySeries",
     "ShearBuilding",
-    "SimulationResult",
-    "SineTestResult",
-    "SizingCurve",
-    "SupportedDamper",
-    "StrainCompatibleOptions",
     "StrainDependentDamper",
-    "Trapezoidal",
-    "WallBank",
-    "damping_curve",
-    "design",
-    "element",
-    "frame",
+    "SupportedDamper",
     "identify",
     "incremental_dynamic_analysis",
-    "motion",
-    "opensees",
+    "modal_analysis",
     "paper",
-    "plot_loops",
     "read_at2",
     "read_two_column",
-    "response_spectrum",
     "run_batch",
     "simulate",
     "sine_test",
     "size_walls",
-    "write_at2",
 ]
 
 _LAZY = {"paper": ("vdw_frames.paper", None), "identify": ("vdw_frames.paper", "identify"),
-         "opensees": ("vdw_frames.opensees", None)}
+         "size_walls": ("vdw_frames.design", "size_walls")}
+_SUBPACKAGES = ("config", "design", "element", "frame", "interop", "motion", "paper", "plotting")
 
 
-def __getattr__(name):
+def __getattr__(name: str):
     if name in _LAZY:
         module_name, attribute = _LAZY[name]
         module = import_module(module_name)
         return module if attribute is None else getattr(module, attribute)
+    if name in _SUBPACKAGES:
+        return import_module(f"vdw_frames.{name}")
     raise AttributeError(f"module 'vdw_frames' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(__all__) | set(_SUBPACKAGES) | {"__version__"})

@@ -148,6 +148,32 @@ def whole_number(name: str, value, minimum: int) -> int:
     return int(value)
 
 
+def scaled_value(name: str, value: float, factor: float, factor_name: str = "factor") -> float:
+    """``value * factor``, or a ValueError naming the factor when the product overflows."""
+    product = value * factor
+    if not math.isfinite(product):
+        raise ValueError(f"{factor_name} = {show(factor)} makes {name} = {show(value)} x {show(factor)} overflow "
+                         "(inf); use a smaller factor")
+    return product
+
+
+def fractional_order(value, name: str = "r") -> float:
+    """A fractional order r in (0, 1] (r = 1: classical dashpots)."""
+    r = finite_scalar(name, value)
+    if not 0.0 < r <= 1.0:
+        raise ValueError(f"{name} must lie in (0, 1], got {show(value)}")
+    return r
+
+
+def refuse_non_numbers(name: str, values) -> None:
+    """ValueError when ``values`` (a value or a nested sequence) holds a bool or a string, which numpy would
+    quietly convert to numbers."""
+    items = np.asarray(values, dtype=object).ravel() if not isinstance(values, (str, bytes)) else [values]
+    for item in items:
+        if isinstance(item, (bool, np.bool_, str, bytes)):
+            raise ValueError(f"{name} must be real numbers, got {show(item)}")
+
+
 def damping_ratio(value, name: str = "damping_ratio") -> float:
     """A damping ratio in [0, 1)."""
     zeta = finite_scalar(name, value)
@@ -185,60 +211,3 @@ def _size(count: float) -> str:
         if count >= scale:
             return f"{count / scale:.3g} {unit}"
     return f"{count / 1024.0:.3g} KiB"
-
-
-# ---------------------------------------------------------------------------------------------- files
-def file_path(path, what: str = "file"):
-    """``path`` (str or os.PathLike) as a :class:`pathlib.Path`; '' and None are refused."""
-    import os
-    from pathlib import Path
-
-    if isinstance(path, bytes) or not isinstance(path, (str, os.PathLike)):
-        raise ValueError(f"{what} must be a path (str or pathlib.Path), got {show(path)}")
-    if str(path) == "":
-        raise ValueError(f"{what} must be a path, got ''")
-    return Path(path)
-
-
-def read_text(path, what: str = "file", strict: bool = True):
-    """(Path, text) of a text file; every failure is a ValueError naming the file.
-
-    A missing file, a folder, an unreadable file, a gzip or zip archive, UTF-16 text and other binary
-    data each get a message that says so.  A UTF-8 byte-order mark is dropped.  ``strict``: bytes that
-    are not UTF-8 are an error naming the file and the position; otherwise they become U+FFFD (for
-    free-text headers, e.g. Latin-1 station names).
-    """
-    path = file_path(path, what)
-    if path.is_dir():
-        raise ValueError(f"{path}: is a folder, not a {what}")
-    try:
-        data = path.read_bytes()
-    except FileNotFoundError:
-        raise ValueError(f"{path}: no such {what}") from None
-    except OSError as error:
-        raise ValueError(f"{path}: cannot read the {what} ({error.strerror or error})") from None
-    if data.startswith(b"\x1f\x8b"):
-        raise ValueError(f"{path}: a gzip-compressed file; decompress it first (e.g. gunzip)")
-    if data.startswith(b"PK\x03\x04"):
-        raise ValueError(f"{path}: a zip archive; extract the {what} from it first")
-    if data.startswith((b"\xff\xfe", b"\xfe\xff")) or _looks_utf16(data):
-        raise ValueError(f"{path}: UTF-16 text; save it as UTF-8 or ASCII")
-    nul = data.find(0)
-    if nul >= 0:
-        raise ValueError(f"{path}: binary data (a NUL byte at position {nul}), not a text {what}")
-    if data.startswith(b"\xef\xbb\xbf"):
-        data = data[3:]
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError as error:
-        if strict:
-            raise ValueError(f"{path}: not UTF-8 text (byte {data[error.start]:#04x} at position "
-                             f"{error.start}); save it as UTF-8") from None
-        text = data.decode("utf-8", errors="replace")
-    return path, text
-
-
-def _looks_utf16(data: bytes) -> bool:
-    # ASCII text in UTF-16 without a byte-order mark: every other byte of the start is NUL.
-    head = data[:200]
-    return len(head) >= 4 and (head[1::2].count(0) >= len(head) // 2 - 1 or head[0::2].count(0) >= len(head) // 2 - 1)

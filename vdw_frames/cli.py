@@ -50,8 +50,8 @@ def _output_folder(out) -> Path:
 
 
 def _sine_test(args) -> int:
-    from .plotting import plot_loops
     from .element.sine import sine_test
+    from .plotting import plot_loops
 
     out = _output_folder(args.out)
     damper = _damper_from(args)
@@ -79,8 +79,8 @@ def _simulate(args) -> int:
 
     from . import plotting
     from .config import load_analysis
-    from .motion import G, read_at2
     from .frame.simulation import simulate
+    from .motion import G, read_at2
 
     if args.scale is not None and not (math.isfinite(args.scale) and args.scale > 0.0):
         raise ValueError(f"--scale must be a PGA > 0 in g, got {args.scale:g}")
@@ -91,33 +91,34 @@ def _simulate(args) -> int:
         motion = motion.scaled_to_pga(args.scale * G)
     result = simulate(building, motion, dt=args.dt, **options)
     print(f"{args.building}: {building.stories} stories, T1 = {building.periods[0]:.3f} s (bare frame), "
-          f"{len(building.damper_list)} FDMK dampers")
+          f"{len(building.wall_list)} FDMK walls")
     print(f"record {motion.name}: PGA = {motion.pga / G:.3f} g, dt = {result.time[1]:g} s, {result.time.size} steps")
     print(f"{'story':>5s} {'drift mm':>9s} {'ratio %':>8s} {'floor acc g':>11s} {'damper kN':>10s} {'strain %':>9s}")
     ratio = result.peak_drift_ratio
     for k in range(building.stories):
-        walled = k + 1 in building.dampers  # '-' where a value does not exist (no heights, no walls)
+        walled = k + 1 in building.walls  # '-' where a value does not exist (no heights, no walls)
         print(f"{k + 1:5d} {result.peak_drift[k]:9.2f} "
               f"{f'{100 * ratio[k]:8.3f}' if ratio is not None else '-':>8s} "
               f"{result.peak_absolute_acceleration[k] / G:11.3f} "
-              f"{f'{result.peak_damper_force[k] / 1e3:10.1f}' if walled else '-':>10s} "
-              f"{f'{100 * np.abs(result.damper_strain[:, k]).max():9.1f}' if walled else '-':>9s}")
+              f"{f'{result.peak_story_wall_force[k] / 1e3:10.1f}' if walled else '-':>10s} "
+              f"{f'{100 * np.abs(result.story_wall_strain[:, k]).max():9.1f}' if walled else '-':>9s}")
     if result.strain_iterations is not None:
         state = "converged" if result.strain_converged else "did NOT converge"
         print(f"strain-compatible analysis {state} in {result.strain_iterations} analyses; effective strain per wall: "
               + ", ".join(f"story {story} {100 * strain:.0f} %"
-                          for (story, _), strain in zip(building.damper_list, result.wall_effective_strain)))
+                          for (story, _), strain in zip(building.wall_list, result.wall_effective_strain,
+                                                        strict=True)))
     energy = result.energy
-    share = energy.damper_work[-1] / energy.input[-1] if energy.input[-1] > 0 else 0.0
-    print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; dampers dissipate "
+    share = energy.wall_work[-1] / energy.input[-1] if energy.input[-1] > 0 else 0.0
+    print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; walls dissipate "
           f"{100 * share:.0f} % of the input energy")
     if out is not None:
         paths = [plotting.plot_drift_envelope({"response": result}, out / "drift_envelope.png"),
                  plotting.plot_roof_displacement({"response": result}, out / "roof_displacement.png"),
                  plotting.plot_energy(result, out / "energy.png")]
-        if building.damper_list:
-            story = int(np.argmax(result.peak_damper_force)) + 1
-            paths.append(plotting.plot_damper_hysteresis(result, story, out / "damper_hysteresis.png"))
+        if building.wall_list:
+            story = int(np.argmax(result.peak_story_wall_force)) + 1
+            paths.append(plotting.plot_wall_hysteresis(result, story, out / "damper_hysteresis.png"))
         print("figures: " + ", ".join(str(p) for p in paths))
     return 0
 
@@ -125,23 +126,25 @@ def _simulate(args) -> int:
 def _design(args) -> int:
     """The ``design`` command: modal table with and without walls, sizing, damping-versus-size figure."""
     from .config import load_building
-    from .design import damping_curve, resized, size_walls
-    from .plotting import plot_damping_curve
+    from .design import damping_curve, size_walls
     from .design.sizing import story_text
+    from .frame.modal import modal_analysis
+    from .plotting import plot_damping_curve
 
     if args.modes < 1:
         raise ValueError(f"--modes must be >= 1, got {args.modes}")
     out = _output_folder(args.out)
     building = load_building(args.building)
-    modes = building.modal_analysis()
-    walls = building.damper_list
+    modes = modal_analysis(building)
+    walls = building.wall_list
     print(f"{args.building}: {building.stories} stories, {len(walls)} walls, inherent damping "
           f"{100 * building.damping_ratio:g} % ({building.damping_model}); the linear building, complex modes")
     print(f"{'mode':>4s} {'T bare s':>9s} {'xi bare %':>9s} {'T walls s':>9s} {'xi %':>7s} {'energy %':>8s} "
           f"{'added %':>8s} {'walls %':>8s}")
     for k in range(min(args.modes, modes.modes.size)):
         print(f"{modes.modes[k]:4d} {modes.bare_periods[k]:9.3f} {100 * modes.bare_damping_ratios[k]:9.2f} "
-              f"{modes.periods[k]:9.3f} {100 * modes.damping_ratios[k]:7.2f} {100 * modes.energy_damping_ratios[k]:8.2f} "
+              f"{modes.periods[k]:9.3f} {100 * modes.damping_ratios[k]:7.2f} "
+              f"{100 * modes.energy_damping_ratios[k]:8.2f} "
               f"{100 * modes.added_damping[k]:8.2f} {100 * modes.energy_added_damping[k]:8.2f}")
     print("xi: complex modes, -Re s/|s|; energy: xi_inherent + sum W_c/(4 pi W_s) in the real mode (FEMA 356 "
           "eq. 9-36 form); added: xi - xi bare; walls: the walls' own share sum W_c/(4 pi W_s)")
@@ -149,21 +152,21 @@ def _design(args) -> int:
         print("no walls in the building file: add a [[walls]] group to size them")
         return 0
     # The template: the lowest walled story's walls as one (identical walls in parallel add their areas).
-    lowest = building.dampers[min(building.dampers)]
-    template = resized(lowest[0], len(lowest)) if all(wall == lowest[0] for wall in lowest) else lowest[0]
-    stories = sorted(building.dampers)
+    lowest = building.walls[min(building.walls)]
+    template = lowest[0].resized(len(lowest)) if all(wall == lowest[0] for wall in lowest) else lowest[0]
+    stories = sorted(building.walls)
     curve = damping_curve(building, template, args.mode, args.distribution, stories)
     area = template.area / 1e6
     per = "per story" if args.distribution == "uniform" else "in the story with the largest weight"
-    print(f"\nsizing mode {args.mode}: the template wall (story {min(building.dampers)}'s walls, A = {area:.4g} m^2) "
+    print(f"\nsizing mode {args.mode}: the template wall (story {min(building.walls)}'s walls, A = {area:.4g} m^2) "
           f"scaled, {args.distribution} over {story_text(tuple(stories))}")
-    own = building.modal_analysis(args.mode)
+    own = modal_analysis(building, args.mode)
     print(f"  the file's walls: xi = {100 * own.damping_ratios[0]:.2f} %, T = {own.periods[0]:.3f} s")
     print(f"  largest achievable: xi = {100 * curve.best_damping_ratio:.2f} % at {curve.best_factor:.3g} x "
           f"({curve.best_factor * area:.4g} m^2 {per}), T = {curve.best_period:.3f} s; larger walls stiffen the "
           "frame more than they damp it")
     # The file's walls lie on the uniform curve (at 1 x) when every walled story holds the same walls.
-    uniform_file = all(building.dampers[story] == lowest for story in stories)
+    uniform_file = all(building.walls[story] == lowest for story in stories)
     marks = {"file's walls": 1.0} if uniform_file and args.distribution == "uniform" else {}
     unreachable = None
     if args.target is not None:
@@ -172,8 +175,8 @@ def _design(args) -> int:
         except ValueError as error:  # reported after the figure, as the command's error
             unreachable = error
         else:
-            result = sized.modal_analysis(args.mode)
-            factor = max(wall.area for _, wall in sized.damper_list) / template.area
+            result = modal_analysis(sized, args.mode)
+            factor = max(wall.area for _, wall in sized.wall_list) / template.area
             marks["target"] = factor
             print(f"  target {100 * args.target:g} %: {factor:.3g} x ({factor * area:.4g} m^2 {per}): xi = "
                   f"{100 * result.damping_ratios[0]:.2f} %, T = {result.periods[0]:.3f} s")

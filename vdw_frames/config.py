@@ -26,7 +26,7 @@ Keys (units N-mm-s-tonne)::
     area = 1.0e6                        # mm^2, optional (default: the paper's 1e6)
     thickness = 10.0                    # mm, optional (default: the paper's 10)
 
-JSON files use the same keys ("walls" a list of objects).  TOML needs Python >= 3.11 (tomllib).
+JSON files use the same keys ("walls" a list of objects).  TOML is read by tomllib (tomli before Python 3.11).
 
 Strain-dependent walls
 ----------------------
@@ -55,8 +55,15 @@ each at most once in a group.  Anything malformed is a ValueError naming the fil
 from __future__ import annotations
 
 import json
+import sys
 
-from ._validation import read_text, show, whole_number
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # Python 3.10: the same parser, as a package
+    import tomli as tomllib
+
+from ._files import read_text
+from ._validation import show, whole_number
 from .element.damper import FDMKDamper
 from .frame.building import ShearBuilding
 from .frame.strain_compatible import StrainCompatibleOptions
@@ -87,10 +94,6 @@ def load_analysis(path, require_analysis: bool = True) -> tuple[ShearBuilding, d
     path, text = read_text(path, "building file")
     try:
         if path.suffix.lower() == ".toml":
-            try:
-                import tomllib
-            except ModuleNotFoundError:  # Python 3.10
-                raise ValueError(f"{path}: TOML needs Python >= 3.11; use a .json building file") from None
             data = tomllib.loads(text)
         elif path.suffix.lower() == ".json":
             data = json.loads(text)
@@ -137,7 +140,7 @@ def building_from_dict(data: dict) -> ShearBuilding:
         data["masses"], data["stiffnesses"],
         damping_ratio=data.get("damping_ratio", 0.05),
         damping_modes=tuple(data["damping_modes"]) if "damping_modes" in data else None,
-        dampers=dampers or None,
+        walls=dampers or None,
         story_heights=data.get("story_heights"),
         hysteresis=_hysteresis(data.get("hysteresis"), stories),
         gravity_loads=data.get("gravity_loads"),
@@ -216,7 +219,7 @@ def _wall_group(group, stories):
                 raise ValueError(f"walls stories must be story numbers in 1 ... {stories}, got {show(number)} "
                                  f"in {show(story_numbers)}") from None
             if number > stories:
-                raise ValueError(f"damper story must be a story number in 1 ... {stories}, got {number}")
+                raise ValueError(f"wall story must be a story number in 1 ... {stories}, got {number}")
             numbers.append(number)
         if len(set(numbers)) != len(numbers):
             raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got "

@@ -25,17 +25,16 @@ Units: areas mm^2, periods s, damping ratios dimensionless.
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.linalg import eigh
 
-from .._validation import damping_ratio as check_damping_ratio, finite_array, whole_number
-from ..element.damper import FDMKDamper
-from ..element.supported import SupportedDamper
+from .._validation import damping_ratio as check_damping_ratio
+from .._validation import finite_array, whole_number
+from ..element.supported import WALL_TYPES
 from ..frame.building import ShearBuilding, require_fixed_walls, story_matrix
-from .modal import _complex_modes
+from ..frame.modal import complex_modes
 
 DISTRIBUTIONS = ("uniform", "stiffness", "drift")
 # Default factors of the damping-versus-size curve: 1/50 to 50 times the template wall's area.
@@ -71,14 +70,10 @@ class SizingCurve:
     best_period: float
 
 
-def resized(wall, factor: float):
-    """``wall`` with its area times ``factor`` (a SupportedDamper's support too: ``factor`` walls' worth)."""
-    if isinstance(wall, SupportedDamper):
-        return SupportedDamper(resized(wall.damper, factor), wall.support_stiffness * factor)
-    if isinstance(wall, FDMKDamper):
-        return dataclasses.replace(wall, area=wall.area * factor)
-    raise ValueError(f"wall must be an FDMKDamper or a SupportedDamper (strain-dependent walls: pick the "
-                     f"parameters at one amplitude with wall.at(strain)), got {type(wall).__name__}")
+def _check_wall(wall) -> None:
+    if not isinstance(wall, WALL_TYPES):
+        raise ValueError(f"wall must be an FDMKDamper or a SupportedDamper (strain-dependent walls: pick the "
+                         f"parameters at one amplitude with wall.at(strain)), got {type(wall).__name__}")
 
 
 class _Sizer:
@@ -88,7 +83,7 @@ class _Sizer:
         if not isinstance(building, ShearBuilding):
             raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
         require_fixed_walls(building, "wall sizing")
-        resized(wall, 1.0)  # refuses anything that is not a wall
+        _check_wall(wall)
         self.mode = whole_number("mode", mode, 1)
         if self.mode > building.stories:
             raise ValueError(f"mode must be a mode number in 1 ... {building.stories}, got {mode!r}")
@@ -97,19 +92,19 @@ class _Sizer:
         self.building, self.wall, self.distribution = building, wall, distribution
         self.stories = _stories(building, stories)
         self.weights = _weights(building, distribution, self.stories, self.mode)
-        poles, _, _ = _complex_modes(building, walls=False)
+        poles, _, _ = complex_modes(building, walls=False)
         self.bare = poles[self.mode - 1]
         self._cache = {}
 
     def building_for(self, factor: float) -> ShearBuilding:
-        walls = {story: resized(self.wall, factor * self.weights[story - 1]) for story in self.stories
+        walls = {story: self.wall.resized(factor * self.weights[story - 1]) for story in self.stories
                  if self.weights[story - 1] > 0.0}
-        return self.building.with_dampers(walls)
+        return self.building.with_walls(walls)
 
     def pole(self, factor: float) -> complex:
         """The mode's pole with walls of ``factor`` (NaN when the mode is no longer oscillatory)."""
         if factor not in self._cache:
-            poles, _, _ = _complex_modes(self.building_for(factor))
+            poles, _, _ = complex_modes(self.building_for(factor))
             self._cache[factor] = poles[self.mode - 1] if poles.size >= self.mode else complex(np.nan, np.nan)
         return self._cache[factor]
 
@@ -198,7 +193,7 @@ def size_walls(building: ShearBuilding, wall, target_damping: float, mode: int =
 
 def _stories(building: ShearBuilding, stories) -> tuple:
     if stories is None:
-        stories = sorted(building.dampers) or "all"
+        stories = sorted(building.walls) or "all"
     if isinstance(stories, str):
         if stories != "all":
             raise ValueError(f"stories must be 'all' or a list of story numbers, got {stories!r}")

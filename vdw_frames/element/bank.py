@@ -9,8 +9,10 @@ compiled calls, whatever the number of walls:
 2. :meth:`WallBank.commit` -- the accepted deformations: forces and wall strains, memory advanced,
    and the next step's history evaluated in the same pass over the memory.
 
-This is the trial/commit contract of :class:`~vdw_frames.DamperState`, for many walls at once; the frame
-integrator and the OpenSees bridge use the same compiled calls inside their own loops.
+This is the trial/commit contract of :class:`~vdw_frames.element.damper.WallState`, for many walls at
+once; the frame integrator and the OpenSees bridge use the same compiled calls inside their own loops
+(:attr:`WallBank.arrays`, a :class:`~vdw_frames.element.kernel.BankArrays`).  Walls of one story that see
+the same strain history are stepped once, as one wall of their summed area (:func:`group_walls`).
 
 Units: deformation mm, force N, stiffness N/mm, time s.
 """
@@ -18,10 +20,11 @@ Units: deformation mm, force N, stiffness N/mm, time s.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
-from .._validation import positive, whole_number
+from .._validation import finite_array, positive, whole_number
 from . import kernel
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, get_method
@@ -50,7 +53,7 @@ def kernel_constants(wall) -> np.ndarray:
 
 
 @dataclass
-class Memory:
+class _Memory:
     """The fractional memory of one wall at rest: its weights and modes (the bank stacks them)."""
 
     w0: float
@@ -60,7 +63,7 @@ class Memory:
     max_steps: int
 
     @classmethod
-    def allocate(cls, r: float, dt: float, steps: int, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY) -> "Memory":
+    def allocate(cls, r: float, dt: float, steps: int, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY) -> _Memory:
         """Memory for ``steps`` steps of ``dt`` s of order ``r``: exact (a window of all steps) or fast."""
         strategy = memory_strategy(memory)
         if strategy is not None and not 0 < steps <= strategy.exact_below:
@@ -78,21 +81,20 @@ class WallBank:
     """The state of ``walls`` (a sequence of wall assemblies) stepped together on a step of ``dt`` s.
 
     ``steps``: the number of steps the bank must serve (the fast memory is built for at least that many;
-    the exact memory keeps that many).  ``method``, ``memory``: as for :meth:`FDMKDamper.force`.
-    Attributes ``tangent`` (N/mm) and ``history_force`` (N), one per wall, always for the coming step:
-    a wall's force this step is ``tangent * d + history_force`` at deformation d (mm).  The arrays are
-    laid out as :mod:`vdw_frames.element.kernel` describes.
+    the exact memory keeps that many, and :meth:`reserve` grows it).  ``method``, ``memory``: as for
+    :meth:`FDMKDamper.force`.  :attr:`tangent` (N/mm) and :attr:`history_force` (N), one per wall, are
+    always those of the coming step: a wall's force this step is ``tangent * d + history_force`` at
+    deformation d (mm).  :attr:`arrays` holds everything the compiled kernel steps.
     """
 
     walls: tuple
     dt: float
     steps: int
-    method: object = DEFAULT_METHOD
-    memory: object = DEFAULT_MEMORY
+    method: Any = DEFAULT_METHOD
+    memory: Any = DEFAULT_MEMORY
     count: int = field(default=0, init=False)
-    constants: np.ndarray = field(init=False, repr=False)
-    tangent: np.ndarray = field(init=False, repr=False)
-    history_force: np.ndarray = field(init=False, repr=False)
+    max_steps: int = field(default=0, init=False)
+    arrays: kernel.BankArrays = field(init=False, repr=False)
 
     def __post_init__(self):
         self.walls = tuple(self.walls)
@@ -100,88 +102,135 @@ class WallBank:
         self.steps = whole_number("steps", self.steps, 0)
         self.method = get_method(self.method)
         memory_strategy(self.memory)
-        self.constants = np.array([kernel_constants(wall) for wall in self.walls]).reshape(-1, 7)
-        memories = [Memory.allocate(wall.r, self.dt, self.steps, self.method, self.memory) for wall in self.walls]
-        self.max_steps = min((m.max_steps for m in memories), default=max(self.steps, 1))
+        self.arrays = self._allocate(self.steps)
+        self.evaluate_history()
+
+    def _allocate(self, steps: int) -> kernel.BankArrays:
+        constants = np.array([kernel_constants(wall) for wall in self.walls]).reshape(-1, 7)
+        memories = [_Memory.allocate(wall.r, self.dt, steps, self.method, self.memory) for wall in self.walls]
+        self.max_steps = min((m.max_steps for m in memories), default=max(steps, 1))
         size = max((m.window_weights.size for m in memories), default=1)
         modes = max((m.mode_ratio.size for m in memories), default=0)
         count = len(memories)
-        self.w0 = np.array([m.w0 for m in memories])
-        self.window_weights = np.zeros((count, size))
-        self.window = np.zeros((count, 2, 2 * size))
-        self.mode_weight = np.zeros((count, modes))  # fewer modes: padded with inert zero modes
-        self.mode_ratio = np.zeros((count, modes))
-        self.mode_state = np.zeros((count, 2, modes))
+        window_weights = np.zeros((count, size))
+        mode_weight = np.zeros((count, modes))  # fewer modes: padded with inert zero modes
+        mode_ratio = np.zeros((count, modes))
         for d, m in enumerate(memories):
             if m.window_weights.size != size:
                 raise ValueError("walls of one bank must share the memory window (same memory strategy)")
-            self.window_weights[d] = m.window_weights
-            self.mode_weight[d, : m.mode_weight.size] = m.mode_weight
-            self.mode_ratio[d, : m.mode_ratio.size] = m.mode_ratio
-        self.history = np.zeros((2, count))
-        self._values = np.zeros((2, count))
-        self.tangent = np.zeros(count)
-        self.history_force = np.zeros(count)
-        self.evaluate_history()
+            window_weights[d] = m.window_weights
+            mode_weight[d, : m.mode_weight.size] = m.mode_weight
+            mode_ratio[d, : m.mode_ratio.size] = m.mode_ratio
+        return kernel.BankArrays(
+            constants=constants, w0=np.array([m.w0 for m in memories]), window_weights=window_weights,
+            window=np.zeros((count, 2, 2 * size)), mode_weight=mode_weight, mode_ratio=mode_ratio,
+            mode_state=np.zeros((count, 2, modes)), history=np.zeros((2, count)), values=np.zeros((2, count)),
+            tangent=np.zeros(count), history_force=np.zeros(count))
 
     def __len__(self) -> int:
         return len(self.walls)
 
+    @property
+    def tangent(self) -> np.ndarray:
+        """K_t of every wall for the coming step, N/mm (updated in place by :meth:`commit`)."""
+        return self.arrays.tangent
+
+    @property
+    def history_force(self) -> np.ndarray:
+        """H_n of every wall for the coming step, N (updated in place by :meth:`commit`)."""
+        return self.arrays.history_force
+
     def evaluate_history(self) -> None:
         """(Re)evaluate ``tangent`` and ``history_force`` of the coming step from the memory (commit does it)."""
-        kernel.bank_affine(self.constants, self.w0, self.window_weights, self.window, self.count,
-                           self.mode_weight, self.mode_state, self.history, self.tangent, self.history_force)
+        kernel.bank_affine(self.arrays, self.count)
 
     def trial_forces(self, deformation) -> np.ndarray:
         """Forces (N) at trial deformations (mm, one per wall) this step; the memory is untouched."""
-        return self.tangent * np.asarray(deformation, dtype=float) + self.history_force
+        return self.tangent * self._deformations(deformation) + self.history_force
+
+    def _deformations(self, deformation) -> np.ndarray:
+        deformation = finite_array("deformation", deformation, ndim=None)
+        if deformation.size != len(self.walls):
+            raise ValueError(f"deformation has {deformation.size} values for {len(self.walls)} walls")
+        return np.ascontiguousarray(deformation.reshape(len(self.walls)))
 
     def commit(self, deformation):
         """Accept ``deformation`` (mm, one per wall) for this step; returns (forces N, wall strains).
 
         Advances every wall's memory one step and evaluates the next step's history.
         """
-        if self.count >= self.max_steps:
-            raise ValueError(f"the wall memory was built for {self.max_steps} steps; build the bank (or "
-                             "FastMemory(max_steps=...)) for more")
-        deformation = np.ascontiguousarray(deformation, dtype=float).reshape(len(self.walls))
+        deformation = self._deformations(deformation)
+        self.reserve(1)
         force = np.empty(len(self.walls))
         strain = np.empty(len(self.walls))
-        kernel.bank_commit(self.constants, self.w0, self.window_weights, self.window, self.count,
-                           self.mode_weight, self.mode_ratio, self.mode_state, self.history, self._values,
-                           deformation, force, strain, self.tangent, self.history_force)
+        kernel.bank_commit(self.arrays, self.count, deformation, force, strain)
         self.count += 1
         return force, strain
 
-    def resized(self, steps: int) -> "WallBank":
-        """This bank with room for ``steps`` steps in all: the committed memory copied, the count kept.
-
-        How an exact memory grows (:class:`~vdw_frames.DamperState`, the OpenSees bridge): only a memory
-        without modes that still holds every committed step can be resized.
-        """
-        size = self.window_weights.shape[1]
-        if self.mode_weight.shape[1] or self.count > size:
-            raise ValueError("only an exact memory holding every committed step can be resized")
-        steps = whole_number("steps", steps, max(self.count, 1))
-        bigger = WallBank(self.walls, self.dt, steps, self.method, "exact")
-        values = self.window[:, :, :self.count]  # x_0 .. x_{count-1}: not yet wrapped
+    def reserve(self, steps: int) -> None:
+        """Make room for ``steps`` more commits: an exact memory grows (at least doubling, the committed
+        values copied); a fast memory, built for ``max_steps`` steps, is a ValueError past them."""
+        steps = whole_number("steps", steps, 0)
+        if self.count + steps <= self.max_steps:
+            return
+        arrays = self.arrays
+        size = arrays.window_weights.shape[1]
+        if arrays.mode_weight.shape[1] or self.count > size:
+            raise ValueError(f"the fast memory was built for {self.max_steps} steps ({self.count} committed); build "
+                             "it with memory=FastMemory(max_steps=...) for more")
+        self.memory = "exact"
+        bigger = self._allocate(max(2 * self.max_steps, self.count + steps))
         new_size = bigger.window_weights.shape[1]
+        values = arrays.window[:, :, :self.count]  # x_0 .. x_{count-1}: not yet wrapped
         bigger.window[:, :, :self.count] = values
         bigger.window[:, :, new_size:new_size + self.count] = values
-        bigger.count = self.count
-        bigger.evaluate_history()
-        return bigger
+        self.arrays = bigger
+        self.evaluate_history()
 
     def drive(self, displacement) -> tuple:
         """(force N, wall strain) histories of a one-wall bank at rest for a displacement history (mm)."""
         if len(self.walls) != 1 or self.count != 0:
             raise ValueError("drive() needs a one-wall bank at rest")
-        return kernel.displacement_driven(self.constants, self.w0, self.window_weights, self.window,
-                                          self.mode_weight, self.mode_ratio, self.mode_state, displacement)
+        return kernel.displacement_driven(self.arrays, displacement)
 
-    def kernel_arrays(self):
-        """(constants, w0, window_weights, window, mode_weight, mode_ratio, mode_state, history, values,
-        tangent, history_force): the arrays of :func:`kernel.bank_commit` (``values`` is its scratch), for
-        integrators that loop in numba."""
-        return (self.constants, self.w0, self.window_weights, self.window, self.mode_weight, self.mode_ratio,
-                self.mode_state, self.history, self._values, self.tangent, self.history_force)
+
+@dataclass(frozen=True)
+class _CombinedWall:
+    """Parallel identical walls (see :func:`group_walls`) as one wall of the summed area, for the kernel."""
+
+    wall: Any
+    area: float
+    r: float = field(init=False)
+
+    def __post_init__(self):
+        object.__setattr__(self, "r", self.wall.r)
+
+    def kernel_constants(self) -> tuple:
+        G1, G2, eta1, eta2, area, thickness, flexibility = kernel_constants(self.wall)
+        return (G1, G2, eta1, eta2, self.area, thickness, flexibility * area / self.area)
+
+
+def group_walls(walls) -> tuple[list, np.ndarray]:
+    """Walls of one story that see the same strain history, stepped once as one wall of their summed area.
+
+    ``walls``: (story, wall) pairs.  Two walls in parallel on a story are one wall of the summed area when
+    their material, order and thickness agree and their supports scale with their areas (equal
+    flexibility x area).  Returns ([(story, combined wall)], the group index of every wall (walls,)).
+    """
+    keys: dict[tuple, int] = {}
+    members: list[list[int]] = []
+    for index, (story, wall) in enumerate(walls):
+        G1, G2, eta1, eta2, area, thickness, flexibility = (float(x) for x in kernel_constants(wall))
+        key = (story, G1, G2, eta1, eta2, wall.r, thickness, flexibility * area)
+        if key not in keys:
+            keys[key] = len(members)
+            members.append([])
+        members[keys[key]].append(index)
+    groups = []
+    group_of_wall = np.zeros(len(walls), dtype=np.int64)
+    for g, indices in enumerate(members):
+        story, first = walls[indices[0]]
+        area = sum(walls[i][1].area for i in indices)
+        groups.append((story, _CombinedWall(first, area)))
+        group_of_wall[indices] = g
+    return groups, group_of_wall

@@ -30,17 +30,27 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validation import (finite_array, finite_complex_array, non_negative, positive, positive_frequencies,
-                           require_finite, show)
+from .._validation import (
+    finite_array,
+    finite_complex_array,
+    fractional_order,
+    non_negative,
+    positive,
+    positive_frequencies,
+    require_finite,
+    scaled_value,
+    show,
+)
 from .bank import DEFAULT_MEMORY, MEMORY_STRATEGIES, WallBank, kernel_constants, memory_strategy
-from .fractional import DEFAULT_METHOD, _check_order, get_method
+from .fractional import DEFAULT_METHOD, get_method
 from .prony import fit_prony
+from .wall import StiffnessMethods
 
-__all__ = ["DEFAULT_MEMORY", "MEMORY_STRATEGIES", "DamperState", "FDMKDamper", "driven_force"]
+__all__ = ["DEFAULT_MEMORY", "MEMORY_STRATEGIES", "WallState", "FDMKDamper", "driven_force"]
 
 
 @dataclass(frozen=True)
-class FDMKDamper:
+class FDMKDamper(StiffnessMethods):
     """An FDMK viscoelastic damper (paper eqs. (3)-(5)) of shear area ``area`` and layer thickness ``thickness``.
 
     Parameters
@@ -72,7 +82,7 @@ class FDMKDamper:
     def __post_init__(self):
         for name in ("G1", "G2", "eta1", "eta2"):
             object.__setattr__(self, name, non_negative(name, getattr(self, name)))
-        object.__setattr__(self, "r", _check_order(self.r))
+        object.__setattr__(self, "r", fractional_order(self.r))
         object.__setattr__(self, "area", positive("area", self.area))
         object.__setattr__(self, "thickness", positive("thickness", self.thickness))
         if self.strain_range is not None:
@@ -84,7 +94,12 @@ class FDMKDamper:
                 raise ValueError(f"strain_range must have low <= high, got {show(self.strain_range)}")
             object.__setattr__(self, "strain_range", (low, high))
 
-    def scaled(self, factor) -> "FDMKDamper":
+    def resized(self, factor) -> FDMKDamper:
+        """``factor`` walls' worth (> 0, -): the shear area times ``factor``; material and thickness kept."""
+        factor = positive("factor", factor)
+        return dataclasses.replace(self, area=scaled_value("area", self.area, factor))
+
+    def scaled(self, factor) -> FDMKDamper:
         """This wall with its moduli and viscosities (G1, G2, eta1, eta2) times ``factor`` (> 0, -).
 
         The property-modification factors of ASCE 7-16 Sec. 18.2.4.5 (upper- and lower-bound damper
@@ -92,8 +107,8 @@ class FDMKDamper:
         G''/G' does not change.  r, area, thickness and strain_range are kept.
         """
         factor = positive("factor", factor)
-        return dataclasses.replace(self, G1=self.G1 * factor, G2=self.G2 * factor, eta1=self.eta1 * factor,
-                                   eta2=self.eta2 * factor)
+        return dataclasses.replace(self, **{name: scaled_value(name, getattr(self, name), factor)
+                                            for name in ("G1", "G2", "eta1", "eta2")})
 
     # ------------------------------------------------------------------ frequency domain
     @property
@@ -150,38 +165,6 @@ class FDMKDamper:
         """G'' (MPa) at f (Hz)."""
         return self.complex_modulus(f).imag
 
-    def loss_factor(self, f):
-        """G''/G' (dimensionless) at f (Hz); 0 where the damper has no modulus at all (G* = 0).
-
-        Where G' = 0 but G'' > 0 (a pure dashpot, r = 1, or G' below the smallest float at a tiny f)
-        the loss factor is unbounded: a ValueError naming the frequency."""
-        modulus = self.complex_modulus(f)
-        silent = modulus == 0.0
-        unbounded = (modulus.real == 0.0) & ~silent
-        if np.any(unbounded):
-            where = np.broadcast_to(np.asarray(f), np.shape(unbounded))[np.asarray(unbounded)].flat[0]
-            raise ValueError(f"the loss factor G''/G' is unbounded at f = {show(where)} Hz: G' = 0 there "
-                             f"(G'' = {show(np.asarray(modulus.imag)[np.asarray(unbounded)].flat[0])} MPa)")
-        with np.errstate(over="ignore"):
-            ratio = np.where(silent, 0.0, modulus.imag / np.where(silent, 1.0, modulus.real))
-        return self._checked("the loss factor", ratio, f)
-
-    def storage_stiffness(self, f):
-        """K' = G' area / thickness (N/mm) at f (Hz)."""
-        with np.errstate(over="ignore"):
-            return self._checked("K'", self.storage_modulus(f) * self.stiffness_scale, f)
-
-    def loss_stiffness(self, f):
-        """K'' = G'' area / thickness (N/mm) at f (Hz)."""
-        with np.errstate(over="ignore"):
-            return self._checked("K''", self.loss_modulus(f) * self.stiffness_scale, f)
-
-    def damping_coefficient(self, f):
-        """C_d = K'' / omega (N*s/mm) at f (Hz)."""
-        f = positive_frequencies("f", f)
-        with np.errstate(over="ignore"):
-            return self._checked("C_d", self.loss_stiffness(f) / (2.0 * np.pi * f), f)
-
     def stiffness_transfer(self, s):
         """K(s) = G*(s) area / thickness (N/mm) for complex s (rad/s): the wall's Laplace-domain stiffness."""
         s = finite_complex_array("s", s)
@@ -205,9 +188,9 @@ class FDMKDamper:
         """(G1, G2, eta1, eta2, area, thickness, support flexibility = 0): the kernel's constants of this wall."""
         return (self.G1, self.G2, self.eta1, self.eta2, self.area, self.thickness, 0.0)
 
-    def new_state(self, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY) -> "DamperState":
-        """A fresh (at-rest) time-stepping state with step ``dt`` (s); see :class:`DamperState`."""
-        return DamperState(self, dt, method=method, memory=memory)
+    def new_state(self, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY) -> WallState:
+        """A fresh (at-rest) time-stepping state with step ``dt`` (s); see :class:`WallState`."""
+        return WallState(self, dt, method=method, memory=memory)
 
     def force(self, displacement, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY):
         """Force history (N) for a displacement history (mm) sampled every ``dt`` s, starting from rest.
@@ -231,7 +214,7 @@ def driven_force(wall, displacement, dt, method=DEFAULT_METHOD, memory=DEFAULT_M
     return force
 
 
-class DamperState:
+class WallState:
     """Time-stepping state of one wall, with OpenSees ``UniaxialMaterial``-like trial/commit semantics.
 
     ``force, tangent = state.trial(displacement)`` gives the force (N) at the next step for the given
@@ -258,7 +241,7 @@ class DamperState:
         self.committed_force = 0.0
 
     def __repr__(self) -> str:
-        return f"DamperState(damper={self.damper!r}, dt={self.dt!r}, steps={self.steps})"
+        return f"WallState(damper={self.damper!r}, dt={self.dt!r}, steps={self.steps})"
 
     @property
     def steps(self) -> int:
@@ -275,11 +258,6 @@ class DamperState:
         """Accept the last trial and advance the memory one step."""
         if self._trial is None:
             raise ValueError("commit() needs a trial() first")
-        if self._bank.count == self._bank.max_steps:
-            if self._fast:
-                raise ValueError(f"the fast memory was built for {self.steps} steps; pass "
-                                 f"memory=FastMemory(max_steps=...) with more to new_state()")
-            self._bank = self._bank.resized(2 * self._bank.max_steps)  # the exact memory keeps every step
         force, _ = self._bank.commit([self._trial])
         self.committed_displacement, self.committed_force = self._trial, float(force[0])
         self._trial = None

@@ -104,8 +104,8 @@ from functools import lru_cache
 import numpy as np
 from scipy import linalg
 
-from .._validation import positive, whole_number
-from .fractional import _check_order, get_method
+from .._validation import fractional_order, positive, whole_number
+from .fractional import get_method
 
 DEFAULT_WINDOW = 16
 DEFAULT_TOLERANCE = 1e-10
@@ -293,7 +293,7 @@ def _fine_modes(method, r, window, max_steps, tolerance):
                 c = np.append(c, m0)
         g = c * np.exp(-first * u) * segment.sigma**first
         keep = np.abs(g) > _NEGLIGIBLE * w0
-        modes.extend((segment.sigma, float(uu), float(gg)) for uu, gg in zip(u[keep], g[keep]))
+        modes.extend((segment.sigma, float(uu), float(gg)) for uu, gg in zip(u[keep], g[keep], strict=True))
     return modes
 
 
@@ -423,7 +423,7 @@ def tail_modes(method, r, dt, window=DEFAULT_WINDOW, tolerance=DEFAULT_TOLERANCE
         w_j ~= sum_k mode_weight_k * mode_ratio_k^(j - L - 1) for j > L.
     """
     method = get_method(method)
-    r = _check_order(r)
+    r = fractional_order(r)
     dt = positive("dt", dt)
     window = int(window)
     max_steps = int(max_steps)

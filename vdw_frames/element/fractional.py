@@ -57,9 +57,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from .._jit import njit
 
-from .._validation import finite_scalar, positive
+from .._jit import njit
+from .._validation import finite_scalar, fractional_order, positive
 
 
 @njit(cache=True)
@@ -139,7 +139,7 @@ class Discretisation:
 
         ``dt`` (s) is the step; the weights are those of delta(zeta)^r scaled by dt^-r.
         """
-        r = _check_order(r)
+        r = fractional_order(r)
         dt = positive("dt", dt)
         count = int(count)
         if count < 1:
@@ -246,8 +246,3 @@ def get_method(method) -> Discretisation:
         raise ValueError(f"method must be one of {sorted(METHODS)}, got {method!r}") from None
 
 
-def _check_order(r) -> float:
-    r = finite_scalar("r", r)
-    if not 0.0 < r <= 1.0:
-        raise ValueError(f"r must lie in (0, 1], got {r!r}")
-    return r

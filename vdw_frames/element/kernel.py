@@ -1,6 +1,6 @@
 """The FDMK step kernel: the one compiled implementation of the element's time stepping.
 
-Everything that advances an FDMK wall in time -- :meth:`FDMKDamper.force`, :class:`DamperState`
+Everything that advances an FDMK wall in time -- :meth:`FDMKDamper.force`, :class:`WallState`
 (trial/commit), the frame integrator and the OpenSees bridge -- calls these functions, on a *bank* of
 W walls (W = 1 for one wall).
 
@@ -35,6 +35,8 @@ closed form, and the wall's memory sees d_w, not d.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from .._jit import njit
@@ -46,11 +48,28 @@ from .._jit import njit
 _FAST = {"reassoc", "contract"}
 
 
+class BankArrays(NamedTuple):
+    """The arrays of a bank of W walls, as the compiled functions take them (shapes in the module docstring):
+    W walls, a window of L steps, K modes."""
+
+    constants: np.ndarray  # (W, 7): G1, G2, eta1, eta2, area, thickness, support flexibility
+    w0: np.ndarray  # (W,): w_0 dt^-r
+    window_weights: np.ndarray  # (W, L): w_L .. w_1, dt^-r
+    window: np.ndarray  # (W, 2, 2L): strain and Maxwell stress, each written twice
+    mode_weight: np.ndarray  # (W, K)
+    mode_ratio: np.ndarray  # (W, K)
+    mode_state: np.ndarray  # (W, 2, K)
+    history: np.ndarray  # (2, W): the coming step's history sums
+    values: np.ndarray  # (2, W): scratch of the commit
+    tangent: np.ndarray  # (W,): K_t of the coming step, N/mm
+    history_force: np.ndarray  # (W,): H_n of the coming step, N
+
+
 @njit(cache=True, fastmath=_FAST)
-def memory_history(window_weights, window, count, mode_weight, mode_state, history):
-    """The history sums (2, W) of every wall at step ``count`` into ``history``; the memory is untouched."""
-    walls, size = window_weights.shape
-    modes = mode_weight.shape[1]
+def memory_history(bank, count):
+    """The history sums of every wall at step ``count`` into ``bank.history`` (2, W); the memory is untouched."""
+    walls, size = bank.window_weights.shape
+    modes = bank.mode_weight.shape[1]
     filled = min(count, size)
     start = count % size + size - filled  # the oldest value still in the window
     first = size - filled
@@ -58,37 +77,38 @@ def memory_history(window_weights, window, count, mode_weight, mode_state, histo
         for c in range(2):
             total = 0.0
             for k in range(modes):
-                total += mode_weight[w, k] * mode_state[w, c, k]
+                total += bank.mode_weight[w, k] * bank.mode_state[w, c, k]
             for i in range(filled):
-                total += window_weights[w, first + i] * window[w, c, start + i]
-            history[c, w] = total
+                total += bank.window_weights[w, first + i] * bank.window[w, c, start + i]
+            bank.history[c, w] = total
 
 
 @njit(cache=True, fastmath=_FAST)
-def memory_advance(window_weights, window, count, mode_weight, mode_ratio, mode_state, values, history):
-    """Commit step ``count``'s ``values`` (2, W: strain, Maxwell stress) and put the next step's history
-    sums into ``history``, in one pass over the modes.  The value leaving the window enters the modes."""
-    walls, size = window_weights.shape
-    modes = mode_weight.shape[1]
+def memory_advance(bank, count):
+    """Commit step ``count``'s ``bank.values`` (2, W: strain, Maxwell stress) and put the next step's history
+    sums into ``bank.history``, in one pass over the modes.  The value leaving the window enters the modes."""
+    walls, size = bank.window_weights.shape
+    modes = bank.mode_weight.shape[1]
     slot = count % size
     absorb = count >= size
     filled = min(count + 1, size)
     start = (count + 1) % size + size - filled
     first = size - filled
+    window, mode_state = bank.window, bank.mode_state
     for w in range(walls):
         for c in range(2):
             leaving = window[w, c, slot]
             total = 0.0
             if absorb:
                 for k in range(modes):
-                    state = mode_ratio[w, k] * mode_state[w, c, k] + leaving
+                    state = bank.mode_ratio[w, k] * mode_state[w, c, k] + leaving
                     mode_state[w, c, k] = state
-                    total += mode_weight[w, k] * state
-            window[w, c, slot] = values[c, w]
-            window[w, c, slot + size] = values[c, w]
+                    total += bank.mode_weight[w, k] * state
+            window[w, c, slot] = bank.values[c, w]
+            window[w, c, slot + size] = bank.values[c, w]
             for i in range(filled):
-                total += window_weights[w, first + i] * window[w, c, start + i]
-            history[c, w] = total
+                total += bank.window_weights[w, first + i] * window[w, c, start + i]
+            bank.history[c, w] = total
 
 
 @njit(cache=True, inline="always")
@@ -98,7 +118,7 @@ def fdmk_stress(strain, strain_history, maxwell_history, G1, G2, eta1, eta2, w0)
     Eq. (3): sigma1 = G1 eps + eta1 D^r eps.  Eq. (4), multiplied by G2:
     G2 sigma2 + eta2 D^r sigma2 = G2 eta2 D^r eps, solved for the current sigma2 with
     D^r x = w0 x_n + history.  Eq. (5): sigma = sigma1 + sigma2.  A Maxwell branch with G2 = 0 or
-    eta2 = 0 carries no stress.
+    eta2 = 0 carries no stress.  (Scalars: the innermost function of every path.)
     """
     rate = w0 * strain + strain_history  # discrete D^r eps at this step
     stress = G1 * strain + eta1 * rate
@@ -112,28 +132,30 @@ def fdmk_stress(strain, strain_history, maxwell_history, G1, G2, eta1, eta2, w0)
 
 
 @njit(cache=True, inline="always")
-def wall_affine(constants, w0, strain_history, maxwell_history):
-    """(K_t in N/mm, H_n in N): the wall assembly's force this step is K_t d + H_n for deformation d (mm).
+def wall_affine(bank, w):
+    """(K_t in N/mm, H_n in N) of wall ``w``: its force this step is K_t d + H_n for deformation d (mm).
 
     A trial at zero deformation; the memory is untouched.  With a support (flexibility f_s > 0) in
     series: K_t = K_w / (1 + f_s K_w), H_n = H_w / (1 + f_s K_w).
     """
-    G1, G2, eta1, eta2, area, thickness, flexibility = (constants[0], constants[1], constants[2], constants[3],
-                                                       constants[4], constants[5], constants[6])
-    stress, _, modulus = fdmk_stress(0.0, strain_history, maxwell_history, G1, G2, eta1, eta2, w0)
+    c = bank.constants[w]
+    area, thickness, flexibility = c[4], c[5], c[6]
+    stress, _, modulus = fdmk_stress(0.0, bank.history[0, w], bank.history[1, w], c[0], c[1], c[2], c[3],
+                                     bank.w0[w])
     wall_tangent = modulus * area / thickness
     scale = 1.0 / (1.0 + flexibility * wall_tangent)
     return wall_tangent * scale, stress * area * scale
 
 
 @njit(cache=True, inline="always")
-def wall_response(constants, w0, strain_history, maxwell_history, deformation):
-    """(force N, wall strain, Maxwell stress MPa) of a wall assembly at ``deformation`` (mm) this step.
+def wall_response(bank, w, deformation):
+    """(force N, wall strain, Maxwell stress MPa) of wall ``w`` at ``deformation`` (mm) this step.
 
     The wall's own deformation is the assembly's minus the support's: d_w = (d - f_s H_w) / (1 + f_s K_w).
     """
-    G1, G2, eta1, eta2, area, thickness, flexibility = (constants[0], constants[1], constants[2], constants[3],
-                                                       constants[4], constants[5], constants[6])
+    c = bank.constants[w]
+    G1, G2, eta1, eta2, area, thickness, flexibility = c[0], c[1], c[2], c[3], c[4], c[5], c[6]
+    strain_history, maxwell_history, w0 = bank.history[0, w], bank.history[1, w], bank.w0[w]
     wall_deformation = deformation
     if flexibility > 0.0:
         history_stress, _, modulus = fdmk_stress(0.0, strain_history, maxwell_history, G1, G2, eta1, eta2, w0)
@@ -145,41 +167,34 @@ def wall_response(constants, w0, strain_history, maxwell_history, deformation):
 
 
 @njit(cache=True)
-def bank_affine(constants, w0, window_weights, window, count, mode_weight, mode_state, history, tangent,
-                history_force):
-    """Every wall of a bank at the start of step ``count``: history sums (2, W), K_t (N/mm), H_n (N)."""
-    memory_history(window_weights, window, count, mode_weight, mode_state, history)
-    for d in range(constants.shape[0]):
-        tangent[d], history_force[d] = wall_affine(constants[d], w0[d], history[0, d], history[1, d])
+def bank_affine(bank, count):
+    """Every wall of ``bank`` at the start of step ``count``: history sums, K_t (N/mm) and H_n (N) into
+    ``bank.history``, ``bank.tangent`` and ``bank.history_force``."""
+    memory_history(bank, count)
+    for w in range(bank.constants.shape[0]):
+        bank.tangent[w], bank.history_force[w] = wall_affine(bank, w)
 
 
 @njit(cache=True)
-def bank_commit(constants, w0, window_weights, window, count, mode_weight, mode_ratio, mode_state, history,
-                values, deformation, force, strain, tangent, history_force):
-    """Accept ``deformation`` (mm, per wall) for step ``count``: forces (N) and wall strains out, memory
-    advanced, and the next step's history sums, K_t and H_n (as :func:`bank_affine` would give them).
-    ``values`` (2, W) is scratch space."""
-    for d in range(constants.shape[0]):
-        force[d], strain[d], values[1, d] = wall_response(constants[d], w0[d], history[0, d], history[1, d],
-                                                          deformation[d])
-        values[0, d] = strain[d]
-    memory_advance(window_weights, window, count, mode_weight, mode_ratio, mode_state, values, history)
-    for d in range(constants.shape[0]):
-        tangent[d], history_force[d] = wall_affine(constants[d], w0[d], history[0, d], history[1, d])
+def bank_commit(bank, count, deformation, force, strain):
+    """Accept ``deformation`` (mm, (W,)) for step ``count``: forces (N, (W,)) and wall strains (-, (W,)) into
+    ``force`` and ``strain``, the memory advanced, and the next step's history sums, K_t and H_n (as
+    :func:`bank_affine` would give them)."""
+    for w in range(bank.constants.shape[0]):
+        force[w], strain[w], bank.values[1, w] = wall_response(bank, w, deformation[w])
+        bank.values[0, w] = strain[w]
+    memory_advance(bank, count)
+    for w in range(bank.constants.shape[0]):
+        bank.tangent[w], bank.history_force[w] = wall_affine(bank, w)
 
 
 @njit(cache=True)
-def displacement_driven(constants, w0, window_weights, window, mode_weight, mode_ratio, mode_state, displacement):
-    """(force N, wall strain) histories of one wall assembly (a bank of W = 1) for a displacement history
-    (mm) from rest: :func:`bank_commit` step after step."""
+def displacement_driven(bank, displacement):
+    """(force N, wall strain) histories (steps,) of a one-wall bank at rest for a displacement history
+    (mm, (steps,)): :func:`bank_commit` step after step."""
     steps = displacement.shape[0]
     force = np.empty(steps)
     strain = np.empty(steps)
-    history = np.zeros((2, 1))  # at rest
-    values = np.zeros((2, 1))
-    tangent = np.zeros(1)
-    history_force = np.zeros(1)
     for n in range(steps):
-        bank_commit(constants, w0, window_weights, window, n, mode_weight, mode_ratio, mode_state, history, values,
-                    displacement[n:n + 1], force[n:n + 1], strain[n:n + 1], tangent, history_force)
+        bank_commit(bank, n, displacement[n:n + 1], force[n:n + 1], strain[n:n + 1])
     return force, strain

@@ -40,6 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validation import positive, positive_frequencies, whole_number
+from .wall import StiffnessMethods
 
 FIT_POINTS_PER_DECADE = 24
 CHECK_POINTS_PER_DECADE = 1000
@@ -49,7 +50,7 @@ _LONGEST = 10.0  # x 1 / omega_min: the longest (a spring to 10 % at f_min)
 
 
 @dataclass(frozen=True, eq=False)
-class PronySeries:
+class PronySeries(StiffnessMethods):
     """An equilibrium spring and Maxwell branches fitted to a wall's complex stiffness (see the module).
 
     ``equilibrium_stiffness`` k_0 (N/mm); ``branches`` (n, 2): one row (k_i in N/mm, c_i in N*s/mm) per
@@ -86,14 +87,6 @@ class PronySeries:
         f = positive_frequencies("f", f)
         x = 1j * 2.0 * np.pi * f[..., None] * self.relaxation_times
         return self.equilibrium_stiffness + (self.branches[:, 0] * x / (1.0 + x)).sum(axis=-1)
-
-    def storage_stiffness(self, f):
-        """K' (N/mm) at f (Hz)."""
-        return self.complex_stiffness(f).real
-
-    def loss_stiffness(self, f):
-        """K'' (N/mm) at f (Hz)."""
-        return self.complex_stiffness(f).imag
 
     def to_table(self) -> list[dict]:
         """The series as rows of parallel links for SAP2000 / ETABS (units N, mm, s).

@@ -18,8 +18,8 @@ import numpy as np
 
 from .._validation import check_memory, positive, whole_number
 from .damper import FDMKDamper
-from .supported import WALL_TYPES
 from .fractional import DEFAULT_METHOD, get_method
+from .supported import WALL_TYPES
 
 SAMPLES_PER_CYCLE = 200  # omega*dt = 0.031: the default method's error r (omega dt)^2 / 6 <= 1.6e-4
 MIN_SAMPLES_PER_CYCLE = 8

@@ -30,24 +30,23 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _warnings
-from .._validation import finite_array, non_negative, positive, positive_frequencies
+from .._validation import (
+    finite_array,
+    fractional_order,
+    non_negative,
+    positive,
+    positive_frequencies,
+    refuse_non_numbers,
+    scaled_value,
+)
 from .damper import FDMKDamper
-from .fractional import _check_order
 
 PARAMETERS = ("G1", "G2", "eta1", "eta2", "r")
 
 
-def _refuse_non_numbers(name: str, values) -> None:
-    """Bools and strings are not numbers here, even though numpy would convert them."""
-    items = np.asarray(values, dtype=object).ravel() if not isinstance(values, (str, bytes)) else [values]
-    for item in items:
-        if isinstance(item, (bool, np.bool_, str, bytes)):
-            raise ValueError(f"{name} must be real numbers, got {item!r}")
-
-
 def _strain_amplitudes(name: str, values) -> np.ndarray:
     """Strain amplitudes (dimensionless, finite, >= 0), scalar or array."""
-    _refuse_non_numbers(name, values)
+    refuse_non_numbers(name, values)
     array = finite_array(name, values, ndim=None)
     if (array < 0.0).any():
         raise ValueError(f"{name} must be >= 0 (an amplitude), got {array[array < 0.0].flat[0]!r}")
@@ -88,7 +87,7 @@ class StrainDependentDamper:
     thickness: float = 10.0
 
     def __post_init__(self):
-        _refuse_non_numbers("strains", self.strains)
+        refuse_non_numbers("strains", self.strains)
         strains = finite_array("strains", self.strains)
         if strains.size < 2:
             raise ValueError(f"strains must hold at least two node amplitudes, got {self.strains!r}")
@@ -99,17 +98,17 @@ class StrainDependentDamper:
         object.__setattr__(self, "strains", tuple(strains.tolist()))
         for name in PARAMETERS:
             values = getattr(self, name)
-            _refuse_non_numbers(name, values)
+            refuse_non_numbers(name, values)
             array = finite_array(name, values)
             if array.size != strains.size:
                 raise ValueError(f"{name} has {array.size} values for {strains.size} strains")
-            check = _check_order if name == "r" else (lambda v, n=name: non_negative(n, v))
+            check = fractional_order if name == "r" else (lambda v, n=name: non_negative(n, v))
             object.__setattr__(self, name, tuple(check(v) for v in array.tolist()))
         object.__setattr__(self, "area", positive("area", self.area))
         object.__setattr__(self, "thickness", positive("thickness", self.thickness))
 
     @classmethod
-    def constant(cls, damper: FDMKDamper, strain_range) -> "StrainDependentDamper":
+    def constant(cls, damper: FDMKDamper, strain_range) -> StrainDependentDamper:
         """A wall with ``damper``'s parameters at every amplitude of ``strain_range`` (low, high), dimensionless."""
         if not isinstance(damper, FDMKDamper):
             raise ValueError(f"damper must be an FDMKDamper, got {type(damper).__name__}")
@@ -118,12 +117,17 @@ class StrainDependentDamper:
         values = {name: (getattr(damper, name),) * 2 for name in PARAMETERS}
         return cls(tuple(strain_range), **values, area=damper.area, thickness=damper.thickness)
 
-    def scaled(self, factor) -> "StrainDependentDamper":
+    def scaled(self, factor) -> StrainDependentDamper:
         """This wall with its moduli and viscosities (G1, G2, eta1, eta2) times ``factor`` (> 0) at every node
         amplitude: the property-modification factors of ASCE 7-16 Sec. 18.2.4.5 (see :meth:`FDMKDamper.scaled`)."""
         factor = positive("factor", factor)
-        return dataclasses.replace(self, **{name: tuple(v * factor for v in getattr(self, name))
+        return dataclasses.replace(self, **{name: tuple(scaled_value(name, v, factor) for v in getattr(self, name))
                                             for name in ("G1", "G2", "eta1", "eta2")})
+
+    def resized(self, factor) -> StrainDependentDamper:
+        """``factor`` walls' worth (> 0, -): the shear area times ``factor``; material and thickness kept."""
+        factor = positive("factor", factor)
+        return dataclasses.replace(self, area=scaled_value("area", self.area, factor))
 
     @property
     def strain_range(self) -> tuple:
@@ -178,7 +182,8 @@ class StrainDependentDamper:
         return modulus if modulus.ndim else complex(modulus)
 
     def complex_stiffness(self, f, strain):
-        """K* = G* area / thickness (N/mm) at frequencies ``f`` (Hz) and amplitudes ``strain`` (see :meth:`complex_modulus`)."""
+        """K* = G* area / thickness (N/mm) at frequencies ``f`` (Hz) and amplitudes ``strain`` (see
+        :meth:`complex_modulus`)."""
         return self.complex_modulus(f, strain) * self.stiffness_scale
 
     # ---------------------------------------------------------------------------------------- internals

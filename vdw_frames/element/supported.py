@@ -21,14 +21,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import positive, positive_frequencies, require_finite
-from .damper import DEFAULT_MEMORY, DamperState, FDMKDamper, driven_force
+from .._validation import positive, positive_frequencies, require_finite, scaled_value
+from .damper import DEFAULT_MEMORY, WallState, FDMKDamper, driven_force
 from .fractional import DEFAULT_METHOD
 from .prony import fit_prony
+from .wall import StiffnessMethods
 
 
 @dataclass(frozen=True)
-class SupportedDamper:
+class SupportedDamper(StiffnessMethods):
     """An :class:`FDMKDamper` ``damper`` in series with a support of stiffness ``support_stiffness`` (N/mm, > 0).
 
     Accepted wherever a wall is: :class:`~vdw_frames.ShearBuilding` dampers, :func:`~vdw_frames.sine_test`,
@@ -63,7 +64,13 @@ class SupportedDamper:
     def strain_range(self):
         return self.damper.strain_range
 
-    def scaled(self, factor) -> "SupportedDamper":
+    def resized(self, factor) -> SupportedDamper:
+        """``factor`` walls' worth (> 0, -): the wall's area and the support's stiffness times ``factor``."""
+        factor = positive("factor", factor)
+        return SupportedDamper(self.damper.resized(factor),
+                               scaled_value("support_stiffness", self.support_stiffness, factor))
+
+    def scaled(self, factor) -> SupportedDamper:
         """The wall's moduli and viscosities times ``factor`` (:meth:`FDMKDamper.scaled`); the support unchanged."""
         return SupportedDamper(self.damper.scaled(factor), self.support_stiffness)
 
@@ -80,19 +87,6 @@ class SupportedDamper:
         f = positive_frequencies("f", f)
         return self.stiffness_transfer(2j * np.pi * f)
 
-    def storage_stiffness(self, f):
-        """K' (N/mm) of the assembly at f (Hz)."""
-        return self.complex_stiffness(f).real
-
-    def loss_stiffness(self, f):
-        """K'' (N/mm) of the assembly at f (Hz)."""
-        return self.complex_stiffness(f).imag
-
-    def damping_coefficient(self, f):
-        """K'' / omega (N*s/mm) of the assembly at f (Hz)."""
-        f = positive_frequencies("f", f)
-        return self.loss_stiffness(f) / (2.0 * np.pi * f)
-
     def prony(self, f_min: float, f_max: float, tolerance: float = 0.01):
         """A generalized Maxwell model of the assembly (wall and support) over [``f_min``, ``f_max``] Hz;
         see :meth:`FDMKDamper.prony`."""
@@ -103,9 +97,9 @@ class SupportedDamper:
         """The wall's kernel constants with the support's flexibility 1 / k_s (mm/N)."""
         return self.damper.kernel_constants()[:6] + (1.0 / self.support_stiffness,)
 
-    def new_state(self, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY) -> DamperState:
+    def new_state(self, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY) -> WallState:
         """A fresh trial/commit state on steps of ``dt`` s (displacement: the assembly's, mm)."""
-        return DamperState(self, dt, method=method, memory=memory)
+        return WallState(self, dt, method=method, memory=memory)
 
     def force(self, displacement, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY):
         """Force history (N) for an assembly displacement history (mm) every ``dt`` s, from rest."""

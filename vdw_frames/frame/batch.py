@@ -11,18 +11,21 @@ from __future__ import annotations
 import concurrent.futures
 import csv
 import dataclasses
+import io
 import os
 import sys
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from .. import _warnings
+from .._files import write_text
 from .._validation import finite_array, positive, show
-from .building import ShearBuilding, require_fixed_walls
 from ..element.damper import DEFAULT_MEMORY
 from ..element.fractional import DEFAULT_METHOD, Discretisation
 from ..motion.record import GroundMotion
+from .building import ShearBuilding, require_fixed_walls
 from .simulation import simulate
 from .strain_compatible import strain_compatible_options
 
@@ -59,7 +62,7 @@ class BatchTask:
             "peak_drift_ratio": result.peak_drift_ratio,
             "peak_absolute_acceleration": result.peak_absolute_acceleration,
             "peak_base_shear": np.array([result.peak_base_shear]),
-            "peak_damper_force": result.peak_damper_force,
+            "peak_story_wall_force": result.peak_story_wall_force,
         }
 
 
@@ -68,10 +71,10 @@ def _run(task: BatchTask) -> dict:
     return task.run()
 
 
-PEAKS = ("peak_drift", "peak_drift_ratio", "peak_absolute_acceleration", "peak_base_shear", "peak_damper_force",
+PEAKS = ("peak_drift", "peak_drift_ratio", "peak_absolute_acceleration", "peak_base_shear", "peak_story_wall_force",
          "residual_drift")
 _UNITS = {"peak_drift": "mm", "peak_drift_ratio": "-", "peak_absolute_acceleration": "mm/s2",
-          "peak_base_shear": "N", "peak_damper_force": "N", "residual_drift": "mm"}
+          "peak_base_shear": "N", "peak_story_wall_force": "N", "residual_drift": "mm"}
 OUTCOMES = ("collapsed", "converged")
 _SIMULATE_OPTIONS = {"collapse_drift_ratio", "free_vibration", "newton"}
 
@@ -82,8 +85,9 @@ class BatchResult:
 
     ``scales`` is (motions, scales): the factor each record was multiplied by.  Units: peak_drift mm,
     peak_drift_ratio - (None without story heights), peak_absolute_acceleration mm/s^2 (per floor),
-    peak_base_shear N, peak_damper_force N (total per story), residual_drift mm (the drift at the last
-    step, per story; for a collapsed or non-converged run, the drift where it stopped).  ``collapsed`` and ``converged`` (motions, scales) are each analysis's outcome
+    peak_base_shear N, peak_story_wall_force N (total per story), residual_drift mm (the drift at the last
+    step, per story; for a collapsed or non-converged run, the drift where it stopped).  ``collapsed`` and
+    ``converged`` (motions, scales) are each analysis's outcome
     (:class:`~vdw_frames.SimulationResult`): a collapsed or non-converged run is recorded, its peaks
     being those reached before it stopped.  With ``run_batch(..., property_factors=...)`` the peaks are
     the envelope over the factors (residual drifts: the largest in magnitude; collapsed: any;
@@ -98,31 +102,30 @@ class BatchResult:
     peak_drift_ratio: np.ndarray | None
     peak_absolute_acceleration: np.ndarray
     peak_base_shear: np.ndarray
-    peak_damper_force: np.ndarray
+    peak_story_wall_force: np.ndarray
     residual_drift: np.ndarray
     collapsed: np.ndarray
     converged: np.ndarray
     property_factors: tuple | None = None
     governing_factor: dict | None = None
 
-    def to_csv(self, path) -> None:
-        """One row per (motion, scale, story) with every peak and the outcome; ``None`` ratios are left empty."""
+    def to_csv(self, path) -> Path:
+        """Write one row per (motion, scale, story) with every peak and the outcome (``None`` ratios left
+        empty) to ``path``, atomically; returns the path."""
         stories = self.peak_drift.shape[2]
-        with open(path, "w", newline="") as handle:
-            writer = csv.writer(handle)
-            writer.writerow(["motion", "scale", "pga_mm_s2", "story"]
-                            + [f"{name}_{_UNITS[name]}" for name in PEAKS] + list(OUTCOMES))
-            for m, name in enumerate(self.motion_names):
-                for s in range(self.scales.shape[1]):
-                    for k in range(stories):
-                        row = [name, repr(float(self.scales[m, s])), repr(float(self.pga[m, s])), k + 1]
-                        for peak in PEAKS:
-                            values = getattr(self, peak)
-                            if values is None:
-                                row.append("")
-                            else:
-                                row.append(repr(float(values[m, s, k if values.shape[2] > 1 else 0])))
-                        writer.writerow(row + [int(getattr(self, outcome)[m, s]) for outcome in OUTCOMES])
+        handle = io.StringIO(newline="")
+        writer = csv.writer(handle)
+        writer.writerow(["motion", "scale", "pga_mm_s2", "story"]
+                        + [f"{name}_{_UNITS[name]}" for name in PEAKS] + list(OUTCOMES))
+        for m, name in enumerate(self.motion_names):
+            for s in range(self.scales.shape[1]):
+                for k in range(stories):
+                    row = [name, repr(float(self.scales[m, s])), repr(float(self.pga[m, s])), k + 1]
+                    for peak in PEAKS:
+                        values = getattr(self, peak)
+                        row.append("" if values is None else repr(float(values[m, s, k if values.shape[2] > 1 else 0])))
+                    writer.writerow(row + [int(getattr(self, outcome)[m, s]) for outcome in OUTCOMES])
+        return write_text(path, handle.getvalue(), "CSV file")
 
 
 def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.futures.Executor | None = None,
@@ -229,7 +232,7 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
             return None
         return np.array([[peaks[(m, s)][name] for s in range(factors.shape[1])] for m in range(len(motions))])
 
-    pga = np.array([[abs(f) * motion.pga for f in row] for row, motion in zip(factors, motions)])
+    pga = np.array([[abs(f) * motion.pga for f in row] for row, motion in zip(factors, motions, strict=True)])
     return BatchResult(tuple(m.name for m in motions), np.array(factors), pga, *(stack(name) for name in PEAKS),
                        *(stack(name).astype(bool) for name in OUTCOMES))
 
@@ -243,8 +246,8 @@ def _property_envelope(building: ShearBuilding, property_factors, executor, run)
     factors = finite_array("property_factors", property_factors, ndim=None).ravel()
     if factors.size == 0 or (factors <= 0).any():
         raise ValueError(f"property_factors must be one or more factors > 0, got {property_factors!r}")
-    variants = [building.with_dampers({story: [wall.scaled(f) for wall in walls]
-                                       for story, walls in building.dampers.items()}) for f in factors]
+    variants = [building.with_walls({story: [wall.scaled(f) for wall in walls]
+                                       for story, walls in building.walls.items()}) for f in factors]
     own_executor = executor is None
     if own_executor:
         executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)

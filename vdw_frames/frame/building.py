@@ -39,7 +39,7 @@ class ShearBuilding:
         Rayleigh damping: the two modes (1-based) given ``damping_ratio`` by C = a0 M + a1 K_frame; the
         same mode twice splits the ratio equally between the mass and stiffness terms.  Default (1, 2),
         or (1, 1) for a one-story building.
-    dampers : dict {story: wall or list of walls}
+    walls : dict {story: wall or list of walls}
         Walls across stories (1 ... n): :class:`~vdw_frames.FDMKDamper` or
         :class:`~vdw_frames.SupportedDamper`; several on one story act in parallel.  A wall's
         deformation is the interstory drift.  A wall may be a
@@ -73,7 +73,7 @@ class ShearBuilding:
     stiffnesses: tuple
     damping_ratio: float = 0.05
     damping_modes: tuple | None = None
-    dampers: dict | None = None
+    walls: dict | None = None
     story_heights: tuple | None = None
     hysteresis: tuple | None = None
     gravity_loads: tuple | None = None
@@ -99,12 +99,13 @@ class ShearBuilding:
         if isinstance(modes, np.ndarray):
             modes = tuple(modes.tolist()) if modes.ndim == 1 else None
         if not isinstance(modes, (tuple, list)) or len(modes) != 2:
-            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, got {show(self.damping_modes)}")
+            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, "
+                             f"got {show(self.damping_modes)}")
         modes = tuple(whole_number("damping_modes", m, 1) for m in modes)
         if max(modes) > masses.size:
             raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, got {modes}")
         object.__setattr__(self, "damping_modes", modes)
-        object.__setattr__(self, "dampers", self._normalise_dampers(self.dampers, masses.size))
+        object.__setattr__(self, "walls", self._normalise_walls(self.walls, masses.size))
         if self.story_heights is not None:
             heights = finite_array("story_heights", self.story_heights)
             if heights.size != masses.size:
@@ -126,14 +127,15 @@ class ShearBuilding:
             raise ValueError(f"damping_model must be one of {DAMPING_MODELS}, got {self.damping_model!r}")
 
     @staticmethod
-    def _normalise_dampers(dampers, stories):
-        if dampers is not None and not isinstance(dampers, dict):
-            raise ValueError(f"dampers must be a dict {{story: FDMKDamper or list}}, got {type(dampers).__name__}")
-        normalised = {}
-        for story, walls in (dampers or {}).items():
-            message = f"damper story must be a story number in 1 ... {stories}, got {show(story)}"
+    def _normalise_walls(walls_by_story, stories):
+        if walls_by_story is not None and not isinstance(walls_by_story, dict):
+            raise ValueError(f"walls must be a dict {{story: FDMKDamper or list}}, got {type(walls_by_story).__name__}")
+        normalised: dict[int, tuple] = {}
+        seen: set[int] = set()  # stories after normalisation: {1: w, 1.0: w} is one story twice
+        for story, walls in (walls_by_story or {}).items():
+            message = f"wall story must be a story number in 1 ... {stories}, got {show(story)}"
             try:
-                story = whole_number("damper story", story, 1)
+                story = whole_number("wall story", story, 1)
             except ValueError:
                 raise ValueError(message) from None
             if story > stories:
@@ -141,10 +143,14 @@ class ShearBuilding:
             walls = tuple(walls) if isinstance(walls, (list, tuple)) else (walls,)
             for wall in walls:
                 if not isinstance(wall, WALL_TYPES + (StrainDependentDamper,)):
-                    raise ValueError(f"dampers[{story}] must be FDMKDamper, SupportedDamper or StrainDependentDamper "
+                    raise ValueError(f"walls[{story}] must be FDMKDamper, SupportedDamper or StrainDependentDamper "
                                      f"objects, got {type(wall).__name__}")
+            if story in seen:
+                raise ValueError(f"walls has story {story} twice (keys {show(list(walls_by_story))}); give each "
+                                 "story once, with a list of its walls")
+            seen.add(story)
             if walls:
-                normalised[int(story)] = walls
+                normalised[story] = walls
         return dict(sorted(normalised.items()))
 
     @staticmethod
@@ -191,7 +197,7 @@ class ShearBuilding:
     def yield_drifts(self) -> np.ndarray:
         """F_y / k0 per story (mm); 0 for a linear story."""
         return _read_only(np.array([0.0 if model is None else model.yield_force / k
-                                    for model, k in zip(self.story_models, self.stiffnesses)]))
+                                    for model, k in zip(self.story_models, self.stiffnesses, strict=True)]))
 
     # ------------------------------------------------------------------ matrices (tonne, N/mm, N*s/mm)
     @property
@@ -265,31 +271,22 @@ class ShearBuilding:
         return a0 / (2.0 * w) + a1 * w / 2.0
 
     @property
-    def damper_list(self) -> list[tuple[int, FDMKDamper]]:
+    def wall_list(self) -> list[tuple[int, FDMKDamper]]:
         """(story, damper) for every damper, stories ascending."""
-        return [(story, wall) for story, walls in self.dampers.items() for wall in walls]
+        return [(story, wall) for story, walls in self.walls.items() for wall in walls]
 
     @property
     def strain_dependent(self) -> bool:
         """True when some wall is a :class:`StrainDependentDamper` (parameters that follow its strain amplitude)."""
-        return any(isinstance(wall, StrainDependentDamper) for _, wall in self.damper_list)
+        return any(isinstance(wall, StrainDependentDamper) for _, wall in self.wall_list)
 
-    def without_dampers(self) -> "ShearBuilding":
+    def without_walls(self) -> ShearBuilding:
         """The same frame (stories, P-Delta, damping) with no walls."""
-        return dataclasses.replace(self, dampers=None)
+        return dataclasses.replace(self, walls=None)
 
-    def with_dampers(self, dampers) -> "ShearBuilding":
-        """The same frame with ``dampers`` (a dict as for the constructor) instead of its walls."""
-        return dataclasses.replace(self, dampers=dampers)
-
-    def modal_analysis(self, modes=None):
-        """Complex modes of this linear building with its walls: :func:`vdw_frames.design.modal_analysis`.
-
-        Returns a :class:`~vdw_frames.design.ModalResult` (poles rad/s, periods s, damping ratios -).
-        """
-        from ..design.modal import modal_analysis  # the design layer sits above the frame
-
-        return modal_analysis(self, modes)
+    def with_walls(self, walls) -> ShearBuilding:
+        """The same frame with ``walls`` (a dict as for the constructor) instead of its own."""
+        return dataclasses.replace(self, walls=walls)
 
     def frequency_response(self, frequency) -> np.ndarray:
         """Relative floor displacement per unit ground acceleration, mm/(mm/s^2), shape (len(f), floors).
@@ -322,7 +319,7 @@ class ShearBuilding:
             if not np.isfinite(omega).all():
                 raise ValueError(f"the dynamic stiffness overflows at f = {show(frequency[~np.isfinite(omega)][0])} Hz")
             per_story = np.zeros((omega.size, self.stories), dtype=complex)
-            for story, wall in self.damper_list:
+            for story, wall in self.wall_list:
                 per_story[:, story - 1] += wall.stiffness_transfer(1j * omega)
             base = self.stiffness_matrix + story_matrix(np.asarray(self.geometric_stiffness, dtype=float))
             dynamic = (story_matrix(per_story) + base - (omega**2)[:, None, None] * self.mass_matrix

@@ -2,7 +2,7 @@
 
 A story model maps the story drift d (mm) to the force in the story's frame spring (N).  Its initial
 stiffness k0 (N/mm) is the story's entry in :attr:`ShearBuilding.stiffnesses`; the model adds the
-strength.  Like :class:`~vdw_frames.DamperState` (and OpenSees's ``UniaxialMaterial``), a
+strength.  Like :class:`~vdw_frames.WallState` (and OpenSees's ``UniaxialMaterial``), a
 :class:`StoryState` gives the force and tangent for a trial drift without touching its state
 (``trial``), accepts the last trial (``commit``) or discards it (``revert_to_last_commit``), so that an
 iterating (Newton) integrator can drive it.  :func:`story_trial` is the one compiled implementation;
@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -67,7 +68,7 @@ class Bilinear:
 
     kind = BILINEAR
 
-    def new_state(self, stiffness: float) -> "StoryState":
+    def new_state(self, stiffness: float) -> StoryState:
         """A trial/commit state at rest for a story of initial stiffness ``stiffness`` (N/mm)."""
         return StoryState(self, stiffness)
 
@@ -116,12 +117,28 @@ class BoucWen:
         """The compiled model's parameter row for a story of initial stiffness ``stiffness`` (N/mm)."""
         return np.array([stiffness, self.yield_force, self.hardening, self.exponent, self.beta, self.gamma])
 
-    def new_state(self, stiffness: float) -> "StoryState":
+    def new_state(self, stiffness: float) -> StoryState:
         """A trial/commit state at rest for a story of initial stiffness ``stiffness`` (N/mm)."""
         return StoryState(self, stiffness)
 
 
 STORY_MODELS = (Bilinear, BoucWen)
+
+
+class StoryArrays(NamedTuple):
+    """The story models of n stories as :func:`story_trial` takes them."""
+
+    kinds: np.ndarray  # (n,) int64: LINEAR, BILINEAR or BOUC_WEN
+    parameters: np.ndarray  # (n, PARAMETERS): k0 (N/mm), F_y (N), hardening, exponent, beta, gamma
+    committed: np.ndarray  # (n, STATE): committed drift (mm), then force (N, Bilinear) or z (Bouc-Wen)
+
+
+def story_arrays(models, stiffnesses) -> StoryArrays:
+    """:class:`StoryArrays` at rest of ``models`` (None: linear) with initial stiffnesses (N/mm)."""
+    kinds = np.array([LINEAR if model is None else model.kind for model in models], dtype=np.int64)
+    parameters = np.array([[k, 0.0, 0.0, 0.0, 0.0, 0.0] if model is None else model.parameters(k)
+                           for model, k in zip(models, stiffnesses, strict=True)], dtype=float)
+    return StoryArrays(kinds, parameters.reshape(len(kinds), PARAMETERS), np.zeros((len(kinds), STATE)))
 
 
 def _hardening(value) -> float:
@@ -132,31 +149,28 @@ def _hardening(value) -> float:
 
 
 class StoryState:
-    """Trial/commit state of one story model (``model`` None: linear) of initial stiffness ``stiffness`` N/mm."""
+    """Trial/commit state (a :class:`~vdw_frames.element.material.Material`) of one story model (``model``
+    None: linear) of initial stiffness ``stiffness`` N/mm."""
 
     def __init__(self, model, stiffness: float):
         if model is not None and not isinstance(model, STORY_MODELS):
             raise ValueError(f"a story model must be Bilinear, BoucWen or None, got {type(model).__name__}")
-        stiffness = positive("stiffness", stiffness)
         self.model = model
-        self.kind = LINEAR if model is None else model.kind
-        self.parameters = (np.array([stiffness, 0.0, 0.0, 0.0, 0.0, 0.0]) if model is None
-                           else model.parameters(stiffness))
-        self.committed = np.zeros(STATE)
-        self._trial = None
+        self._arrays = story_arrays([model], [positive("stiffness", stiffness)])
+        self._trial: tuple[float, float] | None = None
 
-    def trial(self, drift: float):
+    def trial(self, drift: float) -> tuple[float, float]:
         """(force N, tangent N/mm) at ``drift`` (mm) from the committed state; the state is untouched."""
         drift = finite_scalar("drift", drift)
-        force, tangent, state_value = story_trial(self.kind, *self.parameters, *self.committed, drift)
-        self._trial = (drift, force if self.kind != BOUC_WEN else state_value)
+        force, tangent, state_value = story_trial(self._arrays, 0, drift)
+        self._trial = (drift, state_value)
         return force, tangent
 
     def commit(self) -> None:
         """Accept the last trial."""
         if self._trial is None:
             raise ValueError("commit() needs a trial() first")
-        self.committed[:] = self._trial
+        self._arrays.committed[0] = self._trial
         self._trial = None
 
     def revert_to_last_commit(self) -> None:
@@ -165,17 +179,18 @@ class StoryState:
 
     @property
     def committed_drift(self) -> float:
-        return float(self.committed[0])
+        """The committed drift, mm."""
+        return float(self._arrays.committed[0, 0])
 
 
-@njit(cache=True)
-def story_trial(kind, k0, yield_force, hardening, exponent, beta, gamma, committed_drift, committed_value, drift):
-    """(force N, tangent N/mm, new state value) of a story model at ``drift`` (mm) from its committed state.
-
-    ``kind``: LINEAR, BILINEAR or BOUC_WEN; then the parameter row (k0, F_y, b, n, beta, gamma) and the
-    committed state (drift, force) for Bilinear, (drift, z) for Bouc-Wen.  The state value is the force or
-    z to commit.  (Scalars, not rows: numba passes arrays to a call as whole structures.)
-    """
+@njit(cache=True, inline="always")
+def story_trial(stories, s, drift):
+    """(force N, tangent N/mm, new state value) of story ``s`` of ``stories`` (:class:`StoryArrays`) at
+    ``drift`` (mm) from its committed state; the state is untouched.  The state value is the force (Bilinear)
+    or z (Bouc-Wen) to commit."""
+    kind = stories.kinds[s]
+    k0, yield_force, hardening = stories.parameters[s, 0], stories.parameters[s, 1], stories.parameters[s, 2]
+    committed_drift, committed_value = stories.committed[s, 0], stories.committed[s, 1]
     if kind == LINEAR:
         return k0 * drift, k0, k0 * drift
     if kind == BILINEAR:
@@ -189,6 +204,7 @@ def story_trial(kind, k0, yield_force, hardening, exponent, beta, gamma, committ
             return lower, hardening * k0, lower
         return elastic, k0, elastic
     # Bouc-Wen
+    exponent, beta, gamma = stories.parameters[s, 3], stories.parameters[s, 4], stories.parameters[s, 5]
     yield_drift = yield_force / k0
     z, dz_dd = _bouc_wen_update(committed_value, (drift - committed_drift) / yield_drift, exponent, beta, gamma)
     force = hardening * k0 * drift + (1.0 - hardening) * yield_force * z

@@ -127,7 +127,8 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions, step: float, 
             drift[m].append(float(batch.peak_drift_ratio[row, 0].max()))
             collapsed[m].append(bool(batch.collapsed[row, 0] or not batch.converged[row, 0]))
         standing = [m for m in standing if not collapsed[m][-1]]
-    first = [next((sa for sa, c in zip(intensities[m], collapsed[m]) if c), None) for m in range(len(motions))]
+    first = [next((sa for sa, c in zip(intensities[m], collapsed[m], strict=True) if c), None)
+             for m in range(len(motions))]
     collapse_intensity = np.ma.masked_array([0.0 if sa is None else sa for sa in first],
                                             mask=[sa is None for sa in first])
     return IDAResult(tuple(m.name for m in motions), float(period), levels,

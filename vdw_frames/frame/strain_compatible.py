@@ -26,12 +26,12 @@ finds strain-compatible soil properties (SHAKE: Schnabel, Lysmer & Seed 1972):
 
 The result is the last run's :class:`SimulationResult`: the response of the equivalent-linear
 building (``result.building``: the building given, with every strain-dependent wall replaced by
-its final :class:`FDMKDamper`), with ``wall_effective_strain``, ``wall_dampers``,
+its final :class:`FDMKDamper`), with ``wall_effective_strain``, ``equivalent_walls``,
 ``strain_iterations`` and ``strain_converged`` filled in.  Walls that are plain
 :class:`FDMKDamper` objects keep their parameters (their ``wall_effective_strain`` is the ratio
 times their peak strain, for information).  Every other property of the building (story
 hysteresis, loads, damping model, ...) is kept: each run's building is
-``dataclasses.replace(building, dampers=...)``.
+``dataclasses.replace(building, walls=...)``.
 
 Why 0.65 of the peak
 --------------------
@@ -76,9 +76,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _warnings
-from .._validation import finite_array, positive, whole_number
-from ..element.strain_dependent import StrainDependentDamper, _refuse_non_numbers
+from .._validation import finite_array, positive, refuse_non_numbers, whole_number
+from ..element.strain_dependent import StrainDependentDamper
 from .building import ShearBuilding
+from .time_history import time_history
 
 DEFAULT_EFFECTIVE_STRAIN_RATIO = 0.65
 
@@ -105,7 +106,7 @@ class StrainCompatibleOptions:
 
     def __post_init__(self):
         for name in ("effective_strain_ratio", "initial_strain", "tolerance"):
-            _refuse_non_numbers(name, getattr(self, name))
+            refuse_non_numbers(name, getattr(self, name))
         ratio = positive("effective_strain_ratio", self.effective_strain_ratio)
         if ratio > 1.0:
             raise ValueError(f"effective_strain_ratio must lie in (0, 1], got {self.effective_strain_ratio!r}")
@@ -133,35 +134,34 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion, options
 
     ``options``: ``True`` (defaults) or a :class:`StrainCompatibleOptions`.  ``simulate_options`` go
     to every :func:`~vdw_frames.frame.simulation.simulate` run (``dt`` in s, ``method``, ``memory``, ...).
-    Returns the last run's :class:`SimulationResult` with, per wall in ``building.damper_list``
+    Returns the last run's :class:`SimulationResult` with, per wall in ``building.wall_list``
     order, ``wall_effective_strain`` (dimensionless: the effective strain each wall's final
-    parameters were taken at) and ``wall_dampers`` (its final :class:`FDMKDamper`; for a
+    parameters were taken at) and ``equivalent_walls`` (its final :class:`FDMKDamper`; for a
     strain-dependent wall ``wall.at(wall_effective_strain)``), plus ``strain_iterations`` (analyses
     run) and ``strain_converged``.  ``result.building`` is the equivalent-linear building.  Warns
     (``UserWarning``) naming each wall whose effective strain left its range, and when the iteration
     did not converge; the final run's own warnings are passed on.
     """
-    from .simulation import simulate  # simulate() dispatches here: import at call time
-
     options = strain_compatible_options(options)
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
-    walls = [wall for _, wall in building.damper_list]
+    walls = [wall for _, wall in building.wall_list]
     dependent = np.array([isinstance(wall, StrainDependentDamper) for wall in walls], dtype=bool)
     thickness = np.array([wall.thickness for wall in walls])
-    stories = np.array([story for story, _ in building.damper_list], dtype=int) - 1
+    stories = np.array([story for story, _ in building.wall_list], dtype=int) - 1
     strain = np.array([_initial_strain(wall, options.initial_strain) if isinstance(wall, StrainDependentDamper)
                        else 0.0 for wall in walls])
 
     converged, previous_step, relaxation = False, np.zeros(len(walls)), np.ones(len(walls))
     for iteration in range(1, options.max_iterations + 1):
         final = [wall.at(wall.clamped(s)) if isinstance(wall, StrainDependentDamper) else wall  # clamped: no warning
-                 for wall, s in zip(walls, strain)]
+                 for wall, s in zip(walls, strain, strict=True)]
         # The strain-compatible analysis judges the range itself (effective, not peak, strain).
-        run_walls = [dataclasses.replace(d, strain_range=None) if flag else d for d, flag in zip(final, dependent)]
+        run_walls = [dataclasses.replace(d, strain_range=None) if flag else d
+                     for d, flag in zip(final, dependent, strict=True)]
         with _warnings.collect() as caught:  # per thread: safe under run_batch's thread executors
-            result = simulate(dataclasses.replace(building, dampers=_regroup(building, run_walls)), ground_motion,
-                              **simulate_options)
+            result = time_history(dataclasses.replace(building, walls=_regroup(building, run_walls)),
+                                  ground_motion, **simulate_options)
         effective = options.effective_strain_ratio * result.peak_drift[stories] / thickness
         converged = bool(np.all(np.abs(effective - strain)[dependent] <= options.tolerance * strain[dependent]))
         if converged or iteration == options.max_iterations:
@@ -172,7 +172,7 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion, options
         # relaxation factor, and recovers it by 1.5x a step while its steps keep their sign -- unless
         # both strains lie beyond the same end of its range, where its parameters do not change.
         moves = np.array([flag and wall.clamped(e) != wall.clamped(s)
-                          for wall, flag, e, s in zip(walls, dependent, effective, strain)], dtype=bool)
+                          for wall, flag, e, s in zip(walls, dependent, effective, strain, strict=True)], dtype=bool)
         reverses = (step * previous_step < 0.0) & moves
         relaxation = np.where(reverses, 0.5 * relaxation, np.minimum(1.0, 1.5 * relaxation))
         step = relaxation * step
@@ -187,8 +187,8 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion, options
                       f"effective strains still changed by up to {100 * change:.2g} % (tolerance "
                       f"{100 * options.tolerance:g} %)", UserWarning, stacklevel=3)
     return dataclasses.replace(
-        result, building=dataclasses.replace(building, dampers=_regroup(building, final)),
-        wall_effective_strain=np.where(dependent, strain, effective), wall_dampers=tuple(final),
+        result, building=dataclasses.replace(building, walls=_regroup(building, final)),
+        wall_effective_strain=np.where(dependent, strain, effective), equivalent_walls=tuple(final),
         strain_iterations=iteration, strain_converged=converged)
 
 
@@ -216,14 +216,15 @@ def _initial_strain(wall: StrainDependentDamper, initial) -> float:
 
 
 def _regroup(building: ShearBuilding, walls) -> dict:
-    """{story: walls} in ``building.dampers``' layout from one wall per entry of ``building.damper_list``."""
+    """{story: walls} in ``building.walls``' layout from one wall per entry of ``building.wall_list``."""
     walls = iter(walls)
-    return {story: tuple(next(walls) for _ in group) for story, group in building.dampers.items()}
+    return {story: tuple(next(walls) for _ in group) for story, group in building.walls.items()}
 
 
 def _warn_clamped(building, walls, strain, peak) -> None:
     outside = []
-    for index, ((story, _), wall, effective, reached) in enumerate(zip(building.damper_list, walls, strain, peak)):
+    for index, ((story, _), wall, effective, reached) in enumerate(zip(building.wall_list, walls, strain, peak,
+                                                                       strict=True)):
         if isinstance(wall, StrainDependentDamper) and wall.clamped(effective) != effective:
             low, high = wall.strain_range
             outside.append(f"wall {index} (story {story}): effective strain {100 * effective:.0f} % (peak "

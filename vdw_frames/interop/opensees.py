@@ -60,7 +60,6 @@ model must use N, mm, s too (and tonne for masses), the package's units.
 
 from __future__ import annotations
 
-
 import numpy as np
 
 from .._validation import positive, whole_number
@@ -427,11 +426,7 @@ class WallBridge:
             raise ValueError(f"the domain time is {ops.getTime()!r} s, not {self._time!r} s where the bridge left it: "
                              "step the analysis only through bridge.analyze()")
         bank = self.bank
-        if bank.count + steps > bank.max_steps:
-            if self._strategy is not None:
-                raise ValueError(f"the fast memory serves {bank.max_steps} steps in all ({bank.count} done); build the "
-                                 "bridge with memory=FastMemory(max_steps=...) for more")
-            self.bank = bank = bank.resized(max(2 * bank.max_steps, bank.count + steps))
+        bank.reserve(steps)  # an exact memory grows; a fast one refuses steps past its horizon
         self.failed_step = None
         count = len(self._walls)
         forces, deformations, strains = np.zeros((steps, count)), np.zeros((steps, count)), np.zeros((steps, count))
@@ -444,7 +439,7 @@ class WallBridge:
         try:
             for step in range(steps):
                 # 1. the step's history force: the element's force is K_t d + H_n
-                for tag, value in zip(parameters, history.tolist()):
+                for tag, value in zip(parameters, history.tolist(), strict=True):
                     update(tag, value or _QUIET_ZERO)
                 status = analyze(1, dt)
                 if status != 0 and self.fallback_algorithms:

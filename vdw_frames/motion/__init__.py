@@ -1,8 +1,8 @@
 """Ground motions: the record, file readers and writer, response spectra, the synthetic generator.
 
-- :mod:`.record`: :class:`GroundMotion` (scaling, resampling) and :data:`G`;
+- :mod:`.record`: :class:`GroundMotion` (scaling, resampling, its spectrum) and :data:`G`;
 - :mod:`.readers`: :func:`read_at2`, :func:`read_two_column`, :func:`write_at2`;
-- :mod:`.spectrum`: :func:`response_spectrum`;
+- :mod:`.spectrum`: :func:`response_spectrum` of an acceleration array;
 - :mod:`.synthetic`: :func:`synthetic_ground_motion` and the record shipped as package data
   (:func:`default_record_path`, :func:`default_record`).
 
@@ -12,7 +12,7 @@ Units: acceleration mm/s^2 (files in g converted with G = 9806.65 mm/s^2), time 
 from .readers import read_at2, read_two_column, write_at2
 from .record import G, GroundMotion
 from .spectrum import response_spectrum
-from .synthetic import default_record, default_record_path, jennings_envelope, synthetic_ground_motion
+from .synthetic import default_record, default_record_path, synthetic_ground_motion
 
-__all__ = ["G", "GroundMotion", "default_record", "default_record_path", "jennings_envelope", "read_at2",
-           "read_two_column", "response_spectrum", "synthetic_ground_motion", "write_at2"]
+__all__ = ["G", "GroundMotion", "default_record", "default_record_path", "read_at2", "read_two_column",
+           "response_spectrum", "synthetic_ground_motion", "write_at2"]

@@ -13,16 +13,15 @@ is never a guess).  Gzip, zip, UTF-16 and other binary files get a message that 
 
 from __future__ import annotations
 
-import os
 import re
-import secrets
-import shutil
 from collections.abc import Sequence
+from itertools import pairwise
 from pathlib import Path
 
 import numpy as np
 
-from .._validation import file_path, read_text, show, whole_number
+from .._files import file_path, read_text, replace_file
+from .._validation import show, whole_number
 from .record import G, GroundMotion
 
 TWO_COLUMN_TOLERANCE = 1e-3
@@ -61,7 +60,7 @@ def _number_texts(token: str) -> list[str] | None:
     (``12.34512.345`` has no unique split; ``0.1234-100`` may be Fortran's E-less exponent).
     """
     parts = list(_NUMBER.finditer(token))
-    if not parts or parts[0].start() != 0 or any(a.end() != b.start() for a, b in zip(parts, parts[1:])) \
+    if not parts or parts[0].start() != 0 or any(a.end() != b.start() for a, b in pairwise(parts)) \
             or parts[-1].end() != len(token):
         return None
     if len(parts) > 1 and not all(("." in part.group(0) or part.group(1)) and (k == 0 or part.group(0)[0] in "+-")
@@ -77,7 +76,7 @@ def _floats(tokens: list[str], line_numbers: list[int], source: Path) -> tuple[n
         values = np.array(tokens, dtype=float)
     except ValueError:
         texts, lines = [], []
-        for token, line in zip(tokens, line_numbers):
+        for token, line in zip(tokens, line_numbers, strict=True):
             numbers = _number_texts(token)
             if numbers is None:
                 raise ValueError(f"{source}: non-numeric value {token!r} on line {line}") from None
@@ -269,39 +268,5 @@ def write_at2(motion: GroundMotion, path, header: str | Sequence[str] = ()) -> P
     text = "\n".join([*lines, "ACCELERATION TIME HISTORY IN UNITS OF G",
                       f"NPTS= {values.size:6d}, DT= {motion.dt!r} SEC", *rows]) + "\n"
     path = file_path(path, "AT2 file")
-    _replace_file(path, text.encode("utf-8"))
+    replace_file(path, text.encode("utf-8"))
     return path
-
-
-def _replace_file(path: Path, data: bytes) -> None:
-    """Write ``data`` to a temporary file beside ``path`` and rename it over ``path`` (atomic on POSIX
-    and Windows): the old file stays whole until the new one is complete."""
-    target = path.resolve() if path.is_symlink() else path  # replace the file a link points to, not the link
-    folder = target.parent
-    if target.is_dir():
-        raise ValueError(f"{path}: is a folder; give a file name")
-    if not folder.is_dir():
-        raise ValueError(f"{path}: folder {folder} does not exist")
-    if target.exists() and not os.access(target, os.W_OK):
-        raise ValueError(f"{path}: not writable")
-    while True:
-        temporary = folder / f".{target.name}.{secrets.token_hex(4)}.tmp"
-        try:
-            # 0o666 minus the umask: the permissions a plainly created file would get.
-            descriptor = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-            break
-        except FileExistsError:
-            continue
-        except OSError as error:
-            raise ValueError(f"{path}: cannot write in {folder} ({error.strerror or error})") from None
-    try:
-        with os.fdopen(descriptor, "wb") as handle:
-            handle.write(data)
-        if target.exists():
-            shutil.copymode(target, temporary)
-        os.replace(temporary, target)
-    except BaseException as error:
-        temporary.unlink(missing_ok=True)
-        if isinstance(error, OSError):
-            raise ValueError(f"{path}: cannot write ({error.strerror or error})") from None
-        raise

@@ -11,7 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import check_memory, finite_array, finite_scalar, non_negative, positive, show
+from .._validation import check_memory, finite_array, finite_scalar, non_negative, positive, show, whole_number
+from .spectrum import spectral_accelerations
 
 G = 9806.65
 """Standard gravity, mm/s^2 per g."""
@@ -82,16 +83,19 @@ class GroundMotion:
         """The factor (dimensionless) that brings the pseudo-acceleration Sa(``period`` s,
         ``damping_ratio``) of :func:`response_spectrum` to ``target`` mm/s^2 (> 0)."""
         target = positive("target spectral acceleration", target)
-        from .spectrum import response_spectrum  # the spectrum module builds on this one
-
         period = non_negative("period", period)
-        spectral = float(response_spectrum(self, period, damping_ratio))
+        spectral = float(self.spectrum(period, damping_ratio))
         return target / self._nonzero(f"Sa(T = {show(period)} s)", spectral)
 
     def scaled_to_spectral_acceleration(self, target: float, period: float,
                                         damping_ratio: float = 0.05) -> GroundMotion:
         """A new record scaled so that Sa(``period`` s, ``damping_ratio``) is ``target`` mm/s^2."""
         return self.scaled(self.scale_factor_to_spectral_acceleration(target, period, damping_ratio))
+
+    def spectrum(self, periods, damping_ratio: float = 0.05) -> np.ndarray:
+        """Pseudo-acceleration spectrum Sa (mm/s^2) at ``periods`` (s; 0 gives the PGA) and ``damping_ratio``
+        (fraction of critical): :func:`vdw_frames.motion.spectrum.response_spectrum` of this record."""
+        return spectral_accelerations(self.acceleration, self.dt, periods, damping_ratio)
 
     def acceleration_at(self, dt: float) -> np.ndarray:
         """Ground acceleration (mm/s^2, a new array) sampled every ``dt`` s from time 0.
@@ -105,6 +109,12 @@ class GroundMotion:
         """
         substeps = self.substeps(dt)
         self._check_memory(dt, substeps)
+        return self.interpolated(substeps)
+
+    def interpolated(self, substeps: int) -> np.ndarray:
+        """Ground acceleration (mm/s^2, a new array) with ``substeps`` (a whole number from :meth:`substeps`)
+        steps in each record step, linear in between: ``(n - 1) * substeps + 1`` values."""
+        substeps = whole_number("substeps", substeps, 1)
         acceleration = self.acceleration
         if substeps == 1:
             return acceleration.copy()
@@ -115,7 +125,9 @@ class GroundMotion:
     def resampled(self, dt: float) -> GroundMotion:
         """The record sampled every ``dt`` s (see :meth:`acceleration_at`); its step is the record step
         divided by the whole number of sub-steps (equal to ``dt`` within 1e-6 relative)."""
-        return GroundMotion(self.acceleration_at(dt), self.dt / self.substeps(dt), self.name)
+        substeps = self.substeps(dt)
+        self._check_memory(dt, substeps)
+        return GroundMotion(self.interpolated(substeps), self.dt / substeps, self.name)
 
     def substeps(self, dt) -> int:
         """The whole number ``m`` of steps of ``dt`` s in one record step (see :meth:`acceleration_at`);

@@ -11,8 +11,7 @@ import numpy as np
 
 from .._jit import njit
 from .._validation import damping_ratio as _damping_ratio
-from .._validation import finite_array, show
-from .record import GroundMotion
+from .._validation import finite_array, positive, show
 
 PERIOD_STEPS = (1e-6, 1e5)
 """Periods accepted by :func:`response_spectrum`, in record steps: 0 (the PGA) or between 1e-6 dt and
@@ -67,30 +66,38 @@ def _peak_displacements(acceleration, dt, omegas, zeta):
     return peaks
 
 
-def response_spectrum(ground_motion: GroundMotion, periods, damping_ratio: float = 0.05) -> np.ndarray:
-    """Linear elastic pseudo-acceleration spectrum Sa = omega^2 max|u|, mm/s^2, of ``ground_motion``.
+def response_spectrum(acceleration, dt: float, periods, damping_ratio: float = 0.05) -> np.ndarray:
+    """Linear elastic pseudo-acceleration spectrum Sa = omega^2 max|u| (mm/s^2) of a ground acceleration.
 
-    ``periods`` s (scalar or array; the result has the same shape): 0, which gives the PGA, or between
-    1e-6 and 1e5 record steps (:data:`PERIOD_STEPS`; ValueError naming the period otherwise).  ``damping_ratio`` (fraction of critical) in [0, 1).  Each oscillator starts from rest and is
-    integrated by the exact recurrence for an excitation linear between samples (Nigam & Jennings 1969);
-    the peak is taken at the record's samples (for periods below ~10 dt the true peak between samples
-    can be a little larger).
+    ``acceleration`` (mm/s^2, 1-D, finite) sampled every ``dt`` s; ``periods`` s (scalar or array; the
+    result has the same shape): 0, which gives the PGA, or between 1e-6 and 1e5 record steps
+    (:data:`PERIOD_STEPS`; ValueError naming the period otherwise).  ``damping_ratio`` (fraction of
+    critical) in [0, 1).  Each oscillator starts from rest and is integrated by the exact recurrence for
+    an excitation linear between samples (Nigam & Jennings 1969); the peak is taken at the samples (for
+    periods below ~10 dt the true peak between samples can be a little larger).  For a
+    :class:`~vdw_frames.GroundMotion`: ``motion.spectrum(periods, damping_ratio)``.
     """
-    if not isinstance(ground_motion, GroundMotion):
-        raise ValueError(f"ground_motion must be a GroundMotion, got {type(ground_motion).__name__}")
+    acceleration = finite_array("acceleration", acceleration)
+    if acceleration.size < 2:
+        raise ValueError(f"acceleration must hold at least 2 samples, got {acceleration.size}")
+    return spectral_accelerations(acceleration, positive("dt", dt), periods, damping_ratio)
+
+
+def spectral_accelerations(acceleration: np.ndarray, dt: float, periods, damping_ratio: float = 0.05) -> np.ndarray:
+    """:func:`response_spectrum` of an acceleration array already checked (1-D, finite, mm/s^2)."""
     periods = finite_array("periods", periods, ndim=None)
     if (periods < 0.0).any():
         raise ValueError(f"periods must be >= 0 s, got {show(periods[periods < 0.0].flat[0])}")
-    low, high = (steps * ground_motion.dt for steps in PERIOD_STEPS)
+    low, high = (steps * dt for steps in PERIOD_STEPS)
     outside = (periods != 0.0) & ((periods < low) | (periods > high))
     if outside.any():
         raise ValueError(f"period {show(periods[outside].flat[0])} s is outside the range of response_spectrum "
-                         f"for a record step of {ground_motion.dt!r} s: 0 (the PGA) or {low:.3g} ... {high:.3g} s "
+                         f"for a record step of {dt!r} s: 0 (the PGA) or {low:.3g} ... {high:.3g} s "
                          f"(1e-6 to 1e5 steps)")
     zeta = _damping_ratio(damping_ratio)
-    spectrum = np.full(periods.shape, ground_motion.pga)
+    spectrum = np.full(periods.shape, float(np.max(np.abs(acceleration))))
     positive_periods = periods > 0.0
     omegas = 2.0 * np.pi / periods[positive_periods]
-    peaks = _peak_displacements(ground_motion.acceleration, ground_motion.dt, omegas, zeta)
+    peaks = _peak_displacements(acceleration, dt, omegas, zeta)
     spectrum[positive_periods] = omegas**2 * peaks
     return spectrum

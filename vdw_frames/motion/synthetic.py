@@ -10,8 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .._validation import damping_ratio as _damping_ratio
 from .._validation import check_memory, finite_array, finite_scalar, non_negative, positive, show
+from .._validation import damping_ratio as _damping_ratio
 from .record import G, GroundMotion
 from .spectrum import sdof_history
 
@@ -85,7 +85,8 @@ def synthetic_ground_motion(duration: float = 25.0, dt: float = 0.01, pga: float
     noise = np.random.default_rng(seed).standard_normal(samples)
     acceleration = _filtered(noise, dt, ground_frequency, _damping_ratio(ground_damping, "ground_damping"))
     if high_pass_frequency > 0.0:
-        filtered = _filtered(acceleration, dt, high_pass_frequency, _damping_ratio(high_pass_damping, "high_pass_damping"))
+        damping = _damping_ratio(high_pass_damping, "high_pass_damping")
+        filtered = _filtered(acceleration, dt, high_pass_frequency, damping)
         acceleration = filtered - acceleration  # the high-pass oscillator's relative acceleration
     acceleration = acceleration * jennings_envelope(np.arange(samples) * dt, rise_time, strong_motion_end,
                                                     decay_rate)

@@ -4,7 +4,8 @@
   parameter sets :func:`fitted` identified from Tables 1-3;
 - :mod:`.identification`: :func:`identify`, the global fit of eqs. (3)-(5) to measured moduli;
 - :mod:`.strain_dependence`: :func:`strain_dependent`, one strain-dependent model from Tables 1-3 jointly;
-- :mod:`.report`: :func:`write_paper_report`, the reproduction report with computed errata.
+- :mod:`.errata`: the errata and every number of the reproduction report, computed;
+- :mod:`.report`: :func:`write_paper_report`, the reproduction report (rendering).
 
 Units: moduli MPa, viscosities MPa*s^r, frequencies Hz, strains in % where the paper uses %.
 """
@@ -32,6 +33,7 @@ from .data import (
     table_moduli,
 )
 from .identification import IdentificationResult, identify
+from .report import write_paper_report
 from .strain_dependence import (
     STRAIN_DEPENDENT,
     STRAIN_DEPENDENT_QUALITY,
@@ -40,7 +42,6 @@ from .strain_dependence import (
     interpolated_moduli,
     strain_dependent,
 )
-from .report import write_paper_report
 
 __all__ = [
     "AREA", "COLUMN_UNITS", "FITTED", "FIT_QUALITY", "FIT_RANGE", "FREQUENCIES", "RECOMMENDED_RESIDUAL",

@@ -96,7 +96,7 @@ def _frozen(values):
 
 
 def _table(storage, loss, factor, storage_k, loss_k, damping):
-    columns = zip(COLUMN_UNITS, (storage, loss, factor, storage_k, loss_k, damping))
+    columns = zip(COLUMN_UNITS, (storage, loss, factor, storage_k, loss_k, damping), strict=True)
     return {name: _frozen(values) for name, values in columns}
 
 

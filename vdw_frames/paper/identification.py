@@ -358,7 +358,7 @@ class _Problem:
     def full_parameters(self, r, u, coefficients) -> dict:
         """All five parameters from a grid point (r, u) and its linear coefficients."""
         params = dict(self.fixed)
-        params.update(zip(self.linear, (float(c) for c in coefficients)))
+        params.update(zip(self.linear, (float(c) for c in coefficients), strict=True))
         params["r"] = float(r)
         if self.maxwell_off:
             params.setdefault("G2", 0.0)
@@ -381,7 +381,7 @@ class _Problem:
 
         def params_of(x):
             params = dict(start)
-            params.update(zip(free, np.clip(x, lower, upper)))
+            params.update(zip(free, np.clip(x, lower, upper), strict=True))
             return params
 
         solution = least_squares(lambda x: self.weighted_residuals(params_of(x)), x0, bounds=(lower, upper),

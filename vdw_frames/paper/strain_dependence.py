@@ -67,6 +67,7 @@ dimensionless amplitudes (3.0 = 300 %).  Moduli MPa, viscosities MPa*s^r, freque
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from itertools import pairwise
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -122,7 +123,7 @@ def interpolated_moduli(strain):
 def identification_strains() -> np.ndarray:
     """The strains (%) of the joint fit: the tested ones and INTERMEDIATE_STRAINS per interval between."""
     grid = []
-    for low, high in zip(STRAINS[:-1], STRAINS[1:]):
+    for low, high in pairwise(STRAINS):
         between = np.exp(np.linspace(np.log(low), np.log(high), INTERMEDIATE_STRAINS + 2)[1:-1])
         grid += [float(low)] + between.tolist()
     return np.array(grid + [float(STRAINS[-1])])
@@ -187,7 +188,7 @@ def identify_strain_dependent() -> StrainDependenceResult:
     def residuals(theta):
         wall = family(theta)
         return np.concatenate([w * relative_errors(wall.complex_modulus(FREQUENCIES, s / 100.0), s)
-                               for s, w in zip(strains, weights)])
+                               for s, w in zip(strains, weights, strict=True)])
 
     starts = [[identify(*table_moduli(s), residual=RECOMMENDED_RESIDUAL).params for s in STRAINS]]
     starts += [[identify(*table_moduli(s), residual=RECOMMENDED_RESIDUAL, fixed={"r": r}).params for s in STRAINS]

@@ -5,7 +5,8 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from .._validation import file_path, show, whole_number
+from .._files import file_path, write_via
+from .._validation import show, whole_number
 
 _FORMATS = {"eps", "jpeg", "jpg", "pdf", "pgf", "png", "ps", "raw", "rgba", "svg", "svgz", "tif", "tiff", "webp"}
 
@@ -54,9 +55,7 @@ def save(figure, path: Path) -> Path:
     """Lay out, write and close ``figure``; returns ``path``."""
     figure.tight_layout()
     try:
-        figure.savefig(path, dpi=120)
-    except OSError as error:
-        raise ValueError(f"{path}: cannot write the figure ({error.strerror or error})") from None
+        write_via(path, lambda temporary: figure.savefig(temporary, dpi=120, format=path.suffix.lstrip(".").lower()))
     finally:
         pyplot().close(figure)
     return path

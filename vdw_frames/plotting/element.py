@@ -22,7 +22,7 @@ def plot_loops(results, path, labels=None, title=None) -> Path:
     path = figure_path(path, "loops.png")
     plt = pyplot()
     figure, axes = plt.subplots(figsize=(6.4, 4.8))
-    for res, label in zip(results, labels):
+    for res, label in zip(results, labels, strict=True):
         (line,) = axes.plot(res.displacement[res.last_cycle], res.force[res.last_cycle] / 1e3,
                             lw=1.8, label=label)
         axes.plot(res.displacement, res.force / 1e3, lw=0.5, alpha=0.4, color=line.get_color())

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from itertools import cycle
 from pathlib import Path
 
 import numpy as np
@@ -19,7 +20,7 @@ def plot_ida_curves(results: dict, path, title=None) -> Path:
     path = figure_path(path, "ida_curves.png")
     plt = pyplot()
     figure, axes = plt.subplots(figsize=(7.0, 5.0))
-    for (label, result), style in zip(results.items(), ("--", "-", ":", "-.")):
+    for (label, result), style in zip(results.items(), cycle(("--", "-", ":", "-.")), strict=False):
         for m, name in enumerate(result.motion_names):
             sa, drift, collapsed = result.intensities[m] / G, 100.0 * result.peak_drift_ratio[m], result.collapsed[m]
             standing = ~collapsed

@@ -49,9 +49,9 @@ def plot_roof_displacement(results: dict, path) -> Path:
     return save(figure, path)
 
 
-def plot_damper_hysteresis(result, story: int, path, title=None) -> Path:
+def plot_wall_hysteresis(result, story: int, path, title=None) -> Path:
     """Total damper force (kN) against drift (mm) of one story (1-based) of a simulation result."""
-    return _story_loop(result, story, path, "damper_hysteresis.png", result.damper_force, "damper force", title)
+    return _story_loop(result, story, path, "damper_hysteresis.png", result.story_wall_force, "damper force", title)
 
 
 def _story_loop(result, story, path, default_name, force, what, title) -> Path:
@@ -87,7 +87,7 @@ def plot_energy(result, path, title=None) -> Path:
     plt = pyplot()
     energy = result.energy
     figure, axes = plt.subplots(figsize=(8.0, 4.0))
-    parts = [("walls", energy.damper_work), ("inherent damping", energy.inherent_damping),
+    parts = [("walls", energy.wall_work), ("inherent damping", energy.inherent_damping),
              ("story yielding", energy.hysteretic), ("frame strain", energy.frame_strain),
              ("kinetic", energy.kinetic)]
     parts = [(name, values) for name, values in parts if np.abs(values).max() > 0.0]

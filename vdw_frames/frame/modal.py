@@ -81,7 +81,7 @@ import numpy as np
 from scipy.linalg import eigh
 
 from .._validation import whole_number
-from ..frame.building import ShearBuilding, require_fixed_walls, story_matrix
+from .building import ShearBuilding, require_fixed_walls, story_matrix
 
 # The sector Omega of the argument principle (module docstring).
 _EDGE_RIGHT_GAP = 0.1
@@ -141,7 +141,7 @@ class _System:
         self.mass = np.asarray(building.masses, dtype=float)
         self.damping = np.asarray(building.damping_matrix, dtype=float)
         self.stiffness = np.asarray(building.stiffness_matrix) + story_matrix(np.asarray(building.geometric_stiffness))
-        self.walls = building.damper_list if walls else []
+        self.walls = building.wall_list if walls else []
         # Equal walls are evaluated once: (wall, how many of it each story holds).
         counts = {}
         for story, wall in self.walls:
@@ -246,7 +246,7 @@ def _start_guesses(system: _System):
     return starts
 
 
-def _complex_modes(building: ShearBuilding, walls: bool = True):
+def complex_modes(building: ShearBuilding, walls: bool = True):
     """(poles ascending in |s|, shapes as columns, argument-principle count) of the linear building."""
     system = _System(building, walls)
     static = system.matrices(0.0, system.wall_stiffness(0.0).real if walls else None)[0].real
@@ -425,8 +425,8 @@ def modal_analysis(building: ShearBuilding, modes=None) -> ModalResult:
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
     require_fixed_walls(building, "modal_analysis()")
-    poles, shapes, count = _complex_modes(building)
-    bare_poles, _, _ = _complex_modes(building, walls=False)
+    poles, shapes, count = complex_modes(building)
+    bare_poles, _, _ = complex_modes(building, walls=False)
     selected = _mode_numbers(modes, poles.size)
     index = selected - 1
     # Mode j of the bare frame and of the real-mode estimate, where they exist (NaN beyond).

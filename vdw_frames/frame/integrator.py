@@ -1,0 +1,439 @@
+"""The compiled Newmark-Newton integrator of a shear building with FDMK walls: average acceleration with
+Newton-Raphson iterations through the walls' and the stories' trial/commit.
+
+Equation of motion, relative to the ground, at every step n+1:
+
+    M u'' + C u' + B^T [ f_s(d) + k_G d + f_w(d) ] = -M 1 a_g,        d = B u (story drifts),
+
+with f_s the story springs (:mod:`vdw_frames.frame.hysteresis`; linear, Bilinear or Bouc-Wen), k_G = -P/h
+the P-Delta stiffness, f_w the walls and C the inherent damping.  Newmark's method with gamma = 1/2,
+beta = 1/4 (unconditionally stable for linear systems, second order, no numerical damping).
+
+Per step (the trial/commit contract of OpenSees's ``UniaxialMaterial``, compiled):
+
+1. walls: their history is evaluated once from the committed memory (:func:`kernel.bank_affine`); within
+   the step a wall's trial force is exactly K_t d + H_n (the element is linear), K_t constant;
+2. Newton-Raphson on the unbalanced force R(u) with the consistent tangent
+   K_T = (4/dt^2) M + (2/dt) C + B^T diag(k_s + k_G + K_t) B, each story's force and tangent from its
+   model's trial at the current drift (state untouched); the building's tangent is tridiagonal with
+   Rayleigh damping (solved in O(n)) and dense with modal damping.  Converged when
+   ||R||_inf <= ``force_tolerance`` x the step's largest force term and either ||du||_inf <=
+   ``displacement_tolerance`` (mm) or no story's tangent changed since the last correction (that
+   correction then solved the piecewise-linear model exactly: a Bilinear step that stays on its branches
+   takes one solve); see :class:`NewtonRaphson`.  A linear building takes exactly one solve a step;
+3. on convergence the stories and the walls commit (the walls' memory advances only now);
+4. when Newton fails, the same step is retried, at the same dt (the walls' memory is built for one
+   dt: never sub-step), with a backtracking line search, then with initial-stiffness iterations; if
+   those fail too, the analysis stops, reports ``converged = False`` and warns with the time and story.
+
+Energies (N*mm) are accumulated in the same pass with trapezoidal work increments, the rule under which
+average acceleration balances energy to the iteration tolerance.
+
+The compiled functions take their arrays as named tuples (:class:`FrameArrays`, :class:`StoryArrays`,
+:class:`~vdw_frames.element.kernel.BankArrays`, :class:`Histories`, :class:`Scratch`), whose fields
+give every array's shape; nothing here imports the drivers above it
+(:mod:`vdw_frames.frame.time_history`, :mod:`vdw_frames.frame.simulation`).
+
+Units: N, mm, s, tonne.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from .._jit import njit
+from .._validation import positive, whole_number
+from ..element import kernel
+from ..element.kernel import BankArrays
+from .hysteresis import story_trial
+
+# Status codes of the compiled integrator (Histories.outcome[0]).
+RUNNING, FINISHED, COLLAPSED, FAILED = 0, 1, 2, 3
+# Energy columns: input, kinetic, frame strain (recoverable), story work, inherent damping, wall work, P-Delta.
+ENERGIES = 7
+# Solution strategies tried in turn on a step: Newton, Newton with line search, initial stiffness.
+_NEWTON, _LINE_SEARCH, _INITIAL = 0, 1, 2
+
+
+@dataclass(frozen=True)
+class NewtonRaphson:
+    """Convergence settings of the inelastic integration (all per time step).
+
+    ``force_tolerance`` (-): bound on ||R||_inf relative to the step's largest force term (inertia,
+    damping, story, P-Delta or wall force of any floor, at least 1 N); required for convergence.
+    ``displacement_tolerance`` (mm): bound on ||du||_inf, the last Newton correction; required too,
+    unless no story's tangent changed since that correction (it then solved the model exactly).
+    ``max_iterations``: Newton iterations before the fallbacks (line search, then initial stiffness with
+    ``fallback_iterations``) are tried at the same dt.
+    """
+
+    displacement_tolerance: float = 1e-8
+    force_tolerance: float = 1e-9
+    max_iterations: int = 25
+    fallback_iterations: int = 200
+
+    def __post_init__(self):
+        object.__setattr__(self, "displacement_tolerance",
+                           positive("displacement_tolerance", self.displacement_tolerance))
+        object.__setattr__(self, "force_tolerance", positive("force_tolerance", self.force_tolerance))
+        object.__setattr__(self, "max_iterations", whole_number("max_iterations", self.max_iterations, 1))
+        object.__setattr__(self, "fallback_iterations",
+                           whole_number("fallback_iterations", self.fallback_iterations, 1))
+
+    def arrays(self) -> NewtonSettings:
+        """The settings as the compiled integrator takes them."""
+        return NewtonSettings(self.displacement_tolerance, self.force_tolerance, self.max_iterations,
+                              self.fallback_iterations)
+
+
+class NewtonSettings(NamedTuple):
+    """:class:`NewtonRaphson` for the compiled integrator."""
+
+    displacement_tolerance: float  # mm
+    force_tolerance: float  # -
+    max_iterations: int
+    fallback_iterations: int
+
+
+class FrameArrays(NamedTuple):
+    """The building as the integrator sees it (n stories)."""
+
+    masses: np.ndarray  # (n,) tonne
+    damping: np.ndarray  # (n, n) N*s/mm
+    story_damping_row: np.ndarray  # (n,): 1^T C_s, the damping force through story 1 per unit velocity
+    geometric: np.ndarray  # (n,) -P/h, N/mm
+    heights: np.ndarray  # (n,) mm (ones without story heights)
+    tridiagonal: bool  # Rayleigh damping: a tridiagonal tangent
+    linear: bool  # every story elastic: one solve a step
+    collapse_ratio: float  # drift ratio that stops the run (0: never)
+
+
+class WallArrays(NamedTuple):
+    """The walls: one bank of wall groups and the story of each group (G groups)."""
+
+    group_story: np.ndarray  # (G,) int64, 0-based
+    bank: BankArrays
+
+
+class Histories(NamedTuple):
+    """The integrator's output (N steps, n stories, G wall groups); row 0 is rest."""
+
+    displacement: np.ndarray  # (N, n) mm
+    velocity: np.ndarray  # (N, n) mm/s
+    acceleration: np.ndarray  # (N, n) mm/s^2, relative
+    drift: np.ndarray  # (N, n) mm
+    story_shear: np.ndarray  # (N, n) N, frame springs
+    story_wall_force: np.ndarray  # (N, n) N, all walls of each story
+    base_shear: np.ndarray  # (N,) N
+    group_force: np.ndarray  # (N, G) N
+    group_strain: np.ndarray  # (N, G) -
+    peak_group_strain: np.ndarray  # (G,) -
+    energy: np.ndarray  # (N, ENERGIES) N*mm
+    outcome: np.ndarray  # (3,) int64: status, failed or collapsed story, Newton corrections
+
+
+class Scratch(NamedTuple):
+    """Work arrays of one step (n stories, G wall groups)."""
+
+    drift: np.ndarray  # (n,) trial drifts, mm
+    story_force: np.ndarray  # (n,) trial frame-spring forces, N
+    story_tangent: np.ndarray  # (n,) N/mm
+    trial_state: np.ndarray  # (n,) the story models' state values to commit
+    story_total: np.ndarray  # (n,) spring + P-Delta + walls, N
+    damping_force: np.ndarray  # (n,) C v, N
+    residual: np.ndarray  # (n,) N
+    correction: np.ndarray  # (n,) mm
+    stiffness_diagonal: np.ndarray  # (n,) story tangents in the solve, N/mm
+    wall_tangent: np.ndarray  # (n,) walls' K_t per story, N/mm
+    wall_history: np.ndarray  # (n,) walls' H_n per story, N
+    work: np.ndarray  # (2, n) tridiagonal factors
+    matrix: np.ndarray  # (n, n) dense tangent
+    wall_deformation: np.ndarray  # (G,) mm
+    wall_force: np.ndarray  # (G,) N
+    wall_strain: np.ndarray  # (G,) -
+
+
+
+# ---------------------------------------------------------------------------------------------- compiled
+@njit(cache=True, inline="always")
+def _story_state(stories, work):
+    """Every story's trial at ``work.drift``: force, tangent and the state value to commit."""
+    for s in range(work.drift.shape[0]):
+        work.story_force[s], work.story_tangent[s], work.trial_state[s] = story_trial(stories, s, work.drift[s])
+
+
+@njit(cache=True, inline="always")
+def _residual(u, step, ground, dt, frame, stories, out, work):
+    """Unbalanced force R = -M a_g - (M a + C v + B^T f)(u) at trial displacements u (n,) of step
+    ``step`` + 1, into ``work.residual``; returns the force scale.
+
+    Fills the drifts, the stories' trial forces/tangents/states, the total story forces (spring +
+    P-Delta + walls) and the damping forces C v.
+    """
+    u_n, v_n, a_n = out.displacement[step], out.velocity[step], out.acceleration[step]
+    masses, damping, geometric = frame.masses, frame.damping, frame.geometric
+    n = u.shape[0]
+    a0, v1 = 4.0 / dt**2, 2.0 / dt
+    for s in range(n):
+        work.drift[s] = u[s] - (u[s - 1] if s > 0 else 0.0)
+    _story_state(stories, work)
+    for s in range(n):
+        work.story_total[s] = (work.story_force[s] + geometric[s] * work.drift[s]
+                               + work.wall_tangent[s] * work.drift[s] + work.wall_history[s])
+    scale = 1.0
+    for i in range(n):
+        increment = u[i] - u_n[i]
+        inertia = masses[i] * (a0 * increment - (4.0 / dt) * v_n[i] - a_n[i])
+        viscous = 0.0
+        if frame.tridiagonal:
+            for j in range(max(i - 1, 0), min(i + 2, n)):
+                viscous += damping[i, j] * (v1 * (u[j] - u_n[j]) - v_n[j])
+        else:
+            for j in range(n):
+                viscous += damping[i, j] * (v1 * (u[j] - u_n[j]) - v_n[j])
+        work.damping_force[i] = viscous
+        above = work.story_total[i + 1] if i + 1 < n else 0.0
+        external = masses[i] * ground
+        work.residual[i] = -external - inertia - viscous - (work.story_total[i] - above)
+        # The residual's round-off is relative to its largest terms, including the inertia terms before
+        # they cancel (m a0 |u| for the increment u - u_n): the force tolerance is relative to them all.
+        inertia_terms = masses[i] * (a0 * abs(u[i]) + (4.0 / dt) * abs(v_n[i]) + abs(a_n[i]))
+        scale = max(scale, abs(external), inertia_terms, abs(viscous), abs(work.story_force[i]),
+                    abs(work.story_total[i]))
+    return scale
+
+
+@njit(cache=True, inline="always")
+def _largest(values):
+    """max |value| (a NaN anywhere gives NaN: it must fail the step, not vanish as numba's max would)."""
+    largest = 0.0
+    for value in values:
+        if not abs(value) <= largest:
+            largest = abs(value)
+    return largest
+
+
+@njit(cache=True, inline="always")
+def _solve(frame, dt, work):
+    """Solve ((4/dt^2) M + (2/dt) C + B^T diag(k) B) x = R for the correction x (n,), k =
+    ``work.stiffness_diagonal``, R = ``work.residual``: the Thomas algorithm when tridiagonal, else LU."""
+    masses, damping, k = frame.masses, frame.damping, work.stiffness_diagonal
+    rhs, out, band, matrix = work.residual, work.correction, work.work, work.matrix
+    n = rhs.shape[0]
+    a0, v1 = 4.0 / dt**2, 2.0 / dt
+    if frame.tridiagonal:
+        # diagonal in band[0], super-diagonal in band[1]
+        for i in range(n):
+            above = k[i + 1] if i + 1 < n else 0.0
+            band[0, i] = a0 * masses[i] + v1 * damping[i, i] + k[i] + above
+            band[1, i] = (v1 * damping[i, i + 1] - k[i + 1]) if i + 1 < n else 0.0
+        # forward elimination (symmetric tridiagonal), in place
+        out[0] = rhs[0]
+        for i in range(1, n):
+            factor = band[1, i - 1] / band[0, i - 1]
+            band[0, i] -= factor * band[1, i - 1]
+            out[i] = rhs[i] - factor * out[i - 1]
+        out[n - 1] /= band[0, n - 1]
+        for i in range(n - 2, -1, -1):
+            out[i] = (out[i] - band[1, i] * out[i + 1]) / band[0, i]
+        return
+    # Every row's damping first: the stiffness couples row i to i + 1, which a later row must not overwrite.
+    for i in range(n):
+        for j in range(n):
+            matrix[i, j] = v1 * damping[i, j]
+        out[i] = rhs[i]
+    for i in range(n):
+        matrix[i, i] += a0 * masses[i] + k[i] + (k[i + 1] if i + 1 < n else 0.0)
+        if i + 1 < n:
+            matrix[i, i + 1] -= k[i + 1]
+            matrix[i + 1, i] -= k[i + 1]
+    # Gaussian elimination with partial pivoting
+    for c in range(n):
+        pivot = c
+        for i in range(c + 1, n):
+            if abs(matrix[i, c]) > abs(matrix[pivot, c]):
+                pivot = i
+        if pivot != c:
+            for j in range(n):
+                matrix[c, j], matrix[pivot, j] = matrix[pivot, j], matrix[c, j]
+            out[c], out[pivot] = out[pivot], out[c]
+        for i in range(c + 1, n):
+            factor = matrix[i, c] / matrix[c, c]
+            for j in range(c, n):
+                matrix[i, j] -= factor * matrix[c, j]
+            out[i] -= factor * out[c]
+    for i in range(n - 1, -1, -1):
+        total = out[i]
+        for j in range(i + 1, n):
+            total -= matrix[i, j] * out[j]
+        out[i] = total / matrix[i, i]
+
+
+@njit(cache=True)
+def integrate(ground, dt, frame, stories, walls, newton, out):
+    """Newmark average acceleration with Newton-Raphson, steps 1 .. N-1 (step 0 is rest), in place.
+
+    ``ground`` (N,) mm/s^2; ``dt`` s; ``frame`` :class:`FrameArrays`; ``stories`` :class:`StoryArrays`
+    (its committed state advances); ``walls`` :class:`WallArrays` (its bank's memory advances);
+    ``newton`` :class:`NewtonSettings`; ``out`` :class:`Histories`.  Returns the number of steps filled;
+    ``out.outcome`` receives (status, failed or collapsed story, Newton corrections).
+    """
+    steps, n = out.displacement.shape
+    bank = walls.bank
+    groups = walls.group_story.shape[0]
+    masses, geometric = frame.masses, frame.geometric
+    a0, v1 = 4.0 / dt**2, 2.0 / dt
+    work = Scratch(np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
+                   np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros((2, n)), np.zeros((n, n)),
+                   np.zeros(groups), np.zeros(groups), np.zeros(groups))
+    initial_stiffness = np.empty(n)
+    for s in range(n):
+        initial_stiffness[s] = stories.parameters[s, 0] + geometric[s]
+    trial = np.zeros(n)
+    old_damping_force = np.zeros(n)
+    for i in range(n):  # (loops, not slice assignments: those compile numba's shape-error machinery)
+        out.acceleration[0, i] = -ground[0]
+        out.energy[0, 1] += 0.5 * masses[i] * out.velocity[0, i] ** 2
+    total_iterations = 0
+    for step in range(steps - 1):
+        u_n, v_n, a_n = out.displacement[step], out.velocity[step], out.acceleration[step]
+        # 1. walls: their history for this step came with the last commit; their trial force is K_t d + H_n
+        for s in range(n):
+            work.wall_tangent[s] = 0.0
+            work.wall_history[s] = 0.0
+        for g in range(groups):
+            work.wall_tangent[walls.group_story[g]] += bank.tangent[g]
+            work.wall_history[walls.group_story[g]] += bank.history_force[g]
+        # 2. Newton-Raphson from u_n; strategies in turn, each from u_n again
+        u = out.displacement[step + 1]
+        converged = False
+        for strategy in range(3):
+            if frame.linear and strategy > 0:
+                break
+            for i in range(n):
+                u[i] = u_n[i]
+            limit = newton.max_iterations if strategy < _INITIAL else newton.fallback_iterations
+            if frame.linear:
+                limit = 1
+            last_correction = np.inf
+            exact_solve = False  # the last correction solved the model itself (no tangent changed since)
+            for iteration in range(limit + 1):
+                scale = _residual(u, step, ground[step + 1], dt, frame, stories, out, work)
+                norm = _largest(work.residual)
+                if exact_solve:
+                    for s in range(n):
+                        if (work.story_tangent[s] + geometric[s] + work.wall_tangent[s]
+                                != work.stiffness_diagonal[s]):
+                            exact_solve = False
+                            break
+                if iteration > 0 and (frame.linear or (
+                        norm <= newton.force_tolerance * scale
+                        and (exact_solve or last_correction <= newton.displacement_tolerance))):
+                    converged = True
+                    break
+                if iteration == limit or not math.isfinite(norm):
+                    break
+                for s in range(n):
+                    if strategy == _INITIAL:
+                        work.stiffness_diagonal[s] = initial_stiffness[s] + work.wall_tangent[s]
+                    else:
+                        work.stiffness_diagonal[s] = work.story_tangent[s] + geometric[s] + work.wall_tangent[s]
+                _solve(frame, dt, work)
+                total_iterations += 1
+                step_length = 1.0
+                if strategy == _LINE_SEARCH:
+                    # Backtrack until the unbalanced force drops (at most 8 halvings).
+                    for _ in range(8):
+                        for i in range(n):
+                            trial[i] = u[i] + step_length * work.correction[i]
+                        _residual(trial, step, ground[step + 1], dt, frame, stories, out, work)
+                        if _largest(work.residual) < norm:
+                            break
+                        step_length *= 0.5  # (after 8 halvings the 1/256 step is taken; the next residual judges it)
+                exact_solve = strategy != _INITIAL and step_length == 1.0
+                last_correction = step_length * _largest(work.correction)
+                for i in range(n):
+                    u[i] += step_length * work.correction[i]
+            if converged:
+                break
+        if not converged:
+            failed_story, largest = 0, 0.0  # the story the last correction moved most
+            for s in range(n):
+                story_drift = abs(work.correction[s] - (work.correction[s - 1] if s > 0 else 0.0))
+                if story_drift > largest:
+                    failed_story, largest = s, story_drift
+            out.outcome[0], out.outcome[1], out.outcome[2] = FAILED, failed_story, total_iterations
+            return step + 1
+        # 3. commit: stories, then the walls with their drifts (memory advances only now)
+        for s in range(n):
+            stories.committed[s, 0] = work.drift[s]
+            stories.committed[s, 1] = work.trial_state[s]
+        for g in range(groups):
+            work.wall_deformation[g] = work.drift[walls.group_story[g]]
+        kernel.bank_commit(bank, step, work.wall_deformation, work.wall_force, work.wall_strain)
+        for g in range(groups):
+            out.group_force[step + 1, g] = work.wall_force[g]
+            out.group_strain[step + 1, g] = work.wall_strain[g]
+            out.peak_group_strain[g] = max(out.peak_group_strain[g], abs(work.wall_strain[g]))
+        for i in range(n):
+            increment = u[i] - u_n[i]
+            out.velocity[step + 1, i] = v1 * increment - v_n[i]
+            out.acceleration[step + 1, i] = a0 * increment - (4.0 / dt) * v_n[i] - a_n[i]
+        _record(step, ground, frame, stories, out, work, old_damping_force)
+        # 4. collapse
+        if frame.collapse_ratio > 0.0:
+            for s in range(n):
+                if abs(work.drift[s]) > frame.collapse_ratio * frame.heights[s]:
+                    out.outcome[0], out.outcome[1], out.outcome[2] = COLLAPSED, s, total_iterations
+                    return step + 2
+    out.outcome[0], out.outcome[1], out.outcome[2] = FINISHED, 0, total_iterations
+    return steps
+
+
+@njit(cache=True, inline="always")
+def _record(step, ground, frame, stories, out, work, old_damping_force):
+    """Outputs and energies of the converged step ``step`` + 1 (trapezoidal work increments); row ``step``
+    of the outputs holds the previous step's values, row 0 is rest."""
+    n = work.drift.shape[0]
+    masses, geometric = frame.masses, frame.geometric
+    u, u_n = out.displacement[step + 1], out.displacement[step]
+    kinetic = 0.0
+    recoverable = 0.0
+    input_work = 0.0
+    story_work = 0.0
+    damping_work = 0.0
+    wall_work = 0.0
+    geometric_work = 0.0
+    story1_damping = 0.0  # the damping force through story 1: 1^T C_s v
+    for i in range(n):
+        story1_damping += frame.story_damping_row[i] * out.velocity[step + 1, i]
+    for s in range(n):
+        drift = work.drift[s]
+        wall_force = work.story_total[s] - work.story_force[s] - geometric[s] * drift
+        change = drift - out.drift[step, s]
+        story_work += 0.5 * (work.story_force[s] + out.story_shear[step, s]) * change
+        wall_work += 0.5 * (wall_force + out.story_wall_force[step, s]) * change
+        geometric_work += 0.5 * geometric[s] * (drift + out.drift[step, s]) * change
+        recoverable += 0.5 * work.story_force[s] ** 2 / stories.parameters[s, 0]
+        out.story_shear[step + 1, s] = work.story_force[s]
+        out.story_wall_force[step + 1, s] = wall_force
+        out.drift[step + 1, s] = drift
+    for i in range(n):
+        change = u[i] - u_n[i]
+        kinetic += 0.5 * masses[i] * out.velocity[step + 1, i] ** 2
+        input_work -= 0.5 * masses[i] * (ground[step + 1] + ground[step]) * change
+        damping_work += 0.5 * (work.damping_force[i] + old_damping_force[i]) * change
+        old_damping_force[i] = work.damping_force[i]
+    out.base_shear[step + 1] = work.story_total[0] + story1_damping
+    energy = out.energy
+    energy[step + 1, 0] = energy[step, 0] + input_work
+    energy[step + 1, 1] = kinetic
+    energy[step + 1, 2] = recoverable
+    energy[step + 1, 3] = energy[step, 3] + story_work
+    energy[step + 1, 4] = energy[step, 4] + damping_work
+    energy[step + 1, 5] = energy[step, 5] + wall_work
+    energy[step + 1, 6] = energy[step, 6] + geometric_work

@@ -1,0 +1,205 @@
+"""The results of a time-history analysis: response histories, energies, outcome; their self-checks.
+
+Units: N, mm, s; energies N*mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from .. import _warnings
+from .._validation import require_finite
+from .building import ShearBuilding
+
+# Self-check: Newmark's average acceleration with trapezoidal work increments balances energy to the Newton
+# tolerance (1e-13 ... 1e-9 of the input in the tests); a larger gap means the wrong equations were solved.
+ENERGY_BALANCE_TOLERANCE = 1e-4
+
+
+@dataclass(frozen=True)
+class EnergyHistory:
+    """Energy histories, N*mm, relative-motion formulation, trapezoidal work increments.
+
+    ``input`` = -int (1^T M a_g) du; ``kinetic`` = v^T M v / 2; ``frame_strain`` = sum F_s^2 / (2 k0), the
+    recoverable elastic energy of the story springs; ``hysteretic`` = int F_s dd - frame_strain, the energy
+    the story springs have dissipated by yielding (and, with kinematic hardening, stored in their
+    hardening); ``inherent_damping`` = int (C v) . du; ``wall_work`` = int f_w . dd (the walls: stored and
+    dissipated); ``p_delta`` = int k_G d dd = -sum P d^2 / (2 h) (<= 0: gravity does work as the frame
+    sways).  With Newmark's average acceleration they balance to the iteration tolerance:
+    input = kinetic + frame_strain + hysteretic + inherent_damping + wall_work + p_delta.
+    """
+
+    input: np.ndarray
+    kinetic: np.ndarray
+    frame_strain: np.ndarray
+    hysteretic: np.ndarray
+    inherent_damping: np.ndarray
+    wall_work: np.ndarray
+    p_delta: np.ndarray
+
+    @property
+    def balance_error(self) -> np.ndarray:
+        """input - (kinetic + frame_strain + hysteretic + inherent_damping + wall_work + p_delta), N*mm."""
+        return self.input - (self.kinetic + self.frame_strain + self.hysteretic + self.inherent_damping
+                             + self.wall_work + self.p_delta)
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Response histories of :func:`simulate` (rows: time steps; they end where the analysis stopped).
+
+    time (s); displacement (mm), velocity (mm/s), acceleration (mm/s^2) relative to the ground, and
+    absolute_acceleration (mm/s^2), each (steps, floors); drift (mm) and drift_ratio (-, None without
+    story heights), (steps, stories); story_shear (N, the force in each story's frame spring only,
+    (steps, stories)); story_wall_force (N, total of the walls of each story, (steps, stories)) and
+    story_wall_strain (-, the strain of each story's most strained wall group, 0 where a story has no
+    wall); wall_force (N) and wall_strain (-, the wall's own deformation / thickness: with a support
+    in series it is not drift / thickness), (steps, walls) in ``building.wall_list`` order;
+    base_shear (N): the force transmitted through story 1 -- its frame spring, walls, P-Delta force
+    and inherent damping force through the story (a1 k1 v1 with Rayleigh damping: the mass-proportional
+    term acts between the floors and the ground) -- the horizontal reaction of the ground (with P-Delta
+    it is less than the story-1 frame and wall shears, story_shear + story_wall_force, which are what the
+    structure must resist); ground_acceleration (mm/s^2); energy (:class:`EnergyHistory`).  absolute_acceleration, drift_ratio,
+    story_wall_strain, wall_force and wall_strain are computed on first use (from the stored histories and
+    the wall groups: identical walls of a story are stepped once, as one of their summed area).
+
+    ``converged``: False when a step failed to converge (the histories end at the last converged step);
+    ``collapsed`` and ``collapse_time`` (s): a story's drift ratio exceeded ``collapse_drift_ratio``
+    (the histories end at that step); ``newton_iterations``: the total number of Newton corrections.
+
+    Strain-compatible analyses (``simulate(..., strain_compatible=True)``) also report, per wall in
+    ``building.wall_list`` order, ``wall_effective_strain`` (-, the final effective strains) and
+    ``equivalent_walls`` (the FDMKDamper each wall ended with), with ``strain_iterations`` and
+    ``strain_converged``; ``building`` is then the equivalent-linear building.  None otherwise.
+    """
+
+    building: ShearBuilding
+    time: np.ndarray
+    ground_acceleration: np.ndarray
+    displacement: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+    drift: np.ndarray
+    story_shear: np.ndarray
+    story_wall_force: np.ndarray
+    base_shear: np.ndarray
+    energy: EnergyHistory
+    # Walls stepped together (identical walls of a story: one group of their summed area); the per-wall and
+    # derived histories are computed from these on first use, not stored by every analysis.
+    group_force: np.ndarray = field(repr=False)  # (steps, groups), N
+    group_strain: np.ndarray = field(repr=False)  # (steps, groups), -
+    wall_group: np.ndarray = field(repr=False)  # (walls,): the group of each wall of building.wall_list
+    wall_share: np.ndarray = field(repr=False)  # (walls,): each wall's share of its group's area
+    converged: bool = True
+    collapsed: bool = False
+    collapse_time: float | None = None
+    newton_iterations: int = 0
+    wall_effective_strain: np.ndarray | None = None
+    equivalent_walls: tuple | None = None
+    strain_iterations: int | None = None
+    strain_converged: bool | None = None
+
+    @cached_property
+    def absolute_acceleration(self) -> np.ndarray:
+        """Relative acceleration + ground acceleration, mm/s^2, (steps, floors)."""
+        return self.acceleration + self.ground_acceleration[:, None]
+
+    @cached_property
+    def drift_ratio(self) -> np.ndarray | None:
+        """Drift / story height (-), (steps, stories); None without story heights."""
+        heights = self.building.story_heights
+        return None if heights is None else self.drift / np.asarray(heights)
+
+    @cached_property
+    def wall_force(self) -> np.ndarray:
+        """Force of every wall (N), (steps, walls) in ``building.wall_list`` order."""
+        return np.take(self.group_force, self.wall_group, axis=1) * self.wall_share
+
+    @cached_property
+    def wall_strain(self) -> np.ndarray:
+        """Strain of every wall (-: its own deformation / thickness), (steps, walls)."""
+        return np.take(self.group_strain, self.wall_group, axis=1)
+
+    @cached_property
+    def story_wall_strain(self) -> np.ndarray:
+        """The strain of each story's most strained wall group (-), (steps, stories); 0 without walls."""
+        strain = np.zeros((self.time.size, self.building.stories))
+        peaks = np.abs(self.group_strain).max(axis=0, initial=0.0)
+        stories = np.array([story - 1 for story, _ in self.building.wall_list], dtype=int)
+        most = {}
+        for wall, group in enumerate(self.wall_group):
+            story = stories[wall]
+            if story not in most or peaks[group] > peaks[most[story]]:
+                most[story] = group
+        for story, group in most.items():
+            strain[:, story] = self.group_strain[:, group]
+        return strain
+
+    @property
+    def peak_drift(self) -> np.ndarray:
+        """max |drift| per story, mm."""
+        return np.abs(self.drift).max(axis=0)
+
+    @property
+    def peak_drift_ratio(self) -> np.ndarray | None:
+        """max |drift ratio| per story (-), None without story heights."""
+        return None if self.drift_ratio is None else np.abs(self.drift_ratio).max(axis=0)
+
+    @property
+    def residual_drift(self) -> np.ndarray:
+        """Drift at the last step, per story, mm (append ``free_vibration`` to measure it at rest).  For an
+        analysis that collapsed or stopped converging it is the drift where it stopped, not a residual."""
+        return self.drift[-1].copy()
+
+    @property
+    def peak_ductility(self) -> np.ma.MaskedArray:
+        """Peak |drift| / yield drift per story (-); masked for stories without a hysteresis model."""
+        yield_drifts = self.building.yield_drifts
+        elastic = yield_drifts == 0.0
+        ratio = self.peak_drift / np.where(elastic, 1.0, yield_drifts)
+        return np.ma.masked_array(ratio, mask=elastic)
+
+    @property
+    def peak_absolute_acceleration(self) -> np.ndarray:
+        """max |absolute acceleration| per floor, mm/s^2."""
+        return np.abs(self.absolute_acceleration).max(axis=0)
+
+    @property
+    def peak_base_shear(self) -> float:
+        """max |base shear|, N."""
+        return float(np.abs(self.base_shear).max())
+
+    @property
+    def peak_story_wall_force(self) -> np.ndarray:
+        """max |total wall force| per story, N."""
+        return np.abs(self.story_wall_force).max(axis=0)
+
+    @property
+    def peak_wall_strain(self) -> np.ndarray:
+        """max |strain| of every wall (-), in ``building.wall_list`` order."""
+        return np.abs(self.group_strain).max(axis=0, initial=0.0)[self.wall_group]
+
+
+def check_energy_balance(energy: EnergyHistory) -> None:
+    """Warn when the energy balance misses by more than ENERGY_BALANCE_TOLERANCE of the peak input energy."""
+    scale = float(np.abs(energy.input).max(initial=0.0))
+    if scale == 0.0:
+        return
+    error = float(np.abs(energy.balance_error).max()) / scale
+    if error > ENERGY_BALANCE_TOLERANCE:
+        _warnings.warn(f"simulate: the energy balance misses by {error:.3g} of the peak input energy (self-check "
+                       f"bound {ENERGY_BALANCE_TOLERANCE:g}): the integration did not solve the equations of "
+                       "motion to their tolerance; do not trust this result", RuntimeWarning, stacklevel=5)
+
+
+def energy_history(energy: np.ndarray) -> EnergyHistory:
+    """The integrator's energy columns (steps, 7) as an :class:`EnergyHistory`, checked finite and balanced."""
+    require_finite("the energy histories", energy)
+    history = EnergyHistory(input=energy[:, 0], kinetic=energy[:, 1], frame_strain=energy[:, 2],
+                            hysteretic=energy[:, 3] - energy[:, 2], inherent_damping=energy[:, 4],
+                            wall_work=energy[:, 5], p_delta=energy[:, 6])
+    check_energy_balance(history)
+    return history

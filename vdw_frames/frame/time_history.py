@@ -1,0 +1,117 @@
+"""One nonlinear time-history analysis of a shear building with walls of fixed parameters.
+
+:func:`time_history` validates the inputs, lays the building, its story models and its walls out as the
+compiled integrator's arrays (:mod:`vdw_frames.frame.integrator`), runs it, and assembles the
+:class:`~vdw_frames.frame.results.SimulationResult`.  :func:`vdw_frames.simulate` calls it directly, or
+through the strain-compatible iteration (:mod:`vdw_frames.frame.strain_compatible`).
+
+Units: N, mm, s, tonne.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .. import _warnings
+from .._validation import SIMULATION_STEP_RANGE, check_memory, non_negative, positive, require_finite, show
+from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy
+from ..element.fractional import DEFAULT_METHOD, get_method
+from ..motion.record import GroundMotion
+from .building import ShearBuilding, require_fixed_walls
+from .hysteresis import story_arrays
+from .integrator import COLLAPSED, ENERGIES, FAILED, FrameArrays, Histories, NewtonRaphson, WallArrays, integrate
+from .results import SimulationResult, energy_history
+
+
+def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float | None = None,
+                 method=DEFAULT_METHOD, memory=DEFAULT_MEMORY, *, collapse_drift_ratio: float | None = 0.10,
+                 free_vibration: float = 0.0, newton: NewtonRaphson | None = None) -> SimulationResult:
+    """Integrate ``building`` (walls with fixed parameters) under ``ground_motion`` (mm/s^2).
+
+    The arguments are those of :func:`vdw_frames.simulate` (units there); this is its analysis for a
+    building without strain-dependent walls.
+    """
+    if not isinstance(building, ShearBuilding):
+        raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
+    require_fixed_walls(building, "simulate()")
+    if not isinstance(ground_motion, GroundMotion):
+        raise ValueError(f"ground_motion must be a GroundMotion (see read_at2), got {type(ground_motion).__name__}")
+    method = get_method(method)
+    memory_strategy(memory)
+    newton = NewtonRaphson() if newton is None else newton
+    if not isinstance(newton, NewtonRaphson):
+        raise ValueError(f"newton must be a NewtonRaphson, got {type(newton).__name__}")
+    if collapse_drift_ratio is not None:
+        collapse_drift_ratio = positive("collapse_drift_ratio", collapse_drift_ratio)
+    free_vibration = non_negative("free_vibration", free_vibration)
+    dt = positive("dt", ground_motion.dt if dt is None else dt)
+    if not SIMULATION_STEP_RANGE[0] <= dt <= SIMULATION_STEP_RANGE[1]:
+        raise ValueError(f"time step dt = {show(dt)} s is outside the range simulate accepts "
+                         f"({SIMULATION_STEP_RANGE[0]:g} ... {SIMULATION_STEP_RANGE[1]:g} s)")
+    substeps = ground_motion.substeps(dt)  # the one check of the step against the record
+    dt = ground_motion.dt / substeps
+    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0
+    steps, floors = (ground_motion.acceleration.size - 1) * substeps + 1 + rest, building.stories
+    walls = building.wall_list
+    # Response and result histories (about 14 per floor), each wall's force, strain and exact memory,
+    # energies: float64 a step.
+    check_memory(f"simulate (dt = {dt!r} s, {floors} floors, {len(walls)} walls)", steps,
+                 8 * (14 * floors + 6 * len(walls) + 12), "use a larger dt")
+    ground = ground_motion.interpolated(substeps)
+    if rest:
+        ground = np.concatenate([ground, np.zeros(rest)])
+
+    groups, group_of_wall = group_walls(walls)
+    bank = WallBank([wall for _, wall in groups], dt, steps, method, memory)
+    heights = np.asarray(building.story_heights) if building.story_heights is not None else np.ones(floors)
+    collapse_ratio = collapse_drift_ratio if (collapse_drift_ratio and building.story_heights) else 0.0
+    frame = FrameArrays(
+        masses=np.asarray(building.masses), damping=np.ascontiguousarray(building.damping_matrix),
+        story_damping_row=building.story_damping_matrix.sum(axis=0),
+        geometric=np.asarray(building.geometric_stiffness, dtype=float), heights=heights,
+        tridiagonal=building.damping_model == "rayleigh", linear=building.is_linear, collapse_ratio=collapse_ratio)
+    out = Histories(
+        displacement=np.zeros((steps, floors)), velocity=np.zeros((steps, floors)),
+        acceleration=np.zeros((steps, floors)), drift=np.zeros((steps, floors)),
+        story_shear=np.zeros((steps, floors)), story_wall_force=np.zeros((steps, floors)),
+        base_shear=np.zeros(steps), group_force=np.zeros((steps, len(groups))),
+        group_strain=np.zeros((steps, len(groups))), peak_group_strain=np.zeros(len(groups)),
+        energy=np.zeros((steps, ENERGIES)), outcome=np.zeros(3, dtype=np.int64))
+    filled = integrate(ground, dt, frame, story_arrays(building.story_models, building.stiffnesses),
+                       WallArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64), bank.arrays),
+                       newton.arrays(), out)
+    status, story_index, iterations = (int(x) for x in out.outcome)
+    if status == FAILED:
+        _warnings.warn(f"simulate: the step to t = {filled * dt:.6g} s did not converge (story {story_index + 1} "
+                       "moved most in the last correction), even with a line search and initial-stiffness "
+                       "iterations; the analysis stops there (result.converged is False)", RuntimeWarning,
+                       stacklevel=3)
+    keep = slice(0, filled)
+    require_finite("the response", out.displacement[keep])
+    time = np.arange(filled) * dt
+    share = np.array([walls[i][1].area / groups[g][1].area for i, g in enumerate(group_of_wall)])
+    _warn_strain_range(walls, out.peak_group_strain[group_of_wall])
+    return SimulationResult(
+        building=building, time=time, ground_acceleration=ground[keep], displacement=out.displacement[keep],
+        velocity=out.velocity[keep], acceleration=out.acceleration[keep], drift=out.drift[keep],
+        story_shear=out.story_shear[keep], story_wall_force=out.story_wall_force[keep], base_shear=out.base_shear[keep],
+        energy=energy_history(out.energy[keep]), group_force=out.group_force[keep],
+        group_strain=out.group_strain[keep], wall_group=group_of_wall, wall_share=share,
+        converged=status != FAILED, collapsed=status == COLLAPSED,
+        collapse_time=float(time[-1]) if status == COLLAPSED else None, newton_iterations=iterations)
+
+
+def _warn_strain_range(walls, peak_wall_strain) -> None:
+    outside = []
+    for index, (story, wall) in enumerate(walls):
+        if wall.strain_range is None:
+            continue
+        peak = float(peak_wall_strain[index])
+        low, high = wall.strain_range
+        if not low <= peak <= high:
+            outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %)")
+    if outside:
+        _warnings.warn("wall peak strain outside the range its parameters were identified for: "
+                       + "; ".join(dict.fromkeys(outside)), UserWarning, stacklevel=4)
