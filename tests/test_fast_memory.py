@@ -190,7 +190,7 @@ def test_fast_arrays_are_fresh_and_in_kernel_order():
     np.testing.assert_array_equal(weights, get_method("trapezoidal").weights(0.6, DEFAULT_WINDOW + 1, 0.01))
     assert mode_weight.shape == mode_ratio.shape
     bank = unit_bank(TABLE4, 0.6, 0.01, 3000, "trapezoidal", FAST)
-    arrays = bank.arrays
+    arrays = bank.arrays.memory
     assert arrays.w0[0] == weights[0]
     np.testing.assert_array_equal(arrays.window_weights[0], weights[:0:-1])  # w_L .. w_1: oldest value first
     assert arrays.window.shape == (1, 2, 2 * DEFAULT_WINDOW) and not arrays.window.any()

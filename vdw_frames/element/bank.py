@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from .._validation import finite_array, positive, whole_number
-from . import kernel
+from . import kernel, thermal
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, get_method
 
@@ -102,11 +102,46 @@ class WallBank:
         self.steps = whole_number("steps", self.steps, 0)
         self.method = get_method(self.method)
         memory_strategy(self.memory)
-        self.arrays = self._allocate(self.steps)
+        self.arrays = self._allocate(self.steps, self._states())
         self.evaluate_history()
 
-    def _allocate(self, steps: int) -> kernel.BankArrays:
+    def _states(self) -> kernel.WallStates:
+        """Every wall at rest: base parameters, temperature, limits, the diffusive nodes of followed walls."""
+        count = len(self.walls)
         constants = np.array([kernel_constants(wall) for wall in self.walls]).reshape(-1, 7)
+        thermals = [getattr(wall, "thermal", None) for wall in self.walls]
+        limits = [getattr(wall, "limits", None) for wall in self.walls]
+        table = np.zeros((count, kernel.STATE_FIELDS))
+        table[:, kernel.TRACKED] = [t is not None or lim is not None for t, lim in zip(thermals, limits, strict=True)]
+        table[:, kernel.BASE_G1:kernel.BASE_ETA2 + 1] = constants[:, :4]
+        table[:, kernel.ORDER] = [float(wall.r) for wall in self.walls]
+        for w, (wall_thermal, c) in enumerate(zip(thermals, constants, strict=True)):
+            table[w, kernel.T_KIND:kernel.T_HIGH + 1] = thermal.thermal_row(wall_thermal, c[4] * c[5], self.dt)
+        table[:, kernel.TEMPERATURE] = [t.temperature if t is not None else np.nan for t in thermals]
+        table[:, kernel.LIMIT_STRAIN:kernel.RESIDUAL + 1] = [np.inf, np.inf, np.inf, 0.0]
+        for w, wall_limits in enumerate(limits):
+            if wall_limits is not None:
+                table[w, kernel.LIMIT_STRAIN:kernel.RESIDUAL + 1] = wall_limits.kernel_row()
+        table[:, kernel.FAILURE_STEP] = -1.0
+        table[:, kernel.SCALE] = 1.0
+        table[:, kernel.OUTSIDE] = -1.0
+        tracked = np.flatnonzero(table[:, kernel.TRACKED])
+        xi = thermal.diffusive_nodes(self.dt) if tracked.size else np.zeros(0)
+        e, ratio, A, B, C = thermal.node_coefficients(xi, self.dt).T
+        nodes = np.zeros((count, 5, xi.size))
+        for w in tracked:
+            weights, table[w, kernel.TAIL_DASHPOT], table[w, kernel.TAIL_SPRING] = \
+                thermal.diffusive_weights(table[w, kernel.ORDER], xi)
+            nodes[w] = e, ratio, weights * A, weights * B, weights
+            table[w, kernel.NODE_C_SUM] = float(weights @ C)
+        return kernel.WallStates(dt=self.dt, table=table, nodes=nodes, node_state=np.zeros((count, 2, xi.size)),
+                                 amplitude_table=np.zeros((count, 0, 5)))
+
+    def state(self, column: int) -> np.ndarray:
+        """One column of every wall's state (:data:`vdw_frames.element.kernel.STATE_FIELDS`), a copy."""
+        return self.arrays.states.table[:, column].copy()
+
+    def _allocate(self, steps: int, states: kernel.WallStates) -> kernel.BankArrays:
         memories = [_Memory.allocate(wall.r, self.dt, steps, self.method, self.memory) for wall in self.walls]
         self.max_steps = min((m.max_steps for m in memories), default=max(steps, 1))
         size = max((m.window_weights.size for m in memories), default=1)
@@ -121,11 +156,18 @@ class WallBank:
             window_weights[d] = m.window_weights
             mode_weight[d, : m.mode_weight.size] = m.mode_weight
             mode_ratio[d, : m.mode_ratio.size] = m.mode_ratio
-        return kernel.BankArrays(
-            constants=constants, w0=np.array([m.w0 for m in memories]), window_weights=window_weights,
-            window=np.zeros((count, 2, 2 * size)), mode_weight=mode_weight, mode_ratio=mode_ratio,
-            mode_state=np.zeros((count, 2, modes)), history=np.zeros((2, count)), values=np.zeros((2, count)),
-            tangent=np.zeros(count), history_force=np.zeros(count))
+        constants = np.array([kernel_constants(wall) for wall in self.walls]).reshape(-1, 7)
+        for w, wall in enumerate(self.walls):  # the coefficients at the temperature at rest
+            wall_thermal = getattr(wall, "thermal", None)
+            if wall_thermal is not None:
+                constants[w, 2:4] *= wall_thermal.viscosity_factor(wall_thermal.temperature, wall.r)
+        memory = kernel.MemoryArrays(
+            w0=np.array([m.w0 for m in memories]), window_weights=window_weights, window=np.zeros((count, 2, 2 * size)),
+            mode_weight=mode_weight, mode_ratio=mode_ratio, mode_state=np.zeros((count, 2, modes)),
+            history=np.zeros((2, count)), values=np.zeros((2, count)))
+        return kernel.BankArrays(constants=constants, memory=memory, tangent=np.zeros(count),
+                                 history_force=np.zeros(count), states=states,
+                                 followed=bool(states.table[:, kernel.TRACKED].any()))
 
     def __len__(self) -> int:
         return len(self.walls)
@@ -174,16 +216,17 @@ class WallBank:
         if self.count + steps <= self.max_steps:
             return
         arrays = self.arrays
-        size = arrays.window_weights.shape[1]
-        if arrays.mode_weight.shape[1] or self.count > size:
+        size = arrays.memory.window_weights.shape[1]
+        if arrays.memory.mode_weight.shape[1] or self.count > size:
             raise ValueError(f"the fast memory was built for {self.max_steps} steps ({self.count} committed); build "
                              "it with memory=FastMemory(max_steps=...) for more")
         self.memory = "exact"
-        bigger = self._allocate(max(2 * self.max_steps, self.count + steps))
-        new_size = bigger.window_weights.shape[1]
-        values = arrays.window[:, :, :self.count]  # x_0 .. x_{count-1}: not yet wrapped
-        bigger.window[:, :, :self.count] = values
-        bigger.window[:, :, new_size:new_size + self.count] = values
+        bigger = self._allocate(max(2 * self.max_steps, self.count + steps), arrays.states)
+        new_size = bigger.memory.window_weights.shape[1]
+        values = arrays.memory.window[:, :, :self.count]  # x_0 .. x_{count-1}: not yet wrapped
+        bigger.memory.window[:, :, :self.count] = values
+        bigger.memory.window[:, :, new_size:new_size + self.count] = values
+        bigger.constants[:] = arrays.constants  # the coefficients the states last set
         self.arrays = bigger
         self.evaluate_history()
 
@@ -205,6 +248,14 @@ class _CombinedWall:
     def __post_init__(self):
         object.__setattr__(self, "r", self.wall.r)
 
+    @property
+    def thermal(self):
+        return getattr(self.wall, "thermal", None)
+
+    @property
+    def limits(self):
+        return getattr(self.wall, "limits", None)
+
     def kernel_constants(self) -> tuple:
         G1, G2, eta1, eta2, area, thickness, flexibility = kernel_constants(self.wall)
         return (G1, G2, eta1, eta2, self.area, thickness, flexibility * area / self.area)
@@ -221,7 +272,8 @@ def group_walls(walls) -> tuple[list, np.ndarray]:
     members: list[list[int]] = []
     for index, (story, wall) in enumerate(walls):
         G1, G2, eta1, eta2, area, thickness, flexibility = (float(x) for x in kernel_constants(wall))
-        key = (story, G1, G2, eta1, eta2, wall.r, thickness, flexibility * area)
+        key = (story, G1, G2, eta1, eta2, wall.r, thickness, flexibility * area, getattr(wall, "thermal", None),
+               getattr(wall, "limits", None))
         if key not in keys:
             keys[key] = len(members)
             members.append([])

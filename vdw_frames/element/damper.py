@@ -33,6 +33,7 @@ import numpy as np
 from .._validation import (
     finite_array,
     finite_complex_array,
+    finite_scalar,
     fractional_order,
     non_negative,
     positive,
@@ -43,7 +44,9 @@ from .._validation import (
 )
 from .bank import DEFAULT_MEMORY, MEMORY_STRATEGIES, WallBank, kernel_constants, memory_strategy
 from .fractional import DEFAULT_METHOD, get_method
+from .kernel import HEAT, TEMPERATURE
 from .prony import fit_prony
+from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, property_factors
 from .wall import StiffnessMethods
 
 __all__ = ["DEFAULT_MEMORY", "MEMORY_STRATEGIES", "WallState", "FDMKDamper", "driven_force"]
@@ -68,6 +71,11 @@ class FDMKDamper(StiffnessMethods):
     strain_range : (float, float), optional
         Shear-strain amplitudes (dimensionless: 3.0 is 300 %) the parameters were identified for;
         :func:`vdw_frames.simulate` warns when a damper's peak strain leaves it.  Not part of the model.
+    thermal : ThermalProperties, optional
+        Temperature dependence and self-heating (:mod:`vdw_frames.element.thermal`): the parameters above
+        are those at ``thermal.shift.reference``; the wall starts at ``thermal.temperature`` and heats by
+        the energy it dissipates.  Its frequency response is that at ``thermal.temperature``.  None
+        (default): the parameters hold at every temperature and the wall never heats.
     """
 
     G1: float
@@ -78,6 +86,7 @@ class FDMKDamper(StiffnessMethods):
     area: float = 1.0e6
     thickness: float = 10.0
     strain_range: tuple | None = field(default=None, compare=False)
+    thermal: ThermalProperties | None = None
 
     def __post_init__(self):
         for name in ("G1", "G2", "eta1", "eta2"):
@@ -93,6 +102,47 @@ class FDMKDamper(StiffnessMethods):
             if low > high:
                 raise ValueError(f"strain_range must have low <= high, got {show(self.strain_range)}")
             object.__setattr__(self, "strain_range", (low, high))
+        if self.thermal is not None and not isinstance(self.thermal, ThermalProperties):
+            raise ValueError(f"thermal must be ThermalProperties (or None), got {type(self.thermal).__name__}")
+
+    # ------------------------------------------------------------------ temperature
+    @property
+    def viscosities(self) -> tuple[float, float]:
+        """(eta1, eta2) (MPa*s^r) at the wall's temperature at rest: times a_T^r with a thermal description
+        (time-temperature superposition: :mod:`vdw_frames.element.thermal`), as given otherwise."""
+        if self.thermal is None:
+            return self.eta1, self.eta2
+        factor = self.thermal.viscosity_factor(self.thermal.temperature, self.r)
+        return self.eta1 * factor, self.eta2 * factor
+
+    def at_temperature(self, temperature: float, shift: ShiftLaw | None = None) -> FDMKDamper:
+        """The isothermal wall at ``temperature`` (degC): eta1 and eta2 times a_T(temperature)^r, G1, G2, r
+        kept -- exact time-temperature superposition for this model (:mod:`vdw_frames.element.thermal`).
+
+        ``shift``: the law to use (default: this wall's ``thermal.shift``; one of them is needed).  The
+        result has no thermal description: its parameters hold at every temperature."""
+        law = shift if shift is not None else (self.thermal.shift if self.thermal is not None else None)
+        if law is None:
+            raise ValueError("at_temperature needs a shift law: give shift=..., or a wall with a thermal description")
+        if not isinstance(law, SHIFT_LAWS):
+            raise ValueError(f"shift must be a WLF, Arrhenius or LogLinear law, got {type(law).__name__}")
+        temperature = finite_scalar("temperature", temperature)
+        factor = float(10.0 ** (self.r * law.log10_shift(temperature)))
+        return dataclasses.replace(self, eta1=scaled_value("eta1", self.eta1, factor, "a_T^r"),
+                                   eta2=scaled_value("eta2", self.eta2, factor, "a_T^r"), thermal=None)
+
+    def at_ambient(self, temperature: float) -> FDMKDamper:
+        """This wall starting at, and cooling towards, ``temperature`` (degC), its heating kept; a ValueError
+        without a thermal description."""
+        if self.thermal is None:
+            raise ValueError("at_ambient needs a wall with a thermal description (thermal=ThermalProperties(...))")
+        return dataclasses.replace(self, thermal=self.thermal.at(temperature))
+
+    def property_factors(self, temperatures, frequency: float) -> PropertyFactors:
+        """Property-modification factors of K' and K'' (separately) at ``frequency`` (Hz) over ambient
+        ``temperatures`` (degC), relative to the parameters as given (the shift law's reference): see
+        :func:`vdw_frames.element.thermal.property_factors`."""
+        return property_factors(self, temperatures, frequency)
 
     def resized(self, factor) -> FDMKDamper:
         """``factor`` walls' worth (> 0, -): the shear area times ``factor``; material and thickness kept."""
@@ -127,10 +177,11 @@ class FDMKDamper(StiffnessMethods):
 
     def _transfer(self, s):
         with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
+            eta1, eta2 = self.viscosities
             s_r = np.asarray(s, dtype=complex) ** self.r
-            modulus = self.G1 + self.eta1 * s_r
-            if self.G2 > 0.0 and self.eta2 > 0.0:
-                viscous = self.eta2 * s_r
+            modulus = self.G1 + eta1 * s_r
+            if self.G2 > 0.0 and eta2 > 0.0:
+                viscous = eta2 * s_r
                 # G2 x / (G2 + x) written so that neither G2 x nor G2 + x overflows for large |x|.
                 large = np.abs(viscous) > self.G2
                 safe = np.where(large, viscous, 1.0)
@@ -247,6 +298,17 @@ class WallState:
     def steps(self) -> int:
         """Committed steps."""
         return self._bank.count
+
+    @property
+    def temperature(self) -> float:
+        """Temperature of the wall's layers after the last commit (degC); NaN without a thermal description."""
+        return float(self._bank.state(TEMPERATURE)[0])
+
+    @property
+    def heat(self) -> float:
+        """Energy the wall has dissipated since rest (N*mm); 0 unless its heat is followed (a thermal
+        description or limits)."""
+        return float(self._bank.state(HEAT)[0])
 
     def trial(self, displacement: float):
         """(force in N, tangent in N/mm) at the next step for ``displacement`` (mm); memory untouched."""

@@ -31,10 +31,19 @@ Within one step a wall's force is affine in its deformation, F = K_t d + H_n: th
 constant and H_n is fixed by the committed memory.  A support in series keeps it affine: the wall's
 own deformation d_w solves K_w d_w + H_w = (d - d_w) / f_s, so d_w = (d - f_s H_w) / (1 + f_s K_w) in
 closed form, and the wall's memory sees d_w, not d.
+
+The wall's state beyond its memory (:class:`WallStates`: temperature, dissipated heat, stored energy,
+failure) changes only at commit, in :func:`update_walls`, after the memory has advanced: the step's heat
+from the diffusive representation of :mod:`vdw_frames.element.thermal`, the temperature, the limits, and
+the coefficients of the *next* step (eta1 and eta2 times a_T(T)^r at the committed temperature: an
+explicit coupling with a one-step lag).  The convolution weights depend only on r and dt, so the memory
+is the same whatever the coefficients do; a wall without a thermal description or limits keeps its
+coefficients and runs the same code.
 """
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -43,16 +52,54 @@ from .._jit import njit
 
 # Reassociation lets LLVM vectorise the sums over the memory; results change by rounding only.  The
 # loops index the bank's arrays directly (no views, no calls): in numba a view or an array passed to a
-# call costs reference counting, more than the arithmetic of a short memory.  The small per-wall
-# functions are inlined into the bank loops for the same reason.
+# call costs reference counting, more than the arithmetic of a short memory -- and a bank is some thirty
+# arrays, so the commit is inlined into the integrators that call it every step, as are the small
+# per-wall functions into the bank loops.
 _FAST = {"reassoc", "contract"}
+_LN10 = math.log(10.0)
 
 
-class BankArrays(NamedTuple):
-    """The arrays of a bank of W walls, as the compiled functions take them (shapes in the module docstring):
-    W walls, a window of L steps, K modes."""
+# Columns of WallStates.table: every per-wall scalar of a wall's state, in one row.
+(TRACKED, BASE_G1, BASE_G2, BASE_ETA1, BASE_ETA2, ORDER,
+ T_KIND, T_FIRST, T_SECOND, T_REFERENCE, T_CAPACITY, T_AMBIENT, T_DECAY, T_GAIN, T_LOW, T_HIGH,
+ TEMPERATURE, HEAT, STORED, RELEASED, SOFTENING,
+ LIMIT_STRAIN, LIMIT_STRESS, LIMIT_TEMPERATURE, RESIDUAL, FAILURE_STEP, FAILURE_MODE, SCALE, OUTSIDE,
+ PREVIOUS_STRAIN, PREVIOUS_DASHPOT_STRAIN, TAIL_DASHPOT, TAIL_SPRING,
+ AMPLITUDE_NODES, TURN, EXTREME, DIRECTION, LAST_AMPLITUDE, AMPLITUDE, BELOW_RANGE, ABOVE_RANGE,
+ NODE_C_SUM) = range(42)
+STATE_FIELDS = 42
+"""TRACKED: 1 when the wall's heat and stored energy are followed (a thermal description or limits);
+BASE_*: G1, G2 (MPa), eta1, eta2 (MPa s^r) at the reference temperature (fixed walls); ORDER: r;
+T_*: the thermal row (thermal.thermal_row: law kind (0: none), its two parameters and reference (degC),
+rho c V (N*mm/K), ambient (degC), exp(-dt / tau), (tau / dt)(1 - exp(-dt / tau)), validity range (degC));
+TEMPERATURE (degC), HEAT (N*mm dissipated since rest), STORED (N*mm), RELEASED (N*mm lost at failure),
+SOFTENING (N*mm the springpots lost as heating lowered their viscosities); LIMIT_* (strain -, stress
+MPa, temperature degC; inf: none), RESIDUAL (force factor after failure), FAILURE_STEP (-1 intact),
+FAILURE_MODE (FAILURE_MODES index), SCALE (force factor now), OUTSIDE (first step outside the shift law's
+range, -1); PREVIOUS_*: the springpots' inputs eps, eps_v at the last commit; TAIL_*: the diffusive tails
+(dashpot s^(1-r), spring s^-r); amplitude tracking (amplitude-dependent walls): AMPLITUDE_NODES (K, 0 for
+fixed parameters), TURN and EXTREME (strain at the last reversal, extreme of the current half-cycle),
+DIRECTION (+1, -1, 0 at rest), LAST_AMPLITUDE (of the last completed half-cycle), AMPLITUDE (the one the
+parameters follow), BELOW_RANGE and ABOVE_RANGE (steps spent outside the table's range); NODE_C_SUM:
+sum_k c_k C_k of the diffusive nodes (WallStates.nodes)."""
+FAILURE_MODES = ("", "strain", "stress", "temperature")
+"""Names of the FAILURE_MODE column."""
 
-    constants: np.ndarray  # (W, 7): G1, G2, eta1, eta2, area, thickness, support flexibility
+
+class WallStates(NamedTuple):
+    """Every wall's state beyond its memory (W walls, N diffusive nodes, K amplitude nodes), changed only by
+    :func:`update_walls`."""
+
+    dt: float  # s
+    table: np.ndarray  # (W, STATE_FIELDS): the columns above
+    nodes: np.ndarray  # (W, 5, N): e, (1 - e) / z, c_k A_k, c_k B_k, c_k of every node (thermal.node_coefficients)
+    node_state: np.ndarray  # (W, 2, N): phi of the Kelvin (eps) and Maxwell (eps_v) springpots
+    amplitude_table: np.ndarray  # (W, K, 5): log strain, G1, G2, eta1, eta2 at the amplitude nodes
+
+
+class MemoryArrays(NamedTuple):
+    """The fractional memory of a bank of W walls (shapes in the module docstring): a window of L steps, K modes."""
+
     w0: np.ndarray  # (W,): w_0 dt^-r
     window_weights: np.ndarray  # (W, L): w_L .. w_1, dt^-r
     window: np.ndarray  # (W, 2, 2L): strain and Maxwell stress, each written twice
@@ -60,16 +107,25 @@ class BankArrays(NamedTuple):
     mode_ratio: np.ndarray  # (W, K)
     mode_state: np.ndarray  # (W, 2, K)
     history: np.ndarray  # (2, W): the coming step's history sums
-    values: np.ndarray  # (2, W): scratch of the commit
+    values: np.ndarray  # (2, W): the committed step's strain and Maxwell stress
+
+
+class BankArrays(NamedTuple):
+    """The arrays of a bank of W walls, as the compiled functions take them."""
+
+    constants: np.ndarray  # (W, 7): G1, G2, eta1, eta2, area, thickness, support flexibility
+    memory: MemoryArrays
     tangent: np.ndarray  # (W,): K_t of the coming step, N/mm
     history_force: np.ndarray  # (W,): H_n of the coming step, N
+    states: WallStates
+    followed: bool  # some wall's state is followed (WallStates.tracked): only then is there any to update
 
 
 @njit(cache=True, fastmath=_FAST)
-def memory_history(bank, count):
-    """The history sums of every wall at step ``count`` into ``bank.history`` (2, W); the memory is untouched."""
-    walls, size = bank.window_weights.shape
-    modes = bank.mode_weight.shape[1]
+def memory_history(memory, count):
+    """The history sums of every wall at step ``count`` into ``memory.history`` (2, W); the memory is untouched."""
+    walls, size = memory.window_weights.shape
+    modes = memory.mode_weight.shape[1]
     filled = min(count, size)
     start = count % size + size - filled  # the oldest value still in the window
     first = size - filled
@@ -77,38 +133,38 @@ def memory_history(bank, count):
         for c in range(2):
             total = 0.0
             for k in range(modes):
-                total += bank.mode_weight[w, k] * bank.mode_state[w, c, k]
+                total += memory.mode_weight[w, k] * memory.mode_state[w, c, k]
             for i in range(filled):
-                total += bank.window_weights[w, first + i] * bank.window[w, c, start + i]
-            bank.history[c, w] = total
+                total += memory.window_weights[w, first + i] * memory.window[w, c, start + i]
+            memory.history[c, w] = total
 
 
 @njit(cache=True, fastmath=_FAST)
-def memory_advance(bank, count):
-    """Commit step ``count``'s ``bank.values`` (2, W: strain, Maxwell stress) and put the next step's history
-    sums into ``bank.history``, in one pass over the modes.  The value leaving the window enters the modes."""
-    walls, size = bank.window_weights.shape
-    modes = bank.mode_weight.shape[1]
+def memory_advance(memory, count):
+    """Commit step ``count``'s ``memory.values`` (2, W: strain, Maxwell stress) and put the next step's history
+    sums into ``memory.history``, in one pass over the modes.  The value leaving the window enters the modes."""
+    walls, size = memory.window_weights.shape
+    modes = memory.mode_weight.shape[1]
     slot = count % size
     absorb = count >= size
     filled = min(count + 1, size)
     start = (count + 1) % size + size - filled
     first = size - filled
-    window, mode_state = bank.window, bank.mode_state
+    window, mode_state = memory.window, memory.mode_state
     for w in range(walls):
         for c in range(2):
             leaving = window[w, c, slot]
             total = 0.0
             if absorb:
                 for k in range(modes):
-                    state = bank.mode_ratio[w, k] * mode_state[w, c, k] + leaving
+                    state = memory.mode_ratio[w, k] * mode_state[w, c, k] + leaving
                     mode_state[w, c, k] = state
-                    total += bank.mode_weight[w, k] * state
-            window[w, c, slot] = bank.values[c, w]
-            window[w, c, slot + size] = bank.values[c, w]
+                    total += memory.mode_weight[w, k] * state
+            window[w, c, slot] = memory.values[c, w]
+            window[w, c, slot + size] = memory.values[c, w]
             for i in range(filled):
-                total += bank.window_weights[w, first + i] * window[w, c, start + i]
-            bank.history[c, w] = total
+                total += memory.window_weights[w, first + i] * window[w, c, start + i]
+            memory.history[c, w] = total
 
 
 @njit(cache=True, inline="always")
@@ -140,9 +196,11 @@ def wall_affine(bank, w):
     """
     c = bank.constants[w]
     area, thickness, flexibility = c[4], c[5], c[6]
-    stress, _, modulus = fdmk_stress(0.0, bank.history[0, w], bank.history[1, w], c[0], c[1], c[2], c[3],
-                                     bank.w0[w])
-    wall_tangent = modulus * area / thickness
+    stress, _, modulus = fdmk_stress(0.0, bank.memory.history[0, w], bank.memory.history[1, w], c[0], c[1], c[2], c[3],
+                                     bank.memory.w0[w])
+    factor = bank.states.table[w, SCALE]  # 1 unless the wall has failed
+    stress *= factor
+    wall_tangent = factor * modulus * area / thickness
     scale = 1.0 / (1.0 + flexibility * wall_tangent)
     return wall_tangent * scale, stress * area * scale
 
@@ -155,35 +213,166 @@ def wall_response(bank, w, deformation):
     """
     c = bank.constants[w]
     G1, G2, eta1, eta2, area, thickness, flexibility = c[0], c[1], c[2], c[3], c[4], c[5], c[6]
-    strain_history, maxwell_history, w0 = bank.history[0, w], bank.history[1, w], bank.w0[w]
+    strain_history, maxwell_history, w0 = bank.memory.history[0, w], bank.memory.history[1, w], bank.memory.w0[w]
+    factor = bank.states.table[w, SCALE]  # 1 unless the wall has failed
     wall_deformation = deformation
     if flexibility > 0.0:
         history_stress, _, modulus = fdmk_stress(0.0, strain_history, maxwell_history, G1, G2, eta1, eta2, w0)
-        wall_deformation = ((deformation - flexibility * history_stress * area)
-                            / (1.0 + flexibility * modulus * area / thickness))
+        wall_deformation = ((deformation - flexibility * factor * history_stress * area)
+                            / (1.0 + flexibility * factor * modulus * area / thickness))
     strain = wall_deformation / thickness
     stress, maxwell, _ = fdmk_stress(strain, strain_history, maxwell_history, G1, G2, eta1, eta2, w0)
-    return stress * area, strain, maxwell
+    return factor * stress * area, strain, maxwell
+
+
+@njit(cache=True, inline="always")
+def _springpots(nodes, node_state, table, w, dt, strain, strain_v):
+    """(heat of the Kelvin springpot, of the Maxwell one, their stored energies), each per unit volume and
+    unit viscosity (times eta: MPa = N*mm/mm^3), over the step that took their inputs to ``strain`` (eps)
+    and ``strain_v`` (eps_v), in one pass over the diffusive nodes of wall ``w`` (nodes (W, 5, N),
+    node_state (W, 2, N), table (W, STATE_FIELDS)): each node exactly for an input linear over the step
+    (thermal.node_coefficients), the tails in closed form.  Advances the nodes.  Every node's heat is a
+    positive semi-definite form; the sums are clipped at 0 against rounding: an adiabatic wall never cools."""
+    dx = strain - table[w, PREVIOUS_STRAIN]
+    dv = strain_v - table[w, PREVIOUS_DASHPOT_STRAIN]
+    # sum_k c_k (A phi^2 + B phi dx + C dx^2), the C part summed once (NODE_C_SUM)
+    square_1 = 0.0
+    square_2 = 0.0
+    cross_1 = 0.0
+    cross_2 = 0.0
+    stored_1 = 0.0
+    stored_2 = 0.0
+    for k in range(nodes.shape[2]):
+        phi = node_state[w, 0, k]
+        psi = node_state[w, 1, k]
+        square_1 += nodes[w, 2, k] * phi * phi
+        square_2 += nodes[w, 2, k] * psi * psi
+        cross_1 += nodes[w, 3, k] * phi
+        cross_2 += nodes[w, 3, k] * psi
+        phi = nodes[w, 0, k] * phi + nodes[w, 1, k] * dx
+        psi = nodes[w, 0, k] * psi + nodes[w, 1, k] * dv
+        node_state[w, 0, k] = phi
+        node_state[w, 1, k] = psi
+        stored_1 += nodes[w, 4, k] * phi * phi
+        stored_2 += nodes[w, 4, k] * psi * psi
+    heat_1 = square_1 + cross_1 * dx + table[w, NODE_C_SUM] * dx * dx
+    heat_2 = square_2 + cross_2 * dv + table[w, NODE_C_SUM] * dv * dv
+    dashpot, spring = table[w, TAIL_DASHPOT] / dt, table[w, TAIL_SPRING]
+    table[w, PREVIOUS_STRAIN] = strain
+    table[w, PREVIOUS_DASHPOT_STRAIN] = strain_v
+    return (max(heat_1, 0.0) + dashpot * dx * dx, max(heat_2, 0.0) + dashpot * dv * dv,
+            0.5 * (stored_1 + spring * strain * strain), 0.5 * (stored_2 + spring * strain_v * strain_v))
+
+
+@njit(cache=True, inline="always")
+def _log10_shift(table, w, temperature):
+    """log10 a_T of wall ``w``'s shift law at ``temperature`` (degC): thermal.log10_shift, compiled."""
+    kind, first, second, reference = table[w, T_KIND], table[w, T_FIRST], table[w, T_SECOND], table[w, T_REFERENCE]
+    if kind == 1.0:  # WLF
+        difference = temperature - reference
+        return -first * difference / (second + difference)
+    if kind == 2.0:  # Arrhenius, parameter 1 = E_a / R (K)
+        return first * (1.0 / (temperature + 273.15) - 1.0 / (reference + 273.15)) / 2.302585092994046
+    if kind == 3.0:  # log-linear, parameter 1 = 1 / (K per decade)
+        return -first * (temperature - reference)
+    return 0.0
+
+
+@njit(cache=True, inline="always")
+def set_coefficients(table, constants, w):
+    """Wall ``w``'s G1, G2, eta1, eta2 (``constants`` (W, 7)) from its base parameters (``table``) at its
+    committed temperature (clamped to the shift law's range): eta times a_T^r (thermal module docstring)."""
+    factor = 1.0
+    if table[w, T_KIND] != 0.0:
+        temperature = min(max(table[w, TEMPERATURE], table[w, T_LOW]), table[w, T_HIGH])
+        factor = math.exp(_LN10 * table[w, ORDER] * _log10_shift(table, w, temperature))
+    constants[w, 0] = table[w, BASE_G1]
+    constants[w, 1] = table[w, BASE_G2]
+    constants[w, 2] = table[w, BASE_ETA1] * factor
+    constants[w, 3] = table[w, BASE_ETA2] * factor
+
+
+@njit(cache=True, fastmath=_FAST)
+def update_walls(table, nodes, node_state, constants, values, force, count, dt):
+    """After the commit of step ``count`` (forces (W,) N, the memory advanced, ``values`` (2, W) the
+    committed strain and Maxwell stress): each followed wall's heat over the step, stored energy,
+    temperature, limits (``table`` (W, STATE_FIELDS), diffusive ``nodes`` (W, 5, N) and ``node_state``
+    (W, 2, N)), and the coefficients of the next step (``constants`` (W, 7)).  One call a step for the
+    whole bank: a call costs more than a wall's update."""
+    for w in range(constants.shape[0]):
+        if table[w, TRACKED] == 0.0:
+            continue
+        G1, G2, eta1, eta2 = constants[w, 0], constants[w, 1], constants[w, 2], constants[w, 3]
+        scale = table[w, SCALE]  # a failed wall keeps its residual share
+        volume = constants[w, 4] * constants[w, 5] * scale
+        strain, maxwell = values[0, w], values[1, w]
+        springs = 0.5 * G1 * strain * strain
+        strain_v = 0.0  # a Maxwell branch without G2 or eta2 carries no stress
+        if G2 > 0.0 and eta2 > 0.0:
+            strain_v = strain - maxwell / G2
+            springs += 0.5 * maxwell * maxwell / G2
+        else:
+            eta2 = 0.0
+        heat_1, heat_2, stored_1, stored_2 = _springpots(nodes, node_state, table, w, dt, strain, strain_v)
+        heat = (eta1 * heat_1 + eta2 * heat_2) * volume  # N*mm
+        springpots = (eta1 * stored_1 + eta2 * stored_2) * volume
+        stored = springpots + springs * volume
+        table[w, HEAT] += heat
+        table[w, STORED] = stored
+        if table[w, T_CAPACITY] > 0.0:
+            ambient = table[w, T_AMBIENT]
+            temperature = (ambient + (table[w, TEMPERATURE] - ambient) * table[w, T_DECAY]
+                           + heat / table[w, T_CAPACITY] * table[w, T_GAIN])
+            table[w, TEMPERATURE] = temperature
+            if table[w, OUTSIDE] < 0.0 and not table[w, T_LOW] <= temperature <= table[w, T_HIGH]:
+                table[w, OUTSIDE] = count + 1
+        failing = False
+        if table[w, FAILURE_STEP] < 0.0:
+            mode = 0.0
+            if abs(strain) > table[w, LIMIT_STRAIN]:
+                mode = 1.0
+            elif abs(force[w]) > table[w, LIMIT_STRESS] * constants[w, 4]:
+                mode = 2.0
+            elif table[w, TEMPERATURE] > table[w, LIMIT_TEMPERATURE]:
+                mode = 3.0
+            if mode > 0.0:
+                failing = True
+                table[w, FAILURE_STEP] = count + 1
+                table[w, FAILURE_MODE] = mode
+                table[w, RELEASED] = (1.0 - table[w, RESIDUAL]) * stored
+                table[w, SCALE] = table[w, RESIDUAL]
+        previous_eta = eta1 + eta2
+        set_coefficients(table, constants, w)
+        if previous_eta > 0.0 and not failing:
+            # Scaled viscosities scale the springpots' stored energy with them: what a fall takes away is
+            # accounted here, not as heat (it does no work and warms nothing in this model).
+            change = (constants[w, 2] + (constants[w, 3] if eta2 > 0.0 else 0.0)) / previous_eta
+            table[w, SOFTENING] += (1.0 - change) * springpots
+            table[w, STORED] = stored - (1.0 - change) * springpots
 
 
 @njit(cache=True)
 def bank_affine(bank, count):
     """Every wall of ``bank`` at the start of step ``count``: history sums, K_t (N/mm) and H_n (N) into
-    ``bank.history``, ``bank.tangent`` and ``bank.history_force``."""
-    memory_history(bank, count)
+    ``bank.memory.history``, ``bank.tangent`` and ``bank.history_force``."""
+    memory_history(bank.memory, count)
     for w in range(bank.constants.shape[0]):
         bank.tangent[w], bank.history_force[w] = wall_affine(bank, w)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def bank_commit(bank, count, deformation, force, strain):
     """Accept ``deformation`` (mm, (W,)) for step ``count``: forces (N, (W,)) and wall strains (-, (W,)) into
     ``force`` and ``strain``, the memory advanced, and the next step's history sums, K_t and H_n (as
     :func:`bank_affine` would give them)."""
     for w in range(bank.constants.shape[0]):
-        force[w], strain[w], bank.values[1, w] = wall_response(bank, w, deformation[w])
-        bank.values[0, w] = strain[w]
-    memory_advance(bank, count)
+        force[w], strain[w], bank.memory.values[1, w] = wall_response(bank, w, deformation[w])
+        bank.memory.values[0, w] = strain[w]
+    memory_advance(bank.memory, count)
+    if bank.followed:
+        states = bank.states
+        update_walls(states.table, states.nodes, states.node_state, bank.constants, bank.memory.values, force, count,
+                     states.dt)
     for w in range(bank.constants.shape[0]):
         bank.tangent[w], bank.history_force[w] = wall_affine(bank, w)
 

@@ -25,6 +25,7 @@ from .._validation import positive, positive_frequencies, require_finite, scaled
 from .damper import DEFAULT_MEMORY, WallState, FDMKDamper, driven_force
 from .fractional import DEFAULT_METHOD
 from .prony import fit_prony
+from .thermal import PropertyFactors, ShiftLaw, ThermalProperties, property_factors
 from .wall import StiffnessMethods
 
 
@@ -63,6 +64,24 @@ class SupportedDamper(StiffnessMethods):
     @property
     def strain_range(self):
         return self.damper.strain_range
+
+    @property
+    def thermal(self) -> ThermalProperties | None:
+        """The wall's thermal description (the support neither heats nor softens)."""
+        return self.damper.thermal
+
+    def at_temperature(self, temperature: float, shift: ShiftLaw | None = None) -> SupportedDamper:
+        """The assembly with its wall at ``temperature`` (degC; see :meth:`FDMKDamper.at_temperature`)."""
+        return SupportedDamper(self.damper.at_temperature(temperature, shift), self.support_stiffness)
+
+    def at_ambient(self, temperature: float) -> SupportedDamper:
+        """The assembly with its wall starting at, and cooling towards, ``temperature`` (degC)."""
+        return SupportedDamper(self.damper.at_ambient(temperature), self.support_stiffness)
+
+    def property_factors(self, temperatures, frequency: float) -> PropertyFactors:
+        """Temperature factors of the assembly's K' and K'' at ``frequency`` (Hz) over ``temperatures`` (degC):
+        :func:`vdw_frames.element.thermal.property_factors`."""
+        return property_factors(self, temperatures, frequency)
 
     def resized(self, factor) -> SupportedDamper:
         """``factor`` walls' worth (> 0, -): the wall's area and the support's stiffness times ``factor``."""

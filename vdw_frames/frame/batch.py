@@ -63,7 +63,21 @@ class BatchTask:
             "peak_absolute_acceleration": result.peak_absolute_acceleration,
             "peak_base_shear": np.array([result.peak_base_shear]),
             "peak_story_wall_force": result.peak_story_wall_force,
+            "peak_temperature_rise": _story_temperature_rise(result),
         }
+
+
+def _story_temperature_rise(result) -> np.ndarray | None:
+    """The largest temperature rise (K) of the walls of each story (0 where none has a thermal description);
+    None when no wall is followed."""
+    rise = result.peak_temperature_rise
+    if rise is None:
+        return None
+    per_story = np.zeros(result.building.stories)
+    for (story, _), value in zip(result.building.wall_list, rise, strict=True):
+        if np.isfinite(value):
+            per_story[story - 1] = max(per_story[story - 1], value)
+    return per_story
 
 
 def _run(task: BatchTask) -> dict:
@@ -72,9 +86,9 @@ def _run(task: BatchTask) -> dict:
 
 
 PEAKS = ("peak_drift", "peak_drift_ratio", "peak_absolute_acceleration", "peak_base_shear", "peak_story_wall_force",
-         "residual_drift")
+         "residual_drift", "peak_temperature_rise")
 _UNITS = {"peak_drift": "mm", "peak_drift_ratio": "-", "peak_absolute_acceleration": "mm/s2",
-          "peak_base_shear": "N", "peak_story_wall_force": "N", "residual_drift": "mm"}
+          "peak_base_shear": "N", "peak_story_wall_force": "N", "residual_drift": "mm", "peak_temperature_rise": "K"}
 OUTCOMES = ("collapsed", "converged")
 _SIMULATE_OPTIONS = {"collapse_drift_ratio", "free_vibration", "newton"}
 
@@ -92,7 +106,10 @@ class BatchResult:
     being those reached before it stopped.  With ``run_batch(..., property_factors=...)`` the peaks are
     the envelope over the factors (residual drifts: the largest in magnitude; collapsed: any;
     converged: all): ``property_factors`` lists them and ``governing_factor`` maps each peak's name to
-    an array of its shape holding the factor that gave each value (None otherwise).
+    an array of its shape holding the factor that gave each value (None otherwise); with
+    ``ambient_temperatures``, likewise ``ambient_temperatures`` and ``governing_temperature`` (degC).
+    ``peak_temperature_rise`` (K): the largest temperature rise of the walls of each story (0 where no wall
+    has a thermal description; None when no wall's heat is followed).
     """
 
     motion_names: tuple
@@ -106,8 +123,11 @@ class BatchResult:
     residual_drift: np.ndarray
     collapsed: np.ndarray
     converged: np.ndarray
+    peak_temperature_rise: np.ndarray | None = None
     property_factors: tuple | None = None
     governing_factor: dict | None = None
+    ambient_temperatures: tuple | None = None
+    governing_temperature: dict | None = None
 
     def to_csv(self, path) -> Path:
         """Write one row per (motion, scale, story) with every peak and the outcome (``None`` ratios left
@@ -130,7 +150,8 @@ class BatchResult:
 
 def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.futures.Executor | None = None,
               progress: bool = True, memory=DEFAULT_MEMORY, method=DEFAULT_METHOD,
-              strain_compatible=False, property_factors=None, **simulate_options) -> BatchResult:
+              strain_compatible=False, property_factors=None, ambient_temperatures=None,
+              **simulate_options) -> BatchResult:
     """Run ``building`` under every motion at every scale factor.
 
     ``motions``: GroundMotion objects (mm/s^2).  ``scales``: factors (dimensionless) applied as
@@ -148,9 +169,12 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
     are outcomes, recorded in ``collapsed`` and ``converged``, not failures.  ``method`` and ``memory``
     are checked before anything is submitted.
     ``property_factors`` (e.g. (0.8, 1.0, 1.2)): property-modification factors of the walls (ASCE 7-16
-    Sec. 18.2.4.5): the batch runs once per factor with every wall's moduli and viscosities scaled
-    (``wall.scaled(factor)``; supports unchanged) and returns the envelope of the peaks, with the
-    governing factor of each (:class:`BatchResult`).
+    Sec. 18.2.4.5) other than temperature (aging, environment, testing, specification): the batch runs once
+    per factor with every wall's moduli and viscosities scaled (``wall.scaled(factor)``; supports
+    unchanged) and returns the envelope of the peaks, with the governing factor of each (:class:`BatchResult`).
+    ``ambient_temperatures`` (e.g. (0.0, 21.2, 40.0), degC): the same over ambient temperatures, every wall
+    with a thermal description starting at (and cooling towards) each (``wall.at_ambient(T)``) and heating
+    itself; the envelope names the governing temperature of each peak.  Both together: every combination.
     """
     from ..element.damper import memory_strategy
     from ..element.fractional import get_method
@@ -167,9 +191,10 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
         motions = list(motions)
     except TypeError:
         raise ValueError(f"motions must be a list of GroundMotion objects, got {show(motions)}") from None
-    if property_factors is not None:  # motions: listed above, iterated once per factor
-        return _property_envelope(building, property_factors, executor, lambda variant, pool: run_batch(
-            variant, motions, scales, pool, progress, memory, method, strain_compatible, **simulate_options))
+    if property_factors is not None or ambient_temperatures is not None:  # motions: listed, iterated per variant
+        return _property_envelope(building, property_factors, ambient_temperatures, executor,
+                                  lambda variant, pool: run_batch(variant, motions, scales, pool, progress, memory,
+                                                                  method, strain_compatible, **simulate_options))
     if not motions or not all(isinstance(m, GroundMotion) for m in motions):
         bad = next((m for m in motions if not isinstance(m, GroundMotion)), None)
         raise ValueError("motions must be a non-empty sequence of GroundMotion objects"
@@ -233,30 +258,47 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
         return np.array([[peaks[(m, s)][name] for s in range(factors.shape[1])] for m in range(len(motions))])
 
     pga = np.array([[abs(f) * motion.pga for f in row] for row, motion in zip(factors, motions, strict=True)])
-    return BatchResult(tuple(m.name for m in motions), np.array(factors), pga, *(stack(name) for name in PEAKS),
-                       *(stack(name).astype(bool) for name in OUTCOMES))
+    return BatchResult(motion_names=tuple(m.name for m in motions), scales=np.array(factors), pga=pga,
+                       **{name: stack(name) for name in PEAKS},
+                       **{name: stack(name).astype(bool) for name in OUTCOMES})
 
 
 def _label(motions, m: int) -> str:
     return motions[m].name or f"motion {m}"
 
 
-def _property_envelope(building: ShearBuilding, property_factors, executor, run) -> BatchResult:
-    """Envelope of ``run(building with walls scaled by f, executor)`` over the factors f (see run_batch)."""
-    factors = finite_array("property_factors", property_factors, ndim=None).ravel()
+def _property_envelope(building: ShearBuilding, property_factors, ambient_temperatures, executor, run) -> BatchResult:
+    """Envelope of ``run(variant, executor)`` over every wall variant: each property factor f (``wall.scaled(f)``)
+    at each ambient temperature T (``wall.at_ambient(T)`` for walls with a thermal description); see run_batch."""
+    factors = np.array([1.0]) if property_factors is None else \
+        finite_array("property_factors", property_factors, ndim=None).ravel()
     if factors.size == 0 or (factors <= 0).any():
         raise ValueError(f"property_factors must be one or more factors > 0, got {property_factors!r}")
-    variants = [building.with_walls({story: [wall.scaled(f) for wall in walls]
-                                       for story, walls in building.walls.items()}) for f in factors]
+    temperatures = [None]
+    if ambient_temperatures is not None:
+        temperatures = list(finite_array("ambient_temperatures", ambient_temperatures, ndim=None).ravel())
+        if not temperatures or not any(getattr(wall, "thermal", None) is not None for _, wall in building.wall_list):
+            raise ValueError("ambient_temperatures needs one or more temperatures (degC) and walls with a thermal "
+                             f"description (thermal=ThermalProperties(...)), got {show(ambient_temperatures)}")
+
+    def variant(factor, temperature):
+        def wall_variant(wall):
+            wall = wall.scaled(factor)
+            return wall if temperature is None or getattr(wall, "thermal", None) is None else wall.at_ambient(temperature)
+        return building.with_walls({story: [wall_variant(wall) for wall in walls]
+                                    for story, walls in building.walls.items()})
+
+    combinations = [(f, t) for f in factors for t in temperatures]
+    variants = [variant(f, t) for f, t in combinations]
     own_executor = executor is None
     if own_executor:
         executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
     try:
-        results = [run(variant, executor) for variant in variants]
+        results = [run(each, executor) for each in variants]
     finally:
         if own_executor:
             executor.shutdown(cancel_futures=True)
-    envelope, governing = {}, {}
+    envelope, by_factor, by_temperature = {}, {}, {}
     for name in PEAKS:
         if getattr(results[0], name) is None:
             envelope[name] = None
@@ -264,11 +306,17 @@ def _property_envelope(building: ShearBuilding, property_factors, executor, run)
         stacked = np.stack([getattr(result, name) for result in results])
         worst = np.argmax(np.abs(stacked), axis=0)  # peaks are >= 0; residual drifts keep their sign
         envelope[name] = np.take_along_axis(stacked, worst[None], axis=0)[0]
-        governing[name] = factors[worst]
+        by_factor[name] = np.array([c[0] for c in combinations])[worst]
+        if ambient_temperatures is not None:
+            by_temperature[name] = np.array([c[1] for c in combinations])[worst]
     envelope["collapsed"] = np.any([result.collapsed for result in results], axis=0)
     envelope["converged"] = np.all([result.converged for result in results], axis=0)
-    return dataclasses.replace(results[0], **envelope, property_factors=tuple(factors.tolist()),
-                               governing_factor=governing)
+    return dataclasses.replace(
+        results[0], **envelope,
+        property_factors=None if property_factors is None else tuple(factors.tolist()),
+        governing_factor=None if property_factors is None else by_factor,
+        ambient_temperatures=None if ambient_temperatures is None else tuple(float(t) for t in temperatures),
+        governing_temperature=None if ambient_temperatures is None else by_temperature)
 
 
 def scale_factors_to_pga(motions, targets) -> np.ndarray:

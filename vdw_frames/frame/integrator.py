@@ -134,6 +134,11 @@ class Histories(NamedTuple):
     peak_group_strain: np.ndarray  # (G,) -
     energy: np.ndarray  # (N, ENERGIES) N*mm
     outcome: np.ndarray  # (3,) int64: status, failed or collapsed story, Newton corrections
+    # Walls whose heat is followed (thermal description or limits); (0, G) when none is:
+    group_temperature: np.ndarray  # (N, G) degC (NaN for a group without a thermal description)
+    group_heat: np.ndarray  # (N, G) N*mm dissipated since rest
+    wall_stored: np.ndarray  # (N,) N*mm stored in all walls
+    wall_softening: np.ndarray  # (N,) N*mm the springpots of all walls lost as their viscosities fell
 
 
 class Scratch(NamedTuple):
@@ -379,6 +384,16 @@ def integrate(ground, dt, frame, stories, walls, newton, out):
             out.group_force[step + 1, g] = work.wall_force[g]
             out.group_strain[step + 1, g] = work.wall_strain[g]
             out.peak_group_strain[g] = max(out.peak_group_strain[g], abs(work.wall_strain[g]))
+        if out.group_heat.shape[0] > 0:
+            table = bank.states.table
+            stored, softening = 0.0, 0.0
+            for g in range(groups):
+                out.group_temperature[step + 1, g] = table[g, kernel.TEMPERATURE]
+                out.group_heat[step + 1, g] = table[g, kernel.HEAT]
+                stored += table[g, kernel.STORED]
+                softening += table[g, kernel.SOFTENING]
+            out.wall_stored[step + 1] = stored
+            out.wall_softening[step + 1] = softening
         for i in range(n):
             increment = u[i] - u_n[i]
             out.velocity[step + 1, i] = v1 * increment - v_n[i]

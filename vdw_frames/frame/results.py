@@ -30,6 +30,14 @@ class EnergyHistory:
     dissipated); ``p_delta`` = int k_G d dd = -sum P d^2 / (2 h) (<= 0: gravity does work as the frame
     sways).  With Newmark's average acceleration they balance to the iteration tolerance:
     input = kinetic + frame_strain + hysteretic + inherent_damping + wall_work + p_delta.
+
+    When every wall's heat is followed (walls with a thermal description or limits), the walls' work is
+    split by their own states: ``wall_heat`` (dissipated since rest: the heat that warms them),
+    ``wall_stored`` (in their springs and springpots now), ``wall_released`` (stored energy lost when a
+    wall failed) and ``wall_softening`` (stored energy the springpots lost as heating lowered their
+    viscosities: with viscosities scaled as coefficients, a fall of eta scales the springpot's stored
+    energy down with it, at no work -- a property of the coupling, measured rather than hidden in the heat);
+    :attr:`heat_balance_error` is the balance with them in place of ``wall_work``.  None otherwise.
     """
 
     input: np.ndarray
@@ -39,6 +47,23 @@ class EnergyHistory:
     inherent_damping: np.ndarray
     wall_work: np.ndarray
     p_delta: np.ndarray
+    wall_heat: np.ndarray | None = None
+    wall_stored: np.ndarray | None = None
+    wall_released: np.ndarray | None = None
+    wall_softening: np.ndarray | None = None
+
+    @property
+    def heat_balance_error(self) -> np.ndarray | None:
+        """input - (kinetic + frame_strain + hysteretic + inherent_damping + wall_heat + wall_stored +
+        wall_released + wall_softening + p_delta), N*mm; None unless every wall's heat is followed.  It closes up to the
+        difference between the walls' force (convolution quadrature) and the diffusive representation
+        that splits their work (:mod:`vdw_frames.element.thermal`)."""
+        if self.wall_heat is None or self.wall_stored is None or self.wall_released is None \
+                or self.wall_softening is None:
+            return None
+        return self.input - (self.kinetic + self.frame_strain + self.hysteretic + self.inherent_damping
+                             + self.wall_heat + self.wall_stored + self.wall_released + self.wall_softening
+                             + self.p_delta)
 
     @property
     def balance_error(self) -> np.ndarray:
@@ -101,6 +126,35 @@ class SimulationResult:
     equivalent_walls: tuple | None = None
     strain_iterations: int | None = None
     strain_converged: bool | None = None
+    # Followed walls (thermal description or limits): (steps, groups) histories, (0, groups) when none is.
+    group_temperature: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # degC
+    group_heat: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # N*mm
+    group_failure: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64),
+                                      repr=False)  # (groups, 2): step (-1 intact), mode
+
+    @cached_property
+    def wall_temperature(self) -> np.ndarray | None:
+        """Temperature of every wall's viscoelastic layers (degC), (steps, walls); NaN for a wall without a
+        thermal description; None when no wall is followed (:class:`~vdw_frames.element.thermal.ThermalProperties`)."""
+        if self.group_temperature.shape[0] == 0:
+            return None
+        return np.take(self.group_temperature, self.wall_group, axis=1)
+
+    @property
+    def peak_temperature_rise(self) -> np.ndarray | None:
+        """Largest temperature rise of every wall over its temperature at rest (K), (walls,); NaN without a
+        thermal description; None when no wall is followed."""
+        temperature = self.wall_temperature
+        if temperature is None:
+            return None
+        return np.max(temperature - temperature[:1], axis=0)
+
+    @cached_property
+    def wall_heat(self) -> np.ndarray | None:
+        """Energy every wall has dissipated since rest (N*mm), (steps, walls); None when no wall is followed."""
+        if self.group_heat.shape[0] == 0:
+            return None
+        return np.take(self.group_heat, self.wall_group, axis=1) * self.wall_share
 
     @cached_property
     def absolute_acceleration(self) -> np.ndarray:
@@ -195,11 +249,14 @@ def check_energy_balance(energy: EnergyHistory) -> None:
                        "motion to their tolerance; do not trust this result", RuntimeWarning, stacklevel=5)
 
 
-def energy_history(energy: np.ndarray) -> EnergyHistory:
-    """The integrator's energy columns (steps, 7) as an :class:`EnergyHistory`, checked finite and balanced."""
+def energy_history(energy: np.ndarray, wall_energies: tuple | None = None) -> EnergyHistory:
+    """The integrator's energy columns (steps, 7) as an :class:`EnergyHistory`, checked finite and balanced;
+    ``wall_energies``: (heat, stored, released) histories (steps,) N*mm when every wall's heat is followed."""
     require_finite("the energy histories", energy)
+    heat, stored, released, softening = wall_energies if wall_energies is not None else (None, None, None, None)
     history = EnergyHistory(input=energy[:, 0], kinetic=energy[:, 1], frame_strain=energy[:, 2],
                             hysteretic=energy[:, 3] - energy[:, 2], inherent_damping=energy[:, 4],
-                            wall_work=energy[:, 5], p_delta=energy[:, 6])
+                            wall_work=energy[:, 5], p_delta=energy[:, 6], wall_heat=heat, wall_stored=stored,
+                            wall_released=released, wall_softening=softening)
     check_energy_balance(history)
     return history

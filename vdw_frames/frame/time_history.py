@@ -16,6 +16,7 @@ import numpy as np
 
 from .. import _warnings
 from .._validation import SIMULATION_STEP_RANGE, check_memory, non_negative, positive, require_finite, show
+from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy
 from ..element.fractional import DEFAULT_METHOD, get_method
 from ..motion.record import GroundMotion
@@ -65,6 +66,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
 
     groups, group_of_wall = group_walls(walls)
     bank = WallBank([wall for _, wall in groups], dt, steps, method, memory)
+    followed = steps if bank.arrays.followed else 0
     heights = np.asarray(building.story_heights) if building.story_heights is not None else np.ones(floors)
     collapse_ratio = collapse_drift_ratio if (collapse_drift_ratio and building.story_heights) else 0.0
     frame = FrameArrays(
@@ -78,7 +80,11 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         story_shear=np.zeros((steps, floors)), story_wall_force=np.zeros((steps, floors)),
         base_shear=np.zeros(steps), group_force=np.zeros((steps, len(groups))),
         group_strain=np.zeros((steps, len(groups))), peak_group_strain=np.zeros(len(groups)),
-        energy=np.zeros((steps, ENERGIES)), outcome=np.zeros(3, dtype=np.int64))
+        energy=np.zeros((steps, ENERGIES)), outcome=np.zeros(3, dtype=np.int64),
+        group_temperature=np.zeros((followed, len(groups))), group_heat=np.zeros((followed, len(groups))),
+        wall_stored=np.zeros(followed), wall_softening=np.zeros(followed))
+    if followed:
+        out.group_temperature[0] = bank.state(kernel.TEMPERATURE)
     filled = integrate(ground, dt, frame, story_arrays(building.story_models, building.stiffnesses),
                        WallArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64), bank.arrays),
                        newton.arrays(), out)
@@ -93,14 +99,35 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     time = np.arange(filled) * dt
     share = np.array([walls[i][1].area / groups[g][1].area for i, g in enumerate(group_of_wall)])
     _warn_strain_range(walls, out.peak_group_strain[group_of_wall])
+    _warn_temperature_range(groups, bank, dt)
+    failure = np.stack([bank.state(kernel.FAILURE_STEP), bank.state(kernel.FAILURE_MODE)], axis=1).astype(np.int64)
+    wall_energies = None
+    if followed and bank.state(kernel.TRACKED).all():
+        failed = failure[:, 0] >= 0
+        released = np.where((np.arange(filled)[:, None] >= failure[:, 0]) & failed, bank.state(kernel.RELEASED), 0.0)
+        wall_energies = (out.group_heat[keep].sum(axis=1), out.wall_stored[keep], released.sum(axis=1),
+                         out.wall_softening[keep])
     return SimulationResult(
         building=building, time=time, ground_acceleration=ground[keep], displacement=out.displacement[keep],
         velocity=out.velocity[keep], acceleration=out.acceleration[keep], drift=out.drift[keep],
         story_shear=out.story_shear[keep], story_wall_force=out.story_wall_force[keep], base_shear=out.base_shear[keep],
-        energy=energy_history(out.energy[keep]), group_force=out.group_force[keep],
+        energy=energy_history(out.energy[keep], wall_energies), group_force=out.group_force[keep],
         group_strain=out.group_strain[keep], wall_group=group_of_wall, wall_share=share,
         converged=status != FAILED, collapsed=status == COLLAPSED,
-        collapse_time=float(time[-1]) if status == COLLAPSED else None, newton_iterations=iterations)
+        collapse_time=float(time[-1]) if status == COLLAPSED else None, newton_iterations=iterations,
+        group_temperature=out.group_temperature[keep], group_heat=out.group_heat[keep],
+        group_failure=failure)
+
+
+def _warn_temperature_range(groups, bank: WallBank, dt: float) -> None:
+    """One warning naming every wall group whose temperature left its shift law's range, and when."""
+    outside, temperature = bank.state(kernel.OUTSIDE), bank.state(kernel.TEMPERATURE)
+    low, high = bank.state(kernel.T_LOW), bank.state(kernel.T_HIGH)
+    outside = [f"story {story} at t = {outside[g] * dt:.4g} s ({temperature[g]:.1f} degC at the end; "
+               f"range {low[g]:g} ... {high[g]:g} degC)" for g, (story, _) in enumerate(groups) if outside[g] >= 0]
+    if outside:
+        _warnings.warn("wall temperature outside its shift law's range (the law is evaluated at the nearest end of "
+                       "the range): " + "; ".join(outside), UserWarning, stacklevel=4)
 
 
 def _warn_strain_range(walls, peak_wall_strain) -> None:

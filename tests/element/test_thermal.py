@@ -1,0 +1,244 @@
+"""Walls that heat: time-temperature superposition, the heat of the diffusive representation, and the
+coupled mechanical-thermal problem, each against an independent reference."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.integrate import solve_ivp
+
+from vdw_frames import FDMKDamper, SupportedDamper
+from vdw_frames.element.thermal import (
+    ISD110_LOSS_PEAK,
+    WLF,
+    Arrhenius,
+    LogLinear,
+    ThermalProperties,
+    diffusive_nodes,
+    diffusive_weights,
+    node_coefficients,
+)
+
+TABLE4 = dict(G1=8.69, G2=3.58, eta1=0.75, eta2=0.98, r=0.60)
+LAWS = [WLF(C1=8.86, C2=101.6, reference=21.2, valid=(-20.0, 80.0)),
+        Arrhenius(activation_energy=1.0e5, reference=21.2, valid=(-20.0, 80.0)),
+        ISD110_LOSS_PEAK]
+ENORMOUS = 1e12  # MPa/K: a heat capacity that keeps the temperature where it starts
+
+
+def thermal_wall(temperature=21.2, heat_capacity=1.8, cooling_time=math.inf, law=ISD110_LOSS_PEAK, **parameters):
+    values = dict(TABLE4, area=1e5, thickness=10.0) | parameters
+    return FDMKDamper(**values, thermal=ThermalProperties(law, heat_capacity, temperature, cooling_time))
+
+
+def drive(wall, displacement, dt):
+    """(force N, temperature degC, heat N*mm) histories of ``wall`` under ``displacement`` (mm) from rest."""
+    state = wall.new_state(dt, memory="exact")
+    force, temperature, heat = (np.zeros(displacement.size) for _ in range(3))
+    temperature[0] = state.temperature
+    for n in range(1, displacement.size):
+        force[n] = state.trial(displacement[n])[0]
+        state.commit()
+        temperature[n], heat[n] = state.temperature, state.heat
+    return force, temperature, heat
+
+
+# ------------------------------------------------------------------------------- superposition
+@pytest.mark.parametrize("law", LAWS, ids=["WLF", "Arrhenius", "LogLinear"])
+def test_time_temperature_superposition_is_exact_for_the_fdmk_model(law):
+    wall = FDMKDamper(**TABLE4)
+    frequencies = np.geomspace(0.01, 100.0, 61)
+    for temperature in (-10.0, 0.0, 10.0, 21.2, 35.0, 60.0):
+        shift = 10.0 ** float(law.log10_shift(temperature))
+        at_temperature = wall.at_temperature(temperature, law).complex_modulus(frequencies)
+        shifted_frequency = wall.complex_modulus(shift * frequencies)
+        np.testing.assert_allclose(at_temperature, shifted_frequency, rtol=1e-12)
+
+
+def test_shift_laws_follow_their_formulas():
+    wlf, arrhenius, log_linear = LAWS
+    assert float(wlf.log10_shift(41.2)) == pytest.approx(-8.86 * 20.0 / (101.6 + 20.0), rel=1e-14)
+    kelvin, reference = 41.2 + 273.15, 21.2 + 273.15
+    assert float(arrhenius.log10_shift(41.2)) == pytest.approx(1e5 / 8.314462618 * (1 / kelvin - 1 / reference)
+                                                               / math.log(10.0), rel=1e-12)
+    # Ver & Beranek Table 14.1: the ISD-110 loss peak moves one decade per (65.6 - 26.7) / 2 K.
+    assert float(log_linear.log10_shift(21.2 + 19.45)) == pytest.approx(-1.0, rel=1e-12)
+
+
+def test_a_frequency_shift_changes_the_storage_and_loss_stiffness_by_different_factors():
+    wall = thermal_wall()
+    factors = wall.property_factors([0.0, 21.2, 40.0], 0.6)
+    np.testing.assert_allclose(factors.storage[1], 1.0, rtol=1e-12)
+    for k, temperature in enumerate(factors.temperatures):
+        shifted, nominal = (wall.at_temperature(t).complex_stiffness(0.6) for t in (temperature, 21.2))
+        assert factors.storage[k] == pytest.approx(shifted.real / nominal.real, rel=1e-12)
+        assert factors.loss[k] == pytest.approx(shifted.imag / nominal.imag, rel=1e-12)
+    assert abs(factors.loss_factor_ratio[0] - 1.0) > 0.1  # the loss factor is not preserved
+    supported = SupportedDamper(wall, 5e4)
+    assert supported.property_factors([40.0], 0.6).storage[0] == pytest.approx(
+        supported.at_temperature(40.0).storage_stiffness(0.6) / supported.at_temperature(21.2).storage_stiffness(0.6),
+        rel=1e-12)
+
+
+def test_a_wall_at_rest_away_from_the_reference_answers_at_its_own_temperature():
+    wall = thermal_wall(temperature=5.0)
+    np.testing.assert_allclose(wall.complex_stiffness([0.3, 1.0, 3.0]),
+                               wall.at_temperature(5.0).complex_stiffness([0.3, 1.0, 3.0]), rtol=1e-14)
+
+
+# ------------------------------------------------------------------------------- diffusive representation
+@pytest.mark.parametrize("dt", [0.001, 0.005, 0.02])
+def test_the_diffusive_representation_reproduces_s_to_the_r(dt):
+    nodes = diffusive_nodes(dt)
+    omega = np.geomspace(2 * np.pi * 0.01, np.pi / dt, 2000)
+    s = 1j * omega
+    for r in (0.05, 0.2, 0.5, 0.8, 0.95, 0.99, 1.0):
+        weights, dashpot, spring = diffusive_weights(r, nodes)
+        approximation = (weights * s[:, None] / (s[:, None] + nodes)).sum(axis=1) + dashpot * s + spring
+        assert np.abs(approximation / s**r - 1.0).max() <= 3e-3
+
+
+def test_node_coefficients_integrate_a_relaxing_mode_exactly():
+    # For an input rising linearly by dx over a step, phi' = -xi phi + dx/dt: its end value and int xi phi^2 dt
+    # against solve_ivp, from slow (z = 1e-4) to fast (z = 30) modes.
+    dt, dx, phi0 = 0.01, 0.7, -0.3
+    nodes = np.array([1e-2, 1.0, 30.0, 3000.0])
+    coefficients = node_coefficients(nodes, dt)
+    for xi, (e, ratio, A, B, C) in zip(nodes, coefficients, strict=True):
+        def rate(t, y, xi=xi):
+            return [-xi * y[0] + dx / dt, xi * y[0] ** 2]
+
+        exact = solve_ivp(rate, (0.0, dt), [phi0, 0.0], rtol=1e-12, atol=1e-15, method="DOP853").y[:, -1]
+        assert e * phi0 + ratio * dx == pytest.approx(exact[0], rel=1e-9, abs=1e-14)
+        assert A * phi0**2 + B * phi0 * dx + C * dx**2 == pytest.approx(exact[1], rel=1e-8, abs=1e-14)
+
+
+# ------------------------------------------------------------------------------- heat
+@pytest.mark.parametrize("r", [0.3, 0.6, 1.0])
+def test_the_heat_of_a_steady_cycle_equals_the_loop_area(r):
+    wall = thermal_wall(heat_capacity=ENORMOUS, r=r)
+    frequency, amplitude, per_cycle, cycles = 1.0, 20.0, 400, 8
+    dt = 1.0 / (frequency * per_cycle)
+    time = np.arange(cycles * per_cycle + 1) * dt
+    _, temperature, heat = drive(wall, amplitude * np.sin(2 * np.pi * frequency * time), dt)
+    assert np.ptp(temperature) < 1e-6  # isothermal
+    last_cycle = heat[-1] - heat[-1 - per_cycle]
+    loop_area = np.pi * float(wall.loss_stiffness(frequency)) * amplitude**2
+    assert last_cycle == pytest.approx(loop_area, rel=5e-3)
+
+
+def test_an_isothermal_thermal_wall_steps_exactly_as_the_plain_wall():
+    time = np.arange(3001) * 0.005
+    displacement = 15.0 * np.sin(2 * np.pi * 0.8 * time) * np.minimum(time, 1.0)
+    plain = FDMKDamper(**TABLE4, area=1e5, thickness=10.0)
+    heated = thermal_wall(heat_capacity=1e300)
+    np.testing.assert_allclose(heated.force(displacement, 0.005), plain.force(displacement, 0.005),
+                               rtol=1e-12, atol=1e-12 * np.abs(plain.force(displacement, 0.005)).max())
+
+
+def test_a_wall_held_at_another_temperature_follows_the_wall_at_that_temperature():
+    time = np.arange(4001) * 0.0025
+    displacement = 15.0 * np.sin(2 * np.pi * 1.2 * time)
+    held = thermal_wall(temperature=5.0, heat_capacity=ENORMOUS)
+    reference = held.at_temperature(5.0).force(displacement, 0.0025)
+    np.testing.assert_allclose(held.force(displacement, 0.0025), reference, atol=1e-9 * np.abs(reference).max())
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 2**16), r=st.floats(0.05, 1.0), harmonic=st.booleans())
+def test_an_adiabatic_wall_never_cools(seed, r, harmonic):
+    rng = np.random.default_rng(seed)
+    dt, steps = 0.01, 600
+    if harmonic:
+        displacement = rng.uniform(1, 30) * np.sin(2 * np.pi * rng.uniform(0.1, 5.0) * np.arange(steps) * dt)
+    else:
+        displacement = np.cumsum(rng.normal(0.0, 2.0, steps))
+    _, temperature, heat = drive(thermal_wall(heat_capacity=1e-3, r=r), displacement, dt)
+    assert np.all(np.diff(temperature) >= -1e-12 * np.abs(temperature).max())
+    assert np.all(np.diff(heat) >= 0.0)
+
+
+def test_with_cooling_the_temperature_relaxes_to_ambient_at_its_time_constant():
+    dt, tau = 0.01, 3.0
+    loading = 20.0 * np.sin(2 * np.pi * 2.0 * np.arange(501) * dt)
+    displacement = np.concatenate([loading, np.full(1500, loading[-1])])  # then held still
+    wall = thermal_wall(temperature=10.0, heat_capacity=1e-2, cooling_time=tau)
+    _, temperature, _ = drive(wall, displacement, dt)
+    rest = np.arange(600, displacement.size)  # after the springpots' own relaxation has died out
+    excess = temperature[rest] - 10.0
+    assert excess[0] > 1.0
+    expected = excess[0] * np.exp(-(rest - rest[0]) * dt / tau)
+    np.testing.assert_allclose(excess, expected, rtol=2e-3)
+
+
+# ------------------------------------------------------------------------------- the coupled problem
+def coupled_reference(strain, time, G1, G2, eta1, eta2, capacity, law, temperature0):
+    """r = 1 Kelvin + Maxwell with eta(T) = eta_ref a_T(T), heated by its dissipation eta1 eps'^2 + sigma2^2 /
+    eta2 (per unit volume): solve_ivp on (sigma2, T) for a strain given as a dense function."""
+    def shift(T):
+        return 10.0 ** float(law.log10_shift(T))
+
+    def rate(t, y):
+        sigma2, T = y
+        a = shift(T)
+        eps_dot = strain(t, 1)
+        return [G2 * eps_dot - G2 * sigma2 / (eta2 * a), (eta1 * a * eps_dot**2 + sigma2**2 / (eta2 * a)) / capacity]
+
+    solution = solve_ivp(rate, (time[0], time[-1]), [0.0, temperature0], t_eval=time, rtol=1e-10, atol=1e-12,
+                         method="LSODA", max_step=0.01)
+    sigma2, T = solution.y
+    eps = strain(time, 0)
+    stress = G1 * eps + eta1 * np.array([shift(t) for t in T]) * strain(time, 1) + sigma2
+    return stress, T
+
+
+def test_the_coupled_problem_of_a_classical_wall_matches_solve_ivp_at_first_order_or_better():
+    parameters = dict(G1=0.4, G2=2.0, eta1=0.15, eta2=0.5)
+    amplitude, frequency, area, thickness, capacity = 3.0, 1.0, 1e5, 10.0, 0.6
+
+    def strain(t, derivative):  # smooth start: eps = A sin^2-ramped sine
+        ramp, ramp_dot = np.minimum(t, 1.0), np.where(t < 1.0, 1.0, 0.0)
+        w = 2 * np.pi * frequency
+        if derivative == 0:
+            return amplitude * ramp * np.sin(w * t)
+        return amplitude * (ramp_dot * np.sin(w * t) + ramp * w * np.cos(w * t))
+
+    wall = FDMKDamper(**parameters, r=1.0, area=area, thickness=thickness,
+                      thermal=ThermalProperties(ISD110_LOSS_PEAK, capacity, 21.2))
+    errors = []
+    for dt in (0.004, 0.002, 0.001):
+        time = np.arange(int(round(6.0 / dt)) + 1) * dt
+        force, temperature, _ = drive(wall, strain(time, 0) * thickness, dt)
+        stress, reference_temperature = coupled_reference(strain, time, **parameters, capacity=capacity,
+                                                          law=ISD110_LOSS_PEAK, temperature0=21.2)
+        reference_force = stress * area
+        errors.append((np.abs(force[1:] - reference_force[1:]).max() / np.ptp(reference_force),
+                       np.abs(temperature - reference_temperature).max() / np.ptp(reference_temperature)))
+    errors = np.array(errors)
+    assert np.ptp(reference_temperature) > 20.0  # the wall does heat (and soften) a lot
+    assert errors[-1].max() <= 5e-3
+    assert np.all(errors[:-1] / errors[1:] >= 1.8)  # first order or better under halving
+
+
+# ------------------------------------------------------------------------------- bad input
+@pytest.mark.parametrize("make, match", [
+    (lambda: ThermalProperties(ISD110_LOSS_PEAK, 0.0), "heat_capacity must be > 0, got 0.0"),
+    (lambda: ThermalProperties(ISD110_LOSS_PEAK, -1.5), "heat_capacity must be > 0, got -1.5"),
+    (lambda: ThermalProperties(ISD110_LOSS_PEAK, 1.8, -300.0), r"temperature must be above absolute zero .* -300.0"),
+    (lambda: ThermalProperties(ISD110_LOSS_PEAK, 1.8, 20.0, -5.0), "cooling_time must be > 0, got -5.0"),
+    (lambda: WLF(8.86, 0.0, 21.2, (0.0, 40.0)), "C2 must be > 0, got 0.0"),
+    (lambda: WLF(8.86, -50.0, 21.2, (0.0, 40.0)), "C2 must be > 0, got -50.0"),
+    (lambda: WLF(8.86, 50.0, 21.2, (-40.0, 40.0)), r"valid must hold the reference .* above -28.8"),
+    (lambda: ThermalProperties(WLF(8.86, 50.0, 21.2, (-20.0, 40.0)), 1.8, -30.0), "at or below T_ref - C2"),
+    (lambda: Arrhenius(-1.0, 21.2, (0.0, 40.0)), "activation_energy must be > 0, got -1.0"),
+    (lambda: LogLinear(19.45, -300.0, (-400.0, 0.0)), "reference must be above absolute zero"),
+    (lambda: FDMKDamper(**TABLE4, thermal="hot"), "thermal must be ThermalProperties"),
+    (lambda: FDMKDamper(**TABLE4).at_temperature(30.0), "needs a shift law"),
+    (lambda: FDMKDamper(**TABLE4).property_factors([30.0], 1.0), "thermal description"),
+    (lambda: thermal_wall().property_factors([-300.0], 1.0), "above absolute zero"),
+])
+def test_non_physical_thermal_data_is_refused_naming_the_value(make, match):
+    with pytest.raises(ValueError, match=match):
+        make()

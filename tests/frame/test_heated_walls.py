@@ -1,0 +1,111 @@
+"""Buildings whose walls heat: energy accounts with the walls' own heat, temperatures, batch envelopes over
+ambient temperatures -- each against an independent computation."""
+
+import dataclasses
+import warnings
+
+import numpy as np
+import pytest
+
+import vdw_frames as vdw
+from vdw_frames.element.thermal import ISD110_LOSS_PEAK, ThermalProperties
+from vdw_frames.motion import default_record
+
+TABLE4 = dict(G1=8.69, G2=3.58, eta1=0.75, eta2=0.98, r=0.60)
+
+
+def heated(wall, heat_capacity=1.8, temperature=21.2):
+    return dataclasses.replace(wall, thermal=ThermalProperties(ISD110_LOSS_PEAK, heat_capacity, temperature))
+
+
+def five_story(walls):
+    masses = np.array([400.0, 400.0, 380.0, 360.0, 300.0])
+    weight = np.cumsum((masses * vdw.G)[::-1])[::-1]
+    return vdw.ShearBuilding(masses=masses, stiffnesses=[3.0e5, 2.7e5, 2.4e5, 2.0e5, 1.6e5],
+                             story_heights=[3500.0] * 5, gravity_loads=weight,
+                             hysteresis=[vdw.Bilinear(0.12 * w, 0.03) for w in weight],
+                             walls={story: walls for story in range(1, 6)})
+
+
+WALL = vdw.FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5, area=3e5, thickness=8.0)
+
+
+def test_the_energy_balance_closes_with_the_walls_heat_as_their_dissipation():
+    building = five_story([heated(WALL)])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = vdw.simulate(building, default_record().scaled(1.5))
+    energy = result.energy
+    assert np.nanmax(result.peak_temperature_rise) > 5.0
+    assert np.all(np.diff(energy.wall_heat) >= 0.0)
+    assert np.abs(energy.heat_balance_error).max() <= 5e-3 * energy.input.max()
+    # The split is the walls' work: heat + stored + softening (no wall failed) equals int F dd.
+    split = energy.wall_heat + energy.wall_stored + energy.wall_released + energy.wall_softening
+    assert np.abs(split - energy.wall_work).max() <= 5e-3 * energy.input.max()
+    # The walls' heat is the sum of their own.
+    np.testing.assert_allclose(result.wall_heat.sum(axis=1), energy.wall_heat, rtol=1e-12)
+
+
+def test_a_wall_temperature_is_its_heat_over_its_heat_capacity():
+    building = five_story([heated(WALL, heat_capacity=1.5, temperature=10.0)])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = vdw.simulate(building, default_record())
+    volume = WALL.area * WALL.thickness  # mm^3
+    np.testing.assert_allclose(result.wall_temperature - 10.0, result.wall_heat / (1.5 * volume), atol=1e-9)
+
+
+def test_walls_without_a_thermal_description_report_no_temperature():
+    result = vdw.simulate(five_story([WALL]), default_record())
+    assert result.wall_temperature is None and result.peak_temperature_rise is None
+    assert result.energy.wall_heat is None and result.energy.heat_balance_error is None
+
+
+def test_heating_softens_the_walls_and_the_frame_drifts_more():
+    cold = five_story([WALL])
+    hot = five_story([heated(WALL, heat_capacity=0.5)])
+    motion = default_record().scaled(1.5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        plain, heating = vdw.simulate(cold, motion), vdw.simulate(hot, motion)
+    assert heating.peak_drift.max() > plain.peak_drift.max()
+
+
+def test_a_batch_over_ambient_temperatures_is_the_envelope_of_the_separate_runs():
+    building = five_story([heated(WALL)])
+    motion = default_record()
+    temperatures = (0.0, 21.2, 40.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        batch = vdw.run_batch(building, [motion], [1.0], executor=_Serial(), progress=False,
+                              ambient_temperatures=temperatures)
+        separate = [vdw.simulate(building.with_walls({s: [w.at_ambient(t) for w in ws]
+                                                      for s, ws in building.walls.items()}), motion)
+                    for t in temperatures]
+    drifts = np.array([run.peak_drift for run in separate])  # (temperatures, stories)
+    np.testing.assert_allclose(batch.peak_drift[0, 0], drifts.max(axis=0), rtol=1e-12)
+    np.testing.assert_array_equal(batch.governing_temperature["peak_drift"][0, 0],
+                                  np.array(temperatures)[drifts.argmax(axis=0)])
+    rises = np.array([[np.nanmax(run.peak_temperature_rise[[k]]) for k in range(5)] for run in separate])
+    np.testing.assert_allclose(batch.peak_temperature_rise[0, 0], rises.max(axis=0), rtol=1e-12)
+    assert batch.ambient_temperatures == temperatures
+
+
+def test_ambient_temperatures_need_walls_that_can_feel_them():
+    with pytest.raises(ValueError, match="ambient_temperatures needs .* thermal description"):
+        vdw.run_batch(five_story([WALL]), [default_record()], [1.0], executor=_Serial(), progress=False,
+                      ambient_temperatures=(0.0, 40.0))
+
+
+class _Serial:
+    """A concurrent.futures-like executor that runs each task at once (no processes in the test)."""
+
+    def submit(self, function, *args):
+        from concurrent.futures import Future
+
+        future = Future()
+        future.set_result(function(*args))
+        return future
+
+    def shutdown(self, *args, **kwargs):
+        pass
