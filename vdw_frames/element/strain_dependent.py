@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
+from typing import overload
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -143,6 +144,12 @@ class StrainDependentDamper:
     def stiffness_scale(self) -> float:
         """area / thickness (mm): converts a modulus in MPa to a stiffness in N/mm."""
         return self.area / self.thickness
+
+    @overload
+    def clamped(self, strain: float) -> float: ...
+
+    @overload
+    def clamped(self, strain: ArrayLike) -> float | np.ndarray: ...
 
     def clamped(self, strain: ArrayLike) -> float | np.ndarray:
         """``strain`` (dimensionless, scalar or array, >= 0) clamped into :attr:`strain_range`; no warning."""

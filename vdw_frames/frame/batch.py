@@ -14,20 +14,24 @@ import dataclasses
 import io
 import os
 import sys
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .. import _warnings
 from .._files import write_text
 from .._validation import finite_array, positive, show
 from ..element.damper import DEFAULT_MEMORY
+from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation
 from ..motion.record import GroundMotion
 from .building import ShearBuilding, require_fixed_walls
 from .simulation import simulate
-from .strain_compatible import strain_compatible_options
+from .strain_compatible import StrainCompatibleOptions, strain_compatible_options
 
 
 @dataclass(frozen=True)
@@ -37,12 +41,12 @@ class BatchTask:
     building: ShearBuilding
     motion: GroundMotion
     scale: float
-    memory: object
+    memory: str | FastMemory
     method: str | Discretisation
-    strain_compatible: object = False  # simulate()'s option: False, True or StrainCompatibleOptions
-    options: tuple = ()  # further simulate() keywords, as (name, value) pairs
+    strain_compatible: bool | StrainCompatibleOptions = False  # simulate()'s option: False, True or the options
+    options: tuple[tuple[str, Any], ...] = ()  # further simulate() keywords, as (name, value) pairs
 
-    def run(self) -> dict:
+    def run(self) -> dict[str, Any]:
         """Peak responses of this analysis (units of :class:`~vdw_frames.frame.simulation.SimulationResult`).
 
         The package's warnings raised by the analysis (e.g. strain outside the identified range) travel
@@ -66,7 +70,7 @@ class BatchTask:
         }
 
 
-def _run(task: BatchTask) -> dict:
+def _run(task: BatchTask) -> dict[str, Any]:
     # A module-level function: executors pickle it by name.
     return task.run()
 
@@ -95,7 +99,7 @@ class BatchResult:
     an array of its shape holding the factor that gave each value (None otherwise).
     """
 
-    motion_names: tuple
+    motion_names: tuple[str, ...]
     scales: np.ndarray
     pga: np.ndarray  # (motions, scales): PGA of each scaled record, mm/s^2
     peak_drift: np.ndarray
@@ -106,10 +110,10 @@ class BatchResult:
     residual_drift: np.ndarray
     collapsed: np.ndarray
     converged: np.ndarray
-    property_factors: tuple | None = None
-    governing_factor: dict | None = None
+    property_factors: tuple[float, ...] | None = None
+    governing_factor: dict[str, np.ndarray] | None = None
 
-    def to_csv(self, path) -> Path:
+    def to_csv(self, path: str | os.PathLike[str]) -> Path:
         """Write one row per (motion, scale, story) with every peak and the outcome (``None`` ratios left
         empty) to ``path``, atomically; returns the path."""
         stories = self.peak_drift.shape[2]
@@ -128,9 +132,11 @@ class BatchResult:
         return write_text(path, handle.getvalue(), "CSV file")
 
 
-def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.futures.Executor | None = None,
-              progress: bool = True, memory=DEFAULT_MEMORY, method=DEFAULT_METHOD,
-              strain_compatible=False, property_factors=None, **simulate_options) -> BatchResult:
+def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: ArrayLike,
+              executor: concurrent.futures.Executor | None = None, progress: bool = True,
+              memory: str | FastMemory = DEFAULT_MEMORY, method: str | Discretisation = DEFAULT_METHOD,
+              strain_compatible: bool | StrainCompatibleOptions = False, property_factors: ArrayLike | None = None,
+              **simulate_options: Any) -> BatchResult:
     """Run ``building`` under every motion at every scale factor.
 
     ``motions``: GroundMotion objects (mm/s^2).  ``scales``: factors (dimensionless) applied as
@@ -192,7 +198,7 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
              for m, motion in enumerate(motions) for s in range(factors.shape[1])}
 
     own_executor = executor is None
-    if own_executor:
+    if executor is None:
         executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
     futures = {}
     try:
@@ -237,26 +243,29 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
                        *(stack(name).astype(bool) for name in OUTCOMES))
 
 
-def _label(motions, m: int) -> str:
+def _label(motions: Sequence[GroundMotion], m: int) -> str:
     return motions[m].name or f"motion {m}"
 
 
-def _property_envelope(building: ShearBuilding, property_factors, executor, run) -> BatchResult:
+def _property_envelope(building: ShearBuilding, property_factors: ArrayLike,
+                       executor: concurrent.futures.Executor | None,
+                       run: Callable[[ShearBuilding, concurrent.futures.Executor], BatchResult]) -> BatchResult:
     """Envelope of ``run(building with walls scaled by f, executor)`` over the factors f (see run_batch)."""
     factors = finite_array("property_factors", property_factors, ndim=None).ravel()
     if factors.size == 0 or (factors <= 0).any():
         raise ValueError(f"property_factors must be one or more factors > 0, got {property_factors!r}")
-    variants = [building.with_walls({story: [wall.scaled(f) for wall in walls]
+    variants = [building.with_walls({story: tuple(wall.scaled(f) for wall in walls)
                                        for story, walls in building.walls.items()}) for f in factors]
     own_executor = executor is None
-    if own_executor:
+    if executor is None:
         executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
     try:
         results = [run(variant, executor) for variant in variants]
     finally:
         if own_executor:
             executor.shutdown(cancel_futures=True)
-    envelope, governing = {}, {}
+    envelope: dict[str, Any] = {}
+    governing: dict[str, np.ndarray] = {}
     for name in PEAKS:
         if getattr(results[0], name) is None:
             envelope[name] = None
@@ -271,13 +280,14 @@ def _property_envelope(building: ShearBuilding, property_factors, executor, run)
                                governing_factor=governing)
 
 
-def scale_factors_to_pga(motions, targets) -> np.ndarray:
+def scale_factors_to_pga(motions: Iterable[GroundMotion], targets: ArrayLike) -> np.ndarray:
     """Factors (motions, targets) that scale each motion to each target PGA (mm/s^2)."""
     targets = finite_array("targets", targets)
     return np.array([[motion.scale_factor_to_pga(t) for t in targets] for motion in motions])
 
 
-def scale_factors_to_spectral_acceleration(motions, targets, period: float, damping_ratio: float = 0.05) -> np.ndarray:
+def scale_factors_to_spectral_acceleration(motions: Iterable[GroundMotion], targets: ArrayLike, period: float,
+                                           damping_ratio: float = 0.05) -> np.ndarray:
     """Factors (motions, targets) that scale each motion to each target Sa(period) (mm/s^2, s).
 
     Sa is linear in the scale factor: one response spectrum per motion serves every target.
@@ -288,7 +298,7 @@ def scale_factors_to_spectral_acceleration(motions, targets, period: float, damp
 
 
 class _ProgressBar:
-    def __init__(self, total: int):
+    def __init__(self, total: int) -> None:
         self.total, self.done = total, 0
         self._draw()
 
