@@ -8,6 +8,7 @@
 from __future__ import annotations
 
 import dataclasses
+import os
 import time
 from pathlib import Path
 
@@ -155,7 +156,7 @@ def _section_strain_dependence(numbers, figure) -> str:
     for strain in (225.0, 262.5, 300.0, 375.0, 450.0):
         _, storage, loss = strain_dependence.interpolated_moduli(strain)
         fixed = [paper.fitted(key).complex_modulus(FREQUENCIES) for key in fixed_sets(strain)]
-        ours = model.complex_modulus(FREQUENCIES, strain / 100.0)
+        ours = np.asarray(model.complex_modulus(FREQUENCIES, strain / 100.0))
         source = "printed" if strain in STRAINS else "interp."
         for k, f in enumerate(FREQUENCIES):
             rows.append([f"{strain:g} %", f"{f:g}", f"{storage[k]:.2f} ({source})",
@@ -427,7 +428,7 @@ def _cd_text(e) -> str:
             f"C_d f / K''_d is {cd_f[others].min():.2f}-{cd_f[others].max():.2f}, which matches no stated relation.")
 
 
-def write_paper_report(out_dir, quick: bool = False) -> Path:
+def write_paper_report(out_dir: str | os.PathLike[str], quick: bool = False) -> Path:
     """Write ``out_dir/report.md`` and its PNG figures; returns the path of report.md.
 
     ``quick=True`` leaves out the figures (the tables and errata are computed in full).
