@@ -2,6 +2,7 @@
 
 import concurrent.futures
 import csv
+import dataclasses
 
 import numpy as np
 import pytest
@@ -89,3 +90,19 @@ def test_batch_validation(args, match):
     arguments = dict(motions=motions(), scales=[1.0]) | args
     with concurrent.futures.ThreadPoolExecutor(1) as pool, pytest.raises(ValueError, match=match):
         run_batch(building(), arguments["motions"], arguments["scales"], executor=pool)
+
+
+def test_fragility_when_every_record_collapsed_and_the_mask_is_nomask():
+    """An IDAResult whose collapse intensities carry no mask (``np.ma.nomask``: every record collapsed,
+    built without an explicit mask) still fits its fragility; reading ``.mask[m]`` indexed a scalar."""
+    from vdw_frames.frame.ida import IDAResult
+
+    intensities = (np.array([1.0, 2.0]), np.array([1.0, 2.0, 3.0]), np.array([1.0]))
+    collapse = np.ma.masked_array([2.0, 3.0, 1.0])
+    assert collapse.mask is np.ma.nomask
+    result = IDAResult(("a", "b", "c"), 1.0, np.array([1.0, 2.0, 3.0]), intensities,
+                       tuple(np.zeros(x.size) for x in intensities),
+                       tuple(np.arange(x.size) == x.size - 1 for x in intensities), collapse, ())
+    fit = result.fragility()
+    masked = dataclasses.replace(result, collapse_intensity=np.ma.masked_array([2.0, 3.0, 1.0], mask=[False] * 3))
+    assert (fit.median, fit.dispersion) == (masked.fragility().median, masked.fragility().dispersion)

@@ -369,3 +369,26 @@ def test_shipped_default_record_is_what_make_records_writes(tmp_path):
     assert regenerated.dt == shipped.dt
     # to file precision: 8 significant digits, so at most one unit of the last digit apart
     np.testing.assert_allclose(regenerated.acceleration, shipped.acceleration, rtol=1e-7, atol=1e-9)
+
+
+def test_default_record_path_joins_one_name_at_a_time(monkeypatch):
+    """Python 3.10's ``Traversable.joinpath`` takes one name (several only from 3.11): the shipped record's
+    path must be found through that contract (mypy for Python 3.10 flagged ``joinpath("data", name)``)."""
+    from vdw_frames.motion import synthetic
+
+    package = synthetic.resources.files(synthetic.__package__)
+
+    class OneNameTraversable:
+        def __init__(self, path):
+            self.path = path
+
+        def joinpath(self, child):
+            return OneNameTraversable(self.path.joinpath(child))
+
+        def __str__(self):
+            return str(self.path)
+
+    monkeypatch.setattr(synthetic.resources, "files", lambda anchor: OneNameTraversable(package))
+    path = gm.default_record_path()
+    assert path == Path(str(package)) / "data" / synthetic.DEFAULT_RECORD
+    assert path.is_file()

@@ -15,6 +15,7 @@ energy N*mm, frequency Hz.
 
 from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
+from typing import Any
 
 from .element import FDMKDamper, StrainDependentDamper, SupportedDamper, sine_test
 from .frame import Bilinear, BoucWen, ShearBuilding, incremental_dynamic_analysis, modal_analysis, run_batch, simulate
@@ -51,7 +52,7 @@ _LAZY = {"paper": ("vdw_frames.paper", None), "identify": ("vdw_frames.paper", "
 _SUBPACKAGES = ("config", "design", "element", "frame", "interop", "motion", "paper", "plotting")
 
 
-def __getattr__(name: str):
+def __getattr__(name: str) -> Any:
     if name in _LAZY:
         module_name, attribute = _LAZY[name]
         module = import_module(module_name)

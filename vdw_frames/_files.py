@@ -30,7 +30,7 @@ is ~2 MB); a larger one (or an endless device) is refused before it is read."""
 _TEMPORARY = ".vdw-tmp-"
 
 
-def file_path(path, what: str = "file") -> Path:
+def file_path(path: str | os.PathLike[str], what: str = "file") -> Path:
     """``path`` (str or os.PathLike) as a :class:`pathlib.Path`; '' and None are refused."""
     if isinstance(path, bytes) or not isinstance(path, (str, os.PathLike)):
         raise ValueError(f"{what} must be a path (str or pathlib.Path), got {show(path)}")
@@ -39,7 +39,7 @@ def file_path(path, what: str = "file") -> Path:
     return Path(path)
 
 
-def read_text(path, what: str = "file", strict: bool = True) -> tuple[Path, str]:
+def read_text(path: str | os.PathLike[str], what: str = "file", strict: bool = True) -> tuple[Path, str]:
     """(Path, text) of a text file; every failure is a ValueError naming the file.
 
     A missing file, a folder, a FIFO or device (not a regular file), a file above :data:`MAX_TEXT_BYTES`,
@@ -95,7 +95,7 @@ def _looks_utf16(data: bytes) -> bool:
     return len(head) >= 4 and (head[1::2].count(0) >= len(head) // 2 - 1 or head[0::2].count(0) >= len(head) // 2 - 1)
 
 
-def write_text(path, text: str, what: str = "file") -> Path:
+def write_text(path: str | os.PathLike[str], text: str, what: str = "file") -> Path:
     """Write ``text`` (UTF-8) to ``path`` atomically (:func:`replace_file`); returns the path."""
     path = file_path(path, what)
     replace_file(path, text.encode("utf-8"))

@@ -18,7 +18,9 @@ import hashlib
 import os
 import shutil
 import warnings
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from numba import njit as _numba_njit
 from numba.core import caching
@@ -42,21 +44,21 @@ _TAG = _fingerprint()
 _cleaned: set[str] = set()
 
 
-def _versioned(locator):
+def _versioned(locator: Any) -> type:
     """A subclass of numba's ``locator`` that serves the package's files from the fingerprint's sub-folder."""
 
     class Versioned(locator):
-        def __init__(self, py_func, py_file):
+        def __init__(self, py_func: Callable[..., Any], py_file: str) -> None:
             super().__init__(py_func, py_file)
-            self._cache_path = os.path.join(self._cache_path, _TAG)
+            self._cache_path: str = os.path.join(self._cache_path, _TAG)
 
         @classmethod
-        def from_function(cls, py_func, py_file):
+        def from_function(cls, py_func: Callable[..., Any], py_file: str) -> Any:
             if not Path(py_file).resolve().is_relative_to(_PACKAGE):
                 return None  # other packages keep numba's own locators
             return super().from_function(py_func, py_file)
 
-        def ensure_cache_path(self):
+        def ensure_cache_path(self) -> None:
             super().ensure_cache_path()
             parent = os.path.dirname(self._cache_path)
             if parent not in _cleaned:  # once per folder and process: drop older fingerprints
@@ -84,11 +86,11 @@ def _install_locators() -> None:
 _install_locators()
 
 
-def njit(*args, cache: bool = False, **options):
+def njit(*args: Any, cache: bool = False, **options: Any) -> Any:
     """``numba.njit``, used as ``@njit(cache=True)``; falls back to ``cache=False`` (one warning) when
     numba cannot place a cache for the function."""
 
-    def compile_(function):
+    def compile_(function: Callable[..., Any]) -> Any:
         global _warned
         if cache:
             try:

@@ -11,6 +11,7 @@ import math
 import numbers
 
 import numpy as np
+from numpy.typing import ArrayLike, DTypeLike
 
 MEMORY_LIMIT_BYTES = 2 * 1024**3
 """Largest result (bytes) an analysis may allocate: 2 GiB.  Requests beyond it are refused before any
@@ -22,13 +23,13 @@ SIMULATION_STEP_RANGE = (1e-9, 1e3)
 inside the range where Newmark's coefficients 4/dt^2 and 2/dt are ordinary floats."""
 
 
-def show(value) -> str:
+def show(value: object) -> str:
     """``repr`` of ``value`` with numpy scalars (also inside lists and tuples) shown as the Python
     numbers they hold: ``0.01``, not ``np.float64(0.01)``."""
     return repr(_plain(value))
 
 
-def _plain(value):
+def _plain(value: object) -> object:
     if isinstance(value, np.generic) or (isinstance(value, np.ndarray) and value.ndim == 0):
         return value.item()
     if isinstance(value, (list, tuple)):
@@ -36,14 +37,15 @@ def _plain(value):
     return value
 
 
-def _refuse_non_number(name: str, value) -> None:
+def _refuse_non_number(name: str, value: object) -> None:
     if isinstance(value, (bool, np.bool_, str, bytes)):
         raise ValueError(f"{name} must be a real number, got {show(value)}")
-    if np.iscomplexobj(value):
+    # numpy documents iscomplexobj for input "of any type", but its stub narrows it to array-likes.
+    if np.iscomplexobj(value):  # type: ignore[arg-type]
         raise ValueError(f"{name} must be a real number, got {show(value)}")
 
 
-def finite_scalar(name: str, value) -> float:
+def finite_scalar(name: str, value: object) -> float:
     """Return ``value`` as a float, or raise ValueError if it is not a finite real number.
 
     Python and numpy numbers (and 0-d arrays) are accepted; bools, strings and complex numbers are not.
@@ -66,7 +68,7 @@ def finite_scalar(name: str, value) -> float:
     return number
 
 
-def non_negative(name: str, value) -> float:
+def non_negative(name: str, value: object) -> float:
     """A finite real number >= 0."""
     number = finite_scalar(name, value)
     if number < 0.0:
@@ -74,7 +76,7 @@ def non_negative(name: str, value) -> float:
     return number
 
 
-def positive(name: str, value) -> float:
+def positive(name: str, value: object) -> float:
     """A finite real number > 0."""
     number = finite_scalar(name, value)
     if number <= 0.0:
@@ -82,7 +84,7 @@ def positive(name: str, value) -> float:
     return number
 
 
-def _has_bool_or_text(values) -> bool:
+def _has_bool_or_text(values: list | tuple) -> bool:
     """Whether a (nested) list or tuple holds a bool or a string (numpy would quietly convert them)."""
     stack = [values]
     while stack:
@@ -95,7 +97,7 @@ def _has_bool_or_text(values) -> bool:
     return False
 
 
-def _number_array(name: str, values, dtype, kinds: str, what: str) -> np.ndarray:
+def _number_array(name: str, values: ArrayLike, dtype: DTypeLike, kinds: str, what: str) -> np.ndarray:
     """``values`` as an array of ``dtype``; bools and strings (which numpy would convert) refused."""
     if isinstance(values, (bool, np.bool_, str, bytes)) or (
             isinstance(values, (list, tuple)) and _has_bool_or_text(values)):
@@ -108,7 +110,7 @@ def _number_array(name: str, values, dtype, kinds: str, what: str) -> np.ndarray
         raise ValueError(f"{name} must be {what}") from None
 
 
-def finite_array(name: str, values, ndim: int | None = 1) -> np.ndarray:
+def finite_array(name: str, values: ArrayLike, ndim: int | None = 1) -> np.ndarray:
     """A float64 array with only finite entries (and ``ndim`` dimensions when given).
 
     Numbers, sequences of numbers and numeric numpy arrays are accepted; bools, strings and complex
@@ -127,7 +129,7 @@ def finite_array(name: str, values, ndim: int | None = 1) -> np.ndarray:
     return array
 
 
-def finite_complex_array(name: str, values) -> np.ndarray:
+def finite_complex_array(name: str, values: ArrayLike) -> np.ndarray:
     """A complex128 array (any shape; scalars become 0-d) with only finite entries; bools and strings
     are refused."""
     array = _number_array(name, values, complex, "iufc", "numbers")
@@ -137,7 +139,7 @@ def finite_complex_array(name: str, values) -> np.ndarray:
     return array
 
 
-def whole_number(name: str, value, minimum: int) -> int:
+def whole_number(name: str, value: object, minimum: int) -> int:
     """An integer >= ``minimum`` (Python or numpy; integral floats accepted; bools refused)."""
     if isinstance(value, np.ndarray) and value.ndim == 0:
         value = value.item()
@@ -157,7 +159,7 @@ def scaled_value(name: str, value: float, factor: float, factor_name: str = "fac
     return product
 
 
-def fractional_order(value, name: str = "r") -> float:
+def fractional_order(value: object, name: str = "r") -> float:
     """A fractional order r in (0, 1] (r = 1: classical dashpots)."""
     r = finite_scalar(name, value)
     if not 0.0 < r <= 1.0:
@@ -165,7 +167,7 @@ def fractional_order(value, name: str = "r") -> float:
     return r
 
 
-def refuse_non_numbers(name: str, values) -> None:
+def refuse_non_numbers(name: str, values: object) -> None:
     """ValueError when ``values`` (a value or a nested sequence) holds a bool or a string, which numpy would
     quietly convert to numbers."""
     items = np.asarray(values, dtype=object).ravel() if not isinstance(values, (str, bytes)) else [values]
@@ -174,7 +176,7 @@ def refuse_non_numbers(name: str, values) -> None:
             raise ValueError(f"{name} must be real numbers, got {show(item)}")
 
 
-def damping_ratio(value, name: str = "damping_ratio") -> float:
+def damping_ratio(value: object, name: str = "damping_ratio") -> float:
     """A damping ratio in [0, 1)."""
     zeta = finite_scalar(name, value)
     if not 0.0 <= zeta < 1.0:
@@ -182,13 +184,13 @@ def damping_ratio(value, name: str = "damping_ratio") -> float:
     return zeta
 
 
-def require_finite(name: str, values) -> None:
+def require_finite(name: str, values: ArrayLike) -> None:
     """Refuse an overflowed result (inf or NaN) instead of handing it to the user."""
     if not np.all(np.isfinite(values)):
         raise ValueError(f"{name} overflowed (inf or NaN): the inputs or parameters are too large")
 
 
-def positive_frequencies(name: str, values) -> np.ndarray:
+def positive_frequencies(name: str, values: ArrayLike) -> np.ndarray:
     """Frequencies in Hz: finite and > 0 (scalars become 0-d arrays)."""
     array = finite_array(name, values, ndim=None)
     if (array <= 0.0).any():

@@ -10,22 +10,23 @@ the warning is appended to that block's list instead; nothing touches ``warnings
 from __future__ import annotations
 
 import warnings
+from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
 
-_collector: ContextVar[list | None] = ContextVar("vdw_frames_warning_collector", default=None)
+_collector: ContextVar[list[CollectedWarning] | None] = ContextVar("vdw_frames_warning_collector", default=None)
 
 
 @dataclass(frozen=True)
 class CollectedWarning:
     """A warning caught by :func:`collect`: its category and its message text."""
 
-    category: type
+    category: type[Warning]
     message: str
 
 
-def warn(message: str, category: type = UserWarning, stacklevel: int = 1) -> None:
+def warn(message: str, category: type[Warning] = UserWarning, stacklevel: int = 1) -> None:
     """Issue a package warning (``stacklevel`` as for ``warnings.warn``, counted from the caller)."""
     collected = _collector.get()
     if collected is not None:
@@ -35,7 +36,7 @@ def warn(message: str, category: type = UserWarning, stacklevel: int = 1) -> Non
 
 
 @contextmanager
-def collect():
+def collect() -> Iterator[list[CollectedWarning]]:
     """``with collect() as caught:`` gathers the package warnings issued in this thread (or task) into
     the list ``caught`` of :class:`CollectedWarning`; blocks nest, the innermost collects."""
     caught: list[CollectedWarning] = []

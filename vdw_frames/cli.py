@@ -12,6 +12,7 @@ import math
 import os
 import sys
 import warnings
+from collections.abc import Sequence
 from pathlib import Path
 
 
@@ -104,6 +105,7 @@ def _simulate(args) -> int:
               f"{f'{100 * np.abs(result.story_wall_strain[:, k]).max():9.1f}' if walled else '-':>9s}")
     if result.strain_iterations is not None:
         state = "converged" if result.strain_converged else "did NOT converge"
+        assert result.wall_effective_strain is not None  # a strain-compatible result carries both
         print(f"strain-compatible analysis {state} in {result.strain_iterations} analyses; effective strain per wall: "
               + ", ".join(f"story {story} {100 * strain:.0f} %"
                           for (story, _), strain in zip(building.wall_list, result.wall_effective_strain,
@@ -128,6 +130,7 @@ def _design(args) -> int:
     from .config import load_building
     from .design import damping_curve, size_walls
     from .design.sizing import story_text
+    from .element.strain_dependent import StrainDependentDamper
     from .frame.modal import modal_analysis
     from .plotting import plot_damping_curve
 
@@ -154,6 +157,7 @@ def _design(args) -> int:
     # The template: the lowest walled story's walls as one (identical walls in parallel add their areas).
     lowest = building.walls[min(building.walls)]
     template = lowest[0].resized(len(lowest)) if all(wall == lowest[0] for wall in lowest) else lowest[0]
+    assert not isinstance(template, StrainDependentDamper)  # modal_analysis above refused such walls
     stories = sorted(building.walls)
     curve = damping_curve(building, template, args.mode, args.distribution, stories)
     area = template.area / 1e6
@@ -241,7 +245,7 @@ def _print_warning(message, category, filename, lineno, file=None, line=None) ->
     print("warning: " + " ".join(str(message).split()), file=sys.stderr)
 
 
-def main(argv=None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     # The command's own warnings as plain lines; catch_warnings restores the display afterwards (a
     # command runs in one thread).

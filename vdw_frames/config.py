@@ -55,7 +55,9 @@ each at most once in a group.  Anything malformed is a ValueError naming the fil
 from __future__ import annotations
 
 import json
+import os
 import sys
+from typing import Any
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -65,7 +67,9 @@ else:  # Python 3.10: the same parser, as a package
 from ._files import read_text
 from ._validation import show, whole_number
 from .element.damper import FDMKDamper
+from .element.strain_dependent import StrainDependentDamper
 from .frame.building import ShearBuilding
+from .frame.hysteresis import Bilinear, BoucWen
 from .frame.strain_compatible import StrainCompatibleOptions
 
 _BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "damping_model",
@@ -79,12 +83,12 @@ MAX_PER_STORY = 1000
 """Most walls one group may put in parallel on a story (a bound, so a typo cannot exhaust memory)."""
 
 
-def load_building(path) -> ShearBuilding:
+def load_building(path: str | os.PathLike[str]) -> ShearBuilding:
     """Read a :class:`ShearBuilding` from a ``.toml`` or ``.json`` file (format in the module docstring)."""
     return load_analysis(path, require_analysis=False)[0]
 
 
-def load_analysis(path, require_analysis: bool = True) -> tuple[ShearBuilding, dict]:
+def load_analysis(path: str | os.PathLike[str], require_analysis: bool = True) -> tuple[ShearBuilding, dict[str, Any]]:
     """(building, keyword arguments for ``simulate``) from a ``.toml`` or ``.json`` building file.
 
     The keywords are ``{"strain_compatible": True or StrainCompatibleOptions}`` when the file asks for a
@@ -113,7 +117,7 @@ def load_analysis(path, require_analysis: bool = True) -> tuple[ShearBuilding, d
         raise ValueError(f"{path}: {error}") from None
 
 
-def building_from_dict(data: dict) -> ShearBuilding:
+def building_from_dict(data: dict[str, Any]) -> ShearBuilding:
     """A :class:`ShearBuilding` from a dict with the keys of the module docstring."""
     if not isinstance(data, dict):
         raise ValueError("a building must be a table of keys")
@@ -131,16 +135,18 @@ def building_from_dict(data: dict) -> ShearBuilding:
         raise ValueError(f"walls must be a list of wall groups, got {data['walls']!r}")
     simulate_options(data)  # validated here too; load_analysis returns it
     stories = len(data["masses"])
-    dampers: dict[int, list[FDMKDamper]] = {}
+    dampers: dict[int, list[FDMKDamper | StrainDependentDamper]] = {}
     for group in data.get("walls", []):
         wall, story_numbers, per_story = _wall_group(group, stories)
         for story in story_numbers:
             dampers.setdefault(story, []).extend([wall] * per_story)
+    # damping_modes only when the file gives them: else the building picks its default.
+    modes = {"damping_modes": tuple(data["damping_modes"])} if "damping_modes" in data else {}
     return ShearBuilding(
         data["masses"], data["stiffnesses"],
         damping_ratio=data.get("damping_ratio", 0.05),
-        damping_modes=tuple(data["damping_modes"]) if "damping_modes" in data else None,
-        walls=dampers or None,
+        **modes,
+        walls={story: tuple(walls) for story, walls in dampers.items()},
         story_heights=data.get("story_heights"),
         hysteresis=_hysteresis(data.get("hysteresis"), stories),
         gravity_loads=data.get("gravity_loads"),
@@ -148,10 +154,8 @@ def building_from_dict(data: dict) -> ShearBuilding:
     )
 
 
-def _hysteresis(table, stories):
+def _hysteresis(table: object, stories: int) -> tuple[Bilinear | BoucWen, ...] | None:
     """The story models of a ``[hysteresis]`` table (module docstring), or None."""
-    from .frame.hysteresis import Bilinear, BoucWen
-
     if table is None:
         return None
     if not isinstance(table, dict) or table.get("model") not in _HYSTERESIS_KEYS:
@@ -165,10 +169,10 @@ def _hysteresis(table, stories):
         raise ValueError(f"hysteresis yield_forces must be a list of {stories} forces (N), got {forces!r}")
     options = {key: table[key] for key in keys - {"model", "yield_forces"} if key in table}
     model = Bilinear if table["model"] == "bilinear" else BoucWen
-    return [model(force, **options) for force in forces]
+    return tuple(model(force, **options) for force in forces)
 
 
-def simulate_options(data: dict) -> dict:
+def simulate_options(data: dict[str, Any]) -> dict[str, Any]:
     """The keyword arguments for ``simulate`` that a building dict's ``strain_compatible`` key asks for."""
     value = data.get("strain_compatible", False)
     if isinstance(value, dict):
@@ -183,7 +187,7 @@ def simulate_options(data: dict) -> dict:
     return {"strain_compatible": value} if value is not False else {}
 
 
-def _wall_group(group, stories):
+def _wall_group(group: object, stories: int) -> tuple[FDMKDamper | StrainDependentDamper, Any, int]:
     from .paper.data import fitted
     from .paper.strain_dependence import strain_dependent
 
@@ -199,7 +203,7 @@ def _wall_group(group, stories):
             strain = float(parameters.removeprefix("fitted-"))
         except ValueError:
             raise ValueError(f"walls parameters {parameters!r}: expected e.g. 'fitted-300'") from None
-        wall = fitted(strain, **geometry)
+        wall: FDMKDamper | StrainDependentDamper = fitted(strain, **geometry)
     elif parameters == "strain-dependent":
         wall = strain_dependent(**geometry)
     elif isinstance(parameters, dict) and set(parameters) == _PARAMETER_KEYS:

@@ -25,9 +25,12 @@ Units: areas mm^2, periods s, damping ratios dimensionless.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.linalg import eigh
 
 from .._validation import damping_ratio as check_damping_ratio
@@ -35,6 +38,9 @@ from .._validation import finite_array, whole_number
 from ..element.supported import WALL_TYPES
 from ..frame.building import ShearBuilding, require_fixed_walls, story_matrix
 from ..frame.modal import complex_modes
+
+if TYPE_CHECKING:
+    from ..element.wall import Wall
 
 DISTRIBUTIONS = ("uniform", "stiffness", "drift")
 # Default factors of the damping-versus-size curve: 1/50 to 50 times the template wall's area.
@@ -56,8 +62,8 @@ class SizingCurve:
 
     mode: int
     distribution: str
-    stories: tuple
-    wall: object
+    stories: tuple[int, ...]
+    wall: Wall
     weights: np.ndarray
     factors: np.ndarray
     areas: np.ndarray
@@ -70,7 +76,7 @@ class SizingCurve:
     best_period: float
 
 
-def _check_wall(wall) -> None:
+def _check_wall(wall: object) -> None:
     if not isinstance(wall, WALL_TYPES):
         raise ValueError(f"wall must be an FDMKDamper or a SupportedDamper (strain-dependent walls: pick the "
                          f"parameters at one amplitude with wall.at(strain)), got {type(wall).__name__}")
@@ -79,7 +85,8 @@ def _check_wall(wall) -> None:
 class _Sizer:
     """The mode's complex pole as a function of the area factor, for one building, wall and distribution."""
 
-    def __init__(self, building, wall, mode, distribution, stories):
+    def __init__(self, building: ShearBuilding, wall: Wall, mode: int, distribution: str,
+                 stories: int | Sequence[int] | str | None) -> None:
         if not isinstance(building, ShearBuilding):
             raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
         require_fixed_walls(building, "wall sizing")
@@ -94,12 +101,11 @@ class _Sizer:
         self.weights = _weights(building, distribution, self.stories, self.mode)
         poles, _, _ = complex_modes(building, walls=False)
         self.bare = poles[self.mode - 1]
-        self._cache = {}
+        self._cache: dict[float, complex] = {}
 
     def building_for(self, factor: float) -> ShearBuilding:
-        walls = {story: self.wall.resized(factor * self.weights[story - 1]) for story in self.stories
-                 if self.weights[story - 1] > 0.0}
-        return self.building.with_walls(walls)
+        return self.building.with_walls({story: (self.wall.resized(factor * self.weights[story - 1]),)
+                                         for story in self.stories if self.weights[story - 1] > 0.0})
 
     def pole(self, factor: float) -> complex:
         """The mode's pole with walls of ``factor`` (NaN when the mode is no longer oscillatory)."""
@@ -112,7 +118,7 @@ class _Sizer:
         s = self.pole(factor)
         return float(-s.real / abs(s))
 
-    def best(self):
+    def best(self) -> tuple[float, float]:
         """(factor, damping ratio) of the largest damping ratio over the factors of _SEARCH."""
         grid = np.geomspace(*_SEARCH, 49)
         values = np.array([self.damping(f) for f in grid])
@@ -136,8 +142,8 @@ class _Sizer:
                 f"{stories})")
 
 
-def damping_curve(building: ShearBuilding, wall, mode: int = 1, distribution: str = "uniform", stories=None,
-                  factors=None) -> SizingCurve:
+def damping_curve(building: ShearBuilding, wall: Wall, mode: int = 1, distribution: str = "uniform",
+                  stories: int | Sequence[int] | str | None = None, factors: ArrayLike | None = None) -> SizingCurve:
     """Period and damping ratio of ``mode`` against the walls' size (see the module docstring).
 
     ``factors``: area factors (> 0) to evaluate (default 0.02 ... 50, 41 points, geometric).
@@ -156,8 +162,8 @@ def damping_curve(building: ShearBuilding, wall, mode: int = 1, distribution: st
                        best_factor, best_ratio, float(2.0 * np.pi / abs(sizer.pole(best_factor))))
 
 
-def size_walls(building: ShearBuilding, wall, target_damping: float, mode: int = 1, distribution: str = "uniform",
-               stories=None) -> ShearBuilding:
+def size_walls(building: ShearBuilding, wall: Wall, target_damping: float, mode: int = 1, distribution: str = "uniform",
+               stories: int | Sequence[int] | str | None = None) -> ShearBuilding:
     """A copy of ``building`` whose walls give ``mode`` the total damping ratio ``target_damping``.
 
     ``wall``: the template (:class:`~vdw_frames.FDMKDamper` or :class:`~vdw_frames.SupportedDamper`), its
@@ -191,21 +197,21 @@ def size_walls(building: ShearBuilding, wall, target_damping: float, mode: int =
     return sizer.building_for(factor)
 
 
-def _stories(building: ShearBuilding, stories) -> tuple:
+def _stories(building: ShearBuilding, stories: int | Sequence[int] | str | None) -> tuple[int, ...]:
     if stories is None:
         stories = sorted(building.walls) or "all"
     if isinstance(stories, str):
         if stories != "all":
             raise ValueError(f"stories must be 'all' or a list of story numbers, got {stories!r}")
         return tuple(range(1, building.stories + 1))
-    items = [stories] if np.ndim(stories) == 0 else list(stories)
+    items = [stories] if isinstance(stories, int) or np.ndim(stories) == 0 else list(stories)
     numbers = [whole_number("stories", s, 1) for s in items]
     if not numbers or max(numbers) > building.stories or len(set(numbers)) != len(numbers):
         raise ValueError(f"stories must be distinct story numbers in 1 ... {building.stories}, got {stories!r}")
     return tuple(sorted(numbers))
 
 
-def _weights(building: ShearBuilding, distribution: str, stories: tuple, mode: int) -> np.ndarray:
+def _weights(building: ShearBuilding, distribution: str, stories: tuple[int, ...], mode: int) -> np.ndarray:
     """Area weight of every story (0 for stories without walls; largest 1)."""
     index = np.array(stories) - 1
     if distribution == "uniform":
@@ -223,7 +229,7 @@ def _weights(building: ShearBuilding, distribution: str, stories: tuple, mode: i
     return weights / weights.max()
 
 
-def story_text(stories: tuple) -> str:
+def story_text(stories: tuple[int, ...]) -> str:
     if len(stories) > 1 and stories == tuple(range(stories[0], stories[-1] + 1)):
         return f"stories {stories[0]}-{stories[-1]}"
     return "story " + ", ".join(map(str, stories)) if len(stories) == 1 else "stories " + ", ".join(map(str, stories))

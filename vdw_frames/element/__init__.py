@@ -17,7 +17,7 @@ Units: N, mm, s; moduli MPa, viscosities MPa*s^r.
 """
 
 from .bank import WallBank
-from .damper import WallState, FDMKDamper
+from .damper import FDMKDamper, WallState
 from .fast_memory import FastMemory
 from .fractional import BDF2, DampedTwoStep, Discretisation, GrunwaldLetnikov, Trapezoidal
 from .material import Material

@@ -19,21 +19,27 @@ Units: deformation mm, force N, stiffness N/mm, time s.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._validation import finite_array, positive, whole_number
 from . import kernel, thermal
 from .fast_memory import FastMemory
-from .fractional import DEFAULT_METHOD, get_method
+from .fractional import DEFAULT_METHOD, METHODS, Discretisation, get_method
+
+if TYPE_CHECKING:
+    from .thermal import ThermalProperties
+    from .wall import Wall
 
 MEMORY_STRATEGIES = ("fast", "exact")
 DEFAULT_MEMORY = "fast"
 
 
-def memory_strategy(memory):
+def memory_strategy(memory: str | FastMemory) -> FastMemory | None:
     """``None`` for the exact full-history memory, else the :class:`FastMemory` to use."""
     if isinstance(memory, FastMemory):
         return memory
@@ -44,7 +50,7 @@ def memory_strategy(memory):
     raise ValueError(f"memory must be one of {MEMORY_STRATEGIES} or a FastMemory, got {memory!r}")
 
 
-def kernel_constants(wall) -> np.ndarray:
+def kernel_constants(wall: Wall | _CombinedWall) -> np.ndarray:
     """The kernel's row of 7 constants of a wall assembly (see :mod:`vdw_frames.element.kernel`)."""
     try:
         return np.asarray(wall.kernel_constants(), dtype=float)
@@ -63,7 +69,8 @@ class _Memory:
     max_steps: int
 
     @classmethod
-    def allocate(cls, r: float, dt: float, steps: int, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY) -> _Memory:
+    def allocate(cls, r: float, dt: float, steps: int, method: str | Discretisation = DEFAULT_METHOD,
+                 memory: str | FastMemory = DEFAULT_MEMORY) -> _Memory:
         """Memory for ``steps`` steps of ``dt`` s of order ``r``: exact (a window of all steps) or fast."""
         strategy = memory_strategy(memory)
         if strategy is not None and not 0 < steps <= strategy.exact_below:
@@ -87,16 +94,16 @@ class WallBank:
     deformation d (mm).  :attr:`arrays` holds everything the compiled kernel steps.
     """
 
-    walls: tuple
+    walls: tuple[Wall | _CombinedWall, ...]
     dt: float
     steps: int
-    method: Any = DEFAULT_METHOD
-    memory: Any = DEFAULT_MEMORY
+    method: Discretisation = METHODS[DEFAULT_METHOD]
+    memory: str | FastMemory = DEFAULT_MEMORY
     count: int = field(default=0, init=False)
     max_steps: int = field(default=0, init=False)
     arrays: kernel.BankArrays = field(init=False, repr=False)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         self.walls = tuple(self.walls)
         self.dt = positive("dt", self.dt)
         self.steps = whole_number("steps", self.steps, 0)
@@ -129,7 +136,7 @@ class WallBank:
         xi = thermal.diffusive_nodes(self.dt) if tracked.size else np.zeros(0)
         e, ratio, A, B, C = thermal.node_coefficients(xi, self.dt).T
         nodes = np.zeros((count, 5, xi.size))
-        for w in tracked:
+        for w in tracked.tolist():
             weights, table[w, kernel.TAIL_DASHPOT], table[w, kernel.TAIL_SPRING] = \
                 thermal.diffusive_weights(table[w, kernel.ORDER], xi)
             nodes[w] = e, ratio, weights * A, weights * B, weights
@@ -186,17 +193,17 @@ class WallBank:
         """(Re)evaluate ``tangent`` and ``history_force`` of the coming step from the memory (commit does it)."""
         kernel.bank_affine(self.arrays, self.count)
 
-    def trial_forces(self, deformation) -> np.ndarray:
+    def trial_forces(self, deformation: ArrayLike) -> np.ndarray:
         """Forces (N) at trial deformations (mm, one per wall) this step; the memory is untouched."""
         return self.tangent * self._deformations(deformation) + self.history_force
 
-    def _deformations(self, deformation) -> np.ndarray:
+    def _deformations(self, deformation: ArrayLike) -> np.ndarray:
         deformation = finite_array("deformation", deformation, ndim=None)
         if deformation.size != len(self.walls):
             raise ValueError(f"deformation has {deformation.size} values for {len(self.walls)} walls")
         return np.ascontiguousarray(deformation.reshape(len(self.walls)))
 
-    def commit(self, deformation):
+    def commit(self, deformation: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """Accept ``deformation`` (mm, one per wall) for this step; returns (forces N, wall strains).
 
         Advances every wall's memory one step and evaluates the next step's history.
@@ -230,7 +237,7 @@ class WallBank:
         self.arrays = bigger
         self.evaluate_history()
 
-    def drive(self, displacement) -> tuple:
+    def drive(self, displacement: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(force N, wall strain) histories of a one-wall bank at rest for a displacement history (mm)."""
         if len(self.walls) != 1 or self.count != 0:
             raise ValueError("drive() needs a one-wall bank at rest")
@@ -241,27 +248,27 @@ class WallBank:
 class _CombinedWall:
     """Parallel identical walls (see :func:`group_walls`) as one wall of the summed area, for the kernel."""
 
-    wall: Any
+    wall: Wall
     area: float
     r: float = field(init=False)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "r", self.wall.r)
 
     @property
-    def thermal(self):
+    def thermal(self) -> ThermalProperties | None:
         return getattr(self.wall, "thermal", None)
 
     @property
-    def limits(self):
+    def limits(self):  # WallLimits | None
         return getattr(self.wall, "limits", None)
 
-    def kernel_constants(self) -> tuple:
+    def kernel_constants(self) -> tuple[float, ...]:
         G1, G2, eta1, eta2, area, thickness, flexibility = kernel_constants(self.wall)
         return (G1, G2, eta1, eta2, self.area, thickness, flexibility * area / self.area)
 
 
-def group_walls(walls) -> tuple[list, np.ndarray]:
+def group_walls(walls: Sequence[tuple[int, Wall]]) -> tuple[list[tuple[int, _CombinedWall]], np.ndarray]:
     """Walls of one story that see the same strain history, stepped once as one wall of their summed area.
 
     ``walls``: (story, wall) pairs.  Two walls in parallel on a story are one wall of the summed area when
@@ -278,7 +285,7 @@ def group_walls(walls) -> tuple[list, np.ndarray]:
             keys[key] = len(members)
             members.append([])
         members[keys[key]].append(index)
-    groups = []
+    groups: list[tuple[int, _CombinedWall]] = []
     group_of_wall = np.zeros(len(walls), dtype=np.int64)
     for g, indices in enumerate(members):
         story, first = walls[indices[0]]

@@ -29,6 +29,7 @@ import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._validation import (
     finite_array,
@@ -43,11 +44,12 @@ from .._validation import (
     show,
 )
 from .bank import DEFAULT_MEMORY, MEMORY_STRATEGIES, WallBank, kernel_constants, memory_strategy
-from .fractional import DEFAULT_METHOD, get_method
+from .fast_memory import FastMemory
+from .fractional import DEFAULT_METHOD, Discretisation, get_method
 from .kernel import HEAT, TEMPERATURE
-from .prony import fit_prony
+from .prony import PronySeries, fit_prony
 from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, property_factors
-from .wall import StiffnessMethods
+from .wall import StiffnessMethods, Wall
 
 __all__ = ["DEFAULT_MEMORY", "MEMORY_STRATEGIES", "WallState", "FDMKDamper", "driven_force"]
 
@@ -85,10 +87,10 @@ class FDMKDamper(StiffnessMethods):
     r: float
     area: float = 1.0e6
     thickness: float = 10.0
-    strain_range: tuple | None = field(default=None, compare=False)
+    strain_range: tuple[float, float] | None = field(default=None, compare=False)
     thermal: ThermalProperties | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name in ("G1", "G2", "eta1", "eta2"):
             object.__setattr__(self, name, non_negative(name, getattr(self, name)))
         object.__setattr__(self, "r", fractional_order(self.r))
@@ -144,12 +146,12 @@ class FDMKDamper(StiffnessMethods):
         :func:`vdw_frames.element.thermal.property_factors`."""
         return property_factors(self, temperatures, frequency)
 
-    def resized(self, factor) -> FDMKDamper:
+    def resized(self, factor: float) -> FDMKDamper:
         """``factor`` walls' worth (> 0, -): the shear area times ``factor``; material and thickness kept."""
         factor = positive("factor", factor)
         return dataclasses.replace(self, area=scaled_value("area", self.area, factor))
 
-    def scaled(self, factor) -> FDMKDamper:
+    def scaled(self, factor: float) -> FDMKDamper:
         """This wall with its moduli and viscosities (G1, G2, eta1, eta2) times ``factor`` (> 0, -).
 
         The property-modification factors of ASCE 7-16 Sec. 18.2.4.5 (upper- and lower-bound damper
@@ -157,8 +159,9 @@ class FDMKDamper(StiffnessMethods):
         G''/G' does not change.  r, area, thickness and strain_range are kept.
         """
         factor = positive("factor", factor)
-        return dataclasses.replace(self, **{name: scaled_value(name, getattr(self, name), factor)
-                                            for name in ("G1", "G2", "eta1", "eta2")})
+        return dataclasses.replace(self, G1=scaled_value("G1", self.G1, factor), G2=scaled_value("G2", self.G2, factor),
+                                   eta1=scaled_value("eta1", self.eta1, factor),
+                                   eta2=scaled_value("eta2", self.eta2, factor))
 
     # ------------------------------------------------------------------ frequency domain
     @property
@@ -166,7 +169,7 @@ class FDMKDamper(StiffnessMethods):
         """area / thickness (mm): converts a modulus in MPa to a stiffness in N/mm."""
         return self.area / self.thickness
 
-    def transfer(self, s):
+    def transfer(self, s: ArrayLike) -> np.ndarray:
         """G*(s) = G1 + eta1 s^r + G2 eta2 s^r / (G2 + eta2 s^r) (MPa) for complex s (rad/s).
 
         The Laplace transform of eqs. (3)-(5); principal branch of s^r.  ``s`` must be finite; a
@@ -175,7 +178,7 @@ class FDMKDamper(StiffnessMethods):
         s = finite_complex_array("s", s)
         return self._checked("G*(s)", self._transfer(s), s, "s", "rad/s")
 
-    def _transfer(self, s):
+    def _transfer(self, s: ArrayLike) -> np.ndarray:
         with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
             eta1, eta2 = self.viscosities
             s_r = np.asarray(s, dtype=complex) ** self.r
@@ -189,7 +192,8 @@ class FDMKDamper(StiffnessMethods):
                                              self.G2 * viscous / (self.G2 + viscous))
         return modulus
 
-    def _checked(self, name, values, inputs, label="f", unit="Hz"):
+    def _checked(self, name: str, values: np.ndarray, inputs: ArrayLike, label: str = "f",
+                 unit: str = "Hz") -> np.ndarray:
         """``values`` if all finite, else a ValueError naming the first input where they are not."""
         if not np.all(np.isfinite(values)):
             bad = ~np.isfinite(np.asarray(values))
@@ -199,7 +203,7 @@ class FDMKDamper(StiffnessMethods):
                              f"the {'frequency' if label == 'f' else label} or the parameters are too large")
         return values
 
-    def complex_modulus(self, f):
+    def complex_modulus(self, f: ArrayLike) -> np.ndarray:
         """G*(i 2 pi f) = G' + i G'' in MPa for frequencies f in Hz (scalar or array, finite, > 0).
 
         ValueError naming the frequency where the result overflows (e.g. f = 1e308 Hz)."""
@@ -208,42 +212,44 @@ class FDMKDamper(StiffnessMethods):
             s = 2j * np.pi * f
         return self._checked("G*(i 2 pi f)", self._transfer(s), f)
 
-    def storage_modulus(self, f):
+    def storage_modulus(self, f: ArrayLike) -> np.ndarray:
         """G' (MPa) at f (Hz)."""
         return self.complex_modulus(f).real
 
-    def loss_modulus(self, f):
+    def loss_modulus(self, f: ArrayLike) -> np.ndarray:
         """G'' (MPa) at f (Hz)."""
         return self.complex_modulus(f).imag
 
-    def stiffness_transfer(self, s):
+    def stiffness_transfer(self, s: ArrayLike) -> np.ndarray:
         """K(s) = G*(s) area / thickness (N/mm) for complex s (rad/s): the wall's Laplace-domain stiffness."""
         s = finite_complex_array("s", s)
         with np.errstate(over="ignore", invalid="ignore"):
             return self._checked("K(s)", self._transfer(s) * self.stiffness_scale, s, "s", "rad/s")
 
-    def complex_stiffness(self, f):
+    def complex_stiffness(self, f: ArrayLike) -> np.ndarray:
         """K*(f) = K' + i K'' (N/mm) at frequencies f (Hz)."""
         f = positive_frequencies("f", f)
         with np.errstate(over="ignore", invalid="ignore"):
             return self._checked("K*(f)", self.complex_modulus(f) * self.stiffness_scale, f)
 
-    def prony(self, f_min: float, f_max: float, tolerance: float = 0.01):
+    def prony(self, f_min: float, f_max: float, tolerance: float = 0.01) -> PronySeries:
         """A generalized Maxwell model (:class:`~vdw_frames.element.prony.PronySeries`) matching K*(f) within
         ``tolerance`` (relative, on |K*|) over [``f_min``, ``f_max``] Hz with the fewest branches; passive.
         For programs that cannot host the exact wall; see :mod:`vdw_frames.element.prony`."""
         return fit_prony(self, f_min, f_max, tolerance)
 
     # ------------------------------------------------------------------ time domain
-    def kernel_constants(self) -> tuple:
+    def kernel_constants(self) -> tuple[float, ...]:
         """(G1, G2, eta1, eta2, area, thickness, support flexibility = 0): the kernel's constants of this wall."""
         return (self.G1, self.G2, self.eta1, self.eta2, self.area, self.thickness, 0.0)
 
-    def new_state(self, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY) -> WallState:
+    def new_state(self, dt: float, method: str | Discretisation = DEFAULT_METHOD,
+                  memory: str | FastMemory = DEFAULT_MEMORY) -> WallState:
         """A fresh (at-rest) time-stepping state with step ``dt`` (s); see :class:`WallState`."""
         return WallState(self, dt, method=method, memory=memory)
 
-    def force(self, displacement, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY):
+    def force(self, displacement: ArrayLike, dt: float, method: str | Discretisation = DEFAULT_METHOD,
+              memory: str | FastMemory = DEFAULT_MEMORY) -> np.ndarray:
         """Force history (N) for a displacement history (mm) sampled every ``dt`` s, starting from rest.
 
         ``displacement[n]`` is the displacement at t = n dt; the history before t = 0 is zero
@@ -256,11 +262,12 @@ class FDMKDamper(StiffnessMethods):
         return driven_force(self, displacement, dt, method, memory)
 
 
-def driven_force(wall, displacement, dt, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY):
+def driven_force(wall: Wall, displacement: ArrayLike, dt: float, method: str | Discretisation = DEFAULT_METHOD,
+                 memory: str | FastMemory = DEFAULT_MEMORY) -> np.ndarray:
     """Force history (N) of a wall assembly for a displacement history (mm) from rest (see ``force``)."""
     displacement = finite_array("displacement", displacement)
     dt = positive("dt", dt)
-    force, _ = WallBank((wall,), dt, displacement.size, method, memory).drive(displacement)
+    force, _ = WallBank((wall,), dt, displacement.size, get_method(method), memory).drive(displacement)
     require_finite("force", force)
     return force
 
@@ -279,7 +286,8 @@ class WallState:
 
     _INITIAL_CAPACITY = 1024
 
-    def __init__(self, damper, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY):
+    def __init__(self, damper: Wall, dt: float, method: str | Discretisation = DEFAULT_METHOD,
+                 memory: str | FastMemory = DEFAULT_MEMORY) -> None:
         kernel_constants(damper)  # refuses anything that is not a wall
         self.damper = damper
         self.dt = positive("dt", dt)
@@ -287,7 +295,7 @@ class WallState:
         self.memory = memory
         self._fast = memory_strategy(memory) is not None
         self._bank = WallBank((damper,), self.dt, 0 if self._fast else self._INITIAL_CAPACITY, self.method, memory)
-        self._trial = None
+        self._trial: float | None = None
         self.committed_displacement = 0.0
         self.committed_force = 0.0
 
@@ -310,7 +318,7 @@ class WallState:
         description or limits)."""
         return float(self._bank.state(HEAT)[0])
 
-    def trial(self, displacement: float):
+    def trial(self, displacement: float) -> tuple[float, float]:
         """(force in N, tangent in N/mm) at the next step for ``displacement`` (mm); memory untouched."""
         displacement = finite_array("displacement", [displacement])[0]
         self._trial = displacement

@@ -105,7 +105,7 @@ import numpy as np
 from scipy import linalg
 
 from .._validation import fractional_order, positive, whole_number
-from .fractional import get_method
+from .fractional import Discretisation, get_method
 
 DEFAULT_WINDOW = 16
 DEFAULT_TOLERANCE = 1e-10
@@ -263,7 +263,7 @@ def _fine_modes(method, r, window, max_steps, tolerance):
     u_low = math.sqrt(1e-3 * tolerance * w0 * 3.0 / (4.0 * float(max_steps) ** 3))
     # Beyond u_high every node's residue e^{-(L+1) u} F(u) h u is negligible (F grows <= e^{2 r u}).
     u_high = 50.0 * math.log(10.0) / max(first - 2.0 * r, 1.0)
-    modes = []
+    modes: list[tuple[int, float, float]] = []
     for segment in _segments(method, r):
         if segment.kind == "log":
             t = h * np.arange(math.ceil(math.log(u_low) / h), math.ceil(math.log(u_high) / h) + 1)
@@ -370,7 +370,7 @@ def _reduce(u, g, horizon, budget, alternating):
 def _dimensionless_modes(method, r, window, tolerance, max_steps):
     w0 = abs(method.weights(r, 1)[0])
     fine = _fine_modes(method, r, window, max_steps, tolerance)
-    groups = {}
+    groups: dict[tuple[int, bool], list[tuple[float, float]]] = {}
     for sigma, u, g in fine:
         groups.setdefault((sigma, g > 0), []).append((u, g))
     horizon = max_steps - window
@@ -391,7 +391,9 @@ def _dimensionless_modes(method, r, window, tolerance, max_steps):
 
 
 # ----------------------------------------------------------------------------- public API
-def tail_modes(method, r, dt, window=DEFAULT_WINDOW, tolerance=DEFAULT_TOLERANCE, max_steps=DEFAULT_MAX_STEPS):
+def tail_modes(method: str | Discretisation, r: float, dt: float, window: int = DEFAULT_WINDOW,
+               tolerance: float = DEFAULT_TOLERANCE,
+               max_steps: int = DEFAULT_MAX_STEPS) -> tuple[np.ndarray, np.ndarray]:
     """Geometric modes replacing the CQ weights of D^r beyond ``window`` steps.
 
     Parameters
@@ -436,7 +438,9 @@ def tail_modes(method, r, dt, window=DEFAULT_WINDOW, tolerance=DEFAULT_TOLERANCE
     return ratio.copy(), weight * dt ** (-r)
 
 
-def fast_memory_arrays(method, r, dt, window=DEFAULT_WINDOW, tolerance=DEFAULT_TOLERANCE, max_steps=DEFAULT_MAX_STEPS):
+def fast_memory_arrays(method: str | Discretisation, r: float, dt: float, window: int = DEFAULT_WINDOW,
+                       tolerance: float = DEFAULT_TOLERANCE,
+                       max_steps: int = DEFAULT_MAX_STEPS) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(weights (L+1,), mode_weight (K,), mode_ratio (K,)): the fast memory of one wall.
 
     The first L+1 exact CQ weights w_0..w_L (scaled by dt^-r) and the modes of :func:`tail_modes`;
@@ -463,7 +467,7 @@ class FastMemory:
     max_steps: int = DEFAULT_MAX_STEPS
     exact_below: int = 2048
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "tolerance", positive("tolerance", self.tolerance))
         object.__setattr__(self, "window", whole_number("window", self.window, 2))
         object.__setattr__(self, "max_steps", whole_number("max_steps", self.max_steps, self.window + 1))
@@ -471,6 +475,7 @@ class FastMemory:
             raise ValueError(f"max_steps must be <= 2**40, got {self.max_steps!r}")
         object.__setattr__(self, "exact_below", whole_number("exact_below", self.exact_below, 0))
 
-    def arrays(self, method, r, dt, steps=0):
+    def arrays(self, method: str | Discretisation, r: float, dt: float,
+               steps: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(weights, mode_weight, mode_ratio) for a record of ``steps`` steps (see :func:`fast_memory_arrays`)."""
         return fast_memory_arrays(method, r, dt, self.window, self.tolerance, max(int(steps), self.max_steps))

@@ -57,6 +57,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._jit import njit
 from .._validation import finite_scalar, fractional_order, positive
@@ -127,7 +128,7 @@ class Discretisation:
     name: str
     order: int
 
-    def generating_function(self, zeta):
+    def generating_function(self, zeta: complex | np.ndarray) -> complex | np.ndarray:
         """delta(zeta) of the underlying multistep method (dimensionless)."""
         raise NotImplementedError
 
@@ -146,7 +147,7 @@ class Discretisation:
             raise ValueError(f"count must be >= 1, got {count}")
         return self._weights(r, count) * dt ** (-r)
 
-    def symbol(self, omega, dt: float):
+    def symbol(self, omega: ArrayLike, dt: float) -> complex | np.ndarray:
         """delta(exp(-i omega dt)) / dt (rad/s, complex): the scheme's stand-in for i*omega.
 
         omega in rad/s, dt in s.  The discrete steady state of a transfer function H(s) under a
@@ -163,10 +164,10 @@ class Trapezoidal(Discretisation):
     name: str = "trapezoidal"
     order: int = 2
 
-    def generating_function(self, zeta):
+    def generating_function(self, zeta: complex | np.ndarray) -> complex | np.ndarray:
         return 2.0 * (1.0 - zeta) / (1.0 + zeta)
 
-    def _weights(self, r, count):
+    def _weights(self, r: float, count: int) -> np.ndarray:
         return _trapezoidal_weights(r, count)
 
 
@@ -177,10 +178,10 @@ class BDF2(Discretisation):
     name: str = "bdf2"
     order: int = 2
 
-    def generating_function(self, zeta):
+    def generating_function(self, zeta: complex | np.ndarray) -> complex | np.ndarray:
         return 1.5 - 2.0 * zeta + 0.5 * zeta**2
 
-    def _weights(self, r, count):
+    def _weights(self, r: float, count: int) -> np.ndarray:
         return _bdf2_weights(r, count)
 
 
@@ -191,10 +192,10 @@ class GrunwaldLetnikov(Discretisation):
     name: str = "grunwald"
     order: int = 1
 
-    def generating_function(self, zeta):
+    def generating_function(self, zeta: complex | np.ndarray) -> complex | np.ndarray:
         return 1.0 - zeta
 
-    def _weights(self, r, count):
+    def _weights(self, r: float, count: int) -> np.ndarray:
         return _grunwald_weights(r, count)
 
 
@@ -211,24 +212,24 @@ class DampedTwoStep(Discretisation):
     order: int = 2
     rho_infinity: float = 0.5
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         rho = finite_scalar("rho_infinity", self.rho_infinity)
         if not 0.0 <= rho < 1.0:
             raise ValueError(f"rho_infinity must lie in [0, 1), got {self.rho_infinity!r}")
         object.__setattr__(self, "rho_infinity", rho)
 
     @property
-    def coefficients(self):
+    def coefficients(self) -> tuple[float, float, float, float]:
         """(a0, a1, b0, b1) of delta(zeta) = (1 - zeta)(a0 + a1 zeta) / (b0 + b1 zeta)."""
         rho = self.rho_infinity
         a1 = (rho - 1.0) / (2.0 * (1.0 + rho))
         return 1.0 - a1, a1, 1.0 / (1.0 + rho), rho / (1.0 + rho)
 
-    def generating_function(self, zeta):
+    def generating_function(self, zeta: complex | np.ndarray) -> complex | np.ndarray:
         a0, a1, b0, b1 = self.coefficients
         return (1.0 - zeta) * (a0 + a1 * zeta) / (b0 + b1 * zeta)
 
-    def _weights(self, r, count):
+    def _weights(self, r: float, count: int) -> np.ndarray:
         return _damped_weights(r, *self.coefficients, count)
 
 
@@ -236,7 +237,7 @@ METHODS = {m.name: m for m in (BDF2(), Trapezoidal(), GrunwaldLetnikov(), Damped
 DEFAULT_METHOD = "damped"
 
 
-def get_method(method) -> Discretisation:
+def get_method(method: str | Discretisation) -> Discretisation:
     """A :class:`Discretisation` from itself or from its name ('trapezoidal', 'bdf2', 'grunwald', 'damped')."""
     if isinstance(method, Discretisation):
         return method

@@ -36,11 +36,16 @@ Units: stiffness N/mm, damping coefficient N*s/mm, relaxation time s, frequency 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._validation import positive, positive_frequencies, whole_number
 from .wall import StiffnessMethods
+
+if TYPE_CHECKING:
+    from .wall import Wall
 
 FIT_POINTS_PER_DECADE = 24
 CHECK_POINTS_PER_DECADE = 1000
@@ -66,7 +71,7 @@ class PronySeries(StiffnessMethods):
     tolerance: float
     error: float
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         branches = np.array(self.branches, dtype=float).reshape(-1, 2)
         if not np.isfinite(branches).all() or (branches < 0).any() or self.equilibrium_stiffness < 0:
             raise ValueError("a Prony series needs finite k_0, k_i, c_i >= 0 (passive)")
@@ -82,13 +87,13 @@ class PronySeries(StiffnessMethods):
         """tau_i = c_i / k_i (s) of every branch."""
         return self.branches[:, 1] / self.branches[:, 0]
 
-    def complex_stiffness(self, f):
+    def complex_stiffness(self, f: ArrayLike) -> np.ndarray:
         """K*(f) = k_0 + sum_i k_i i omega c_i / (k_i + i omega c_i) (N/mm) at frequencies f (Hz)."""
         f = positive_frequencies("f", f)
         x = 1j * 2.0 * np.pi * f[..., None] * self.relaxation_times
         return self.equilibrium_stiffness + (self.branches[:, 0] * x / (1.0 + x)).sum(axis=-1)
 
-    def to_table(self) -> list[dict]:
+    def to_table(self) -> list[dict[str, Any]]:
         """The series as rows of parallel links for SAP2000 / ETABS (units N, mm, s).
 
         One row per link, all links between the same two joints, in parallel:
@@ -106,7 +111,7 @@ class PronySeries(StiffnessMethods):
         stiffness and damping, which the table does not set (K'(f) and K''(f) / omega at a chosen f
         from :meth:`complex_stiffness` are the consistent choice).
         """
-        rows = []
+        rows: list[dict[str, Any]] = []
         if self.equilibrium_stiffness > 0.0:
             rows.append({"link": "K0", "type": "Linear", "stiffness": self.equilibrium_stiffness,
                          "damping_coefficient": 0.0, "damping_exponent": None, "relaxation_time": None})
@@ -117,18 +122,23 @@ class PronySeries(StiffnessMethods):
         return rows
 
 
-def _grid(f_min, f_max, per_decade):
+# A fit: (largest relative error on the dense grid, relaxation times (s), stiffnesses k_0, k_i (N/mm));
+# (inf, None, None) before any.
+_Fit = tuple[float, np.ndarray | None, np.ndarray | None]
+
+
+def _grid(f_min: float, f_max: float, per_decade: int) -> np.ndarray:
     count = int(np.ceil(np.log10(f_max / f_min) * per_decade)) + 1
     return np.logspace(np.log10(f_min), np.log10(f_max), max(count, 2))
 
 
-def _basis(omega, tau):
+def _basis(omega: np.ndarray, tau: np.ndarray) -> np.ndarray:
     """(points, n + 1) complex: the equilibrium spring and each unit Maxwell branch."""
     x = 1j * np.outer(omega, tau)
     return np.hstack([np.ones((omega.size, 1)), x / (1.0 + x)])
 
 
-def _stiffnesses(basis, target, weight):
+def _stiffnesses(basis: np.ndarray, target: np.ndarray, weight: np.ndarray) -> np.ndarray:
     """Non-negative (k_0, k_i) minimising the weighted relative error."""
     from scipy.optimize import nnls
 
@@ -140,11 +150,12 @@ def _stiffnesses(basis, target, weight):
     return stiffness
 
 
-def _relative_error(omega, target, tau, stiffness):
+def _relative_error(omega: np.ndarray, target: np.ndarray, tau: np.ndarray, stiffness: np.ndarray) -> np.ndarray:
     return np.abs(_basis(omega, tau) @ stiffness - target) / np.abs(target)
 
 
-def _fit_branches(count, omega, target, check_omega, check_target, tolerance, bounds):
+def _fit_branches(count: int, omega: np.ndarray, target: np.ndarray, check_omega: np.ndarray, check_target: np.ndarray,
+                  tolerance: float, bounds: tuple[float, float]) -> _Fit:
     """(dense max error, tau, stiffness) of the best fit with ``count`` branches found; stops early once
     the tolerance is met."""
     from scipy.optimize import least_squares
@@ -154,12 +165,12 @@ def _fit_branches(count, omega, target, check_omega, check_target, tolerance, bo
     log_tau = np.linspace(start, end, count + 2)[1:-1]
     weight = np.ones(omega.size)
 
-    def residual(x):
+    def residual(x: np.ndarray) -> np.ndarray:
         basis = _basis(omega, np.exp(x))
         error = (basis @ _stiffnesses(basis, target, weight) - target) * (weight / np.abs(target))
         return np.concatenate([error.real, error.imag])
 
-    best = (np.inf, None, None)
+    best: _Fit = (np.inf, None, None)
     for round_ in range(_LAWSON_ROUNDS):
         log_tau = least_squares(residual, log_tau, bounds=(low, high), xtol=1e-10).x
         tau = np.exp(log_tau)
@@ -177,7 +188,7 @@ def _fit_branches(count, omega, target, check_omega, check_target, tolerance, bo
     return best
 
 
-def fit_prony(wall, f_min: float, f_max: float, tolerance: float = 0.01, max_branches: int = 30) -> PronySeries:
+def fit_prony(wall: Wall, f_min: float, f_max: float, tolerance: float = 0.01, max_branches: int = 30) -> PronySeries:
     """The Prony series with the fewest branches that matches ``wall``'s complex stiffness within
     ``tolerance`` (relative, on |K*|) over [``f_min``, ``f_max``] Hz (see the module for the method).
 
@@ -200,7 +211,7 @@ def fit_prony(wall, f_min: float, f_max: float, tolerance: float = 0.01, max_bra
         raise ValueError("the wall has no stiffness (K* = 0) in the band: nothing to fit")
     omega, check_omega = 2.0 * np.pi * frequencies, 2.0 * np.pi * check
     bounds = (np.log(_SHORTEST / omega[-1]), np.log(_LONGEST / omega[0]))
-    best = (np.inf, None, None)
+    best: _Fit = (np.inf, None, None)
     for count in range(1, max_branches + 1):
         error, tau, stiffness = _fit_branches(count, omega, target, check_omega, check_target, tolerance, bounds)
         if error < best[0]:
@@ -211,6 +222,7 @@ def fit_prony(wall, f_min: float, f_max: float, tolerance: float = 0.01, max_bra
         raise ValueError(f"no Prony series of at most {max_branches} branches reached tolerance {tolerance:g} over "
                          f"{f_min:g}-{f_max:g} Hz (best: {best[0]:.3g}); widen the tolerance or narrow the band")
     error, tau, stiffness = best
+    assert tau is not None and stiffness is not None  # the loop stopped at a fit within the tolerance
     keep = stiffness[1:] > 0.0  # a branch the fit switched off is no branch
     order = np.argsort(tau[keep])
     branch_stiffness = stiffness[1:][keep][order]

@@ -18,8 +18,8 @@ import numpy as np
 
 from .._validation import check_memory, positive, whole_number
 from .damper import FDMKDamper
-from .fractional import DEFAULT_METHOD, get_method
-from .supported import WALL_TYPES
+from .fractional import DEFAULT_METHOD, Discretisation, get_method
+from .supported import WALL_TYPES, SupportedDamper
 
 SAMPLES_PER_CYCLE = 200  # omega*dt = 0.031: the default method's error r (omega dt)^2 / 6 <= 1.6e-4
 MIN_SAMPLES_PER_CYCLE = 8
@@ -38,7 +38,7 @@ class SineTestResult:
     period into a whole number of steps, the nearest one that does is used, and the two differ.
     """
 
-    damper: FDMKDamper
+    damper: FDMKDamper | SupportedDamper
     amplitude: float
     frequency: float
     dt: float
@@ -60,8 +60,8 @@ class SineTestResult:
         return slice(self.time.size - 1 - samples, self.time.size)
 
 
-def sine_test(damper: FDMKDamper, amplitude: float, frequency: float, dt: float | None = None,
-              cycles: int = 5, method=DEFAULT_METHOD) -> SineTestResult:
+def sine_test(damper: FDMKDamper | SupportedDamper, amplitude: float, frequency: float, dt: float | None = None,
+              cycles: int = 5, method: str | Discretisation = DEFAULT_METHOD) -> SineTestResult:
     """Drive ``damper`` with u(t) = amplitude * sin(2 pi frequency t) from rest for ``cycles`` cycles.
 
     amplitude in mm, frequency in Hz, dt in s (default: 200 samples per cycle).  The period is sampled by

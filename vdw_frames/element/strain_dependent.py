@@ -26,8 +26,10 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
+from typing import overload
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .. import _warnings
 from .._validation import (
@@ -44,7 +46,7 @@ from .damper import FDMKDamper
 PARAMETERS = ("G1", "G2", "eta1", "eta2", "r")
 
 
-def _strain_amplitudes(name: str, values) -> np.ndarray:
+def _strain_amplitudes(name: str, values: ArrayLike) -> np.ndarray:
     """Strain amplitudes (dimensionless, finite, >= 0), scalar or array."""
     refuse_non_numbers(name, values)
     array = finite_array(name, values, ndim=None)
@@ -77,16 +79,16 @@ class StrainDependentDamper:
     :meth:`constant` makes a wall whose parameters do not vary.
     """
 
-    strains: tuple
-    G1: tuple
-    G2: tuple
-    eta1: tuple
-    eta2: tuple
-    r: tuple
+    strains: tuple[float, ...]
+    G1: tuple[float, ...]
+    G2: tuple[float, ...]
+    eta1: tuple[float, ...]
+    eta2: tuple[float, ...]
+    r: tuple[float, ...]
     area: float = 1.0e6
     thickness: float = 10.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         refuse_non_numbers("strains", self.strains)
         strains = finite_array("strains", self.strains)
         if strains.size < 2:
@@ -108,7 +110,7 @@ class StrainDependentDamper:
         object.__setattr__(self, "thickness", positive("thickness", self.thickness))
 
     @classmethod
-    def constant(cls, damper: FDMKDamper, strain_range) -> StrainDependentDamper:
+    def constant(cls, damper: FDMKDamper, strain_range: tuple[float, float] | list[float]) -> StrainDependentDamper:
         """A wall with ``damper``'s parameters at every amplitude of ``strain_range`` (low, high), dimensionless."""
         if not isinstance(damper, FDMKDamper):
             raise ValueError(f"damper must be an FDMKDamper, got {type(damper).__name__}")
@@ -117,20 +119,24 @@ class StrainDependentDamper:
         values = {name: (getattr(damper, name),) * 2 for name in PARAMETERS}
         return cls(tuple(strain_range), **values, area=damper.area, thickness=damper.thickness)
 
-    def scaled(self, factor) -> StrainDependentDamper:
+    def scaled(self, factor: float) -> StrainDependentDamper:
         """This wall with its moduli and viscosities (G1, G2, eta1, eta2) times ``factor`` (> 0) at every node
         amplitude: the property-modification factors of ASCE 7-16 Sec. 18.2.4.5 (see :meth:`FDMKDamper.scaled`)."""
         factor = positive("factor", factor)
-        return dataclasses.replace(self, **{name: tuple(scaled_value(name, v, factor) for v in getattr(self, name))
-                                            for name in ("G1", "G2", "eta1", "eta2")})
 
-    def resized(self, factor) -> StrainDependentDamper:
+        def times(name: str, values: tuple[float, ...]) -> tuple[float, ...]:
+            return tuple(scaled_value(name, v, factor) for v in values)
+
+        return dataclasses.replace(self, G1=times("G1", self.G1), G2=times("G2", self.G2),
+                                   eta1=times("eta1", self.eta1), eta2=times("eta2", self.eta2))
+
+    def resized(self, factor: float) -> StrainDependentDamper:
         """``factor`` walls' worth (> 0, -): the shear area times ``factor``; material and thickness kept."""
         factor = positive("factor", factor)
         return dataclasses.replace(self, area=scaled_value("area", self.area, factor))
 
     @property
-    def strain_range(self) -> tuple:
+    def strain_range(self) -> tuple[float, float]:
         """(lowest, highest) node amplitude, dimensionless: where the parameters were identified."""
         return self.strains[0], self.strains[-1]
 
@@ -139,13 +145,19 @@ class StrainDependentDamper:
         """area / thickness (mm): converts a modulus in MPa to a stiffness in N/mm."""
         return self.area / self.thickness
 
-    def clamped(self, strain):
+    @overload
+    def clamped(self, strain: float) -> float: ...
+
+    @overload
+    def clamped(self, strain: ArrayLike) -> float | np.ndarray: ...
+
+    def clamped(self, strain: ArrayLike) -> float | np.ndarray:
         """``strain`` (dimensionless, scalar or array, >= 0) clamped into :attr:`strain_range`; no warning."""
         low, high = self.strain_range
         clamped = np.clip(_strain_amplitudes("strain", strain), low, high)
         return float(clamped) if clamped.ndim == 0 else clamped
 
-    def parameters(self, strain) -> dict:
+    def parameters(self, strain: float) -> dict[str, float]:
         """{G1, G2, eta1, eta2, r} (MPa, MPa*s^r, -) at the amplitude ``strain`` (dimensionless).
 
         Outside :attr:`strain_range` the parameters of the nearest end, with a ``UserWarning``.
@@ -154,7 +166,7 @@ class StrainDependentDamper:
         self._warn_outside(value)
         return self._parameters(float(value))
 
-    def at(self, strain) -> FDMKDamper:
+    def at(self, strain: float) -> FDMKDamper:
         """The :class:`FDMKDamper` for the amplitude ``strain`` (dimensionless; 3.0 = 300 %).
 
         Clamped to :attr:`strain_range` with a ``UserWarning`` naming the amplitude when outside it.
@@ -164,7 +176,7 @@ class StrainDependentDamper:
         self._warn_outside(value)
         return self._damper(self._parameters(float(value)))
 
-    def complex_modulus(self, f, strain):
+    def complex_modulus(self, f: ArrayLike, strain: ArrayLike) -> np.ndarray | complex:
         """G*(i 2 pi f) = G' + i G'' (MPa) at frequencies ``f`` (Hz, > 0) and amplitudes ``strain``.
 
         ``f`` and ``strain`` are scalars or arrays that broadcast together; amplitudes outside
@@ -181,27 +193,28 @@ class StrainDependentDamper:
             modulus[where] = self._damper(self._parameters(float(value))).complex_modulus(f[where])
         return modulus if modulus.ndim else complex(modulus)
 
-    def complex_stiffness(self, f, strain):
+    def complex_stiffness(self, f: ArrayLike, strain: ArrayLike) -> np.ndarray | complex:
         """K* = G* area / thickness (N/mm) at frequencies ``f`` (Hz) and amplitudes ``strain`` (see
         :meth:`complex_modulus`)."""
         return self.complex_modulus(f, strain) * self.stiffness_scale
 
     # ---------------------------------------------------------------------------------------- internals
     @staticmethod
-    def _one_amplitude(strain) -> np.ndarray:
+    def _one_amplitude(strain: ArrayLike) -> np.ndarray:
         value = _strain_amplitudes("strain", strain)
         if value.ndim != 0:
             raise ValueError(f"strain must be one amplitude, got shape {value.shape}")
         return value
 
-    def _parameters(self, strain: float) -> dict:
+    def _parameters(self, strain: float) -> dict[str, float]:
         """Parameters at ``strain`` clamped to the range, interpolated linearly in log strain."""
         x = np.log(np.clip(strain, *self.strain_range))
         nodes = np.log(self.strains)
         return {name: float(np.interp(x, nodes, getattr(self, name))) for name in PARAMETERS}
 
-    def _damper(self, parameters: dict) -> FDMKDamper:
-        return FDMKDamper(**parameters, area=self.area, thickness=self.thickness, strain_range=self.strain_range)
+    def _damper(self, parameters: dict[str, float]) -> FDMKDamper:
+        return FDMKDamper(G1=parameters["G1"], G2=parameters["G2"], eta1=parameters["eta1"], eta2=parameters["eta2"],
+                          r=parameters["r"], area=self.area, thickness=self.thickness, strain_range=self.strain_range)
 
     def _warn_outside(self, strain: np.ndarray) -> None:
         low, high = self.strain_range

@@ -20,11 +20,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._validation import positive, positive_frequencies, require_finite, scaled_value
-from .damper import DEFAULT_MEMORY, WallState, FDMKDamper, driven_force
-from .fractional import DEFAULT_METHOD
-from .prony import fit_prony
+from .damper import DEFAULT_MEMORY, FDMKDamper, WallState, driven_force
+from .fast_memory import FastMemory
+from .fractional import DEFAULT_METHOD, Discretisation
+from .prony import PronySeries, fit_prony
 from .thermal import PropertyFactors, ShiftLaw, ThermalProperties, property_factors
 from .wall import StiffnessMethods
 
@@ -41,7 +43,7 @@ class SupportedDamper(StiffnessMethods):
     damper: FDMKDamper
     support_stiffness: float
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if not isinstance(self.damper, FDMKDamper):
             raise ValueError(f"damper must be an FDMKDamper, got {type(self.damper).__name__}")
         object.__setattr__(self, "support_stiffness", positive("support_stiffness", self.support_stiffness))
@@ -62,7 +64,7 @@ class SupportedDamper(StiffnessMethods):
         return self.damper.thickness
 
     @property
-    def strain_range(self):
+    def strain_range(self) -> tuple[float, float] | None:
         return self.damper.strain_range
 
     @property
@@ -78,49 +80,51 @@ class SupportedDamper(StiffnessMethods):
         """The assembly with its wall starting at, and cooling towards, ``temperature`` (degC)."""
         return SupportedDamper(self.damper.at_ambient(temperature), self.support_stiffness)
 
-    def property_factors(self, temperatures, frequency: float) -> PropertyFactors:
+    def property_factors(self, temperatures: ArrayLike, frequency: float) -> PropertyFactors:
         """Temperature factors of the assembly's K' and K'' at ``frequency`` (Hz) over ``temperatures`` (degC):
         :func:`vdw_frames.element.thermal.property_factors`."""
         return property_factors(self, temperatures, frequency)
 
-    def resized(self, factor) -> SupportedDamper:
+    def resized(self, factor: float) -> SupportedDamper:
         """``factor`` walls' worth (> 0, -): the wall's area and the support's stiffness times ``factor``."""
         factor = positive("factor", factor)
         return SupportedDamper(self.damper.resized(factor),
                                scaled_value("support_stiffness", self.support_stiffness, factor))
 
-    def scaled(self, factor) -> SupportedDamper:
+    def scaled(self, factor: float) -> SupportedDamper:
         """The wall's moduli and viscosities times ``factor`` (:meth:`FDMKDamper.scaled`); the support unchanged."""
         return SupportedDamper(self.damper.scaled(factor), self.support_stiffness)
 
     # ------------------------------------------------------------------ frequency domain
-    def stiffness_transfer(self, s):
+    def stiffness_transfer(self, s: ArrayLike) -> np.ndarray:
         """K(s) = K_wall(s) k_s / (K_wall(s) + k_s) (N/mm) for complex s (rad/s)."""
         wall = self.damper.stiffness_transfer(s)
         stiffness = wall * self.support_stiffness / (wall + self.support_stiffness)
         require_finite("stiffness", stiffness)
         return stiffness
 
-    def complex_stiffness(self, f):
+    def complex_stiffness(self, f: ArrayLike) -> np.ndarray:
         """K*(f) = K' + i K'' (N/mm) of the assembly at frequencies f (Hz)."""
         f = positive_frequencies("f", f)
         return self.stiffness_transfer(2j * np.pi * f)
 
-    def prony(self, f_min: float, f_max: float, tolerance: float = 0.01):
+    def prony(self, f_min: float, f_max: float, tolerance: float = 0.01) -> PronySeries:
         """A generalized Maxwell model of the assembly (wall and support) over [``f_min``, ``f_max``] Hz;
         see :meth:`FDMKDamper.prony`."""
         return fit_prony(self, f_min, f_max, tolerance)
 
     # ------------------------------------------------------------------ time domain
-    def kernel_constants(self) -> tuple:
+    def kernel_constants(self) -> tuple[float, ...]:
         """The wall's kernel constants with the support's flexibility 1 / k_s (mm/N)."""
         return self.damper.kernel_constants()[:6] + (1.0 / self.support_stiffness,)
 
-    def new_state(self, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY) -> WallState:
+    def new_state(self, dt: float, method: str | Discretisation = DEFAULT_METHOD,
+                  memory: str | FastMemory = DEFAULT_MEMORY) -> WallState:
         """A fresh trial/commit state on steps of ``dt`` s (displacement: the assembly's, mm)."""
         return WallState(self, dt, method=method, memory=memory)
 
-    def force(self, displacement, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY):
+    def force(self, displacement: ArrayLike, dt: float, method: str | Discretisation = DEFAULT_METHOD,
+              memory: str | FastMemory = DEFAULT_MEMORY) -> np.ndarray:
         """Force history (N) for an assembly displacement history (mm) every ``dt`` s, from rest."""
         return driven_force(self, displacement, dt, method, memory)
 

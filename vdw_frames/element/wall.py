@@ -15,6 +15,7 @@ from __future__ import annotations
 from typing import Protocol, runtime_checkable
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._validation import positive_frequencies, require_finite, show
 
@@ -27,22 +28,28 @@ class Wall(Protocol):
     ``strain_range`` ((low, high), dimensionless, or None) where its parameters were identified.
     """
 
-    r: float
-    area: float
-    thickness: float
+    # Read-only: the wall types are frozen dataclasses (a SupportedDamper reads them off its wall).
+    @property
+    def r(self) -> float: ...
+
+    @property
+    def area(self) -> float: ...
+
+    @property
+    def thickness(self) -> float: ...
 
     @property
     def strain_range(self) -> tuple[float, float] | None: ...
 
-    def complex_stiffness(self, f) -> np.ndarray:
+    def complex_stiffness(self, f: ArrayLike) -> np.ndarray:
         """K*(f) = K' + i K'' (N/mm) at frequencies f (Hz)."""
         ...
 
-    def stiffness_transfer(self, s) -> np.ndarray:
+    def stiffness_transfer(self, s: ArrayLike) -> np.ndarray:
         """K(s) (N/mm) for complex s (rad/s)."""
         ...
 
-    def kernel_constants(self) -> tuple:
+    def kernel_constants(self) -> tuple[float, ...]:
         """The step kernel's row of 7 constants (:mod:`vdw_frames.element.kernel`)."""
         ...
 
@@ -58,18 +65,18 @@ class Wall(Protocol):
 class StiffnessMethods:
     """K', K'', C_d and the loss factor of anything with ``complex_stiffness(f)`` (N/mm at f Hz)."""
 
-    def complex_stiffness(self, f) -> np.ndarray:  # pragma: no cover - supplied by the class
+    def complex_stiffness(self, f: ArrayLike) -> np.ndarray:  # pragma: no cover - supplied by the class
         raise NotImplementedError
 
-    def storage_stiffness(self, f) -> np.ndarray:
+    def storage_stiffness(self, f: ArrayLike) -> np.ndarray:
         """K' = Re K*(f) (N/mm) at f (Hz)."""
         return self.complex_stiffness(f).real
 
-    def loss_stiffness(self, f) -> np.ndarray:
+    def loss_stiffness(self, f: ArrayLike) -> np.ndarray:
         """K'' = Im K*(f) (N/mm) at f (Hz)."""
         return self.complex_stiffness(f).imag
 
-    def damping_coefficient(self, f) -> np.ndarray:
+    def damping_coefficient(self, f: ArrayLike) -> np.ndarray:
         """C_d = K'' / omega (N*s/mm) at f (Hz)."""
         f = positive_frequencies("f", f)
         with np.errstate(over="ignore"):
@@ -77,7 +84,7 @@ class StiffnessMethods:
         require_finite("C_d", coefficient)
         return coefficient
 
-    def loss_factor(self, f) -> np.ndarray:
+    def loss_factor(self, f: ArrayLike) -> np.ndarray:
         """K''/K' = G''/G' (-) at f (Hz); 0 where the wall has no stiffness at all (K* = 0).
 
         Where K' = 0 but K'' > 0 (a pure dashpot) the loss factor is unbounded: a ValueError naming the

@@ -14,20 +14,25 @@ import dataclasses
 import io
 import os
 import sys
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .. import _warnings
 from .._files import write_text
 from .._validation import finite_array, positive, show
 from ..element.damper import DEFAULT_MEMORY
+from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation
 from ..motion.record import GroundMotion
 from .building import ShearBuilding, require_fixed_walls
+from .results import SimulationResult
 from .simulation import simulate
-from .strain_compatible import strain_compatible_options
+from .strain_compatible import StrainCompatibleOptions, strain_compatible_options
 
 
 @dataclass(frozen=True)
@@ -37,12 +42,12 @@ class BatchTask:
     building: ShearBuilding
     motion: GroundMotion
     scale: float
-    memory: object
+    memory: str | FastMemory
     method: str | Discretisation
-    strain_compatible: object = False  # simulate()'s option: False, True or StrainCompatibleOptions
-    options: tuple = ()  # further simulate() keywords, as (name, value) pairs
+    strain_compatible: bool | StrainCompatibleOptions = False  # simulate()'s option: False, True or the options
+    options: tuple[tuple[str, Any], ...] = ()  # further simulate() keywords, as (name, value) pairs
 
-    def run(self) -> dict:
+    def run(self) -> dict[str, Any]:
         """Peak responses of this analysis (units of :class:`~vdw_frames.frame.simulation.SimulationResult`).
 
         The package's warnings raised by the analysis (e.g. strain outside the identified range) travel
@@ -67,7 +72,7 @@ class BatchTask:
         }
 
 
-def _story_temperature_rise(result) -> np.ndarray | None:
+def _story_temperature_rise(result: SimulationResult) -> np.ndarray | None:
     """The largest temperature rise (K) of the walls of each story (0 where none has a thermal description);
     None when no wall is followed."""
     rise = result.peak_temperature_rise
@@ -80,7 +85,7 @@ def _story_temperature_rise(result) -> np.ndarray | None:
     return per_story
 
 
-def _run(task: BatchTask) -> dict:
+def _run(task: BatchTask) -> dict[str, Any]:
     # A module-level function: executors pickle it by name.
     return task.run()
 
@@ -112,7 +117,7 @@ class BatchResult:
     has a thermal description; None when no wall's heat is followed).
     """
 
-    motion_names: tuple
+    motion_names: tuple[str, ...]
     scales: np.ndarray
     pga: np.ndarray  # (motions, scales): PGA of each scaled record, mm/s^2
     peak_drift: np.ndarray
@@ -124,12 +129,12 @@ class BatchResult:
     collapsed: np.ndarray
     converged: np.ndarray
     peak_temperature_rise: np.ndarray | None = None
-    property_factors: tuple | None = None
-    governing_factor: dict | None = None
-    ambient_temperatures: tuple | None = None
-    governing_temperature: dict | None = None
+    property_factors: tuple[float, ...] | None = None
+    governing_factor: dict[str, np.ndarray] | None = None
+    ambient_temperatures: tuple[float, ...] | None = None
+    governing_temperature: dict[str, np.ndarray] | None = None
 
-    def to_csv(self, path) -> Path:
+    def to_csv(self, path: str | os.PathLike[str]) -> Path:
         """Write one row per (motion, scale, story) with every peak and the outcome (``None`` ratios left
         empty) to ``path``, atomically; returns the path."""
         stories = self.peak_drift.shape[2]
@@ -148,10 +153,11 @@ class BatchResult:
         return write_text(path, handle.getvalue(), "CSV file")
 
 
-def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.futures.Executor | None = None,
-              progress: bool = True, memory=DEFAULT_MEMORY, method=DEFAULT_METHOD,
-              strain_compatible=False, property_factors=None, ambient_temperatures=None,
-              **simulate_options) -> BatchResult:
+def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: ArrayLike,
+              executor: concurrent.futures.Executor | None = None, progress: bool = True,
+              memory: str | FastMemory = DEFAULT_MEMORY, method: str | Discretisation = DEFAULT_METHOD,
+              strain_compatible: bool | StrainCompatibleOptions = False, property_factors: ArrayLike | None = None,
+              ambient_temperatures: ArrayLike | None = None, **simulate_options: Any) -> BatchResult:
     """Run ``building`` under every motion at every scale factor.
 
     ``motions``: GroundMotion objects (mm/s^2).  ``scales``: factors (dimensionless) applied as
@@ -217,7 +223,7 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
              for m, motion in enumerate(motions) for s in range(factors.shape[1])}
 
     own_executor = executor is None
-    if own_executor:
+    if executor is None:
         executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
     futures = {}
     try:
@@ -263,42 +269,48 @@ def run_batch(building: ShearBuilding, motions, scales, executor: concurrent.fut
                        **{name: stack(name).astype(bool) for name in OUTCOMES})
 
 
-def _label(motions, m: int) -> str:
+def _label(motions: Sequence[GroundMotion], m: int) -> str:
     return motions[m].name or f"motion {m}"
 
 
-def _property_envelope(building: ShearBuilding, property_factors, ambient_temperatures, executor, run) -> BatchResult:
+def _property_envelope(building: ShearBuilding, property_factors: ArrayLike | None,
+                       ambient_temperatures: ArrayLike | None, executor: concurrent.futures.Executor | None,
+                       run: Callable[[ShearBuilding, concurrent.futures.Executor], BatchResult]) -> BatchResult:
     """Envelope of ``run(variant, executor)`` over every wall variant: each property factor f (``wall.scaled(f)``)
     at each ambient temperature T (``wall.at_ambient(T)`` for walls with a thermal description); see run_batch."""
     factors = np.array([1.0]) if property_factors is None else \
         finite_array("property_factors", property_factors, ndim=None).ravel()
     if factors.size == 0 or (factors <= 0).any():
         raise ValueError(f"property_factors must be one or more factors > 0, got {property_factors!r}")
-    temperatures = [None]
+    temperatures: list[float | None] = [None]
     if ambient_temperatures is not None:
-        temperatures = list(finite_array("ambient_temperatures", ambient_temperatures, ndim=None).ravel())
+        temperatures = [float(t) for t in finite_array("ambient_temperatures", ambient_temperatures, ndim=None).ravel()]
         if not temperatures or not any(getattr(wall, "thermal", None) is not None for _, wall in building.wall_list):
             raise ValueError("ambient_temperatures needs one or more temperatures (degC) and walls with a thermal "
                              f"description (thermal=ThermalProperties(...)), got {show(ambient_temperatures)}")
 
-    def variant(factor, temperature):
-        def wall_variant(wall):
+    def variant(factor: float, temperature: float | None) -> ShearBuilding:
+        def wall_variant(wall: Any) -> Any:
             wall = wall.scaled(factor)
-            return wall if temperature is None or getattr(wall, "thermal", None) is None else wall.at_ambient(temperature)
-        return building.with_walls({story: [wall_variant(wall) for wall in walls]
+            if temperature is None or getattr(wall, "thermal", None) is None:
+                return wall
+            return wall.at_ambient(temperature)
+        return building.with_walls({story: tuple(wall_variant(wall) for wall in walls)
                                     for story, walls in building.walls.items()})
 
-    combinations = [(f, t) for f in factors for t in temperatures]
+    combinations = [(float(f), t) for f in factors for t in temperatures]
     variants = [variant(f, t) for f, t in combinations]
     own_executor = executor is None
-    if own_executor:
+    if executor is None:
         executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
     try:
         results = [run(each, executor) for each in variants]
     finally:
         if own_executor:
             executor.shutdown(cancel_futures=True)
-    envelope, by_factor, by_temperature = {}, {}, {}
+    envelope: dict[str, Any] = {}
+    by_factor: dict[str, np.ndarray] = {}
+    by_temperature: dict[str, np.ndarray] = {}
     for name in PEAKS:
         if getattr(results[0], name) is None:
             envelope[name] = None
@@ -315,17 +327,18 @@ def _property_envelope(building: ShearBuilding, property_factors, ambient_temper
         results[0], **envelope,
         property_factors=None if property_factors is None else tuple(factors.tolist()),
         governing_factor=None if property_factors is None else by_factor,
-        ambient_temperatures=None if ambient_temperatures is None else tuple(float(t) for t in temperatures),
+        ambient_temperatures=None if ambient_temperatures is None else tuple(t for t in temperatures if t is not None),
         governing_temperature=None if ambient_temperatures is None else by_temperature)
 
 
-def scale_factors_to_pga(motions, targets) -> np.ndarray:
+def scale_factors_to_pga(motions: Iterable[GroundMotion], targets: ArrayLike) -> np.ndarray:
     """Factors (motions, targets) that scale each motion to each target PGA (mm/s^2)."""
     targets = finite_array("targets", targets)
     return np.array([[motion.scale_factor_to_pga(t) for t in targets] for motion in motions])
 
 
-def scale_factors_to_spectral_acceleration(motions, targets, period: float, damping_ratio: float = 0.05) -> np.ndarray:
+def scale_factors_to_spectral_acceleration(motions: Iterable[GroundMotion], targets: ArrayLike, period: float,
+                                           damping_ratio: float = 0.05) -> np.ndarray:
     """Factors (motions, targets) that scale each motion to each target Sa(period) (mm/s^2, s).
 
     Sa is linear in the scale factor: one response spectrum per motion serves every target.
@@ -336,7 +349,7 @@ def scale_factors_to_spectral_acceleration(motions, targets, period: float, damp
 
 
 class _ProgressBar:
-    def __init__(self, total: int):
+    def __init__(self, total: int) -> None:
         self.total, self.done = total, 0
         self._draw()
 

@@ -4,17 +4,21 @@ FDMK walls across stories."""
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.linalg import eigh
 
 from .._validation import check_memory, damping_ratio, finite_array, positive, show, whole_number
-from ..element.damper import FDMKDamper
 from ..element.strain_dependent import StrainDependentDamper
 from ..element.supported import WALL_TYPES
-from .hysteresis import STORY_MODELS
+from .hysteresis import STORY_MODELS, Bilinear, BoucWen
+
+if TYPE_CHECKING:
+    from ..element.wall import Wall
 
 DAMPING_MODELS = ("rayleigh", "modal")
 
@@ -69,17 +73,18 @@ class ShearBuilding:
     no P-Delta).
     """
 
-    masses: tuple
-    stiffnesses: tuple
+    masses: tuple[float, ...]
+    stiffnesses: tuple[float, ...]
     damping_ratio: float = 0.05
-    damping_modes: tuple | None = None
-    walls: dict | None = None
-    story_heights: tuple | None = None
-    hysteresis: tuple | None = None
-    gravity_loads: tuple | None = None
+    # None (the default) becomes (1, 2), or (1, 1) for one story, in __post_init__.
+    damping_modes: tuple[int, int] = cast("tuple[int, int]", None)
+    walls: dict[int, tuple[Wall | StrainDependentDamper, ...]] = field(default_factory=dict)
+    story_heights: tuple[float, ...] | None = None
+    hysteresis: tuple[Bilinear | BoucWen | None, ...] | None = None
+    gravity_loads: tuple[float, ...] | None = None
     damping_model: str = "rayleigh"
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         masses = finite_array("masses", self.masses)
         stiffnesses = finite_array("stiffnesses", self.stiffnesses)
         if masses.size == 0:
@@ -95,16 +100,16 @@ class ShearBuilding:
         object.__setattr__(self, "damping_ratio", damping_ratio(self.damping_ratio))
         if self.damping_modes is None:
             object.__setattr__(self, "damping_modes", (1, min(2, masses.size)))
-        modes = self.damping_modes
+        modes: object = self.damping_modes
         if isinstance(modes, np.ndarray):
             modes = tuple(modes.tolist()) if modes.ndim == 1 else None
         if not isinstance(modes, (tuple, list)) or len(modes) != 2:
             raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, "
                              f"got {show(self.damping_modes)}")
-        modes = tuple(whole_number("damping_modes", m, 1) for m in modes)
-        if max(modes) > masses.size:
-            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, got {modes}")
-        object.__setattr__(self, "damping_modes", modes)
+        numbers = tuple(whole_number("damping_modes", m, 1) for m in modes)
+        if max(numbers) > masses.size:
+            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, got {numbers}")
+        object.__setattr__(self, "damping_modes", numbers)
         object.__setattr__(self, "walls", self._normalise_walls(self.walls, masses.size))
         if self.story_heights is not None:
             heights = finite_array("story_heights", self.story_heights)
@@ -127,12 +132,14 @@ class ShearBuilding:
             raise ValueError(f"damping_model must be one of {DAMPING_MODELS}, got {self.damping_model!r}")
 
     @staticmethod
-    def _normalise_walls(walls_by_story, stories):
+    def _normalise_walls(walls_by_story: dict[Any, Any] | None,
+                         stories: int) -> dict[int, tuple[Wall | StrainDependentDamper, ...]]:
         if walls_by_story is not None and not isinstance(walls_by_story, dict):
             raise ValueError(f"walls must be a dict {{story: FDMKDamper or list}}, got {type(walls_by_story).__name__}")
-        normalised: dict[int, tuple] = {}
+        normalised: dict[int, tuple[Wall | StrainDependentDamper, ...]] = {}
         seen: set[int] = set()  # stories after normalisation: {1: w, 1.0: w} is one story twice
-        for story, walls in (walls_by_story or {}).items():
+        given = walls_by_story or {}
+        for story, walls in given.items():
             message = f"wall story must be a story number in 1 ... {stories}, got {show(story)}"
             try:
                 story = whole_number("wall story", story, 1)
@@ -146,7 +153,7 @@ class ShearBuilding:
                     raise ValueError(f"walls[{story}] must be FDMKDamper, SupportedDamper or StrainDependentDamper "
                                      f"objects, got {type(wall).__name__}")
             if story in seen:
-                raise ValueError(f"walls has story {story} twice (keys {show(list(walls_by_story))}); give each "
+                raise ValueError(f"walls has story {story} twice (keys {show(list(given))}); give each "
                                  "story once, with a list of its walls")
             seen.add(story)
             if walls:
@@ -154,9 +161,10 @@ class ShearBuilding:
         return dict(sorted(normalised.items()))
 
     @staticmethod
-    def _normalise_hysteresis(hysteresis, stories):
+    def _normalise_hysteresis(hysteresis: object, stories: int) -> tuple[Bilinear | BoucWen | None, ...] | None:
         if hysteresis is None:
             return None
+        models: list[Bilinear | BoucWen | None]
         if isinstance(hysteresis, dict):
             models = [None] * stories
             for story, model in hysteresis.items():
@@ -182,7 +190,7 @@ class ShearBuilding:
         return self.hysteresis is None
 
     @property
-    def story_models(self) -> tuple:
+    def story_models(self) -> tuple[Bilinear | BoucWen | None, ...]:
         """The story model of every story (None: linear)."""
         return self.hysteresis if self.hysteresis is not None else (None,) * self.stories
 
@@ -215,7 +223,7 @@ class ShearBuilding:
         return _read_only(story_matrix(np.asarray(self.stiffnesses)))
 
     @cached_property
-    def _modes(self):
+    def _modes(self) -> tuple[np.ndarray, np.ndarray]:
         eigenvalues, shapes = eigh(self.stiffness_matrix, self.mass_matrix)
         return _read_only(np.sqrt(eigenvalues)), _read_only(shapes)
 
@@ -271,7 +279,7 @@ class ShearBuilding:
         return a0 / (2.0 * w) + a1 * w / 2.0
 
     @property
-    def wall_list(self) -> list[tuple[int, FDMKDamper]]:
+    def wall_list(self) -> list[tuple[int, Wall | StrainDependentDamper]]:
         """(story, damper) for every damper, stories ascending."""
         return [(story, wall) for story, walls in self.walls.items() for wall in walls]
 
@@ -282,13 +290,13 @@ class ShearBuilding:
 
     def without_walls(self) -> ShearBuilding:
         """The same frame (stories, P-Delta, damping) with no walls."""
-        return dataclasses.replace(self, walls=None)
+        return dataclasses.replace(self, walls={})
 
-    def with_walls(self, walls) -> ShearBuilding:
+    def with_walls(self, walls: dict[int, tuple[Wall | StrainDependentDamper, ...]]) -> ShearBuilding:
         """The same frame with ``walls`` (a dict as for the constructor) instead of its own."""
         return dataclasses.replace(self, walls=walls)
 
-    def frequency_response(self, frequency) -> np.ndarray:
+    def frequency_response(self, frequency: ArrayLike) -> np.ndarray:
         """Relative floor displacement per unit ground acceleration, mm/(mm/s^2), shape (len(f), floors).
 
         Solves (-w^2 M + i w C + K + K_G + K_d(w)) U = -M 1 at w = 2 pi f for frequencies f in Hz (a
@@ -313,13 +321,14 @@ class ShearBuilding:
             response[chunk] = self._solve_dynamic(frequency[chunk])
         return response
 
-    def _solve_dynamic(self, frequency):
+    def _solve_dynamic(self, frequency: np.ndarray) -> np.ndarray:
         with np.errstate(over="ignore", invalid="ignore"):
             omega = 2.0 * np.pi * frequency
             if not np.isfinite(omega).all():
                 raise ValueError(f"the dynamic stiffness overflows at f = {show(frequency[~np.isfinite(omega)][0])} Hz")
             per_story = np.zeros((omega.size, self.stories), dtype=complex)
-            for story, wall in self.wall_list:
+            # Fixed walls only (frequency_response checked): no strain-dependent wall.
+            for story, wall in cast("list[tuple[int, Wall]]", self.wall_list):
                 per_story[:, story - 1] += wall.stiffness_transfer(1j * omega)
             base = self.stiffness_matrix + story_matrix(np.asarray(self.geometric_stiffness, dtype=float))
             dynamic = (story_matrix(per_story) + base - (omega**2)[:, None, None] * self.mass_matrix
@@ -345,7 +354,7 @@ class ShearBuilding:
             raise ValueError(f"the frequency response overflows at f = {show(frequency[~finite][0])} Hz")
         return response
 
-    def stationary_response(self, ground_acceleration, dt: float, pad_factor: int = 8) -> np.ndarray:
+    def stationary_response(self, ground_acceleration: ArrayLike, dt: float, pad_factor: int = 8) -> np.ndarray:
         """Relative displacements (mm, steps x floors) from the frequency-domain solution (FFT).
 
         ``ground_acceleration`` (mm/s^2, sampled every ``dt`` s, dt > 0) is zero padded to
@@ -367,7 +376,7 @@ class ShearBuilding:
         return np.fft.irfft(response * spectrum[:, None], size, axis=0)[: ground.size]
 
 
-def require_fixed_walls(building, analysis: str) -> None:
+def require_fixed_walls(building: ShearBuilding | None, analysis: str) -> None:
     """ValueError when ``building`` has strain-dependent walls, which ``analysis`` cannot take."""
     if isinstance(building, ShearBuilding) and building.strain_dependent:
         raise ValueError(f"{analysis} needs fixed wall parameters, but this building has strain-dependent walls "

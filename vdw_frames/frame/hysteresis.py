@@ -29,6 +29,7 @@ Units: drift mm, force N, stiffness N/mm.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -58,7 +59,7 @@ class Bilinear:
     yield_force: float
     hardening: float = 0.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "yield_force", positive("yield_force", self.yield_force))
         object.__setattr__(self, "hardening", _hardening(self.hardening))
 
@@ -97,7 +98,7 @@ class BoucWen:
     beta: float = 0.5
     gamma: float = 0.5
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "yield_force", positive("yield_force", self.yield_force))
         object.__setattr__(self, "hardening", _hardening(self.hardening))
         exponent = finite_scalar("exponent", self.exponent)
@@ -133,7 +134,7 @@ class StoryArrays(NamedTuple):
     committed: np.ndarray  # (n, STATE): committed drift (mm), then force (N, Bilinear) or z (Bouc-Wen)
 
 
-def story_arrays(models, stiffnesses) -> StoryArrays:
+def story_arrays(models: Sequence[Bilinear | BoucWen | None], stiffnesses: Sequence[float]) -> StoryArrays:
     """:class:`StoryArrays` at rest of ``models`` (None: linear) with initial stiffnesses (N/mm)."""
     kinds = np.array([LINEAR if model is None else model.kind for model in models], dtype=np.int64)
     parameters = np.array([[k, 0.0, 0.0, 0.0, 0.0, 0.0] if model is None else model.parameters(k)
@@ -141,7 +142,7 @@ def story_arrays(models, stiffnesses) -> StoryArrays:
     return StoryArrays(kinds, parameters.reshape(len(kinds), PARAMETERS), np.zeros((len(kinds), STATE)))
 
 
-def _hardening(value) -> float:
+def _hardening(value: object) -> float:
     hardening = non_negative("hardening", value)
     if hardening >= 1.0:
         raise ValueError(f"hardening must lie in [0, 1), got {value!r}")
@@ -152,7 +153,7 @@ class StoryState:
     """Trial/commit state (a :class:`~vdw_frames.element.material.Material`) of one story model (``model``
     None: linear) of initial stiffness ``stiffness`` N/mm."""
 
-    def __init__(self, model, stiffness: float):
+    def __init__(self, model: Bilinear | BoucWen | None, stiffness: float) -> None:
         if model is not None and not isinstance(model, STORY_MODELS):
             raise ValueError(f"a story model must be Bilinear, BoucWen or None, got {type(model).__name__}")
         self.model = model

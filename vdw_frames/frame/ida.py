@@ -18,10 +18,14 @@ Units: spectral acceleration mm/s^2 (divide by :data:`vdw_frames.G` for g), peri
 
 from __future__ import annotations
 
+import concurrent.futures
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._validation import positive
 from ..motion.record import GroundMotion
@@ -36,7 +40,7 @@ class Fragility:
     median: float
     dispersion: float
 
-    def probability(self, intensity):
+    def probability(self, intensity: ArrayLike) -> np.ndarray:
         """P(collapse) at spectral accelerations ``intensity`` (mm/s^2)."""
         from scipy import stats
 
@@ -54,14 +58,14 @@ class IDAResult:
     of the runs (text), counted, not silenced.
     """
 
-    motion_names: tuple
+    motion_names: tuple[str, ...]
     period: float
     levels: np.ndarray
-    intensities: tuple
-    peak_drift_ratio: tuple
-    collapsed: tuple
+    intensities: tuple[np.ndarray, ...]
+    peak_drift_ratio: tuple[np.ndarray, ...]
+    collapsed: tuple[np.ndarray, ...]
     collapse_intensity: np.ma.MaskedArray
-    strain_warnings: tuple
+    strain_warnings: tuple[str, ...]
 
     @property
     def analyses(self) -> int:
@@ -73,7 +77,7 @@ class IDAResult:
 
         collapsed = self.collapse_intensity.compressed()
         standing = np.array([self.intensities[m][-1] for m in range(len(self.motion_names))
-                             if self.collapse_intensity.mask[m]])
+                             if np.ma.getmaskarray(self.collapse_intensity)[m]])
         if collapsed.size < 2:
             raise ValueError(f"a fragility needs at least two collapses, got {collapsed.size} "
                              f"(raise the cap above {self.levels[-1]:g} mm/s^2)")
@@ -82,8 +86,9 @@ class IDAResult:
         return Fragility(float(scale), float(shape))
 
 
-def incremental_dynamic_analysis(building: ShearBuilding, motions, step: float, cap: float, period: float | None = None,
-                                 executor=None, **options) -> IDAResult:
+def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[GroundMotion], step: float, cap: float,
+                                 period: float | None = None, executor: concurrent.futures.Executor | None = None,
+                                 **options: Any) -> IDAResult:
     """IDA of ``building`` under ``motions`` (GroundMotion, mm/s^2): Sa(``period``, 5 %) from ``step`` in steps
     of ``step`` up to ``cap`` (mm/s^2) or collapse, record by record (module docstring).
 
@@ -110,10 +115,10 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions, step: float, 
     if levels.size > 1000:
         raise ValueError(f"{levels.size} intensity levels (cap / step) is too many; take a larger step")
     factors = scale_factors_to_spectral_acceleration(motions, levels, period)  # (motions, levels)
-    intensities = [[] for _ in motions]
-    drift = [[] for _ in motions]
-    collapsed = [[] for _ in motions]
-    messages = []
+    intensities: list[list[float]] = [[] for _ in motions]
+    drift: list[list[float]] = [[] for _ in motions]
+    collapsed: list[list[bool]] = [[] for _ in motions]
+    messages: list[str] = []
     standing = list(range(len(motions)))
     for index, level in enumerate(levels):
         if not standing:
@@ -122,6 +127,7 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions, step: float, 
             batch = run_batch(building, [motions[m] for m in standing], factors[standing, index][:, None],
                               executor=executor, progress=False, **options)
         messages.extend(w.message for w in caught)
+        assert batch.peak_drift_ratio is not None  # the building has story heights (checked above)
         for row, m in enumerate(standing):
             intensities[m].append(level)
             drift[m].append(float(batch.peak_drift_ratio[row, 0].max()))

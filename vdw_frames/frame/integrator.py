@@ -76,7 +76,7 @@ class NewtonRaphson:
     max_iterations: int = 25
     fallback_iterations: int = 200
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "displacement_tolerance",
                            positive("displacement_tolerance", self.displacement_tolerance))
         object.__setattr__(self, "force_tolerance", positive("force_tolerance", self.force_tolerance))

@@ -75,13 +75,19 @@ Units: s in rad/s, periods s, damping ratios dimensionless, mode shapes dimensio
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.linalg import eigh
 
 from .._validation import whole_number
 from .building import ShearBuilding, require_fixed_walls, story_matrix
+
+if TYPE_CHECKING:
+    from ..element.wall import Wall
 
 # The sector Omega of the argument principle (module docstring).
 _EDGE_RIGHT_GAP = 0.1
@@ -89,6 +95,9 @@ _EDGE_RIGHT = np.pi / 2 - _EDGE_RIGHT_GAP
 _EDGE_LEFT = np.pi - 0.05
 _CAUCHY_POINTS = 8  # points on the circle for k'(s)
 _CAUCHY_RADIUS = 1e-3  # relative to |s|
+
+# A sector of an annulus: (rho_a, rho_b, theta_a, theta_b), radii rad/s, angles rad.
+_Box = tuple[float, float, float, float]
 
 
 @dataclass(frozen=True)
@@ -103,8 +112,9 @@ class ModalResult:
     ``energy_damping_ratios``: the energy estimate xi_inherent + sum W_c / (4 pi W_s) (module
     docstring), with ``energy_inherent`` its inherent part and ``effective_periods`` (s) the periods of
     the real modes it uses (walls at their storage stiffness); mode j of the bare frame and of the real
-    modes is paired with complex mode j (NaN where there is none: see :func:`modal_analysis`).  ``pole_count``: the number of roots of
-    det T in the search sector by the argument principle (= the number of modes found; with walls).
+    modes is paired with complex mode j (NaN where there is none: see :func:`modal_analysis`).
+    ``pole_count``: the number of roots of det T in the search sector by the argument principle (= the
+    number of modes found; with walls).
     """
 
     modes: np.ndarray
@@ -136,19 +146,20 @@ class ModalResult:
 class _System:
     """T(s) of a building (with or without its walls), vectorised over many s."""
 
-    def __init__(self, building: ShearBuilding, walls: bool = True):
+    def __init__(self, building: ShearBuilding, walls: bool = True) -> None:
         self.n = building.stories
         self.mass = np.asarray(building.masses, dtype=float)
         self.damping = np.asarray(building.damping_matrix, dtype=float)
         self.stiffness = np.asarray(building.stiffness_matrix) + story_matrix(np.asarray(building.geometric_stiffness))
-        self.walls = building.wall_list if walls else []
+        # Fixed walls only (modal_analysis checked): no strain-dependent wall.
+        self.walls = cast("list[tuple[int, Wall]]", building.wall_list) if walls else []
         # Equal walls are evaluated once: (wall, how many of it each story holds).
-        counts = {}
+        counts: dict[Wall, np.ndarray] = {}
         for story, wall in self.walls:
             counts.setdefault(wall, np.zeros(self.n))[story - 1] += 1.0
         self.wall_groups = list(counts.items())
 
-    def wall_stiffness(self, s) -> np.ndarray:
+    def wall_stiffness(self, s: ArrayLike) -> np.ndarray:
         """Sum of the walls' k(s) per story (N/mm), shape (len(s), stories)."""
         s = np.atleast_1d(np.asarray(s, dtype=complex))
         per_story = np.zeros((s.size, self.n), dtype=complex)
@@ -156,7 +167,7 @@ class _System:
             per_story += np.multiply.outer(wall.stiffness_transfer(s), count)
         return per_story
 
-    def matrices(self, s, per_story=None) -> np.ndarray:
+    def matrices(self, s: ArrayLike, per_story: np.ndarray | None = None) -> np.ndarray:
         """T(s) for every s, shape (len(s), n, n); ``per_story`` overrides the walls' k (frozen)."""
         s = np.atleast_1d(np.asarray(s, dtype=complex))
         if per_story is None:
@@ -191,7 +202,8 @@ def _add_stories(matrix: np.ndarray, per_story: np.ndarray) -> None:
 
 
 # ---------------------------------------------------------------------------------------------- roots
-def _newton(system: _System, s: complex, x: np.ndarray, max_iterations: int = 60):
+def _newton(system: _System, s: complex, x: np.ndarray,
+            max_iterations: int = 60) -> tuple[complex, np.ndarray] | None:
     """Newton on T(s) x = 0, v^H x = 1 from (s, x); returns (s, x) or None when it does not converge."""
     v = x / np.linalg.norm(x)
     x = x / (v.conj() @ x)
@@ -224,7 +236,7 @@ def _newton(system: _System, s: complex, x: np.ndarray, max_iterations: int = 60
     return s, x
 
 
-def _start_guesses(system: _System):
+def _start_guesses(system: _System) -> list[tuple[complex, np.ndarray]]:
     """(s, x) per mode: the stiffened undamped mode phi, omega (walls at their storage stiffness at the
     mode's own frequency), and s from its Rayleigh quotient phi^T T(s) phi = 0 with k frozen at i omega."""
     n = system.n
@@ -246,14 +258,14 @@ def _start_guesses(system: _System):
     return starts
 
 
-def complex_modes(building: ShearBuilding, walls: bool = True):
+def complex_modes(building: ShearBuilding, walls: bool = True) -> tuple[np.ndarray, np.ndarray, int]:
     """(poles ascending in |s|, shapes as columns, argument-principle count) of the linear building."""
     system = _System(building, walls)
     static = system.matrices(0.0, system.wall_stiffness(0.0).real if walls else None)[0].real
     if np.linalg.eigvalsh(0.5 * (static + static.T))[0] <= 0.0:
         raise ValueError("the frame is unstable under its gravity loads (K + K_G + walls is not positive "
                          "definite at s = 0): P-Delta exceeds the story stiffness")
-    roots = []
+    roots: list[tuple[complex, np.ndarray]] = []
     for guess, vector in _start_guesses(system):
         _add_root(roots, _newton(system, guess, vector))
     omega_first = np.sqrt(np.abs(eigh(system.stiffness, np.diag(system.mass), eigvals_only=True)[0]))
@@ -272,17 +284,18 @@ def complex_modes(building: ShearBuilding, walls: bool = True):
     return poles, shapes / largest, count
 
 
-def _add_root(roots: list, root) -> None:
+def _add_root(roots: list[tuple[complex, np.ndarray]], root: tuple[complex, np.ndarray] | None) -> None:
     if root is not None and all(abs(root[0] - s) > 1e-7 * abs(s) for s, _ in roots):
         roots.append(root)
 
 
-def _inside(roots: list, box) -> list:
+def _inside(roots: list[tuple[complex, np.ndarray]], box: _Box) -> list[tuple[complex, np.ndarray]]:
     inner, outer, right, left = box
     return [root for root in roots if inner < abs(root[0]) < outer and right < np.angle(root[0]) < left]
 
 
-def _find_missing(system: _System, box, count: int, roots: list, depth: int = 0) -> None:
+def _find_missing(system: _System, box: _Box, count: int, roots: list[tuple[complex, np.ndarray]],
+                  depth: int = 0) -> None:
     """Add the roots of det T in ``box`` (rho_a, rho_b, theta_a, theta_b) that ``roots`` lacks.
 
     ``count`` roots lie in the box (argument principle).  While some are missing, Newton is tried from
@@ -322,7 +335,7 @@ def _outer_radius(system: _System, largest: float) -> float:
                        "radius tried; please report this building")
 
 
-def _root_count(system: _System, box) -> int:
+def _root_count(system: _System, box: _Box) -> int:
     """Roots of det T inside ``box`` = (rho_a, rho_b, theta_a, theta_b), a sector of an annulus, by the
     argument principle with the phase tracked along its boundary (counter-clockwise)."""
     inner, outer, right, left = box
@@ -344,7 +357,8 @@ def _root_count(system: _System, box) -> int:
     return count
 
 
-def _phase_change(system: _System, path, points: int, max_points: int = 400_000) -> float:
+def _phase_change(system: _System, path: Callable[[np.ndarray], np.ndarray], points: int,
+                  max_points: int = 400_000) -> float:
     """Total change of arg det T(path(t)) for t from 0 to 1, from ``points`` samples on.
 
     Steps are bisected until arg det T turns by less than pi/4 and log |det T| changes by less than 1/2
@@ -374,14 +388,14 @@ def _phase_change(system: _System, path, points: int, max_points: int = 400_000)
         size = np.insert(size, coarse + 1, new_size)
 
 
-def _phase(system: _System, s: np.ndarray):
+def _phase(system: _System, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(arg det T(s), log |det T(s)|) for every s."""
     sign, size = np.linalg.slogdet(system.matrices(s))
     return np.angle(sign), size
 
 
 # ---------------------------------------------------------------------------------------------- energy
-def _energy_estimate(building: ShearBuilding, count: int):
+def _energy_estimate(building: ShearBuilding, count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(xi_E, xi_inherent, omega) of the first ``count`` stiffened real modes (module docstring)."""
     system = _System(building)
     mass = np.diag(system.mass)
@@ -410,7 +424,7 @@ def _energy_estimate(building: ShearBuilding, count: int):
 
 
 # ---------------------------------------------------------------------------------------------- public
-def modal_analysis(building: ShearBuilding, modes=None) -> ModalResult:
+def modal_analysis(building: ShearBuilding, modes: int | Sequence[int] | None = None) -> ModalResult:
     """Complex modal analysis of the linear ``building`` with its walls (module docstring for the method).
 
     ``modes``: None (every oscillatory mode: normally one per floor; heavy walls can overdamp some, and
@@ -454,12 +468,12 @@ def modal_analysis(building: ShearBuilding, modes=None) -> ModalResult:
     )
 
 
-def _mode_numbers(modes, available: int) -> np.ndarray:
+def _mode_numbers(modes: int | Sequence[int] | None, available: int) -> np.ndarray:
     if modes is None:
         return np.arange(1, available + 1)
     if available == 0:
         raise ValueError("the building has no oscillatory mode: every pole is overdamped")
-    items = [modes] if np.ndim(modes) == 0 else list(modes)
+    items = [modes] if isinstance(modes, int) or np.ndim(modes) == 0 else list(modes)
     if not items:
         raise ValueError("modes must name at least one mode")
     numbers = np.array([whole_number("modes", m, 1) for m in items])

@@ -7,12 +7,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .. import _warnings
 from .._validation import require_finite
 from .building import ShearBuilding
+
+if TYPE_CHECKING:
+    from ..element.wall import Wall
 
 # Self-check: Newmark's average acceleration with trapezoidal work increments balances energy to the Newton
 # tolerance (1e-13 ... 1e-9 of the input in the tests); a larger gap means the wrong equations were solved.
@@ -87,9 +91,10 @@ class SimulationResult:
     and inherent damping force through the story (a1 k1 v1 with Rayleigh damping: the mass-proportional
     term acts between the floors and the ground) -- the horizontal reaction of the ground (with P-Delta
     it is less than the story-1 frame and wall shears, story_shear + story_wall_force, which are what the
-    structure must resist); ground_acceleration (mm/s^2); energy (:class:`EnergyHistory`).  absolute_acceleration, drift_ratio,
-    story_wall_strain, wall_force and wall_strain are computed on first use (from the stored histories and
-    the wall groups: identical walls of a story are stepped once, as one of their summed area).
+    structure must resist); ground_acceleration (mm/s^2); energy (:class:`EnergyHistory`).
+    absolute_acceleration, drift_ratio, story_wall_strain, wall_force and wall_strain are computed on first
+    use (from the stored histories and the wall groups: identical walls of a story are stepped once, as one
+    of their summed area).
 
     ``converged``: False when a step failed to converge (the histories end at the last converged step);
     ``collapsed`` and ``collapse_time`` (s): a story's drift ratio exceeded ``collapse_drift_ratio``
@@ -123,7 +128,7 @@ class SimulationResult:
     collapse_time: float | None = None
     newton_iterations: int = 0
     wall_effective_strain: np.ndarray | None = None
-    equivalent_walls: tuple | None = None
+    equivalent_walls: tuple[Wall, ...] | None = None
     strain_iterations: int | None = None
     strain_converged: bool | None = None
     # Followed walls (thermal description or limits): (steps, groups) histories, (0, groups) when none is.
@@ -183,7 +188,7 @@ class SimulationResult:
         strain = np.zeros((self.time.size, self.building.stories))
         peaks = np.abs(self.group_strain).max(axis=0, initial=0.0)
         stories = np.array([story - 1 for story, _ in self.building.wall_list], dtype=int)
-        most = {}
+        most: dict[int, int] = {}
         for wall, group in enumerate(self.wall_group):
             story = stories[wall]
             if story not in most or peaks[group] > peaks[most[story]]:

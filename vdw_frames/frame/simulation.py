@@ -11,18 +11,22 @@ Units: N, mm, s, tonne; ground acceleration mm/s^2.
 
 from __future__ import annotations
 
+from typing import Any
+
 from ..element.bank import DEFAULT_MEMORY
-from ..element.fractional import DEFAULT_METHOD
+from ..element.fast_memory import FastMemory
+from ..element.fractional import DEFAULT_METHOD, Discretisation
 from ..motion.record import GroundMotion
 from .building import ShearBuilding
 from .integrator import NewtonRaphson
 from .results import SimulationResult
-from .strain_compatible import strain_compatible_simulation
+from .strain_compatible import StrainCompatibleOptions, strain_compatible_simulation
 from .time_history import time_history
 
 
-def simulate(building: ShearBuilding, ground_motion: GroundMotion, dt: float | None = None, method=DEFAULT_METHOD,
-             memory=DEFAULT_MEMORY, strain_compatible=False, *, collapse_drift_ratio: float | None = 0.10,
+def simulate(building: ShearBuilding, ground_motion: GroundMotion, dt: float | None = None,
+             method: str | Discretisation = DEFAULT_METHOD, memory: str | FastMemory = DEFAULT_MEMORY,
+             strain_compatible: bool | StrainCompatibleOptions = False, *, collapse_drift_ratio: float | None = 0.10,
              free_vibration: float = 0.0, newton: NewtonRaphson | None = None) -> SimulationResult:
     """Integrate ``building`` under ``ground_motion`` (a :class:`~vdw_frames.GroundMotion`, mm/s^2).
 
@@ -51,8 +55,8 @@ def simulate(building: ShearBuilding, ground_motion: GroundMotion, dt: float | N
     (``UserWarning``) when a wall's peak strain leaves its ``strain_range``.  Returns a
     :class:`SimulationResult`.
     """
-    options = dict(dt=dt, method=method, memory=memory, collapse_drift_ratio=collapse_drift_ratio,
-                   free_vibration=free_vibration, newton=newton)
+    options: dict[str, Any] = dict(dt=dt, method=method, memory=memory, collapse_drift_ratio=collapse_drift_ratio,
+                                   free_vibration=free_vibration, newton=newton)
     if strain_compatible is not False:
         return strain_compatible_simulation(building, ground_motion, strain_compatible, **options)
     return time_history(building, ground_motion, **options)

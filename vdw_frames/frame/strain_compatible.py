@@ -71,15 +71,24 @@ Units: strain dimensionless (3.0 = 300 %), drift and thickness mm.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .. import _warnings
 from .._validation import finite_array, positive, refuse_non_numbers, whole_number
+from ..element.damper import FDMKDamper
 from ..element.strain_dependent import StrainDependentDamper
+from ..motion.record import GroundMotion
 from .building import ShearBuilding
+from .results import SimulationResult
 from .time_history import time_history
+
+if TYPE_CHECKING:
+    from ..element.wall import Wall
 
 DEFAULT_EFFECTIVE_STRAIN_RATIO = 0.65
 
@@ -104,7 +113,7 @@ class StrainCompatibleOptions:
     tolerance: float = 0.01
     max_iterations: int = 20
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name in ("effective_strain_ratio", "initial_strain", "tolerance"):
             refuse_non_numbers(name, getattr(self, name))
         ratio = positive("effective_strain_ratio", self.effective_strain_ratio)
@@ -120,7 +129,7 @@ class StrainCompatibleOptions:
         object.__setattr__(self, "max_iterations", whole_number("max_iterations", self.max_iterations, 1))
 
 
-def strain_compatible_options(value) -> StrainCompatibleOptions:
+def strain_compatible_options(value: bool | StrainCompatibleOptions) -> StrainCompatibleOptions:
     """``True`` -> the default options; a :class:`StrainCompatibleOptions` -> itself; else ValueError."""
     if value is True:
         return StrainCompatibleOptions()
@@ -129,7 +138,9 @@ def strain_compatible_options(value) -> StrainCompatibleOptions:
     raise ValueError(f"strain_compatible must be True, False or a StrainCompatibleOptions, got {value!r}")
 
 
-def strain_compatible_simulation(building: ShearBuilding, ground_motion, options=True, **simulate_options):
+def strain_compatible_simulation(building: ShearBuilding, ground_motion: GroundMotion,
+                                 options: bool | StrainCompatibleOptions = True,
+                                 **simulate_options: Any) -> SimulationResult:
     """Equivalent-linear analysis of ``building`` under ``ground_motion`` (method: module docstring).
 
     ``options``: ``True`` (defaults) or a :class:`StrainCompatibleOptions`.  ``simulate_options`` go
@@ -157,7 +168,7 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion, options
         final = [wall.at(wall.clamped(s)) if isinstance(wall, StrainDependentDamper) else wall  # clamped: no warning
                  for wall, s in zip(walls, strain, strict=True)]
         # The strain-compatible analysis judges the range itself (effective, not peak, strain).
-        run_walls = [dataclasses.replace(d, strain_range=None) if flag else d
+        run_walls = [dataclasses.replace(d, strain_range=None) if flag and isinstance(d, FDMKDamper) else d
                      for d, flag in zip(final, dependent, strict=True)]
         with _warnings.collect() as caught:  # per thread: safe under run_batch's thread executors
             result = time_history(dataclasses.replace(building, walls=_regroup(building, run_walls)),
@@ -171,7 +182,7 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion, options
         # point; with yielding stories two of them can trade the yielding back and forth) halves its
         # relaxation factor, and recovers it by 1.5x a step while its steps keep their sign -- unless
         # both strains lie beyond the same end of its range, where its parameters do not change.
-        moves = np.array([flag and wall.clamped(e) != wall.clamped(s)
+        moves = np.array([flag and isinstance(wall, StrainDependentDamper) and wall.clamped(e) != wall.clamped(s)
                           for wall, flag, e, s in zip(walls, dependent, effective, strain, strict=True)], dtype=bool)
         reverses = (step * previous_step < 0.0) & moves
         relaxation = np.where(reverses, 0.5 * relaxation, np.minimum(1.0, 1.5 * relaxation))
@@ -192,7 +203,7 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion, options
         strain_iterations=iteration, strain_converged=converged)
 
 
-def energy_weighted_amplitude(strain) -> float:
+def energy_weighted_amplitude(strain: ArrayLike) -> float:
     """The energy-weighted half-cycle amplitude of a strain (or drift) history, in its units.
 
     The history is cut at its extrema (from its first sample) into half-cycles of amplitude
@@ -210,18 +221,20 @@ def energy_weighted_amplitude(strain) -> float:
     return float(np.sqrt(np.sum(amplitude**4) / np.sum(amplitude**2)))
 
 
-def _initial_strain(wall: StrainDependentDamper, initial) -> float:
+def _initial_strain(wall: StrainDependentDamper, initial: float | None) -> float:
     low, high = wall.strain_range
     return float(np.sqrt(low * high)) if initial is None else wall.clamped(initial)
 
 
-def _regroup(building: ShearBuilding, walls) -> dict:
+def _regroup(building: ShearBuilding,
+             walls: Iterable[Wall | StrainDependentDamper]) -> dict[int, tuple[Wall | StrainDependentDamper, ...]]:
     """{story: walls} in ``building.walls``' layout from one wall per entry of ``building.wall_list``."""
-    walls = iter(walls)
-    return {story: tuple(next(walls) for _ in group) for story, group in building.walls.items()}
+    remaining = iter(walls)
+    return {story: tuple(next(remaining) for _ in group) for story, group in building.walls.items()}
 
 
-def _warn_clamped(building, walls, strain, peak) -> None:
+def _warn_clamped(building: ShearBuilding, walls: Sequence[Wall | StrainDependentDamper], strain: np.ndarray,
+                  peak: np.ndarray) -> None:
     outside = []
     for index, ((story, _), wall, effective, reached) in enumerate(zip(building.wall_list, walls, strain, peak,
                                                                        strict=True)):

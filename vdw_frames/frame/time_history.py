@@ -11,6 +11,8 @@ Units: N, mm, s, tonne.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
@@ -18,16 +20,21 @@ from .. import _warnings
 from .._validation import SIMULATION_STEP_RANGE, check_memory, non_negative, positive, require_finite, show
 from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy
-from ..element.fractional import DEFAULT_METHOD, get_method
+from ..element.fast_memory import FastMemory
+from ..element.fractional import DEFAULT_METHOD, Discretisation, get_method
 from ..motion.record import GroundMotion
 from .building import ShearBuilding, require_fixed_walls
 from .hysteresis import story_arrays
 from .integrator import COLLAPSED, ENERGIES, FAILED, FrameArrays, Histories, NewtonRaphson, WallArrays, integrate
 from .results import SimulationResult, energy_history
 
+if TYPE_CHECKING:
+    from ..element.wall import Wall
+
 
 def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float | None = None,
-                 method=DEFAULT_METHOD, memory=DEFAULT_MEMORY, *, collapse_drift_ratio: float | None = 0.10,
+                 method: str | Discretisation = DEFAULT_METHOD, memory: str | FastMemory = DEFAULT_MEMORY, *,
+                 collapse_drift_ratio: float | None = 0.10,
                  free_vibration: float = 0.0, newton: NewtonRaphson | None = None) -> SimulationResult:
     """Integrate ``building`` (walls with fixed parameters) under ``ground_motion`` (mm/s^2).
 
@@ -55,7 +62,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     dt = ground_motion.dt / substeps
     rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0
     steps, floors = (ground_motion.acceleration.size - 1) * substeps + 1 + rest, building.stories
-    walls = building.wall_list
+    walls = cast("list[tuple[int, Wall]]", building.wall_list)  # fixed walls only (checked above)
     # Response and result histories (about 14 per floor), each wall's force, strain and exact memory,
     # energies: float64 a step.
     check_memory(f"simulate (dt = {dt!r} s, {floors} floors, {len(walls)} walls)", steps,
@@ -65,7 +72,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         ground = np.concatenate([ground, np.zeros(rest)])
 
     groups, group_of_wall = group_walls(walls)
-    bank = WallBank([wall for _, wall in groups], dt, steps, method, memory)
+    bank = WallBank(tuple(wall for _, wall in groups), dt, steps, method, memory)
     followed = steps if bank.arrays.followed else 0
     heights = np.asarray(building.story_heights) if building.story_heights is not None else np.ones(floors)
     collapse_ratio = collapse_drift_ratio if (collapse_drift_ratio and building.story_heights) else 0.0
@@ -121,16 +128,16 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
 
 def _warn_temperature_range(groups, bank: WallBank, dt: float) -> None:
     """One warning naming every wall group whose temperature left its shift law's range, and when."""
-    outside, temperature = bank.state(kernel.OUTSIDE), bank.state(kernel.TEMPERATURE)
+    first, temperature = bank.state(kernel.OUTSIDE), bank.state(kernel.TEMPERATURE)
     low, high = bank.state(kernel.T_LOW), bank.state(kernel.T_HIGH)
-    outside = [f"story {story} at t = {outside[g] * dt:.4g} s ({temperature[g]:.1f} degC at the end; "
-               f"range {low[g]:g} ... {high[g]:g} degC)" for g, (story, _) in enumerate(groups) if outside[g] >= 0]
+    outside = [f"story {story} at t = {first[g] * dt:.4g} s ({temperature[g]:.1f} degC at the end; "
+               f"range {low[g]:g} ... {high[g]:g} degC)" for g, (story, _) in enumerate(groups) if first[g] >= 0]
     if outside:
         _warnings.warn("wall temperature outside its shift law's range (the law is evaluated at the nearest end of "
                        "the range): " + "; ".join(outside), UserWarning, stacklevel=4)
 
 
-def _warn_strain_range(walls, peak_wall_strain) -> None:
+def _warn_strain_range(walls: Sequence[tuple[int, Wall]], peak_wall_strain: np.ndarray) -> None:
     outside = []
     for index, (story, wall) in enumerate(walls):
         if wall.strain_range is None:

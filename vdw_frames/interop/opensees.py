@@ -60,12 +60,19 @@ model must use N, mm, s too (and tonne for masses), the package's units.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 
 from .._validation import positive, whole_number
 from ..element.bank import DEFAULT_MEMORY, WallBank, kernel_constants, memory_strategy
-from ..element.fractional import DEFAULT_METHOD, get_method
+from ..element.fast_memory import FastMemory
+from ..element.fractional import DEFAULT_METHOD, Discretisation, get_method
 from ..element.prony import PronySeries
+
+if TYPE_CHECKING:
+    from ..element.wall import Wall
 
 __all__ = ["WallBridge", "opensees_module", "prony_material"]
 
@@ -80,7 +87,7 @@ _COMMANDS = ("analyze", "algorithm", "element", "uniaxialMaterial", "parameter",
              "getNDM", "getNDF", "timeSeries", "pattern", "getLoadFactor", "remove")
 
 
-def opensees_module(ops=None):
+def opensees_module(ops: Any = None) -> Any:
     """The OpenSeesPy module to drive: ``ops`` itself (checked), or ``openseespy.opensees`` imported now.
 
     ImportError with the way to install it when OpenSeesPy is missing; ValueError when ``ops`` lacks
@@ -88,10 +95,11 @@ def opensees_module(ops=None):
     """
     if ops is None:
         try:
-            import openseespy.opensees as ops
+            import openseespy.opensees as opensees
         except ImportError as error:
             raise ImportError(f"vdw_frames.opensees needs OpenSeesPy ({error}): pip install 'vdw-frames[opensees]' "
                               "(on Debian/Ubuntu it also needs the libblas3 and liblapack3 packages)") from error
+        ops = opensees
     missing = [name for name in _COMMANDS if not callable(getattr(ops, name, None))]
     if missing:
         raise ValueError(f"ops must be the openseespy.opensees module (OpenSeesPy >= 3.5); "
@@ -99,7 +107,7 @@ def opensees_module(ops=None):
     return ops
 
 
-def _algorithm(spec, name):
+def _algorithm(spec: str | Sequence[Any], name: str) -> tuple[Any, ...]:
     """An ``ops.algorithm`` call's arguments from a name or a sequence of arguments."""
     if isinstance(spec, str):
         spec = (spec,)
@@ -108,7 +116,7 @@ def _algorithm(spec, name):
     return tuple(spec)
 
 
-def _direction(ndm, ndf, dof):
+def _direction(ndm: int, ndf: int, dof: int) -> int:
     """The zeroLength direction (1-6) acting on node dof ``dof`` (ZeroLength.cpp ``setTran1d``)."""
     if ndm == 2 and ndf == 3 and dof == 3:
         return 6  # the in-plane rotation is the rotation about z
@@ -156,8 +164,9 @@ class WallBridge:
     walls' full force (``eleResponse(tag, "force")``, element recorders on ``bridge.element_tags``).
     """
 
-    def __init__(self, ops, dt: float, method=DEFAULT_METHOD, memory=DEFAULT_MEMORY, *, fallback_algorithms=(),
-                 algorithm=None, tags: int | None = None):
+    def __init__(self, ops: Any, dt: float, method: str | Discretisation = DEFAULT_METHOD,
+                 memory: str | FastMemory = DEFAULT_MEMORY, *, fallback_algorithms: str | Sequence[Any] = (),
+                 algorithm: str | Sequence[Any] | None = None, tags: int | None = None) -> None:
         self.ops = opensees_module(ops)
         self.dt = positive("dt", dt)
         self.method = get_method(method)
@@ -174,25 +183,25 @@ class WallBridge:
         self._next_tag = None if tags is None else whole_number("tags", tags, 1)
         self.tags: dict[str, list[int]] = {"material": [], "element": [], "parameter": [], "time_series": [],
                                            "pattern": []}
-        self._walls = []  # (node_i, node_j, dof, damper)
-        self._tangent = []  # K_t of every wall's element, N/mm
-        self._reference = []  # u_j - u_i when the wall was added, mm
+        self._walls: list[tuple[int, int, int, Wall]] = []  # (node_i, node_j, dof, damper)
+        self._tangent: list[float] = []  # K_t of every wall's element, N/mm
+        self._reference: list[float] = []  # u_j - u_i when the wall was added, mm
         self.bank: WallBank | None = None
         self.failed_step: int | None = None
         self.fallback_steps: list[int] = []
-        self._rows: list[tuple] = []
-        self._time = None  # the domain time after the last committed step, s
-        self._refused = None
+        self._rows: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+        self._time: float | None = None  # the domain time after the last committed step, s
+        self._refused: str | None = None
         self._identified = False
         self._identifying_steps = 0
-        self._probe = None
+        self._probe: int | None = None
 
     # ------------------------------------------------------------------ set-up
     def __len__(self) -> int:
         return len(self._walls)
 
     @property
-    def walls(self) -> tuple:
+    def walls(self) -> tuple[tuple[int, int, int, Wall], ...]:
         """(node_i, node_j, dof, damper) of every wall, in order."""
         return tuple(self._walls)
 
@@ -201,7 +210,7 @@ class WallBridge:
         """The walls' zeroLength element tags, in wall order (for recorders)."""
         return list(self.tags["element"])
 
-    def _claim(self, kind, create):
+    def _claim(self, kind: str, create: Callable[[int], object]) -> int:
         """Create an OpenSees object with the next free tag: ``create(tag)``; returns the tag.
 
         Element, parameter and pattern tags in use are skipped (OpenSees lists them); material and time
@@ -240,7 +249,7 @@ class WallBridge:
         created = [tag for tags in self.tags.values() for tag in tags]
         return min(created, default=self._next_tag)
 
-    def add_wall(self, node_i: int, node_j: int, dof: int, damper) -> int:
+    def add_wall(self, node_i: int, node_j: int, dof: int, damper: Wall) -> int:
         """Add a wall between existing nodes ``node_i`` and ``node_j``; returns its index.
 
         The wall's deformation is u_j - u_i (mm) in node degree of freedom ``dof`` (1-based, a translation
@@ -324,7 +333,7 @@ class WallBridge:
         if not self._walls:
             raise ValueError("add at least one wall (add_wall) before analyze()")
         capacity = 0 if self._strategy is not None else max(steps, 1)
-        bank = WallBank([wall for *_, wall in self._walls], self.dt, capacity, self.method, self.memory)
+        bank = WallBank(tuple(wall for *_, wall in self._walls), self.dt, capacity, self.method, self.memory)
         if not np.array_equal(bank.tangent, self._tangent):
             raise RuntimeError("internal error: the walls' elements and memory disagree on K_t")
         self.bank = bank
@@ -351,8 +360,9 @@ class WallBridge:
                          "t_n + alpha dt and are refused.  Rebuild the analysis and the bridge.")
         raise ValueError(self._refused)
 
-    def _check_time(self):
+    def _check_time(self) -> float:
         time = self.ops.getTime()
+        assert self._time is not None  # set by _start
         expected = self._time + self.dt
         if abs(time - expected) > 1e-9 * self.dt + 4e-16 * abs(expected):
             self._refuse(f"the step moved the domain time from {self._time!r} s to {time!r} s, not by dt = "
@@ -399,6 +409,7 @@ class WallBridge:
     def _retry(self):
         """The failed step again with each fallback algorithm; the analysis's own algorithm set back."""
         ops = self.ops
+        assert self.algorithm is not None  # required with fallback algorithms (checked in __init__)
         for spec in self.fallback_algorithms:
             ops.algorithm(*spec)
             status = ops.analyze(1, self.dt)
@@ -422,10 +433,13 @@ class WallBridge:
         ops = self.ops
         if self.bank is None:
             self._start(steps)
-        elif abs(ops.getTime() - self._time) > 1e-9 * self.dt + 4e-16 * abs(self._time):
-            raise ValueError(f"the domain time is {ops.getTime()!r} s, not {self._time!r} s where the bridge left it: "
-                             "step the analysis only through bridge.analyze()")
+        else:
+            assert self._time is not None  # set by _start, and after every step
+            if abs(ops.getTime() - self._time) > 1e-9 * self.dt + 4e-16 * abs(self._time):
+                raise ValueError(f"the domain time is {ops.getTime()!r} s, not {self._time!r} s where the bridge left "
+                                 "it: step the analysis only through bridge.analyze()")
         bank = self.bank
+        assert bank is not None  # _start built it
         bank.reserve(steps)  # an exact memory grows; a fast one refuses steps past its horizon
         self.failed_step = None
         count = len(self._walls)
@@ -465,12 +479,12 @@ class WallBridge:
         return status
 
 
-def _first(value):
+def _first(value: Any) -> Any:
     """OpenSeesPy returns some scalars as one-element lists."""
     return value[0] if isinstance(value, (list, tuple)) else value
 
 
-def prony_material(ops, tag: int, prony: PronySeries) -> int:
+def prony_material(ops: Any, tag: int, prony: PronySeries) -> int:
     """Build ``prony`` as a native OpenSees uniaxial material; returns ``tag``.
 
     ``uniaxialMaterial Parallel tag`` of ``Elastic`` k_0 (tag + 1; omitted when k_0 = 0) and one ``Maxwell``
@@ -490,7 +504,7 @@ def prony_material(ops, tag: int, prony: PronySeries) -> int:
     tag = whole_number("tag", tag, 1)
     components = []
     next_tag = tag + 1
-    commands = []
+    commands: list[tuple[str | float, ...]] = []
     if prony.equilibrium_stiffness > 0.0:
         commands.append(("Elastic", prony.equilibrium_stiffness))
     commands += [("Maxwell", float(k), float(c), 1.0, 1.0) for k, c in prony.branches]
@@ -502,7 +516,7 @@ def prony_material(ops, tag: int, prony: PronySeries) -> int:
     return tag
 
 
-def _material(ops, kind, tag, *arguments):
+def _material(ops: Any, kind: str | float, tag: int, *arguments: str | float | int) -> None:
     try:
         ops.uniaxialMaterial(kind, tag, *arguments)
     except Exception as error:  # OpenSeesError

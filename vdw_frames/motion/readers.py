@@ -13,6 +13,7 @@ is never a guess).  Gzip, zip, UTF-16 and other binary files get a message that 
 
 from __future__ import annotations
 
+import os
 import re
 from collections.abc import Sequence
 from itertools import pairwise
@@ -41,7 +42,7 @@ _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:([EeDd])([+-]?)(\d+))?")
 _CONTROL = re.compile(r"[\x00-\x1f\x7f]")
 
 
-def _record_lines(path, what: str) -> tuple[Path, list[str]]:
+def _record_lines(path: str | os.PathLike[str], what: str) -> tuple[Path, list[str]]:
     """The file's lines (a trailing DOS ^Z and blank lines dropped); header bytes that are not UTF-8
     (e.g. a Latin-1 station name) are replaced, since only numbers are read from the file."""
     path, text = read_text(path, what, strict=False)
@@ -102,7 +103,7 @@ def _to_mm_s2(values: np.ndarray, factor: float, unit: str, line_numbers: list[i
     return converted
 
 
-def read_at2(path) -> GroundMotion:
+def read_at2(path: str | os.PathLike[str]) -> GroundMotion:
     """Read a PEER ``.AT2`` acceleration file (values in g) into a :class:`GroundMotion` (mm/s^2, s).
 
     The header is free text; the count line is the first line (among the first 10 non-blank ones) that
@@ -138,6 +139,7 @@ def read_at2(path) -> GroundMotion:
         dt = _dt(dt_match.group(1), path, count_line_number)
     else:
         legacy = _LEGACY_COUNT.match(count_line)
+        assert legacy is not None  # the count line is a keyword line or a legacy one
         npts = _npts(legacy.group(1), path, count_line_number)
         dt = _dt(legacy.group(2), path, count_line_number)
     tokens, line_numbers = [], []
@@ -158,7 +160,7 @@ def read_at2(path) -> GroundMotion:
     return _motion(_to_mm_s2(values, G, "g", line_numbers, path), dt, path.stem, path)
 
 
-def _motion(acceleration, dt, name, path) -> GroundMotion:
+def _motion(acceleration: np.ndarray, dt: float, name: str, path: Path) -> GroundMotion:
     try:
         return GroundMotion(acceleration, dt, name)
     except ValueError as error:  # e.g. a single sample
@@ -174,14 +176,16 @@ def _npts(text: str, path: Path, line: int) -> int:
 def _dt(text: str, path: Path, line: int) -> float:
     """DT from its text: a number, optionally followed by a unit word (``.0050SEC``)."""
     match = _NUMBER.match(text)
-    unit = text[match.end():] if match else None
-    dt = float(_number_texts(match.group(0))[0]) if match and (unit == "" or unit.isalpha()) else float("nan")
+    numbers = _number_texts(match.group(0)) if match else None
+    unit = text[match.end():] if match else ""
+    dt = float(numbers[0]) if numbers and (unit == "" or unit.isalpha()) else float("nan")
     if not (np.isfinite(dt) and dt > 0.0):
         raise ValueError(f"{path}: DT must be a positive number of seconds, got {text!r} on line {line}")
     return dt
 
 
-def read_two_column(path, unit: str = "g", *, skip_rows: int = 0, name: str | None = None) -> GroundMotion:
+def read_two_column(path: str | os.PathLike[str], unit: str = "g", *, skip_rows: int = 0,
+                    name: str | None = None) -> GroundMotion:
     """Read a (time s, acceleration ``unit``) text file into a :class:`GroundMotion` (mm/s^2, s).
 
     ``unit`` is one of ``"g"``, ``"mm/s2"``, ``"cm/s2"``, ``"m/s2"``.  Columns are separated by
@@ -206,7 +210,7 @@ def read_two_column(path, unit: str = "g", *, skip_rows: int = 0, name: str | No
         if len(words) != 2:  # maybe values written without a separator
             split = [_number_texts(word) for word in words]
             if all(split):
-                words = [text for texts in split for text in texts]
+                words = [text for texts in split if texts is not None for text in texts]
         if len(words) != 2:
             raise ValueError(f"{path}: line {number} has {len(words)} values, expected 2 (time, acceleration)")
         tokens.extend(words)
@@ -229,7 +233,7 @@ def read_two_column(path, unit: str = "g", *, skip_rows: int = 0, name: str | No
     return _motion(acceleration, float(dt), path.stem if name is None else name, path)
 
 
-def write_at2(motion: GroundMotion, path, header: str | Sequence[str] = ()) -> Path:
+def write_at2(motion: GroundMotion, path: str | os.PathLike[str], header: str | Sequence[str] = ()) -> Path:
     """Write ``motion`` (mm/s^2) as a PEER-layout ``.AT2`` file in g; returns the path.
 
     Layout: up to two free-text ``header`` lines (padded with ``GROUND MOTION <name>``), then

@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._validation import check_memory, finite_array, finite_scalar, non_negative, positive, show, whole_number
 from .spectrum import spectral_accelerations
@@ -35,7 +36,7 @@ class GroundMotion:
     dt: float
     name: str = ""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         acceleration = finite_array("acceleration", self.acceleration).copy()
         if acceleration.size < 2:
             raise ValueError(f"acceleration must hold at least 2 samples, got {acceleration.size}")
@@ -92,7 +93,7 @@ class GroundMotion:
         """A new record scaled so that Sa(``period`` s, ``damping_ratio``) is ``target`` mm/s^2."""
         return self.scaled(self.scale_factor_to_spectral_acceleration(target, period, damping_ratio))
 
-    def spectrum(self, periods, damping_ratio: float = 0.05) -> np.ndarray:
+    def spectrum(self, periods: ArrayLike, damping_ratio: float = 0.05) -> np.ndarray:
         """Pseudo-acceleration spectrum Sa (mm/s^2) at ``periods`` (s; 0 gives the PGA) and ``damping_ratio``
         (fraction of critical): :func:`vdw_frames.motion.spectrum.response_spectrum` of this record."""
         return spectral_accelerations(self.acceleration, self.dt, periods, damping_ratio)
@@ -129,7 +130,7 @@ class GroundMotion:
         self._check_memory(dt, substeps)
         return GroundMotion(self.interpolated(substeps), self.dt / substeps, self.name)
 
-    def substeps(self, dt) -> int:
+    def substeps(self, dt: float) -> int:
         """The whole number ``m`` of steps of ``dt`` s in one record step (see :meth:`acceleration_at`);
         ValueError for a ``dt`` that is larger or does not divide the record step.  The step to
         integrate with is ``self.dt / m`` (``dt`` within 1e-6 relative)."""

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._jit import njit
 from .._validation import damping_ratio as _damping_ratio
@@ -66,7 +67,8 @@ def _peak_displacements(acceleration, dt, omegas, zeta):
     return peaks
 
 
-def response_spectrum(acceleration, dt: float, periods, damping_ratio: float = 0.05) -> np.ndarray:
+def response_spectrum(acceleration: ArrayLike, dt: float, periods: ArrayLike,
+                      damping_ratio: float = 0.05) -> np.ndarray:
     """Linear elastic pseudo-acceleration spectrum Sa = omega^2 max|u| (mm/s^2) of a ground acceleration.
 
     ``acceleration`` (mm/s^2, 1-D, finite) sampled every ``dt`` s; ``periods`` s (scalar or array; the
@@ -83,7 +85,8 @@ def response_spectrum(acceleration, dt: float, periods, damping_ratio: float = 0
     return spectral_accelerations(acceleration, positive("dt", dt), periods, damping_ratio)
 
 
-def spectral_accelerations(acceleration: np.ndarray, dt: float, periods, damping_ratio: float = 0.05) -> np.ndarray:
+def spectral_accelerations(acceleration: np.ndarray, dt: float, periods: ArrayLike,
+                           damping_ratio: float = 0.05) -> np.ndarray:
     """:func:`response_spectrum` of an acceleration array already checked (1-D, finite, mm/s^2)."""
     periods = finite_array("periods", periods, ndim=None)
     if (periods < 0.0).any():

@@ -9,6 +9,7 @@ from importlib import resources
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._validation import check_memory, finite_array, finite_scalar, non_negative, positive, show
 from .._validation import damping_ratio as _damping_ratio
@@ -22,17 +23,18 @@ DEFAULT_RECORD = "synthetic_kt_035g.AT2"
 def default_record_path() -> Path:
     """Path of the shipped synthetic record ``synthetic_kt_035g.AT2`` (0.35 g, 25 s at 0.01 s, in g;
     read it with :func:`~vdw_frames.read_at2`).  It is package data, found with ``importlib.resources``."""
-    return Path(str(resources.files(__package__).joinpath("data", DEFAULT_RECORD)))
+    # One name a joinpath: Python 3.10's Traversable takes one (several only from 3.11).
+    return Path(str(resources.files(__package__).joinpath("data").joinpath(DEFAULT_RECORD)))
 
 
-def default_record():
+def default_record() -> GroundMotion:
     """The shipped synthetic record as a :class:`GroundMotion` (mm/s^2)."""
     from .readers import read_at2
 
     return read_at2(default_record_path())
 
 
-def jennings_envelope(time, rise_time: float, strong_motion_end: float, decay_rate: float) -> np.ndarray:
+def jennings_envelope(time: ArrayLike, rise_time: float, strong_motion_end: float, decay_rate: float) -> np.ndarray:
     """The Jennings, Housner & Tsai (1968) envelope (dimensionless, peak 1) at ``time`` s:
     (t / rise_time)^2 up to ``rise_time`` s, 1 up to ``strong_motion_end`` s, then
     exp(-``decay_rate`` (t - strong_motion_end)) with ``decay_rate`` 1/s (>= 0)."""
@@ -46,7 +48,7 @@ def jennings_envelope(time, rise_time: float, strong_motion_end: float, decay_ra
     return rising * np.exp(-decay_rate * np.clip(time - strong_motion_end, 0.0, None))
 
 
-def _filtered(excitation, dt, frequency, damping_ratio):
+def _filtered(excitation: np.ndarray, dt: float, frequency: float, damping_ratio: float) -> np.ndarray:
     """Absolute acceleration of an SDOF (``frequency`` Hz, ``damping_ratio``) on a base moving with
     ``excitation`` mm/s^2: -(2 zeta omega u' + omega^2 u)."""
     omega = 2.0 * np.pi * frequency

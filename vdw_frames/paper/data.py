@@ -68,8 +68,11 @@ over the whole range, for strain-compatible analyses: :func:`vdw_frames.paper.st
 from __future__ import annotations
 
 from collections import namedtuple
+from collections.abc import Sequence
+from typing import TypedDict
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..element.damper import FDMKDamper
 
@@ -89,13 +92,14 @@ COLUMN_UNITS = {
 }
 
 
-def _frozen(values):
+def _frozen(values: ArrayLike) -> np.ndarray:
     array = np.array(values, dtype=float)
     array.flags.writeable = False
     return array
 
 
-def _table(storage, loss, factor, storage_k, loss_k, damping):
+def _table(storage: Sequence[float], loss: Sequence[float], factor: Sequence[float], storage_k: Sequence[float],
+           loss_k: Sequence[float], damping: Sequence[float]) -> dict[str, np.ndarray]:
     columns = zip(COLUMN_UNITS, (storage, loss, factor, storage_k, loss_k, damping), strict=True)
     return {name: _frozen(values) for name, values in columns}
 
@@ -112,7 +116,17 @@ TABLES = {
                 [0.29, 0.29, 0.32, 0.33, 0.34, 0.36], [0.58, 0.19, 0.21, 0.17, 0.16, 0.11]),
 }
 
-TABLE4 = {"G1": 8.69, "G2": 3.58, "eta1": 0.75, "eta2": 0.98, "r": 0.60}  # MPa, MPa, MPa*s^r, MPa*s^r, -
+class _Parameters(TypedDict):
+    """FDMK parameters by name: G1, G2 (MPa), eta1, eta2 (MPa*s^r), r (-)."""
+
+    G1: float
+    G2: float
+    eta1: float
+    eta2: float
+    r: float
+
+
+TABLE4: _Parameters = {"G1": 8.69, "G2": 3.58, "eta1": 0.75, "eta2": 0.98, "r": 0.60}  # MPa, MPa, MPa*s^r, MPa*s^r, -
 
 Table5Row = namedtuple("Table5Row", "frequency strain theoretical experimental delta")
 Table5Row.__doc__ = "One row of Table 5: Hz, %, kN*mm, kN*mm, % (Delta of eq. (13), as printed)."
@@ -126,13 +140,13 @@ TABLE5 = (
 )
 
 
-def table_moduli(strain):
+def table_moduli(strain: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(FREQUENCIES in Hz, G' in MPa, G'' in MPa) of the table for ``strain`` (225, 300 or 450 %)."""
     table = TABLES[_strain_key(strain)]
     return FREQUENCIES, table["storage_modulus"], table["loss_modulus"]
 
 
-def _strain_key(strain) -> int:
+def _strain_key(strain: float) -> int:
     for key in STRAINS:
         try:
             if float(strain) == key:
@@ -163,7 +177,7 @@ FIT_QUALITY = {  # relative SSE, max |relative error| of G' and of G'' over the 
 FIT_RANGE = {225: (225.0, 262.5), 300: (262.5, 375.0), 450: (375.0, 450.0)}  # shear strain, %
 
 
-def fitted(strain, area: float = AREA, thickness: float = THICKNESS) -> FDMKDamper:
+def fitted(strain: float, area: float = AREA, thickness: float = THICKNESS) -> FDMKDamper:
     """The recommended FDMK damper for the paper's strain level ``strain`` (225, 300 or 450 %).
 
     Parameters from ``FITTED``: the global minimum of objective (12) with relative residuals,
@@ -176,11 +190,13 @@ def fitted(strain, area: float = AREA, thickness: float = THICKNESS) -> FDMKDamp
     """
     key = _strain_key(strain)
     low, high = FIT_RANGE[key]
-    return FDMKDamper(**FITTED[key], area=area, thickness=thickness, strain_range=(low / 100.0, high / 100.0))
+    p = FITTED[key]
+    return FDMKDamper(G1=p["G1"], G2=p["G2"], eta1=p["eta1"], eta2=p["eta2"], r=p["r"], area=area, thickness=thickness,
+                      strain_range=(low / 100.0, high / 100.0))
 
 
 # ------------------------------------------------------------ the printed closed forms: NOT the model
-def printed_eq7_modulus(omega, G1, G2, eta1, eta2, r):
+def printed_eq7_modulus(omega: ArrayLike, G1: float, G2: float, eta1: float, eta2: float, r: float) -> np.ndarray:
     """sigma~/eps~ of the printed eq. (7) (= eq. (6b) with D^r -> (i omega)^r), complex, omega in rad/s.
 
     NOT the model: (6b) does not follow from eqs. (3)-(5) (see :mod:`vdw_frames.paper.report`).
@@ -191,7 +207,8 @@ def printed_eq7_modulus(omega, G1, G2, eta1, eta2, r):
     return numerator / denominator
 
 
-def printed_eq8_moduli(omega, G1, G2, eta1, eta2, r):
+def printed_eq8_moduli(omega: ArrayLike, G1: float, G2: float, eta1: float, eta2: float,
+                       r: float) -> tuple[np.ndarray, np.ndarray]:
     """(G', G'') of the printed eq. (8), omega in rad/s.  NOT the model."""
     a = np.asarray(omega, dtype=float) ** r
     c, q = np.cos(r * np.pi / 2), np.sin(r * np.pi / 2)
@@ -200,18 +217,20 @@ def printed_eq8_moduli(omega, G1, G2, eta1, eta2, r):
     return storage, loss
 
 
-def printed_eq9_loss_factor(omega, G1, G2, eta1, eta2, r):
+def printed_eq9_loss_factor(omega: ArrayLike, G1: float, G2: float, eta1: float, eta2: float, r: float) -> np.ndarray:
     """The printed eq. (9): G''/G' of eq. (8).  NOT the model."""
     storage, loss = printed_eq8_moduli(omega, G1, G2, eta1, eta2, r)
     return loss / storage
 
 
-def printed_eq10_stiffness(omega, G1, G2, eta1, eta2, r, area=AREA, thickness=THICKNESS):
+def printed_eq10_stiffness(omega: ArrayLike, G1: float, G2: float, eta1: float, eta2: float, r: float,
+                           area: float = AREA, thickness: float = THICKNESS) -> tuple[np.ndarray, np.ndarray]:
     """(K'_d, K''_d) of the printed eq. (10) = eq. (8) * A / h, in N/mm for A in mm^2, h in mm.  NOT the model."""
     storage, loss = printed_eq8_moduli(omega, G1, G2, eta1, eta2, r)
     return storage * area / thickness, loss * area / thickness
 
 
-def printed_eq11_damping_coefficient(omega, G1, G2, eta1, eta2, r, area=AREA, thickness=THICKNESS):
+def printed_eq11_damping_coefficient(omega: ArrayLike, G1: float, G2: float, eta1: float, eta2: float, r: float,
+                                     area: float = AREA, thickness: float = THICKNESS) -> np.ndarray:
     """C_d of the printed eq. (11) = K''_d(10) / omega, in N*s/mm.  NOT the model."""
     return printed_eq10_stiffness(omega, G1, G2, eta1, eta2, r, area, thickness)[1] / np.asarray(omega, dtype=float)

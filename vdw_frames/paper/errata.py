@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -20,8 +21,8 @@ from ..element.sine import sine_test
 from ..element.strain_dependent import PARAMETERS, StrainDependentDamper
 from . import data as paper
 from . import strain_dependence
-from .data import FREQUENCIES, STRAINS, TABLE4, TABLE5, TABLES
-from .identification import identify
+from .data import FREQUENCIES, STRAINS, TABLE4, TABLE5, TABLES, Table5Row
+from .identification import IdentificationResult, identify
 
 N_PER_KN = 1.0e3
 """N per kN: the tables print stiffness in kN/mm and areas in kN*mm."""
@@ -33,18 +34,18 @@ class ParameterSet:
 
     key: str
     label: str
-    dampers: dict  # strain (%) -> FDMKDamper
-    results: dict  # strain (%) -> IdentificationResult, or {} for Table 4
+    dampers: dict[int, FDMKDamper]  # strain (%) -> FDMKDamper
+    results: dict[int, IdentificationResult]  # strain (%) -> IdentificationResult, or {} for Table 4
 
 
-def _pooled():
+def _pooled() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     frequency = np.concatenate([FREQUENCIES for _ in STRAINS])
     storage = np.concatenate([TABLES[s]["storage_modulus"] for s in STRAINS])
     loss = np.concatenate([TABLES[s]["loss_modulus"] for s in STRAINS])
     return frequency, storage, loss
 
 
-def parameter_sets() -> list:
+def parameter_sets() -> list[ParameterSet]:
     """Table 4 and this package's fits: per strain (both objectives), r fixed at 0.60, all strains pooled."""
     sets = [ParameterSet("table4", "Table 4 (paper)", {s: FDMKDamper(**TABLE4) for s in STRAINS}, {})]
     for residual in ("relative", "absolute"):
@@ -62,7 +63,7 @@ def parameter_sets() -> list:
     return sets
 
 
-def fit_measures(damper, strain):
+def fit_measures(damper: FDMKDamper, strain: float) -> tuple[float, float, float, float]:
     """(absolute SSE, relative SSE, max |rel err| G', max |rel err| G'') of ``damper`` on one table."""
     _, storage, loss = paper.table_moduli(strain)
     modulus = damper.complex_modulus(FREQUENCIES)
@@ -82,11 +83,11 @@ class Table5Candidate:
     method: str
     frequency_domain: np.ndarray | None = None  # pi K'' U^2 of the same damper (kN*mm), time-domain candidates only
 
-    def deviation(self):
+    def deviation(self) -> np.ndarray:
         """(candidate - printed theoretical) / printed theoretical, per row."""
         return self.areas / np.array([row.theoretical for row in TABLE5]) - 1.0
 
-    def delta(self):
+    def delta(self) -> np.ndarray:
         """Delta of eq. (13) against the printed experimental areas, per row (fraction)."""
         experimental = np.array([row.experimental for row in TABLE5])
         return np.abs(experimental - self.areas) / experimental
@@ -98,7 +99,7 @@ def table_scale() -> float:
     return float(np.median(np.concatenate(ratios)))
 
 
-def table5_candidates(sets=None) -> list:
+def table5_candidates(sets: list[ParameterSet] | None = None) -> list[Table5Candidate]:
     """Every candidate definition of Table 5's theoretical areas, computed (see the report)."""
     sets = parameter_sets() if sets is None else sets
     by_key = {s.key: s for s in sets}
@@ -137,15 +138,15 @@ def table5_candidates(sets=None) -> list:
     return candidates
 
 
-def table_row(row, column):
+def table_row(row: Table5Row, column: str) -> float:
     return float(TABLES[row.strain][column][list(FREQUENCIES).index(row.frequency)])
 
 
-def errata() -> dict:
+def errata() -> dict[str, Any]:
     """Every number of the report's errata section (keys documented inline)."""
     omega = 2 * np.pi * FREQUENCIES
     table4 = FDMKDamper(**TABLE4)
-    out = {"frequency": FREQUENCIES, "omega": omega}
+    out: dict[str, Any] = {"frequency": FREQUENCIES, "omega": omega}
     out["model_table4"] = table4.complex_modulus(FREQUENCIES)  # correct model, MPa
     out["eq7_table4"] = paper.printed_eq7_modulus(omega, **TABLE4)  # printed (7), "MPa"
     out["eq8_table4"] = np.array(paper.printed_eq8_moduli(omega, **TABLE4))  # printed (8): rows G', G''
@@ -237,10 +238,11 @@ def _min_storage_step(count: int) -> float:
 def interpolated_optima() -> StrainDependentDamper:
     """The per-strain optima (``FITTED``) interpolated linearly in log strain: the naive family (paper A, h)."""
     return StrainDependentDamper(tuple(s / 100.0 for s in STRAINS),
-                                 **{name: tuple(paper.FITTED[s][name] for s in STRAINS) for name in PARAMETERS})
+                                 **{name: tuple(paper.FITTED[s][name] for s in STRAINS) for name in PARAMETERS},
+                                 area=paper.AREA, thickness=paper.THICKNESS)
 
 
-def strain_dependence_numbers() -> dict:
+def strain_dependence_numbers() -> dict[str, np.ndarray]:
     """The numbers of the report's strain-dependence section.
 
     ``strains`` (%): the joint fit's strains; ``best``: the best FDMK relative objective at each (on the
@@ -250,7 +252,7 @@ def strain_dependence_numbers() -> dict:
     model, naive = strain_dependence.strain_dependent(), interpolated_optima()
     strains = strain_dependence.identification_strains()
 
-    def objective(wall, strain):
+    def objective(wall: StrainDependentDamper, strain: float) -> float:
         errors = strain_dependence.relative_errors(wall.complex_modulus(FREQUENCIES, strain / 100.0), strain)
         return float(errors @ errors)
 
@@ -263,6 +265,6 @@ def strain_dependence_numbers() -> dict:
     }
 
 
-def fixed_sets(strain):
+def fixed_sets(strain: float) -> list[int]:
     """The per-strain set(s) whose FIT_RANGE holds ``strain`` (%): one, or two at a boundary."""
     return [key for key, (low, high) in paper.FIT_RANGE.items() if low <= strain <= high]

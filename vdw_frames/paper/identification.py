@@ -44,6 +44,7 @@ import itertools
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.optimize import least_squares
 
 from .._validation import finite_array, finite_scalar, show
@@ -85,37 +86,40 @@ class IdentificationResult:
     frequency, storage_modulus, loss_modulus : the data (Hz, MPa, MPa).
     """
 
-    params: dict
+    params: dict[str, float]
     sse: float
     residuals: np.ndarray
-    at_bound: tuple
-    standard_errors: dict
+    at_bound: tuple[str, ...]
+    standard_errors: dict[str, float | None]
     residual: str
-    fixed: dict
+    fixed: dict[str, float]
     frequency: np.ndarray = field(repr=False)
     storage_modulus: np.ndarray = field(repr=False)
     loss_modulus: np.ndarray = field(repr=False)
 
-    def damper(self, area: float = 1.0e6, thickness: float = 10.0, strain_range=None) -> FDMKDamper:
+    def damper(self, area: float = 1.0e6, thickness: float = 10.0,
+               strain_range: tuple[float, float] | None = None) -> FDMKDamper:
         """The identified damper with shear area ``area`` (mm^2) and layer thickness ``thickness`` (mm).
 
         Defaults are the paper's A = 1e6 mm^2 and h = 10 mm.
         """
-        return FDMKDamper(**self.params, area=area, thickness=thickness, strain_range=strain_range)
+        p = self.params
+        return FDMKDamper(G1=p["G1"], G2=p["G2"], eta1=p["eta1"], eta2=p["eta2"], r=p["r"], area=area,
+                          thickness=thickness, strain_range=strain_range)
 
-    def relative_errors(self):
+    def relative_errors(self) -> tuple[np.ndarray, np.ndarray]:
         """(model - test) / test for G' and for G'' at every frequency: two arrays."""
         modulus = self.damper().complex_modulus(self.frequency)
         return (modulus.real / self.storage_modulus - 1.0, modulus.imag / self.loss_modulus - 1.0)
 
-    def max_relative_errors(self):
+    def max_relative_errors(self) -> tuple[float, float]:
         """(max |relative error| in G', max |relative error| in G'') over the data."""
         storage, loss = self.relative_errors()
         return float(np.max(np.abs(storage))), float(np.max(np.abs(loss)))
 
 
-def identify(frequency, storage_modulus, loss_modulus, residual: str = "absolute", fixed=None,
-             grid=DEFAULT_GRID) -> IdentificationResult:
+def identify(frequency: ArrayLike, storage_modulus: ArrayLike, loss_modulus: ArrayLike, residual: str = "absolute",
+             fixed: dict[str, float] | None = None, grid: tuple[int, int] = DEFAULT_GRID) -> IdentificationResult:
     """Global least-squares FDMK parameters for measured G' and G'' (objective (12); see module doc).
 
     frequency in Hz (> 0; repeated frequencies allowed, e.g. several strain levels pooled),
@@ -309,13 +313,14 @@ class _Problem:
         n_u = u_values.size
         padded = np.pad(sse, ((0, 0), (1, 1)), constant_values=np.inf)
         is_min = (sse <= padded[:, :-2]) & (sse <= padded[:, 2:])
-        rows, cols = [], []
+        row_list: list[int] = []
+        col_list: list[int] = []
         for i in range(r_values.size):  # the best 3 local minima in u of each row (a plateau counts many)
             js = np.flatnonzero(is_min[i])
             js = js[np.argsort(sse[i, js], kind="stable")][:3]
-            rows.extend([i] * js.size)
-            cols.extend(js)
-        rows, cols = np.array(rows), np.array(cols)
+            row_list.extend([i] * js.size)
+            col_list.extend(js)
+        rows, cols = np.array(row_list), np.array(col_list)
         r = r_values[rows]
         if n_u > 1 and self.searches_lambda:
             low = u_values[np.maximum(cols - 1, 0)]
@@ -328,16 +333,16 @@ class _Problem:
         else:
             u, value = u_values[cols], sse[rows, cols]
         # Per row: distinct refined minima (a plateau in u refines to one value), best first, at most 3.
-        kept = []
+        kept_list: list[np.intp] = []
         for i in np.unique(rows):
             members = np.flatnonzero(rows == i)
             members = members[np.argsort(value[members], kind="stable")]
-            distinct = []
+            distinct: list[np.intp] = []
             for k in members:
                 if all(abs(value[k] - value[m]) > 1e-9 * max(value[m], 1e-300) for m in distinct):
                     distinct.append(k)
-            kept.extend(distinct[:3])
-        kept = np.array(kept)
+            kept_list.extend(distinct[:3])
+        kept = np.array(kept_list)
         best = float(value[kept].min())
         band = kept[value[kept] <= best * (1.0 + START_BAND) + 1e-300]
         band = band[np.argsort(r[band], kind="stable")]
@@ -414,7 +419,7 @@ class _Problem:
             fixed=dict(self.fixed), frequency=self.frequency, storage_modulus=self.storage, loss_modulus=self.loss)
 
     def _standard_errors(self, params, at_bound) -> dict:
-        errors = {name: None for name in PARAMETERS}
+        errors: dict[str, float | None] = {name: None for name in PARAMETERS}
         names = [name for name in self.free if name not in at_bound]
         dof = self.target.size - len(names)
         if not names or dof <= 0:

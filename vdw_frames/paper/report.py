@@ -8,6 +8,7 @@
 from __future__ import annotations
 
 import dataclasses
+import os
 import time
 from pathlib import Path
 
@@ -75,7 +76,8 @@ def _figures(out, sets) -> list:
                 results.append(sine_test(damper, strain / 100.0 * damper.thickness, frequency))
                 labels.append(by_key[key].label)
             paths.append(plot_loops(results, out / f"fig5_loops_{strain}pct_{frequency:g}Hz.png", labels=labels,
-                                    title=f"{strain} % strain, {frequency:g} Hz, U = {strain / 100 * paper.THICKNESS:g} mm"))
+                                    title=f"{strain} % strain, {frequency:g} Hz, "
+                                          f"U = {strain / 100 * paper.THICKNESS:g} mm"))
     scale = table_scale()
 
     def attable_scale(damper):
@@ -155,7 +157,7 @@ def _section_strain_dependence(numbers, figure) -> str:
     for strain in (225.0, 262.5, 300.0, 375.0, 450.0):
         _, storage, loss = strain_dependence.interpolated_moduli(strain)
         fixed = [paper.fitted(key).complex_modulus(FREQUENCIES) for key in fixed_sets(strain)]
-        ours = model.complex_modulus(FREQUENCIES, strain / 100.0)
+        ours = np.asarray(model.complex_modulus(FREQUENCIES, strain / 100.0))
         source = "printed" if strain in STRAINS else "interp."
         for k, f in enumerate(FREQUENCIES):
             rows.append([f"{strain:g} %", f"{f:g}", f"{storage[k]:.2f} ({source})",
@@ -182,7 +184,8 @@ non-negative at every frequency and strain (passivity; `tests/test_strain_depend
 
 **The 225 % table cannot be followed.** Its G' falls from 2.65 to 0.96 MPa between 0.5 and 10 Hz (section 4.5:
 no FDMK parameters give a falling G'), and the interpolated targets up to 300 % inherit part of that fall. At 225 %
-the model, like `fitted(225)`, is a viscoelastic fluid whose G' rises with frequency: {100 * quality[225]['storage']:.0f} %
+the model, like `fitted(225)`, is a viscoelastic fluid whose G' rises with frequency: \
+{100 * quality[225]['storage']:.0f} %
 off at worst (0.5 Hz). Below 300 % the model's G' is therefore least trustworthy at the lowest frequencies.
 
 The figure: printed data (dots), the power-law interpolation between them (dotted), each per-strain fit over the
@@ -245,13 +248,15 @@ def _section_tables(sets) -> str:
                   ("G'' (MPa)", "loss_modulus", lambda d: d.loss_modulus(FREQUENCIES)),
                   ("loss factor G''/G' (printed column \"eta\")", "loss_factor", lambda d: d.loss_factor(FREQUENCIES)),
                   (f"C_d = K''/omega (kN*s/mm) with the tables' own A/h = {scale:g} mm", "damping_coefficient",
-                   lambda d: dataclasses.replace(d, area=scale * d.thickness).damping_coefficient(FREQUENCIES) / N_PER_KN))
+                   lambda d: dataclasses.replace(d, area=scale * d.thickness).damping_coefficient(FREQUENCIES)
+                   / N_PER_KN))
     for number, strain in enumerate(STRAINS, start=1):
         for title, column, model in quantities:
             printed = TABLES[strain][column]
             values = {s.key: model(s.dampers[strain]) for s in sets}
-            rows = [[f"{f:g}", f"{printed[k]:.2f}"] + [f"{values[s.key][k]:.3f} ({_pct(values[s.key][k] / printed[k] - 1)})"
-                                                        for s in sets] for k, f in enumerate(FREQUENCIES)]
+            rows = [[f"{f:g}", f"{printed[k]:.2f}"]
+                    + [f"{values[s.key][k]:.3f} ({_pct(values[s.key][k] / printed[k] - 1)})" for s in sets]
+                    for k, f in enumerate(FREQUENCIES)]
             text.append(f"\n### Table {number} ({strain} % strain): {title}\n\n"
                         + _md(["f (Hz)", "printed"] + [s.label for s in sets], rows))
     return "".join(text)
@@ -278,13 +283,15 @@ def _section_table5(candidates, errata_numbers) -> str:
              + _md(["candidate", "how"] + heads + ["max dev. from theoretical", "max Delta vs experimental"], rows)
              + f"\n**No candidate reproduces the printed theoretical areas.** The closest, *{best.label}*, is off by "
              f"up to {100 * np.max(np.abs(best.deviation())):.0f} %. No single parameter set can: for a linear "
-             "model with fixed parameters and U proportional to the strain, the area pi K'' U^2 scales with U^2 and the ratio "
+             "model with fixed parameters and U proportional to the strain, the area pi K'' U^2 scales with U^2 "
+             "and the ratio "
              "of the 0.5 Hz to the 1.5 Hz area is the same at every strain. The printed theoretical areas have "
              f"0.5/1.5 Hz ratios {', '.join(f'{x:.3f}' for x in ratios)} at {', '.join(map(str, STRAINS))} %, and "
              f"their 0.5 Hz areas grow with strain as {', '.join(f'{x:.3f}' for x in strain_ratio)} where "
              f"U^2 grows as {', '.join(f'{x:.3f}' for x in squared)}. They are therefore not loops of Table 4 "
              "(or of any one linear parameter set) at these amplitudes, under the printed formulas or the model; "
-             "per-strain sets are not held to these ratios but miss by the amounts above. The printed values sit within "
+             "per-strain sets are not held to these ratios but miss by the amounts above. The printed values sit "
+             "within "
              f"{100 * np.max(np.abs(errata_numbers['table5_theory_over_experiment'] - 1)):.1f} % of the "
              "experimental areas, which are themselves nonlinear (Z-shaped) loops.\n")
     sse_check = [c for c in candidates if c.method.startswith("time-domain")]
@@ -301,8 +308,9 @@ def _section_errata(e, sets) -> str:
                                                           f"{TABLES[s]['loss_modulus'][k]:.2f}" for s in STRAINS]
             for k in range(f.size)]
     fits = e["table4_fit"]
-    fit_rows = [[name, f"{s} %", f"{fits[name, s][0]:.4g}", f"{fits[name, s][1]:.4g}", f"{100 * fits[name, s][2]:.0f} %",
-                 f"{100 * fits[name, s][3]:.0f} %"] for name in ("model", "eq7", "eq8") for s in STRAINS]
+    fit_rows = [[name, f"{s} %", f"{fits[name, s][0]:.4g}", f"{fits[name, s][1]:.4g}",
+                 f"{100 * fits[name, s][2]:.0f} %", f"{100 * fits[name, s][3]:.0f} %"]
+                for name in ("model", "eq7", "eq8") for s in STRAINS]
     c = e["consistency"]
     cons_rows = []
     for s in STRAINS:
@@ -346,7 +354,8 @@ D = G2^2 + 2 G2 eta2 a c + eta2^2 a^2, are
 The printed (8) divides G' by cos(r pi), which is {e['cos_r_pi']:.4f} for Table 4's r = 0.60 (negative for every
 r > 0.5), so it gives a negative storage modulus. Neither line is dimensionally consistent: G' adds G1 G2 eta2^2 omega^r
 [MPa^4 s^r] to G2 eta2 eta1^2 omega^r [MPa^4 s^2r], and G'' adds G1 G2 eta2 eta1 omega^r [MPa^4 s^r],
-G2 eta1 eta2^2 omega^r [MPa^4 s^2r] and omega^2r [s^-2r]; (9)-(11) inherit all of it. Table 4's parameters at the six frequencies
+G2 eta1 eta2^2 omega^r [MPa^4 s^2r] and omega^2r [s^-2r]; (9)-(11) inherit all of it. Table 4's parameters at the \
+six frequencies
 (MPa; the last columns are the printed G'/G'' of Tables 1-3):
 
 {_md(["f (Hz)", "G' model", "G'' model", "G' printed (7)", "G'' printed (7)", "G' printed (8)", "G'' printed (8)"]
@@ -369,14 +378,17 @@ Under the correct model Table 4 gives G'(0.5 Hz) = {model[0].real:.2f} MPa again
 {_md(["table", "max |eta - G''/G'|", "K'_d[N/mm] / G'[MPa] (mm)", "K''_d / G'' (mm)", "C_d omega / K''_d",
       "C_d f / K''_d", "rows with C_d = K''_d / f (to rounding)"], cons_rows)}
 * The column printed as "eta (MPa*s)" is the loss factor G''/G' (dimensionless), to the printed rounding.
-* K'_d and K''_d equal G' and G'' digit for digit: the printed stiffness scale is A/h = {e['implied_area_over_thickness']:g} mm
-  (1 kN/mm per MPa). The paper's A = 1e6 mm^2 and h = 10 mm give A/h = {paper.AREA / paper.THICKNESS:g} mm, 100 times more;
+* K'_d and K''_d equal G' and G'' digit for digit: the printed stiffness scale is A/h = \
+{e['implied_area_over_thickness']:g} mm
+  (1 kN/mm per MPa). The paper's A = 1e6 mm^2 and h = 10 mm give A/h = {paper.AREA / paper.THICKNESS:g} mm, 100 times \
+more;
   A/h = {e['implied_area_over_thickness']:g} mm would need h = {e['implied_thickness']:g} mm with A = 1e6 mm^2, or
   A = {e['implied_area']:g} mm^2 with h = 10 mm. The model in this package uses the stated A and h, so its
   stiffnesses are 100 times the printed ones.
 {_cd_text(e)}
 
-### 4.5 G' falls with frequency in the tables; no FDMK parameters (no model with a non-negative relaxation spectrum) can do that
+### 4.5 G' falls with frequency in the tables; no FDMK parameters (no model with a non-negative relaxation spectrum) \
+can do that
 
 Changes of G' (MPa) between consecutive frequencies, the total change from 0.5 to 10 Hz, and the rise that the
 local Kramers-Kronig relation dG'/d ln(omega) ~ (2/pi) G'' (Booij & Thoone) predicts from each table's own G'':
@@ -397,13 +409,15 @@ G'(10 Hz)/G'(0.5 Hz) of every set (>= 1 throughout, against 0.36 and 0.75 in Tab
 * Delta by eq. (13) from the printed areas is {', '.join(f'{x:.2f}' for x in e['table5_delta_recomputed'])} %; the
   printed {', '.join(f'{x:.1f}' for x in e['table5_delta_printed'])} % differ in the second row
   (printed {e['table5_delta_printed'][1]:.1f} %, computed {e['table5_delta_recomputed'][1]:.2f} %).
-* The printed second-row Delta is |A_exp - A_the| / A_the = {e['table5_delta_over_theoretical'][1]:.2f} %: divided by the
+* The printed second-row Delta is |A_exp - A_the| / A_the = {e['table5_delta_over_theoretical'][1]:.2f} %: divided by \
+the
   theoretical area, not by the experimental one as eq. (13) says.
 * The measured areas do not agree with the printed loss stiffness: area / (pi K''_d U^2) with U = strain x 10 mm is
   {', '.join(f'{x:.2f}' for x in e['table5_experimental_over_pi_k_u2'])} (it would be 1 for any loop, linear or not,
   because only the first harmonic of the force dissipates over a sinusoidal cycle; the Z-shape does not explain it).
   The A/h that the measured areas imply with the printed G'' is
-  {', '.join(f'{x:.0f}' for x in e['table5_implied_area_over_thickness'])} mm, against the tables' 1000 mm and the stated
+  {', '.join(f'{x:.0f}' for x in e['table5_implied_area_over_thickness'])} mm, against the tables' 1000 mm and the \
+stated
   A/h = 1e5 mm.
 * The text says the model *overestimates* the area at 225 % and 1.5 Hz; the printed theoretical/experimental
   ratio there is {e['table5_theory_over_experiment'][1]:.3f}, an underestimate.
@@ -420,14 +434,16 @@ def _cd_text(e) -> str:
     where = sorted(set(rows[holds]))
     others = ~holds & ~one_hz
     return (f"* C_d is not K''_d / omega as eq. (11) defines it: C_d omega / K''_d would be 1 and is "
-            f"{cd_w.min():.2f}-{cd_w.max():.2f}. In {holds.sum()} of the 18 rows (f = {', '.join(f'{x:g}' for x in where)} Hz) "
+            f"{cd_w.min():.2f}-{cd_w.max():.2f}. In {holds.sum()} of the 18 rows "
+            f"(f = {', '.join(f'{x:g}' for x in where)} Hz) "
             f"C_d = K''_d / f to the printed rounding (C_d omega / K''_d = 2 pi); in {one_hz.sum()} rows "
-            f"(f = {', '.join(f'{x:g}' for x in sorted(set(rows[one_hz])))} Hz) C_d = K''_d / (1.5 Hz), the next row's "
-            f"frequency; in the other {others.sum()} rows (f = {', '.join(f'{x:g}' for x in sorted(set(rows[others])))} Hz) "
+            f"(f = {', '.join(f'{x:g}' for x in sorted(set(rows[one_hz])))} Hz) C_d = K''_d / (1.5 Hz), the next "
+            f"row's frequency; in the other {others.sum()} rows "
+            f"(f = {', '.join(f'{x:g}' for x in sorted(set(rows[others])))} Hz) "
             f"C_d f / K''_d is {cd_f[others].min():.2f}-{cd_f[others].max():.2f}, which matches no stated relation.")
 
 
-def write_paper_report(out_dir, quick: bool = False) -> Path:
+def write_paper_report(out_dir: str | os.PathLike[str], quick: bool = False) -> Path:
     """Write ``out_dir/report.md`` and its PNG figures; returns the path of report.md.
 
     ``quick=True`` leaves out the figures (the tables and errata are computed in full).
@@ -460,11 +476,14 @@ Read these with three cautions, all computed below:
 
 * Geometry. With the stated A = 1e6 mm^2 and h = 10 mm (A/h = 1e5 mm) a damper is far stronger than the tested
   wall: the printed K'_d = G' implies A/h = {numbers['implied_area_over_thickness']:g} mm and the measured loop areas
-  imply A/h = {numbers['table5_implied_area_over_thickness'].min():.0f}-{numbers['table5_implied_area_over_thickness'].max():.0f} mm,
-  so forces and loop areas computed with the stated geometry are {1e5 / numbers['table5_implied_area_over_thickness'].max():.0f}-{1e5 / numbers['implied_area_over_thickness']:.0f}
+  imply A/h = {numbers['table5_implied_area_over_thickness'].min():.0f}-\
+{numbers['table5_implied_area_over_thickness'].max():.0f} mm,
+  so forces and loop areas computed with the stated geometry are \
+{1e5 / numbers['table5_implied_area_over_thickness'].max():.0f}-{1e5 / numbers['implied_area_over_thickness']:.0f}
   times the test's. The moduli (MPa) are what the identification determines; choose A and h for the wall you design.
 * 225 %: no linear passive model follows Table 1 (its G' falls by 64 % from 0.5 to 10 Hz); the best fit is a
-  viscoelastic fluid (G1 = 0, r = 1, no static stiffness) with G' {100 * paper.FIT_QUALITY[225]['storage']:.0f} % low at 0.5 Hz.
+  viscoelastic fluid (G1 = 0, r = 1, no static stiffness) with G' {100 * paper.FIT_QUALITY[225]['storage']:.0f} % \
+low at 0.5 Hz.
 * The data determine the moduli over 0.5-10 Hz better than the parameters: with r pinned at
   {', '.join(f'{r:g}' for r in numbers['r_profile_orders'])} the best relative sum is
   {', '.join(f'{x:.3f}' for x in numbers['r_profile'][450])} times the free-r one at 450 %

@@ -98,7 +98,7 @@ STRAIN_DEPENDENT_QUALITY = {  # at each tested strain: relative SSE, its ratio t
 }
 
 
-def interpolated_moduli(strain):
+def interpolated_moduli(strain: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(FREQUENCIES in Hz, G' in MPa, G'' in MPa) at ``strain`` (%, 225-450): the targets of the joint fit.
 
     At a tested strain, its table; between two tested strains, log G' and log G'' linear in
@@ -129,7 +129,7 @@ def identification_strains() -> np.ndarray:
     return np.array(grid + [float(STRAINS[-1])])
 
 
-def relative_errors(modulus, strain):
+def relative_errors(modulus: np.ndarray | complex, strain: float) -> np.ndarray:
     """(model / data - 1) for G' then G'' (12 values) of complex moduli ``modulus`` (MPa, at FREQUENCIES)
     against the data at ``strain`` (%): the table, or the interpolated tables between tested strains."""
     _, storage, loss = interpolated_moduli(strain)
@@ -151,7 +151,7 @@ class StrainDependenceResult:
         The best single FDMK fit's relative objective at each of them.
     """
 
-    nodes: dict
+    nodes: dict[str, tuple[float, ...]]
     strains: np.ndarray = field(repr=False)
     sse: np.ndarray = field(repr=False)
     best_sse: np.ndarray = field(repr=False)
@@ -180,12 +180,12 @@ def identify_strain_dependent() -> StrainDependenceResult:
     upper = np.tile([np.inf, np.inf, np.inf, np.inf, 1.0], node_count)
     weights = 1.0 / np.sqrt(best)
 
-    def family(theta):
+    def family(theta: np.ndarray) -> StrainDependentDamper:
         values = np.clip(theta, lower, upper).reshape(node_count, len(PARAMETERS))
         return StrainDependentDamper(tuple(s / 100.0 for s in STRAINS),
                                      **{name: values[:, k] for k, name in enumerate(PARAMETERS)})
 
-    def residuals(theta):
+    def residuals(theta: np.ndarray) -> np.ndarray:
         wall = family(theta)
         return np.concatenate([w * relative_errors(wall.complex_modulus(FREQUENCIES, s / 100.0), s)
                                for s, w in zip(strains, weights, strict=True)])

@@ -15,11 +15,11 @@ from .design import plot_damping_curve
 from .element import plot_loops
 from .ida import plot_fragility, plot_ida_curves
 from .response import (
-                       plot_wall_hysteresis,
                        plot_drift_envelope,
                        plot_energy,
                        plot_roof_displacement,
                        plot_story_hysteresis,
+                       plot_wall_hysteresis,
 )
 
 __all__ = ["plot_wall_hysteresis", "plot_damping_curve", "plot_drift_envelope", "plot_energy", "plot_fragility",

@@ -4,14 +4,20 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from .._files import file_path, write_via
 from .._validation import show, whole_number
 
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from ..frame.results import SimulationResult
+
 _FORMATS = {"eps", "jpeg", "jpg", "pdf", "pgf", "png", "ps", "raw", "rgba", "svg", "svgz", "tif", "tiff", "webp"}
 
 
-def pyplot():
+def pyplot() -> Any:
     """matplotlib.pyplot on the Agg backend, imported on first use (~0.3 s that ``import vdw_frames``
     should not pay)."""
     import matplotlib
@@ -22,7 +28,7 @@ def pyplot():
     return plt
 
 
-def figure_path(path, default_name: str) -> Path:
+def figure_path(path: str | os.PathLike[str], default_name: str) -> Path:
     """Where a figure for ``path`` goes (see :mod:`vdw_frames.plotting`); the folder is created."""
     text = os.fspath(path) if isinstance(path, (str, os.PathLike)) else path
     path = file_path(path, "figure path")
@@ -39,7 +45,7 @@ def figure_path(path, default_name: str) -> Path:
     return path
 
 
-def story_number(result, story) -> int:
+def story_number(result: SimulationResult, story: int) -> int:
     """``story`` (1-based) checked against ``result.building``."""
     message = f"story must be a story number in 1 ... {result.building.stories}, got {show(story)}"
     try:
@@ -51,7 +57,7 @@ def story_number(result, story) -> int:
     return story
 
 
-def save(figure, path: Path) -> Path:
+def save(figure: Figure, path: Path) -> Path:
     """Lay out, write and close ``figure``; returns ``path``."""
     figure.tight_layout()
     try:

@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+import os
+from collections.abc import Mapping
 from pathlib import Path
 
 from ..design.sizing import SizingCurve, story_text
 from ._figure import figure_path, pyplot, save
 
 
-def plot_damping_curve(curve: SizingCurve, path, target: float | None = None, marks=None, title=None) -> Path:
+def plot_damping_curve(curve: SizingCurve, path: str | os.PathLike[str], target: float | None = None,
+                       marks: Mapping[str, float] | None = None, title: str | None = None) -> Path:
     """Damping ratio (%) and period (s) of ``curve.mode`` against the wall area (m^2) to a PNG; returns the path.
 
     The area axis is the wall area of the story with the largest weight (every walled story's for the

@@ -2,12 +2,19 @@
 
 from __future__ import annotations
 
+import os
+from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ._figure import figure_path, pyplot, save
 
+if TYPE_CHECKING:
+    from ..element.sine import SineTestResult
 
-def plot_loops(results, path, labels=None, title=None) -> Path:
+
+def plot_loops(results: SineTestResult | list[SineTestResult] | tuple[SineTestResult, ...],
+               path: str | os.PathLike[str], labels: Sequence[str] | None = None, title: str | None = None) -> Path:
     """Draw force-displacement loops of sine tests to a PNG at ``path``; returns the path.
 
     ``results`` is one :class:`~vdw_frames.element.sine.SineTestResult` or a sequence of them.  The whole

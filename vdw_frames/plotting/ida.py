@@ -2,16 +2,22 @@
 
 from __future__ import annotations
 
+import os
+from collections.abc import Mapping
 from itertools import cycle
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..motion.record import G
 from ._figure import figure_path, pyplot, save
 
+if TYPE_CHECKING:
+    from ..frame.ida import IDAResult
 
-def plot_ida_curves(results: dict, path, title=None) -> Path:
+
+def plot_ida_curves(results: Mapping[str, IDAResult], path: str | os.PathLike[str], title: str | None = None) -> Path:
     """IDA curves: Sa(T1) (g) against the largest story drift ratio (%) of every record, collapses marked x.
 
     ``results`` maps a label to an :class:`~vdw_frames.frame.ida.IDAResult`; the first label is drawn
@@ -42,7 +48,7 @@ def plot_ida_curves(results: dict, path, title=None) -> Path:
     return save(figure, path)
 
 
-def plot_fragility(results: dict, path, title=None) -> Path:
+def plot_fragility(results: Mapping[str, IDAResult], path: str | os.PathLike[str], title: str | None = None) -> Path:
     """Collapse fragility curves (lognormal fits) with the records' collapse intensities as steps.
 
     ``results`` maps a label to an :class:`~vdw_frames.frame.ida.IDAResult` with at least two collapses.

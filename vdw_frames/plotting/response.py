@@ -5,14 +5,20 @@ Forces are drawn in kN, displacements in mm.
 
 from __future__ import annotations
 
+import os
+from collections.abc import Mapping
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ._figure import figure_path, pyplot, save, story_number
 
+if TYPE_CHECKING:
+    from ..frame.results import SimulationResult
 
-def plot_drift_envelope(results: dict, path) -> Path:
+
+def plot_drift_envelope(results: Mapping[str, SimulationResult], path: str | os.PathLike[str]) -> Path:
     """Peak interstory drift ratio (or drift in mm without story heights) per story, one line per result.
 
     ``results`` maps a label to a :class:`~vdw_frames.frame.simulation.SimulationResult`.
@@ -35,7 +41,7 @@ def plot_drift_envelope(results: dict, path) -> Path:
     return save(figure, path)
 
 
-def plot_roof_displacement(results: dict, path) -> Path:
+def plot_roof_displacement(results: Mapping[str, SimulationResult], path: str | os.PathLike[str]) -> Path:
     """Roof displacement relative to the ground (mm) against time (s), one line per result."""
     path = figure_path(path, "roof_displacement.png")
     plt = pyplot()
@@ -49,12 +55,14 @@ def plot_roof_displacement(results: dict, path) -> Path:
     return save(figure, path)
 
 
-def plot_wall_hysteresis(result, story: int, path, title=None) -> Path:
+def plot_wall_hysteresis(result: SimulationResult, story: int, path: str | os.PathLike[str],
+                         title: str | None = None) -> Path:
     """Total damper force (kN) against drift (mm) of one story (1-based) of a simulation result."""
     return _story_loop(result, story, path, "damper_hysteresis.png", result.story_wall_force, "damper force", title)
 
 
-def _story_loop(result, story, path, default_name, force, what, title) -> Path:
+def _story_loop(result: SimulationResult, story: int, path: str | os.PathLike[str], default_name: str,
+                force: np.ndarray, what: str, title: str | None) -> Path:
     """``force`` (N, steps x stories) of one story (1-based) against its drift (mm), drawn in kN."""
     story = story_number(result, story)
     path = figure_path(path, default_name)
@@ -71,12 +79,13 @@ def _story_loop(result, story, path, default_name, force, what, title) -> Path:
     return save(figure, path)
 
 
-def plot_story_hysteresis(result, story: int, path, title=None) -> Path:
+def plot_story_hysteresis(result: SimulationResult, story: int, path: str | os.PathLike[str],
+                          title: str | None = None) -> Path:
     """Story-spring force (kN) against drift (mm) of one story (1-based): the frame's own hysteresis."""
     return _story_loop(result, story, path, "story_hysteresis.png", result.story_shear, "frame shear", title)
 
 
-def plot_energy(result, path, title=None) -> Path:
+def plot_energy(result: SimulationResult, path: str | os.PathLike[str], title: str | None = None) -> Path:
     """Stacked energy histories (kN*m = 1e6 N*mm) with the input energy on top.
 
     Walls, inherent damping and story yielding (hysteretic) dissipate; frame strain and kinetic energy
