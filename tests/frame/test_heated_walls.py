@@ -39,8 +39,8 @@ def test_the_energy_balance_closes_with_the_walls_heat_as_their_dissipation():
     assert np.nanmax(result.peak_temperature_rise) > 5.0
     assert np.all(np.diff(energy.wall_heat) >= 0.0)
     assert np.abs(energy.heat_balance_error).max() <= 5e-3 * energy.input.max()
-    # The split is the walls' work: heat + stored + softening (no wall failed) equals int F dd.
-    split = energy.wall_heat + energy.wall_stored + energy.wall_released + energy.wall_softening
+    # The split is the walls' work: heat + stored + parameter loss (no wall failed) equals int F dd.
+    split = energy.wall_heat + energy.wall_stored + energy.wall_released + energy.wall_parameter_loss
     assert np.abs(split - energy.wall_work).max() <= 5e-3 * energy.input.max()
     # The walls' heat is the sum of their own.
     np.testing.assert_allclose(result.wall_heat.sum(axis=1), energy.wall_heat, rtol=1e-12)

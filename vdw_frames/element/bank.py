@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -32,6 +32,7 @@ from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, METHODS, Discretisation, get_method
 
 if TYPE_CHECKING:
+    from .limits import WallLimits
     from .thermal import ThermalProperties
     from .wall import Wall
 
@@ -48,6 +49,17 @@ def memory_strategy(memory: str | FastMemory) -> FastMemory | None:
     if isinstance(memory, str) and memory == "exact":
         return None
     raise ValueError(f"memory must be one of {MEMORY_STRATEGIES} or a FastMemory, got {memory!r}")
+
+
+def wall_order(wall: Any) -> float:
+    """A wall's fractional order r (-): its own, or the common r of an amplitude-following wall
+    (:attr:`vdw_frames.element.strain_dependent.StrainDependentDamper.common_order`, a ValueError if none)."""
+    return float(wall.common_order) if hasattr(wall, "amplitude_table") else float(wall.r)
+
+
+def amplitude_key(wall: Any) -> tuple | None:
+    """What makes two amplitude-following walls behave alike (their node table), None for fixed walls."""
+    return tuple(map(tuple, wall.amplitude_table())) if hasattr(wall, "amplitude_table") else None
 
 
 def kernel_constants(wall: Wall | _CombinedWall) -> np.ndarray:
@@ -118,10 +130,17 @@ class WallBank:
         constants = np.array([kernel_constants(wall) for wall in self.walls]).reshape(-1, 7)
         thermals = [getattr(wall, "thermal", None) for wall in self.walls]
         limits = [getattr(wall, "limits", None) for wall in self.walls]
+        tables = [wall.amplitude_table() if hasattr(wall, "amplitude_table") else np.zeros((0, 5))
+                  for wall in self.walls]
         table = np.zeros((count, kernel.STATE_FIELDS))
-        table[:, kernel.TRACKED] = [t is not None or lim is not None for t, lim in zip(thermals, limits, strict=True)]
+        table[:, kernel.TRACKED] = [t is not None or lim is not None or nodes.size > 0
+                                    for t, lim, nodes in zip(thermals, limits, tables, strict=True)]
         table[:, kernel.BASE_G1:kernel.BASE_ETA2 + 1] = constants[:, :4]
-        table[:, kernel.ORDER] = [float(wall.r) for wall in self.walls]
+        table[:, kernel.ORDER] = [wall_order(wall) for wall in self.walls]
+        table[:, kernel.AMPLITUDE_NODES] = [nodes.shape[0] for nodes in tables]
+        amplitude_table = np.zeros((count, max((nodes.shape[0] for nodes in tables), default=0), 5))
+        for w, nodes in enumerate(tables):
+            amplitude_table[w, :nodes.shape[0]] = nodes
         for w, (wall_thermal, c) in enumerate(zip(thermals, constants, strict=True)):
             table[w, kernel.T_KIND:kernel.T_HIGH + 1] = thermal.thermal_row(wall_thermal, c[4] * c[5], self.dt)
         table[:, kernel.TEMPERATURE] = [t.temperature if t is not None else np.nan for t in thermals]
@@ -142,14 +161,14 @@ class WallBank:
             nodes[w] = e, ratio, weights * A, weights * B, weights
             table[w, kernel.NODE_C_SUM] = float(weights @ C)
         return kernel.WallStates(dt=self.dt, table=table, nodes=nodes, node_state=np.zeros((count, 2, xi.size)),
-                                 amplitude_table=np.zeros((count, 0, 5)))
+                                 amplitude_table=amplitude_table)
 
     def state(self, column: int) -> np.ndarray:
         """One column of every wall's state (:data:`vdw_frames.element.kernel.STATE_FIELDS`), a copy."""
         return self.arrays.states.table[:, column].copy()
 
     def _allocate(self, steps: int, states: kernel.WallStates) -> kernel.BankArrays:
-        memories = [_Memory.allocate(wall.r, self.dt, steps, self.method, self.memory) for wall in self.walls]
+        memories = [_Memory.allocate(wall_order(wall), self.dt, steps, self.method, self.memory) for wall in self.walls]
         self.max_steps = min((m.max_steps for m in memories), default=max(steps, 1))
         size = max((m.window_weights.size for m in memories), default=1)
         modes = max((m.mode_ratio.size for m in memories), default=0)
@@ -167,7 +186,7 @@ class WallBank:
         for w, wall in enumerate(self.walls):  # the coefficients at the temperature at rest
             wall_thermal = getattr(wall, "thermal", None)
             if wall_thermal is not None:
-                constants[w, 2:4] *= wall_thermal.viscosity_factor(wall_thermal.temperature, wall.r)
+                constants[w, 2:4] *= wall_thermal.viscosity_factor(wall_thermal.temperature, wall_order(wall))
         memory = kernel.MemoryArrays(
             w0=np.array([m.w0 for m in memories]), window_weights=window_weights, window=np.zeros((count, 2, 2 * size)),
             mode_weight=mode_weight, mode_ratio=mode_ratio, mode_state=np.zeros((count, 2, modes)),
@@ -253,15 +272,23 @@ class _CombinedWall:
     r: float = field(init=False)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "r", self.wall.r)
+        object.__setattr__(self, "r", wall_order(self.wall))
 
     @property
     def thermal(self) -> ThermalProperties | None:
         return getattr(self.wall, "thermal", None)
 
     @property
-    def limits(self):  # WallLimits | None
+    def limits(self) -> WallLimits | None:
         return getattr(self.wall, "limits", None)
+
+    def amplitude_table(self) -> np.ndarray:
+        """The wrapped wall's amplitude table ((0, 5) for a wall of fixed parameters)."""
+        return self.wall.amplitude_table() if hasattr(self.wall, "amplitude_table") else np.zeros((0, 5))
+
+    @property
+    def common_order(self) -> float:
+        return wall_order(self.wall)
 
     def kernel_constants(self) -> tuple[float, ...]:
         G1, G2, eta1, eta2, area, thickness, flexibility = kernel_constants(self.wall)
@@ -279,8 +306,8 @@ def group_walls(walls: Sequence[tuple[int, Wall]]) -> tuple[list[tuple[int, _Com
     members: list[list[int]] = []
     for index, (story, wall) in enumerate(walls):
         G1, G2, eta1, eta2, area, thickness, flexibility = (float(x) for x in kernel_constants(wall))
-        key = (story, G1, G2, eta1, eta2, wall.r, thickness, flexibility * area, getattr(wall, "thermal", None),
-               getattr(wall, "limits", None))
+        key = (story, G1, G2, eta1, eta2, wall_order(wall), thickness, flexibility * area,
+               getattr(wall, "thermal", None), getattr(wall, "limits", None), amplitude_key(wall))
         if key not in keys:
             keys[key] = len(members)
             members.append([])

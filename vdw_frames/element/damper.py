@@ -46,7 +46,8 @@ from .._validation import (
 from .bank import DEFAULT_MEMORY, MEMORY_STRATEGIES, WallBank, kernel_constants, memory_strategy
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, Discretisation, get_method
-from .kernel import HEAT, TEMPERATURE
+from .kernel import AMPLITUDE, FAILURE_MODE, FAILURE_MODES, FAILURE_STEP, HEAT, TEMPERATURE
+from .limits import WallLimits
 from .prony import PronySeries, fit_prony
 from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, property_factors
 from .wall import StiffnessMethods, Wall
@@ -78,6 +79,9 @@ class FDMKDamper(StiffnessMethods):
         are those at ``thermal.shift.reference``; the wall starts at ``thermal.temperature`` and heats by
         the energy it dissipates.  Its frequency response is that at ``thermal.temperature``.  None
         (default): the parameters hold at every temperature and the wall never heats.
+    limits : WallLimits, optional
+        Strain, stress and temperature at which the wall fails (:mod:`vdw_frames.element.limits`); None
+        (default): it never fails.
     """
 
     G1: float
@@ -89,6 +93,7 @@ class FDMKDamper(StiffnessMethods):
     thickness: float = 10.0
     strain_range: tuple[float, float] | None = field(default=None, compare=False)
     thermal: ThermalProperties | None = None
+    limits: WallLimits | None = None
 
     def __post_init__(self) -> None:
         for name in ("G1", "G2", "eta1", "eta2"):
@@ -106,6 +111,8 @@ class FDMKDamper(StiffnessMethods):
             object.__setattr__(self, "strain_range", (low, high))
         if self.thermal is not None and not isinstance(self.thermal, ThermalProperties):
             raise ValueError(f"thermal must be ThermalProperties (or None), got {type(self.thermal).__name__}")
+        if self.limits is not None and not isinstance(self.limits, WallLimits):
+            raise ValueError(f"limits must be WallLimits (or None), got {type(self.limits).__name__}")
 
     # ------------------------------------------------------------------ temperature
     @property
@@ -317,6 +324,23 @@ class WallState:
         """Energy the wall has dissipated since rest (N*mm); 0 unless its heat is followed (a thermal
         description or limits)."""
         return float(self._bank.state(HEAT)[0])
+
+    @property
+    def amplitude(self) -> float:
+        """The strain amplitude an amplitude-following wall follows after the last commit (-); 0 otherwise."""
+        return float(self._bank.state(AMPLITUDE)[0])
+
+    @property
+    def failure_step(self) -> int | None:
+        """The commit (counted from 0, as the samples of :meth:`FDMKDamper.force`) at which the wall failed
+        (a limit exceeded), None while intact; its force is the residual share from the next commit on."""
+        step = int(self._bank.state(FAILURE_STEP)[0])
+        return None if step < 0 else step - 1
+
+    @property
+    def failure_mode(self) -> str:
+        """How the wall failed ("strain", "stress", "temperature"), "" while intact."""
+        return FAILURE_MODES[int(self._bank.state(FAILURE_MODE)[0])]
 
     def trial(self, displacement: float) -> tuple[float, float]:
         """(force in N, tangent in N/mm) at the next step for ``displacement`` (mm); memory untouched."""

@@ -62,18 +62,19 @@ _LN10 = math.log(10.0)
 # Columns of WallStates.table: every per-wall scalar of a wall's state, in one row.
 (TRACKED, BASE_G1, BASE_G2, BASE_ETA1, BASE_ETA2, ORDER,
  T_KIND, T_FIRST, T_SECOND, T_REFERENCE, T_CAPACITY, T_AMBIENT, T_DECAY, T_GAIN, T_LOW, T_HIGH,
- TEMPERATURE, HEAT, STORED, RELEASED, SOFTENING,
+ TEMPERATURE, HEAT, STORED, RELEASED, PARAMETER_LOSS,
  LIMIT_STRAIN, LIMIT_STRESS, LIMIT_TEMPERATURE, RESIDUAL, FAILURE_STEP, FAILURE_MODE, SCALE, OUTSIDE,
  PREVIOUS_STRAIN, PREVIOUS_DASHPOT_STRAIN, TAIL_DASHPOT, TAIL_SPRING,
  AMPLITUDE_NODES, TURN, EXTREME, DIRECTION, LAST_AMPLITUDE, AMPLITUDE, BELOW_RANGE, ABOVE_RANGE,
- NODE_C_SUM) = range(42)
-STATE_FIELDS = 42
+ NODE_C_SUM, FOLLOWED_AT_TURN, CONFIRMED_AT) = range(44)
+STATE_FIELDS = 44
 """TRACKED: 1 when the wall's heat and stored energy are followed (a thermal description or limits);
 BASE_*: G1, G2 (MPa), eta1, eta2 (MPa s^r) at the reference temperature (fixed walls); ORDER: r;
 T_*: the thermal row (thermal.thermal_row: law kind (0: none), its two parameters and reference (degC),
 rho c V (N*mm/K), ambient (degC), exp(-dt / tau), (tau / dt)(1 - exp(-dt / tau)), validity range (degC));
 TEMPERATURE (degC), HEAT (N*mm dissipated since rest), STORED (N*mm), RELEASED (N*mm lost at failure),
-SOFTENING (N*mm the springpots lost as heating lowered their viscosities); LIMIT_* (strain -, stress
+PARAMETER_LOSS (N*mm the wall's stored energy lost, at no work, as its parameters changed with
+temperature or amplitude: positive as it softens); LIMIT_* (strain -, stress
 MPa, temperature degC; inf: none), RESIDUAL (force factor after failure), FAILURE_STEP (-1 intact),
 FAILURE_MODE (FAILURE_MODES index), SCALE (force factor now), OUTSIDE (first step outside the shift law's
 range, -1); PREVIOUS_*: the springpots' inputs eps, eps_v at the last commit; TAIL_*: the diffusive tails
@@ -81,7 +82,8 @@ range, -1); PREVIOUS_*: the springpots' inputs eps, eps_v at the last commit; TA
 fixed parameters), TURN and EXTREME (strain at the last reversal, extreme of the current half-cycle),
 DIRECTION (+1, -1, 0 at rest), LAST_AMPLITUDE (of the last completed half-cycle), AMPLITUDE (the one the
 parameters follow), BELOW_RANGE and ABOVE_RANGE (steps spent outside the table's range); NODE_C_SUM:
-sum_k c_k C_k of the diffusive nodes (WallStates.nodes)."""
+sum_k c_k C_k of the diffusive nodes (WallStates.nodes); FOLLOWED_AT_TURN and CONFIRMED_AT: the amplitude
+followed, and the strain, when the last reversal was confirmed."""
 FAILURE_MODES = ("", "strain", "stress", "temperature")
 """Names of the FAILURE_MODE column."""
 
@@ -279,26 +281,81 @@ def _log10_shift(table, w, temperature):
 
 
 @njit(cache=True, inline="always")
-def set_coefficients(table, constants, w):
-    """Wall ``w``'s G1, G2, eta1, eta2 (``constants`` (W, 7)) from its base parameters (``table``) at its
-    committed temperature (clamped to the shift law's range): eta times a_T^r (thermal module docstring)."""
+def set_coefficients(table, amplitude_table, constants, w):
+    """Wall ``w``'s G1, G2, eta1, eta2 (``constants`` (W, 7)) at its committed amplitude and temperature:
+    the parameters at the amplitude (``amplitude_table`` (W, K, 5), linear in log strain between the nodes,
+    the end node's outside them; the base parameters of ``table`` for a wall of fixed parameters), eta
+    times a_T^r at the temperature (clamped to the shift law's range; thermal module docstring)."""
+    G1, G2, eta1, eta2 = table[w, BASE_G1], table[w, BASE_G2], table[w, BASE_ETA1], table[w, BASE_ETA2]
+    count = int(table[w, AMPLITUDE_NODES])
+    if count > 0:
+        x = math.log(max(table[w, AMPLITUDE], 1e-300))
+        k = 0
+        while k < count - 2 and x > amplitude_table[w, k + 1, 0]:
+            k += 1
+        low, high = amplitude_table[w, k, 0], amplitude_table[w, k + 1, 0]
+        t = min(max((x - low) / (high - low), 0.0), 1.0)
+        G1 = amplitude_table[w, k, 1] + t * (amplitude_table[w, k + 1, 1] - amplitude_table[w, k, 1])
+        G2 = amplitude_table[w, k, 2] + t * (amplitude_table[w, k + 1, 2] - amplitude_table[w, k, 2])
+        eta1 = amplitude_table[w, k, 3] + t * (amplitude_table[w, k + 1, 3] - amplitude_table[w, k, 3])
+        eta2 = amplitude_table[w, k, 4] + t * (amplitude_table[w, k + 1, 4] - amplitude_table[w, k, 4])
     factor = 1.0
     if table[w, T_KIND] != 0.0:
         temperature = min(max(table[w, TEMPERATURE], table[w, T_LOW]), table[w, T_HIGH])
         factor = math.exp(_LN10 * table[w, ORDER] * _log10_shift(table, w, temperature))
-    constants[w, 0] = table[w, BASE_G1]
-    constants[w, 1] = table[w, BASE_G2]
-    constants[w, 2] = table[w, BASE_ETA1] * factor
-    constants[w, 3] = table[w, BASE_ETA2] * factor
+    constants[w, 0] = G1
+    constants[w, 1] = G2
+    constants[w, 2] = eta1 * factor
+    constants[w, 3] = eta2 * factor
+
+
+REVERSAL_GATE = 0.05
+"""A half-cycle ends when the strain has come back by this share of the amplitude from its extreme: a
+ripple at a peak (a higher mode's) is not a reversal."""
+
+
+@njit(cache=True, inline="always")
+def track_amplitude(table, w, strain):
+    """Follow wall ``w``'s strain amplitude after a commit (``strain`` -).
+
+    Half-cycles run between reversals, a = |extreme - turn| / 2 (an offset of the strain, a residual
+    drift, is not amplitude); the first excursion from rest is a quarter cycle, a = |extreme|.  The wall follows the larger of the current half-cycle's amplitude so far
+    and that of the last completed one, reached continuously: where a reversal is confirmed (once the strain
+    has come back by REVERSAL_GATE of the amplitude) the followed amplitude starts from where it was and
+    moves to the completed half-cycle's as the new half-cycle's extreme covers the rest of its span, 2 a,
+    a monotone progress.  So a steady sine of amplitude A gives A at every step (the parameters are those of
+    the test at A), a growing motion is followed at once, a decaying one within a half-cycle, and the
+    parameters never jump (a jump would make the force jump: a spurious oscillation)."""
+    direction, turn, extreme = table[w, DIRECTION], table[w, TURN], table[w, EXTREME]
+    if direction == 0.0:
+        if strain != turn:
+            direction = 1.0 if strain > turn else -1.0
+            extreme = strain
+    elif direction * (strain - extreme) > 0.0:
+        extreme = strain
+    elif direction * (extreme - strain) > REVERSAL_GATE * table[w, AMPLITUDE]:
+        table[w, LAST_AMPLITUDE] = 0.5 * abs(extreme - turn)
+        table[w, FOLLOWED_AT_TURN] = table[w, AMPLITUDE]
+        table[w, CONFIRMED_AT] = strain
+        turn, extreme, direction = extreme, strain, -direction
+    table[w, DIRECTION], table[w, TURN], table[w, EXTREME] = direction, turn, extreme
+    completed, before, origin = table[w, LAST_AMPLITUDE], table[w, FOLLOWED_AT_TURN], table[w, CONFIRMED_AT]
+    if completed == 0.0:  # no reversal yet: a quarter cycle from rest
+        table[w, AMPLITUDE] = abs(extreme)
+        return
+    remaining = 2.0 * completed - abs(origin - turn)  # of the span, what the new half-cycle still has to cover
+    progress = min(abs(extreme - origin) / remaining, 1.0) if remaining > 0.0 else 1.0
+    table[w, AMPLITUDE] = max(0.5 * abs(extreme - turn), before + (completed - before) * progress)
 
 
 @njit(cache=True, fastmath=_FAST)
-def update_walls(table, nodes, node_state, constants, values, force, count, dt):
+def update_walls(states, constants, values, force, count):
     """After the commit of step ``count`` (forces (W,) N, the memory advanced, ``values`` (2, W) the
     committed strain and Maxwell stress): each followed wall's heat over the step, stored energy,
-    temperature, limits (``table`` (W, STATE_FIELDS), diffusive ``nodes`` (W, 5, N) and ``node_state``
-    (W, 2, N)), and the coefficients of the next step (``constants`` (W, 7)).  One call a step for the
-    whole bank: a call costs more than a wall's update."""
+    temperature, amplitude, limits (``states``: :class:`WallStates`), and the coefficients of the next step
+    (``constants`` (W, 7)).  One call a step for the whole bank: a call costs more than a wall's update."""
+    table, nodes, node_state, dt = states.table, states.nodes, states.node_state, states.dt
+    amplitude_table = states.amplitude_table
     for w in range(constants.shape[0]):
         if table[w, TRACKED] == 0.0:
             continue
@@ -306,19 +363,18 @@ def update_walls(table, nodes, node_state, constants, values, force, count, dt):
         scale = table[w, SCALE]  # a failed wall keeps its residual share
         volume = constants[w, 4] * constants[w, 5] * scale
         strain, maxwell = values[0, w], values[1, w]
+        maxwell_branch = G2 > 0.0 and eta2 > 0.0  # a Maxwell branch without G2 or eta2 carries no stress
         springs = 0.5 * G1 * strain * strain
-        strain_v = 0.0  # a Maxwell branch without G2 or eta2 carries no stress
-        if G2 > 0.0 and eta2 > 0.0:
+        strain_v = 0.0
+        if maxwell_branch:
             strain_v = strain - maxwell / G2
             springs += 0.5 * maxwell * maxwell / G2
-        else:
-            eta2 = 0.0
         heat_1, heat_2, stored_1, stored_2 = _springpots(nodes, node_state, table, w, dt, strain, strain_v)
+        if not maxwell_branch:
+            heat_2 = stored_2 = 0.0
         heat = (eta1 * heat_1 + eta2 * heat_2) * volume  # N*mm
-        springpots = (eta1 * stored_1 + eta2 * stored_2) * volume
-        stored = springpots + springs * volume
+        stored = (springs + eta1 * stored_1 + eta2 * stored_2) * volume
         table[w, HEAT] += heat
-        table[w, STORED] = stored
         if table[w, T_CAPACITY] > 0.0:
             ambient = table[w, T_AMBIENT]
             temperature = (ambient + (table[w, TEMPERATURE] - ambient) * table[w, T_DECAY]
@@ -341,14 +397,24 @@ def update_walls(table, nodes, node_state, constants, values, force, count, dt):
                 table[w, FAILURE_MODE] = mode
                 table[w, RELEASED] = (1.0 - table[w, RESIDUAL]) * stored
                 table[w, SCALE] = table[w, RESIDUAL]
-        previous_eta = eta1 + eta2
-        set_coefficients(table, constants, w)
-        if previous_eta > 0.0 and not failing:
-            # Scaled viscosities scale the springpots' stored energy with them: what a fall takes away is
-            # accounted here, not as heat (it does no work and warms nothing in this model).
-            change = (constants[w, 2] + (constants[w, 3] if eta2 > 0.0 else 0.0)) / previous_eta
-            table[w, SOFTENING] += (1.0 - change) * springpots
-            table[w, STORED] = stored - (1.0 - change) * springpots
+                stored *= table[w, RESIDUAL]
+        if table[w, AMPLITUDE_NODES] > 0.0:
+            track_amplitude(table, w, strain)
+            if table[w, AMPLITUDE] < math.exp(amplitude_table[w, 0, 0]):
+                table[w, BELOW_RANGE] += 1.0
+            elif table[w, AMPLITUDE] > math.exp(amplitude_table[w, int(table[w, AMPLITUDE_NODES]) - 1, 0]):
+                table[w, ABOVE_RANGE] += 1.0
+        set_coefficients(table, amplitude_table, constants, w)
+        # The same state stores another energy under the next step's parameters (temperature, amplitude): the
+        # difference does no work and warms nothing in this model; it is accounted, not hidden in the heat.
+        springs = 0.5 * constants[w, 0] * strain * strain
+        if maxwell_branch and constants[w, 1] > 0.0:
+            springs += 0.5 * maxwell * maxwell / constants[w, 1]
+        renewed = ((springs + constants[w, 2] * stored_1 + constants[w, 3] * stored_2)
+                   * constants[w, 4] * constants[w, 5] * table[w, SCALE])
+        if not failing:
+            table[w, PARAMETER_LOSS] += stored - renewed
+        table[w, STORED] = renewed
 
 
 @njit(cache=True)
@@ -370,9 +436,7 @@ def bank_commit(bank, count, deformation, force, strain):
         bank.memory.values[0, w] = strain[w]
     memory_advance(bank.memory, count)
     if bank.followed:
-        states = bank.states
-        update_walls(states.table, states.nodes, states.node_state, bank.constants, bank.memory.values, force, count,
-                     states.dt)
+        update_walls(bank.states, bank.constants, bank.memory.values, force, count)
     for w in range(bank.constants.shape[0]):
         bank.tangent[w], bank.history_force[w] = wall_affine(bank, w)
 

@@ -25,6 +25,7 @@ thickness mm, frequency Hz, stiffness N/mm.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import overload
 
@@ -41,7 +42,11 @@ from .._validation import (
     refuse_non_numbers,
     scaled_value,
 )
-from .damper import FDMKDamper
+from .damper import DEFAULT_MEMORY, FDMKDamper, WallState, driven_force
+from .fast_memory import FastMemory
+from .fractional import DEFAULT_METHOD, Discretisation
+from .limits import WallLimits
+from .thermal import ThermalProperties
 
 PARAMETERS = ("G1", "G2", "eta1", "eta2", "r")
 
@@ -87,6 +92,8 @@ class StrainDependentDamper:
     r: tuple[float, ...]
     area: float = 1.0e6
     thickness: float = 10.0
+    thermal: ThermalProperties | None = None
+    limits: WallLimits | None = None
 
     def __post_init__(self) -> None:
         refuse_non_numbers("strains", self.strains)
@@ -108,6 +115,59 @@ class StrainDependentDamper:
             object.__setattr__(self, name, tuple(check(v) for v in array.tolist()))
         object.__setattr__(self, "area", positive("area", self.area))
         object.__setattr__(self, "thickness", positive("thickness", self.thickness))
+        if self.thermal is not None and not isinstance(self.thermal, ThermalProperties):
+            raise ValueError(f"thermal must be ThermalProperties (or None), got {type(self.thermal).__name__}")
+        if self.limits is not None and not isinstance(self.limits, WallLimits):
+            raise ValueError(f"limits must be WallLimits (or None), got {type(self.limits).__name__}")
+
+    # ------------------------------------------------------------------ time domain (amplitude followed)
+    @property
+    def common_order(self) -> float:
+        """The fractional order r shared by every node (-): what a time-domain analysis that follows the
+        amplitude needs (the convolution weights depend on r, so within an analysis a wall's r is fixed).
+        A ValueError when the nodes' r differ."""
+        if len(set(self.r)) != 1:
+            raise ValueError(f"a strain-dependent wall followed in the time domain needs one fractional order r "
+                             f"at every amplitude, got r = {', '.join(f'{r:.4g}' for r in self.r)} at "
+                             f"{', '.join(f'{100 * s:.4g} %' for s in self.strains)}; use a family identified with a "
+                             "common r (paper.strain_dependent(), the default), or strain_compatible=True")
+        return self.r[0]
+
+    def kernel_constants(self) -> tuple[float, ...]:
+        """The kernel's constants at the lowest node (where a wall at rest starts): G1, G2, eta1, eta2, area,
+        thickness, support flexibility 0."""
+        return (self.G1[0], self.G2[0], self.eta1[0], self.eta2[0], self.area, self.thickness, 0.0)
+
+    def amplitude_table(self) -> np.ndarray:
+        """(nodes, 5): log(strain), G1, G2 (MPa), eta1, eta2 (MPa*s^r) at every node, for the kernel."""
+        return np.column_stack([np.log(self.strains), self.G1, self.G2, self.eta1, self.eta2])
+
+    def new_state(self, dt: float, method: str | Discretisation = DEFAULT_METHOD,
+                  memory: str | FastMemory = DEFAULT_MEMORY) -> WallState:
+        """A fresh trial/commit state on steps of ``dt`` s, following its own amplitude (see
+        :func:`vdw_frames.element.kernel.track_amplitude`); displacement mm, force N."""
+        self.common_order  # refuses a family without one r
+        return WallState(self, dt, method=method, memory=memory)
+
+    def force(self, displacement: ArrayLike, dt: float, method: str | Discretisation = DEFAULT_METHOD,
+              memory: str | FastMemory = DEFAULT_MEMORY) -> np.ndarray:
+        """Force history (N) for a displacement history (mm) every ``dt`` s from rest, the parameters following
+        the wall's own strain amplitude step by step (:func:`vdw_frames.element.kernel.track_amplitude`)."""
+        self.common_order
+        return driven_force(self, displacement, dt, method, memory)
+
+    @classmethod
+    def from_nodes(cls, nodes: Mapping[str, Sequence[float] | np.ndarray], area: float = 1.0e6,
+                   thickness: float = 10.0, thermal: ThermalProperties | None = None,
+                   limits: WallLimits | None = None) -> StrainDependentDamper:
+        """A wall from a mapping of node values {"strains", "G1", "G2", "eta1", "eta2", "r"} (units as for the
+        constructor; e.g. :data:`vdw_frames.paper.strain_dependence.STRAIN_DEPENDENT_COMMON`)."""
+        missing = {"strains", *PARAMETERS} - set(nodes)
+        if missing:
+            raise ValueError(f"nodes lacks {sorted(missing)}")
+        return cls(strains=tuple(nodes["strains"]), G1=tuple(nodes["G1"]), G2=tuple(nodes["G2"]),
+                   eta1=tuple(nodes["eta1"]), eta2=tuple(nodes["eta2"]), r=tuple(nodes["r"]), area=area,
+                   thickness=thickness, thermal=thermal, limits=limits)
 
     @classmethod
     def constant(cls, damper: FDMKDamper, strain_range: tuple[float, float] | list[float]) -> StrainDependentDamper:
@@ -116,8 +176,9 @@ class StrainDependentDamper:
             raise ValueError(f"damper must be an FDMKDamper, got {type(damper).__name__}")
         if not isinstance(strain_range, (tuple, list)) or len(strain_range) != 2:
             raise ValueError(f"strain_range must be two amplitudes (low, high), got {strain_range!r}")
-        values = {name: (getattr(damper, name),) * 2 for name in PARAMETERS}
-        return cls(tuple(strain_range), **values, area=damper.area, thickness=damper.thickness)
+        nodes = {name: (getattr(damper, name),) * 2 for name in PARAMETERS}
+        return cls.from_nodes({"strains": tuple(strain_range), **nodes}, damper.area, damper.thickness,
+                              damper.thermal, damper.limits)
 
     def scaled(self, factor: float) -> StrainDependentDamper:
         """This wall with its moduli and viscosities (G1, G2, eta1, eta2) times ``factor`` (> 0) at every node
@@ -214,7 +275,8 @@ class StrainDependentDamper:
 
     def _damper(self, parameters: dict[str, float]) -> FDMKDamper:
         return FDMKDamper(G1=parameters["G1"], G2=parameters["G2"], eta1=parameters["eta1"], eta2=parameters["eta2"],
-                          r=parameters["r"], area=self.area, thickness=self.thickness, strain_range=self.strain_range)
+                          r=parameters["r"], area=self.area, thickness=self.thickness, strain_range=self.strain_range,
+                          thermal=self.thermal, limits=self.limits)
 
     def _warn_outside(self, strain: np.ndarray) -> None:
         low, high = self.strain_range

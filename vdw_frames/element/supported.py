@@ -26,6 +26,7 @@ from .._validation import positive, positive_frequencies, require_finite, scaled
 from .damper import DEFAULT_MEMORY, FDMKDamper, WallState, driven_force
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, Discretisation
+from .limits import WallLimits
 from .prony import PronySeries, fit_prony
 from .thermal import PropertyFactors, ShiftLaw, ThermalProperties, property_factors
 from .wall import StiffnessMethods
@@ -71,6 +72,11 @@ class SupportedDamper(StiffnessMethods):
     def thermal(self) -> ThermalProperties | None:
         """The wall's thermal description (the support neither heats nor softens)."""
         return self.damper.thermal
+
+    @property
+    def limits(self) -> WallLimits | None:
+        """The wall's limits (the support does not fail)."""
+        return self.damper.limits
 
     def at_temperature(self, temperature: float, shift: ShiftLaw | None = None) -> SupportedDamper:
         """The assembly with its wall at ``temperature`` (degC; see :meth:`FDMKDamper.at_temperature`)."""

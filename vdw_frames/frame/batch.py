@@ -29,7 +29,7 @@ from ..element.damper import DEFAULT_MEMORY
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation
 from ..motion.record import GroundMotion
-from .building import ShearBuilding, require_fixed_walls
+from .building import ShearBuilding
 from .results import SimulationResult
 from .simulation import simulate
 from .strain_compatible import StrainCompatibleOptions, strain_compatible_options
@@ -217,7 +217,6 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
         raise ValueError(f"scales must have shape (scales,) or ({len(motions)}, scales), got {np.shape(scales)}")
     if strain_compatible is not False:
         strain_compatible_options(strain_compatible)  # a bad value fails here, not in every worker
-    require_fixed_walls(building if strain_compatible is False else None, "run_batch()")
     options = tuple(sorted(simulate_options.items()))
     tasks = {(m, s): BatchTask(building, motion, float(factors[m, s]), memory, method, strain_compatible, options)
              for m, motion in enumerate(motions) for s in range(factors.shape[1])}

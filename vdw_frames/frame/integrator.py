@@ -138,7 +138,8 @@ class Histories(NamedTuple):
     group_temperature: np.ndarray  # (N, G) degC (NaN for a group without a thermal description)
     group_heat: np.ndarray  # (N, G) N*mm dissipated since rest
     wall_stored: np.ndarray  # (N,) N*mm stored in all walls
-    wall_softening: np.ndarray  # (N,) N*mm the springpots of all walls lost as their viscosities fell
+    wall_parameter_loss: np.ndarray  # (N,) N*mm the walls' stored energy lost as their parameters changed
+    group_amplitude: np.ndarray  # (N, G) strain amplitude followed; (0, G) without amplitude-following walls
 
 
 class Scratch(NamedTuple):
@@ -386,14 +387,17 @@ def integrate(ground, dt, frame, stories, walls, newton, out):
             out.peak_group_strain[g] = max(out.peak_group_strain[g], abs(work.wall_strain[g]))
         if out.group_heat.shape[0] > 0:
             table = bank.states.table
-            stored, softening = 0.0, 0.0
+            stored, parameter_loss = 0.0, 0.0
             for g in range(groups):
                 out.group_temperature[step + 1, g] = table[g, kernel.TEMPERATURE]
                 out.group_heat[step + 1, g] = table[g, kernel.HEAT]
                 stored += table[g, kernel.STORED]
-                softening += table[g, kernel.SOFTENING]
+                parameter_loss += table[g, kernel.PARAMETER_LOSS]
             out.wall_stored[step + 1] = stored
-            out.wall_softening[step + 1] = softening
+            out.wall_parameter_loss[step + 1] = parameter_loss
+            if out.group_amplitude.shape[0] > 0:
+                for g in range(groups):
+                    out.group_amplitude[step + 1, g] = table[g, kernel.AMPLITUDE]
         for i in range(n):
             increment = u[i] - u_n[i]
             out.velocity[step + 1, i] = v1 * increment - v_n[i]

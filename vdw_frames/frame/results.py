@@ -13,6 +13,7 @@ import numpy as np
 
 from .. import _warnings
 from .._validation import require_finite
+from ..element.kernel import FAILURE_MODES
 from .building import ShearBuilding
 
 if TYPE_CHECKING:
@@ -38,9 +39,10 @@ class EnergyHistory:
     When every wall's heat is followed (walls with a thermal description or limits), the walls' work is
     split by their own states: ``wall_heat`` (dissipated since rest: the heat that warms them),
     ``wall_stored`` (in their springs and springpots now), ``wall_released`` (stored energy lost when a
-    wall failed) and ``wall_softening`` (stored energy the springpots lost as heating lowered their
-    viscosities: with viscosities scaled as coefficients, a fall of eta scales the springpot's stored
-    energy down with it, at no work -- a property of the coupling, measured rather than hidden in the heat);
+    wall failed) and ``wall_parameter_loss`` (stored energy the walls' states lost as their parameters
+    changed with temperature or amplitude: the parameters are coefficients, so a fall of eta or G scales
+    the energy the same state stores down, at no work -- a property of the coupling, measured rather than
+    hidden in the heat; negative when a wall stiffens);
     :attr:`heat_balance_error` is the balance with them in place of ``wall_work``.  None otherwise.
     """
 
@@ -54,19 +56,19 @@ class EnergyHistory:
     wall_heat: np.ndarray | None = None
     wall_stored: np.ndarray | None = None
     wall_released: np.ndarray | None = None
-    wall_softening: np.ndarray | None = None
+    wall_parameter_loss: np.ndarray | None = None
 
     @property
     def heat_balance_error(self) -> np.ndarray | None:
         """input - (kinetic + frame_strain + hysteretic + inherent_damping + wall_heat + wall_stored +
-        wall_released + wall_softening + p_delta), N*mm; None unless every wall's heat is followed.  It closes up to the
-        difference between the walls' force (convolution quadrature) and the diffusive representation
-        that splits their work (:mod:`vdw_frames.element.thermal`)."""
+        wall_released + wall_parameter_loss + p_delta), N*mm; None unless every wall's heat is followed.  It
+        closes up to the difference between the walls' force (convolution quadrature) and the diffusive
+        representation that splits their work (:mod:`vdw_frames.element.thermal`)."""
         if self.wall_heat is None or self.wall_stored is None or self.wall_released is None \
-                or self.wall_softening is None:
+                or self.wall_parameter_loss is None:
             return None
         return self.input - (self.kinetic + self.frame_strain + self.hysteretic + self.inherent_damping
-                             + self.wall_heat + self.wall_stored + self.wall_released + self.wall_softening
+                             + self.wall_heat + self.wall_stored + self.wall_released + self.wall_parameter_loss
                              + self.p_delta)
 
     @property
@@ -136,6 +138,48 @@ class SimulationResult:
     group_heat: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # N*mm
     group_failure: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64),
                                       repr=False)  # (groups, 2): step (-1 intact), mode
+    group_amplitude: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # (steps, groups)
+    group_outside_range: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)), repr=False)  # s (groups, 2)
+
+    @cached_property
+    def wall_amplitude(self) -> np.ndarray | None:
+        """The strain amplitude each amplitude-following wall followed (-), (steps, walls); 0 for walls of
+        fixed parameters; None without amplitude-following walls
+        (:func:`vdw_frames.element.kernel.track_amplitude`)."""
+        if self.group_amplitude.shape[0] == 0:
+            return None
+        return np.take(self.group_amplitude, self.wall_group, axis=1)
+
+    @property
+    def wall_time_outside_range(self) -> np.ndarray | None:
+        """Seconds each amplitude-following wall spent below and above its identified amplitudes (where its
+        parameters are those of the nearest end), (walls, 2); None without amplitude-following walls."""
+        if self.group_amplitude.shape[0] == 0:
+            return None
+        return self.group_outside_range[self.wall_group]
+
+    @property
+    def wall_failed(self) -> np.ndarray:
+        """Whether each wall failed (a limit of its :class:`~vdw_frames.element.limits.WallLimits` exceeded),
+        (walls,) bool in ``building.wall_list`` order."""
+        if self.group_failure.shape[0] == 0:
+            return np.zeros(self.wall_group.size, dtype=bool)
+        return self.group_failure[self.wall_group, 0] >= 0
+
+    @property
+    def wall_failure_time(self) -> tuple[float | None, ...]:
+        """The time (s) of each wall's failure (the first committed step beyond a limit), None if intact."""
+        if self.group_failure.shape[0] == 0:
+            return (None,) * self.wall_group.size
+        dt = float(self.time[1] - self.time[0]) if self.time.size > 1 else 0.0
+        return tuple(None if step < 0 else step * dt for step in self.group_failure[self.wall_group, 0].tolist())
+
+    @property
+    def wall_failure_mode(self) -> tuple[str, ...]:
+        """How each wall failed: "strain", "stress" or "temperature"; "" if intact."""
+        if self.group_failure.shape[0] == 0:
+            return ("",) * self.wall_group.size
+        return tuple(FAILURE_MODES[mode] for mode in self.group_failure[self.wall_group, 1].tolist())
 
     @cached_property
     def wall_temperature(self) -> np.ndarray | None:
@@ -258,10 +302,10 @@ def energy_history(energy: np.ndarray, wall_energies: tuple | None = None) -> En
     """The integrator's energy columns (steps, 7) as an :class:`EnergyHistory`, checked finite and balanced;
     ``wall_energies``: (heat, stored, released) histories (steps,) N*mm when every wall's heat is followed."""
     require_finite("the energy histories", energy)
-    heat, stored, released, softening = wall_energies if wall_energies is not None else (None, None, None, None)
+    heat, stored, released, parameter_loss = wall_energies if wall_energies is not None else (None,) * 4
     history = EnergyHistory(input=energy[:, 0], kinetic=energy[:, 1], frame_strain=energy[:, 2],
                             hysteretic=energy[:, 3] - energy[:, 2], inherent_damping=energy[:, 4],
                             wall_work=energy[:, 5], p_delta=energy[:, 6], wall_heat=heat, wall_stored=stored,
-                            wall_released=released, wall_softening=softening)
+                            wall_released=released, wall_parameter_loss=parameter_loss)
     check_energy_balance(history)
     return history

@@ -19,11 +19,11 @@ import numpy as np
 from .. import _warnings
 from .._validation import SIMULATION_STEP_RANGE, check_memory, non_negative, positive, require_finite, show
 from ..element import kernel
-from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy
+from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy, wall_order
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation, get_method
 from ..motion.record import GroundMotion
-from .building import ShearBuilding, require_fixed_walls
+from .building import ShearBuilding
 from .hysteresis import story_arrays
 from .integrator import COLLAPSED, ENERGIES, FAILED, FrameArrays, Histories, NewtonRaphson, WallArrays, integrate
 from .results import SimulationResult, energy_history
@@ -36,14 +36,17 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
                  method: str | Discretisation = DEFAULT_METHOD, memory: str | FastMemory = DEFAULT_MEMORY, *,
                  collapse_drift_ratio: float | None = 0.10,
                  free_vibration: float = 0.0, newton: NewtonRaphson | None = None) -> SimulationResult:
-    """Integrate ``building`` (walls with fixed parameters) under ``ground_motion`` (mm/s^2).
+    """Integrate ``building`` under ``ground_motion`` (mm/s^2): walls of fixed parameters, walls that heat
+    (a thermal description), walls that follow their own strain amplitude (strain-dependent walls with a
+    common r) and walls that fail (limits).
 
-    The arguments are those of :func:`vdw_frames.simulate` (units there); this is its analysis for a
-    building without strain-dependent walls.
+    The arguments are those of :func:`vdw_frames.simulate` (units there); this is its analysis whenever
+    the strain-compatible iteration is not asked for.
     """
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
-    require_fixed_walls(building, "simulate()")
+    for _, wall in building.wall_list:  # an amplitude-following wall needs one r (its memory's)
+        wall_order(wall)
     if not isinstance(ground_motion, GroundMotion):
         raise ValueError(f"ground_motion must be a GroundMotion (see read_at2), got {type(ground_motion).__name__}")
     method = get_method(method)
@@ -89,7 +92,8 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         group_strain=np.zeros((steps, len(groups))), peak_group_strain=np.zeros(len(groups)),
         energy=np.zeros((steps, ENERGIES)), outcome=np.zeros(3, dtype=np.int64),
         group_temperature=np.zeros((followed, len(groups))), group_heat=np.zeros((followed, len(groups))),
-        wall_stored=np.zeros(followed), wall_softening=np.zeros(followed))
+        wall_stored=np.zeros(followed), wall_parameter_loss=np.zeros(followed),
+        group_amplitude=np.zeros((followed if bank.state(kernel.AMPLITUDE_NODES).any() else 0, len(groups))))
     if followed:
         out.group_temperature[0] = bank.state(kernel.TEMPERATURE)
     filled = integrate(ground, dt, frame, story_arrays(building.story_models, building.stiffnesses),
@@ -113,7 +117,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         failed = failure[:, 0] >= 0
         released = np.where((np.arange(filled)[:, None] >= failure[:, 0]) & failed, bank.state(kernel.RELEASED), 0.0)
         wall_energies = (out.group_heat[keep].sum(axis=1), out.wall_stored[keep], released.sum(axis=1),
-                         out.wall_softening[keep])
+                         out.wall_parameter_loss[keep])
     return SimulationResult(
         building=building, time=time, ground_acceleration=ground[keep], displacement=out.displacement[keep],
         velocity=out.velocity[keep], acceleration=out.acceleration[keep], drift=out.drift[keep],
@@ -123,7 +127,8 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         converged=status != FAILED, collapsed=status == COLLAPSED,
         collapse_time=float(time[-1]) if status == COLLAPSED else None, newton_iterations=iterations,
         group_temperature=out.group_temperature[keep], group_heat=out.group_heat[keep],
-        group_failure=failure)
+        group_failure=failure, group_amplitude=out.group_amplitude[keep],
+        group_outside_range=np.stack([bank.state(kernel.BELOW_RANGE), bank.state(kernel.ABOVE_RANGE)], axis=1) * dt)
 
 
 def _warn_temperature_range(groups, bank: WallBank, dt: float) -> None:

@@ -237,9 +237,10 @@ def _min_storage_step(count: int) -> float:
 
 def interpolated_optima() -> StrainDependentDamper:
     """The per-strain optima (``FITTED``) interpolated linearly in log strain: the naive family (paper A, h)."""
-    return StrainDependentDamper(tuple(s / 100.0 for s in STRAINS),
-                                 **{name: tuple(paper.FITTED[s][name] for s in STRAINS) for name in PARAMETERS},
-                                 area=paper.AREA, thickness=paper.THICKNESS)
+    return StrainDependentDamper.from_nodes(
+        {"strains": tuple(s / 100.0 for s in STRAINS),
+         **{name: tuple(paper.FITTED[s][name] for s in STRAINS) for name in PARAMETERS}},
+        area=paper.AREA, thickness=paper.THICKNESS)
 
 
 def strain_dependence_numbers() -> dict[str, np.ndarray]:
@@ -249,7 +250,7 @@ def strain_dependence_numbers() -> dict[str, np.ndarray]:
     table or the interpolated tables); ``model`` and ``naive``: the objective of the strain-dependent
     model and of the interpolated per-strain optima there.
     """
-    model, naive = strain_dependence.strain_dependent(), interpolated_optima()
+    model, naive = strain_dependence.strain_dependent(common_order=False), interpolated_optima()
     strains = strain_dependence.identification_strains()
 
     def objective(wall: StrainDependentDamper, strain: float) -> float:

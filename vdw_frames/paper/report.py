@@ -103,7 +103,7 @@ def _figures(out, sets) -> list:
 def _strain_figure(path):
     """G' and G'' against strain at each frequency: data, per-strain fits over their ranges, the model."""
     plt = pyplot()
-    model, naive = strain_dependence.strain_dependent(), interpolated_optima()
+    model, naive = strain_dependence.strain_dependent(common_order=False), interpolated_optima()
     strain = np.geomspace(STRAINS[0], STRAINS[-1], 120)
     figure, axes = plt.subplots(2, FREQUENCIES.size, figsize=(17.0, 6.8), sharex=True)
     for k, f in enumerate(FREQUENCIES):
@@ -143,7 +143,7 @@ def _strain_figure(path):
 
 
 def _section_strain_dependence(numbers, figure) -> str:
-    model = strain_dependence.strain_dependent()
+    model = strain_dependence.strain_dependent(common_order=False)
     nodes = strain_dependence.STRAIN_DEPENDENT
     node_rows = [[f"{100 * g:g} %"] + [f"{nodes[name][k]:.4g}" for name in PARAMETERS]
                  for k, g in enumerate(nodes["strains"])]
