@@ -21,6 +21,7 @@ from test_opensees import ten_story as r1_ten_story
 
 from vdw_frames import Bilinear, FDMKDamper, ShearBuilding, SupportedDamper, simulate
 from vdw_frames.element import FastMemory
+from vdw_frames.element.limits import WallLimits
 from vdw_frames.frame import NewtonRaphson
 from vdw_frames.interop.opensees import WallBridge, opensees_module
 from vdw_frames.paper import fitted, strain_dependent
@@ -371,8 +372,11 @@ def test_boundary_checks(ops):
         bridge.add_wall(1, 2, 0, WALL_A)
     with pytest.raises(ValueError, match="FDMKDamper or a SupportedDamper"):
         bridge.add_wall(1, 2, 1, "wall")
-    with pytest.raises(ValueError, match="FDMKDamper or a SupportedDamper"):
+    with pytest.raises(ValueError, match="fixed parameters only: no strain-dependent"):
         bridge.add_wall(1, 2, 1, strain_dependent())
+    with pytest.raises(ValueError, match="fixed parameters only"):
+        limited = FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5, limits=WallLimits(strain=8.5))
+        bridge.add_wall(1, 2, 1, SupportedDamper(limited, 1e5))
     with pytest.raises(ValueError, match="add at least one wall"):
         bridge.analyze(1)
     with pytest.raises(ValueError, match="dt"):

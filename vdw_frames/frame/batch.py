@@ -27,6 +27,7 @@ from .._files import write_text
 from .._validation import finite_array, positive, show
 from ..element.damper import DEFAULT_MEMORY
 from ..element.fast_memory import FastMemory
+from ..element.bank import wall_order
 from ..element.fractional import DEFAULT_METHOD, Discretisation
 from ..motion.record import GroundMotion
 from .building import ShearBuilding
@@ -217,6 +218,9 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
         raise ValueError(f"scales must have shape (scales,) or ({len(motions)}, scales), got {np.shape(scales)}")
     if strain_compatible is not False:
         strain_compatible_options(strain_compatible)  # a bad value fails here, not in every worker
+    else:
+        for _, wall in building.wall_list:  # an amplitude-following wall needs one r: refused before any work
+            wall_order(wall)
     options = tuple(sorted(simulate_options.items()))
     tasks = {(m, s): BatchTask(building, motion, float(factors[m, s]), memory, method, strain_compatible, options)
              for m, motion in enumerate(motions) for s in range(factors.shape[1])}
