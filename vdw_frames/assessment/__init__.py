@@ -12,7 +12,8 @@ Units: accelerations mm/s^2, periods s, lengths mm, forces N.
 from .collapse import (SDCS, STRUCTURAL_SYSTEMS, CollapseAssessment, CollapseCriterion, IDACurve, canonical_sdc,
                        code_period, collapse_assessment, quality_ratings, scaled_set, set_intensity)
 from .hunt_fill import HuntAndFill, Run, SearchResult, hunt_and_fill
+from .report import write_collapse_report
 
 __all__ = ["SDCS", "STRUCTURAL_SYSTEMS", "CollapseAssessment", "CollapseCriterion", "HuntAndFill", "IDACurve", "Run",
            "SearchResult", "canonical_sdc", "code_period", "collapse_assessment", "hunt_and_fill", "quality_ratings",
-           "scaled_set", "set_intensity"]
+           "scaled_set", "set_intensity", "write_collapse_report"]

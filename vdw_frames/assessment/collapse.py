@@ -150,7 +150,8 @@ class CollapseAssessment:
     ``mu_t_lower_bound``: True when the pushover lost less than 20 % strength by its target and mu_T is
     the target over delta_y,eff, accepted only where SSF and beta_TOT do not depend on it, mu_T >= 8),
     ``ssf``, ``acmr``, ``quality``, ``beta_total``, ``acmr10``, ``acmr20``, ``passes_acmr10``,
-    ``passes_acmr20``.  ``strain_warnings``: the wall strain-range warnings of the analyses, counted.
+    ``passes_acmr20``.  ``strain_warnings``: the wall strain-range warnings of the analyses (one per
+    analysis that had one).  ``metadata``: each record's metadata (None where it has none); ``seconds``: wall-clock time.
     """
 
     record_names: tuple
@@ -186,6 +187,7 @@ class CollapseAssessment:
     passes_acmr10: bool
     passes_acmr20: bool
     strain_warnings: tuple = ()
+    metadata: tuple = ()
     seconds: float = field(default=0.0, compare=False)
 
     @property
@@ -428,7 +430,12 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     beta = float(fema.beta_total(*quality, mu_t))
     acmr10, acmr20 = (float(fema.acmrxx(beta, p)) for p in (0.1, 0.2))
     curves = tuple(IDACurve(*s.curve()) for s in searches)
-    strain = tuple(dict.fromkeys(m for m in messages if "outside the range" in m))
+    strain = tuple(m for m in messages if "outside the range" in m)
+    if strain:
+        _warnings.warn(f"collapse_assessment: {len(strain)} of {sum(len(s.runs) for s in searches)} analyses took walls "
+                       "outside the strain range their parameters were identified for (result.strain_warnings); the "
+                       "walls stay linear there and never fail, so the collapse intensities are upper bounds",
+                       UserWarning, stacklevel=2)
     return CollapseAssessment(
         record_names=tuple(m.name for m in motions), record_set=set_name, sdc=sdc, period=t,
         period_source=period_source, analytical_period=analytical, criterion=criterion, search=settings,
@@ -440,7 +447,7 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
         confidence_interval=interval, cmr=cmr, pushover=capacity, mu_t=mu_t, mu_t_lower_bound=lower_bound,
         ssf=ssf, acmr=acmr, quality=quality, beta_total=beta, acmr10=acmr10, acmr20=acmr20,
         passes_acmr10=bool(acmr >= acmr10), passes_acmr20=bool(acmr >= acmr20), strain_warnings=strain,
-        seconds=time.perf_counter() - started)
+        metadata=tuple(m.metadata for m in motions), seconds=time.perf_counter() - started)
 
 
 def _ductility(capacity: PushoverResult, target_drift_ratio: float) -> tuple[float, bool]:
