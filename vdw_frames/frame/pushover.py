@@ -51,6 +51,7 @@ _HALVINGS = 10  # an increment Newton cannot solve is cut in half up to this man
 _ITERATIONS = 50
 _FORCE_TOLERANCE = 1e-10  # of the largest force in the step
 _DISPLACEMENT_TOLERANCE = 1e-10  # mm
+_EVENT_PRECISION = 1e-9  # a kink (a story yielding) is located to this fraction of an increment
 
 
 @dataclass(frozen=True)
@@ -132,7 +133,9 @@ def pushover(building: ShearBuilding, pattern="modal", target_drift_ratio: float
     ``target_drift_ratio`` (-, > 0, at most 1): roof displacement / height at the end.  ``period`` (s):
     the period of eq. (6-7), max(T, T1) with T = C_u T_a (Sec. 5.2.5) and T1 the analytical one; default
     the elastic static model's T1.  ``steps``: equal roof-displacement increments (1 ... 100 000); an
-    increment Newton cannot solve is halved up to 10 times.  The building needs ``story_heights``.
+    increment Newton cannot solve is halved up to 10 times; an increment over which a story's tangent jumps
+    (a Bilinear story yielding) is bisected so that the curve has a point just past the corner (within 1e-9
+    of an increment), keeping V_max exact.  The building needs ``story_heights``.
 
     The analysis goes past the peak into the negative-stiffness branch, and ends at the target or at the
     first increment whose base shear is zero or less (after a peak: no lateral strength left).  ValueError, saying where it
@@ -175,10 +178,14 @@ def pushover(building: ShearBuilding, pattern="modal", target_drift_ratio: float
                 break
             size /= 2.0
         else:
+            snap = curve.snaps_back(curve.last_tangent)
+            why = (f"the capacity curve snaps back ({snap}); roof displacement control cannot follow it" if snap else
+                   f"Newton did not converge on the next increment, even at 1/{2 ** _HALVINGS} of it ({curve.failure})")
             raise ValueError(f"pushover stopped at a roof displacement of {roof[-1]:.6g} mm (roof drift ratio "
                              f"{roof[-1] / height:.4g}, base shear {shear[-1] / 1e3:.6g} kN) short of the target "
-                             f"{target:.6g} mm: Newton did not converge on the next increment, even at "
-                             f"1/{2 ** _HALVINGS} of it ({curve.failure})")
+                             f"{target:.6g} mm: {why}")
+        if curve.kinked() and size > _EVENT_PRECISION * increment:
+            _land_on_kink(curve, roof[-1], size, _EVENT_PRECISION * increment)
         curve.commit()
         snap = curve.snaps_back()
         if snap is not None:
@@ -191,6 +198,22 @@ def pushover(building: ShearBuilding, pattern="modal", target_drift_ratio: float
         drift.append(curve.drift.copy())
     roof, shear = np.array(roof), np.array(shear)
     return _result(roof, shear, np.array(drift), loads, height, weight, period, c0, shape, walls, end)
+
+
+def _land_on_kink(curve: "_Curve", start: float, size: float, precision: float) -> None:
+    """Leave ``curve`` at the trial just past the first kink within ``start + (0, size]`` (bisection to
+    ``precision`` mm), so that a piecewise-linear capacity curve keeps its corners (V_max at a story's
+    yield is then exact, not the nearest increment's)."""
+    low, high = 0.0, size
+    while high - low > precision:
+        middle = 0.5 * (low + high)
+        if curve.advance(start + middle) and not curve.kinked():
+            low = middle
+        else:
+            high = middle
+    if not curve.advance(start + high):  # converged before at this or a larger increment
+        raise ValueError(f"pushover: Newton failed just past a kink at a roof displacement of {start + high:.6g} mm "
+                         f"({curve.failure})")
 
 
 def _pattern(pattern, building: ShearBuilding, shape: np.ndarray) -> np.ndarray:
@@ -226,7 +249,9 @@ class _Curve:
         self.load = 0.0
         self._trial = None
         self.failure = ""
-        self.tangent = np.asarray(building.stiffnesses, dtype=float) + self.linear
+        self.initial = np.asarray(building.stiffnesses, dtype=float)
+        self.tangent = self.initial + self.linear
+        self.last_tangent = self.tangent
 
     @property
     def roof(self) -> float:
@@ -260,6 +285,7 @@ class _Curve:
                     and abs(u[-1] - roof) <= _DISPLACEMENT_TOLERANCE and correction_norm <= 1e-6 * (1.0 + abs(roof))):
                 self._trial = (u, load, force, tangent)
                 return True
+            self.last_tangent = tangent
             matrix[:n, :n] = story_matrix(tangent)
             rhs = np.append(residual, roof - u[-1])
             try:
@@ -276,6 +302,12 @@ class _Curve:
                        f"{_ITERATIONS} iterations"
         return False
 
+    def kinked(self) -> bool:
+        """Whether a story's own tangent jumped (by over half its initial stiffness) between the committed
+        state and the pending trial: a corner of a piecewise-linear model (Bilinear yielding or unloading)."""
+        tangent = self._trial[3]
+        return bool((np.abs(tangent - self.tangent) > 0.5 * self.initial).any())
+
     def commit(self) -> None:
         u, load, force, tangent = self._trial
         for k, state in enumerate(self.states):
@@ -284,14 +316,14 @@ class _Curve:
         self.u, self.load, self.tangent = u, load, tangent
         self._trial = None
 
-    def snaps_back(self) -> str | None:
-        """Why the curve snaps back at the committed state, or None.
+    def snaps_back(self, tangent=None) -> str | None:
+        """Why the curve snaps back with the story tangents ``tangent`` (default: the committed state's), or None.
 
         In a shear building story k carries lambda P_k (P_k the loads above it), so the roof moves by
         dU = dlambda sum_k P_k / k_t,k.  Past the peak (a story with negative tangent, dlambda < 0) the
         roof must keep moving forward: when sum_k P_k / k_t,k > 0 instead, the path turns back in U.
         """
-        tangent = self.tangent
+        tangent = self.tangent if tangent is None else tangent
         if not (tangent < 0).any() or (tangent == 0).any():
             return None
         above = np.cumsum(self.loads[::-1])[::-1]
