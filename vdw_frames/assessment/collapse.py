@@ -151,7 +151,9 @@ class CollapseAssessment:
     the target over delta_y,eff, accepted only where SSF and beta_TOT do not depend on it, mu_T >= 8),
     ``ssf``, ``acmr``, ``quality``, ``beta_total``, ``acmr10``, ``acmr20``, ``passes_acmr10``,
     ``passes_acmr20``.  ``strain_warnings``: the wall strain-range warnings of the analyses (one per
-    analysis that had one).  ``metadata``: each record's metadata (None where it has none); ``seconds``: wall-clock time.
+    analysis that had one).  ``metadata``: each record's metadata (None where it has none); ``steps``: the
+    time steps integrated per record (all its analyses); ``seconds``: wall-clock time, ``search_seconds``
+    the part spent in the records' searches (on the executor).
     """
 
     record_names: tuple
@@ -188,7 +190,9 @@ class CollapseAssessment:
     passes_acmr20: bool
     strain_warnings: tuple = ()
     metadata: tuple = ()
+    steps: np.ndarray | None = None
     seconds: float = field(default=0.0, compare=False)
+    search_seconds: float = field(default=0.0, compare=False)
 
     @property
     def total_analyses(self) -> int:
@@ -336,7 +340,8 @@ class RecordSearch:
             result = simulate(self.building, self.motion.scaled(self.unit * intensity),
                               collapse_drift_ratio=self.criterion.drift_ratio, **options)
             collapsed = self.criterion.collapsed(result, f"{label} at S_T = {intensity / G:.4g} g")
-            return Run(float(intensity), collapsed, bool(result.converged), float(np.max(result.peak_drift_ratio)))
+            return Run(float(intensity), collapsed, bool(result.converged), float(np.max(result.peak_drift_ratio)),
+                       int(result.time.size))
 
         with _warnings.collect() as caught:
             found = hunt_and_fill(analyse, self.search, label)
@@ -417,8 +422,10 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     capacity = pushover(building, pushover_pattern, pushover_drift_ratio, period=max(t, analytical))
     mu_t, lower_bound = _ductility(capacity, pushover_drift_ratio)
 
+    searching = time.perf_counter()
     searches, messages = _run_searches(building, motions, 1.0 / normalized, criterion, settings,
                                        tuple(sorted(simulate_options.items())), executor, progress)
+    searching = time.perf_counter() - searching
 
     # P695 quantities.
     collapse = np.ma.masked_array([s.collapse_intensity or 0.0 for s in searches],
@@ -447,7 +454,8 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
         confidence_interval=interval, cmr=cmr, pushover=capacity, mu_t=mu_t, mu_t_lower_bound=lower_bound,
         ssf=ssf, acmr=acmr, quality=quality, beta_total=beta, acmr10=acmr10, acmr20=acmr20,
         passes_acmr10=bool(acmr >= acmr10), passes_acmr20=bool(acmr >= acmr20), strain_warnings=strain,
-        metadata=tuple(m.metadata for m in motions), seconds=time.perf_counter() - started)
+        metadata=tuple(m.metadata for m in motions), steps=np.array([sum(r.steps for r in s.runs) for s in searches]),
+        seconds=time.perf_counter() - started, search_seconds=searching)
 
 
 def _ductility(capacity: PushoverResult, target_drift_ratio: float) -> tuple[float, bool]:
@@ -509,10 +517,11 @@ def _median_and_interval(collapse, motions, cap, samples, seed):
         groups.setdefault(key, []).append(k)
     members = list(groups.values())
     rng = np.random.default_rng(seed)
-    medians = np.empty(samples)
-    for b in range(samples):
-        picked = rng.integers(0, len(members), len(members))
-        medians[b] = np.median(values[np.concatenate([members[i] for i in picked])])
+    picked = rng.integers(0, len(members), (samples, len(members)))
+    if len({len(m) for m in members}) == 1:  # equal groups (the P695 sets: pairs): all samples at once
+        medians = np.median(values[np.array(members)[picked].reshape(samples, -1)], axis=1)
+    else:
+        medians = np.array([np.median(values[np.concatenate([members[i] for i in row])]) for row in picked])
     tail = (1.0 - CONFIDENCE) / 2.0
     low, high = (float(np.quantile(medians, q)) for q in (tail, 1.0 - tail))
     return median, (low, high if math.isfinite(high) else None)

@@ -81,13 +81,14 @@ class HuntAndFill:
 
 @dataclass(frozen=True)
 class Run:
-    """One analysis: ``intensity``, ``collapsed`` (by the criterion), ``converged`` and the largest story
-    ``peak_drift_ratio`` (-) reached before it stopped."""
+    """One analysis: ``intensity``, ``collapsed`` (by the criterion), ``converged``, the largest story
+    ``peak_drift_ratio`` (-) reached before it stopped and the time ``steps`` it integrated."""
 
     intensity: float
     collapsed: bool
     converged: bool
     peak_drift_ratio: float
+    steps: int = 0
 
 
 @dataclass(frozen=True)
