@@ -152,7 +152,9 @@ class CollapseAssessment:
     ``ssf``, ``acmr``, ``quality``, ``beta_total``, ``acmr10``, ``acmr20``, ``passes_acmr10``,
     ``passes_acmr20``.  ``strain_warnings``: the wall strain-range warnings of the analyses (one per
     analysis that had one).  ``metadata``: each record's metadata (None where it has none); ``steps``: the
-    time steps integrated per record (all its analyses); ``seconds``: wall-clock time, ``search_seconds``
+    time steps integrated per record (all its analyses); ``resolution``: per record, the widest ratio left
+    between consecutive standing runs below its collapse (a transition inside it would be unseen);
+    ``seconds``: wall-clock time, ``search_seconds``
     the part spent in the records' searches (on the executor).
     """
 
@@ -191,6 +193,7 @@ class CollapseAssessment:
     strain_warnings: tuple = ()
     metadata: tuple = ()
     steps: np.ndarray | None = None
+    resolution: np.ndarray | None = None
     seconds: float = field(default=0.0, compare=False)
     search_seconds: float = field(default=0.0, compare=False)
 
@@ -369,7 +372,7 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     "T1" (the analytical first mode) or seconds; in 0.25-5 s.  ``quality``: the ratings (A-D) of the
     design requirements, test data and model (Sec. 7.3).  ``criterion``: :class:`CollapseCriterion`
     (default: drift ratio 0.10, non-convergence).  ``search``: :class:`~vdw_frames.assessment.HuntAndFill`
-    (start default S_MT, cap 20 S_MT, growth 1.8, tolerance 2 %).  ``pushover_pattern`` and
+    (start default S_MT, cap 20 S_MT, growth 1.8, tolerance 2 %, gaps filled to 1.1 within 12 analyses).  ``pushover_pattern`` and
     ``pushover_drift_ratio``: the pushover for mu_T.  ``bootstrap_samples`` (100 ... 1e6) and ``seed``:
     the confidence interval of Ŝ_CT.  ``executor``: any ``concurrent.futures`` executor (a Dask
     cluster's too: ``distributed.Client(...).get_executor()``); default a process pool over all cores,
@@ -455,6 +458,7 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
         ssf=ssf, acmr=acmr, quality=quality, beta_total=beta, acmr10=acmr10, acmr20=acmr20,
         passes_acmr10=bool(acmr >= acmr10), passes_acmr20=bool(acmr >= acmr20), strain_warnings=strain,
         metadata=tuple(m.metadata for m in motions), steps=np.array([sum(r.steps for r in s.runs) for s in searches]),
+        resolution=np.array([s.resolution for s in searches]),
         seconds=time.perf_counter() - started, search_seconds=searching)
 
 

@@ -1,21 +1,24 @@
 """The collapse intensity of one record by hunt-and-fill (Vamvatsikos & Cornell 2004, "Applied incremental
-dynamic analysis", Earthquake Spectra 20(2), Section "Hunt & fill tracing").
+dynamic analysis", Earthquake Spectra 20(2)).
 
 *Hunt*: from ``start`` the intensity grows geometrically (x ``growth``) until the first collapse, or
-shrinks (/ ``growth``) until the first run that stands when the start already collapses.  *Fill*: the
-interval between the highest standing and the lowest collapsing intensity is bisected (geometric
-midpoints) until their ratio is at most 1 + ``tolerance``.  The collapse intensity reported is the
-geometric midpoint of that last interval (within sqrt(1 + tolerance) of both ends).  A record still
-standing at ``cap`` is right-censored (no collapse intensity).
+shrinks (/ ``growth``) until the first run that stands when the start already collapses.  *Bisect*: the
+interval between the lowest collapsing intensity and the highest standing one below it is bisected
+(geometric midpoints) until their ratio is at most 1 + ``tolerance``.  *Fill*: an IDA curve need not be
+monotonic -- a record can collapse, then stand again at a higher intensity ("structural resurrection",
+Vamvatsikos & Cornell 2002) -- so the largest gaps between the standing runs below that interval are
+filled (geometric midpoints), while any is wider than ``fill_ratio`` and the record has used fewer than
+``max_runs`` analyses; a fill run that collapses gives a lower interval, bisected in turn.  The collapse
+intensity reported is the geometric midpoint of the final interval (within sqrt(1 + tolerance) of both
+ends): the lowest standing-to-collapse transition the runs resolved.  A record still standing at ``cap``
+is right-censored (no collapse intensity).
 
 Every run is one call of ``run(intensity)``; the number of runs is bounded by the settings alone:
 hunting up at most ceil(ln(cap / start) / ln(growth)) + 1 runs, down at most ``MAX_HALVINGS`` (a record
-that still collapses there is an error: the model fails at almost no shaking), bisecting at most
-ceil(log2(ln(growth) / ln(1 + tolerance))).
-
-Like every search of a non-monotonic IDA curve, it finds *a* standing-to-collapse transition: where a
-record collapses and then "resurrects" at a higher intensity (Vamvatsikos & Cornell 2002), the first
-collapse found by the hunt bounds the bracket, so the transition found may not be the lowest.
+that still collapses there is an error: the model fails at almost no shaking), each bisection at most
+ceil(log2(ln(growth) / ln(1 + tolerance))) runs, fill runs only while fewer than ``max_runs`` were made.
+A transition inside a gap narrower than ``fill_ratio``, or left unfilled when the budget ran out, is
+not seen: :attr:`SearchResult.resolution` reports the widest gap left.
 Units: whatever ``run`` takes (the assessment uses spectral accelerations in mm/s^2).
 """
 
@@ -27,7 +30,7 @@ from typing import Callable
 
 import numpy as np
 
-from .._validation import positive, show
+from .._validation import positive, show, whole_number
 
 MAX_HALVINGS = 12  # hunting down: at most start / growth^12
 
@@ -40,13 +43,17 @@ class HuntAndFill:
     :func:`~vdw_frames.assessment.collapse_assessment` choose them (S_MT and 20 S_MT).  ``growth`` (> 1,
     at most 10): the hunt's factor; ``tolerance`` (in (0, 0.5)): the fill stops when collapsing /
     standing intensity <= 1 + tolerance (default 0.02: 2 % in Sa).  With the defaults (growth 1.8) the
-    fill takes 5 runs (1.8^(1/32) = 1.0185).
+    fill takes 5 runs (1.8^(1/32) = 1.0185).  ``fill_ratio`` (> 1 + tolerance): gaps between standing runs
+    below the collapse wider than this are filled while the record has made fewer than ``max_runs``
+    (1 ... 1000) analyses.
     """
 
     start: float | None = None
     cap: float | None = None
     growth: float = 1.8
     tolerance: float = 0.02
+    fill_ratio: float = 1.1
+    max_runs: int = 12
 
     def __post_init__(self):
         if self.start is not None:
@@ -65,18 +72,26 @@ class HuntAndFill:
         if growth <= 1.0 + tolerance:
             raise ValueError(f"growth = {show(growth)} must exceed 1 + tolerance = {show(1.0 + tolerance)}")
         object.__setattr__(self, "tolerance", tolerance)
+        fill = positive("fill_ratio", self.fill_ratio)
+        if not fill > 1.0 + tolerance:
+            raise ValueError(f"fill_ratio = {show(self.fill_ratio)} must exceed 1 + tolerance = {show(1.0 + tolerance)}")
+        object.__setattr__(self, "fill_ratio", fill)
+        object.__setattr__(self, "max_runs", whole_number("max_runs", self.max_runs, 1))
+        if self.max_runs > 1000:
+            raise ValueError(f"max_runs must be at most 1000, got {self.max_runs}")
 
     def with_range(self, start: float, cap: float) -> "HuntAndFill":
         """These settings with ``start`` and ``cap`` filled in where they are None."""
         return HuntAndFill(self.start if self.start is not None else start,
                            self.cap if self.cap is not None else max(cap, self.start or start),
-                           self.growth, self.tolerance)
+                           self.growth, self.tolerance, self.fill_ratio, self.max_runs)
 
-    def max_runs(self) -> int:
+    def bound(self) -> int:
         """The most runs one record can take with these settings (start and cap set)."""
-        up = math.ceil(math.log(self.cap / self.start) / math.log(self.growth) - 1e-12) + 1
-        fill = math.ceil(math.log2(math.log(self.growth) / math.log1p(self.tolerance)) - 1e-12)
-        return max(up, MAX_HALVINGS + 1) + max(fill, 0)
+        hunt = max(math.ceil(math.log(self.cap / self.start) / math.log(self.growth) - 1e-12) + 1, MAX_HALVINGS + 1)
+        bisection = max(math.ceil(math.log2(math.log(self.growth) / math.log1p(self.tolerance)) - 1e-12), 0)
+        fills = max(self.max_runs - 1, 0)  # each fill run, and each lower interval one finds, is bounded too
+        return hunt + bisection + fills * (1 + bisection)
 
 
 @dataclass(frozen=True)
@@ -95,14 +110,16 @@ class Run:
 class SearchResult:
     """The runs of one record (in the order run) and the bracket found.
 
-    ``standing`` / ``collapsing``: the highest standing and the lowest collapsing intensity of the final
-    bracket (``collapsing`` None when the record stood at the cap); ``collapse_intensity``: their
-    geometric mean (None when censored).
+    ``standing`` / ``collapsing``: the lowest collapsing intensity and the highest standing one below it
+    (``collapsing`` None when the record stood at the cap); ``collapse_intensity``: their geometric mean
+    (None when censored); ``resolution``: the widest ratio left between consecutive standing runs below
+    the bracket (1.0 when there are fewer than two).
     """
 
     runs: tuple
     standing: float
     collapsing: float | None
+    resolution: float = 1.0
 
     @property
     def collapse_intensity(self) -> float | None:
@@ -128,38 +145,50 @@ def hunt_and_fill(run: Callable[[float], Run], settings: HuntAndFill, label: str
     runs = []
 
     def analyse(intensity):
-        result = run(intensity)
-        runs.append(result)
-        return result.collapsed
+        runs.append(run(intensity))
+        return runs[-1].collapsed
+
+    def bracket():
+        """(highest standing intensity below the lowest collapse, lowest collapse or None)."""
+        collapses = [r.intensity for r in runs if r.collapsed]
+        lowest = min(collapses) if collapses else None
+        standing = [r.intensity for r in runs if not r.collapsed and (lowest is None or r.intensity < lowest)]
+        return (max(standing) if standing else None), lowest
 
     growth = settings.growth
     intensity = settings.start
-    standing, collapsing = None, None
-    if analyse(intensity):
-        collapsing = intensity
+    if analyse(intensity):  # hunt down
         for _ in range(MAX_HALVINGS):
             intensity /= growth
             if not analyse(intensity):
-                standing = intensity
                 break
-            collapsing = intensity
         else:
             raise ValueError(f"{label} collapses even at {intensity:.6g} (start / {growth:g}^{MAX_HALVINGS}): the "
                              "model fails under almost no shaking")
-    else:
-        standing = intensity
-        while standing < settings.cap:
-            intensity = min(standing * growth, settings.cap)
+    else:  # hunt up
+        while intensity < settings.cap:
+            intensity = min(intensity * growth, settings.cap)
             if analyse(intensity):
-                collapsing = intensity
                 break
-            standing = intensity
-        if collapsing is None:
-            return SearchResult(tuple(runs), standing, None)
-    while collapsing / standing > 1.0 + settings.tolerance:
-        middle = math.sqrt(standing * collapsing)
-        if analyse(middle):
-            collapsing = middle
         else:
-            standing = middle
-    return SearchResult(tuple(runs), standing, collapsing)
+            return SearchResult(tuple(runs), intensity, None, _widest_gap(runs, intensity))
+    while True:
+        standing, collapsing = bracket()
+        if collapsing / standing > 1.0 + settings.tolerance:  # bisect
+            analyse(math.sqrt(standing * collapsing))
+            continue
+        if len(runs) >= settings.max_runs:
+            break
+        below = sorted(r.intensity for r in runs if r.intensity <= standing)
+        ratios = [high / low for low, high in zip(below, below[1:])]
+        if not ratios or max(ratios) <= settings.fill_ratio:
+            break
+        k = int(np.argmax(ratios))  # fill the widest gap
+        analyse(math.sqrt(below[k] * below[k + 1]))
+    standing, collapsing = bracket()
+    return SearchResult(tuple(runs), standing, collapsing, _widest_gap(runs, standing))
+
+
+def _widest_gap(runs, top: float) -> float:
+    below = sorted(r.intensity for r in runs if not r.collapsed and r.intensity <= top)
+    return max((high / low for low, high in zip(below, below[1:])), default=1.0)

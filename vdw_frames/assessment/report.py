@@ -13,6 +13,8 @@ import os
 import re
 from pathlib import Path
 
+import numpy as np
+
 from ..motion.record import G
 from ..plotting.collapse import plot_collapse_fragility, plot_collapse_ida, plot_pushover
 from .collapse import CollapseAssessment
@@ -91,7 +93,9 @@ def markdown(assessments: dict, title: str = "FEMA P695 collapse assessment") ->
               f"- Collapse: {first.criterion.describe()}.",
               f"- Search per record: hunt-and-fill (Vamvatsikos & Cornell 2004) from S_T = {_g(first.search.start)} g "
               f"by x {first.search.growth:g} up to {_g(first.search.cap)} g, then bisection to "
-              f"{100 * first.search.tolerance:g} % in S_T; the collapse intensity is the bracket's geometric middle.",
+              f"{100 * first.search.tolerance:g} % in S_T, gaps between standing runs below it filled to "
+              f"{first.search.fill_ratio:g} within {first.search.max_runs} analyses a record (non-monotonic IDA "
+              "curves); the collapse intensity is the final bracket's geometric middle.",
               ""]
     lines += ["## Summary (FEMA P695 Chapters 6-7)", "",
               "| quantity | " + " | ".join(labels) + " |", "|---|" + "---:|" * len(labels)]
@@ -109,6 +113,8 @@ def markdown(assessments: dict, title: str = "FEMA P695 collapse assessment") ->
     row("records standing at the cap", [str(int(a.censored.sum())) for a in items])
     row("analyses (mean / max per record)", [f"{a.total_analyses} ({a.analyses.mean():.1f} / {a.analyses.max()})"
                                              for a in items])
+    row("widest unfilled gap below collapse (median / max)", [f"{np.median(a.resolution):.3f} / "
+                                                              f"{np.max(a.resolution):.3f}" for a in items])
     row("Ŝ_CT (g)", [_g(a.median_collapse_intensity) for a in items])
     row("Ŝ_CT 90 % bootstrap interval (g)", [f"{_g(a.confidence_interval[0])} - "
                                             f"{_g(a.confidence_interval[1]) if a.confidence_interval[1] else 'above cap'}"
