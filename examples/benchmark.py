@@ -468,7 +468,8 @@ def part_p695():
     print(f"    {'':<12} {'analyses':>9} {'per record':>14} {'steps':>11} {'time (s)':>9} {'analyses/s':>11} "
           f"{'ACMR':>6}")
     for label, result in results.items():
-        print(f"    {label:<12} {result.total_analyses:>9} {result.analyses.mean():>7.1f} (<={result.analyses.max():>2}) "
+        print(f"    {label:<12} {result.total_analyses:>9} {result.analyses.mean():>7.1f} "
+              f"(<={result.analyses.max():>2}) "
               f"{int(result.steps.sum()):>11} {seconds[label]:>9.2f} {result.total_analyses / seconds[label]:>11.1f} "
               f"{result.acmr:>6.2f}")
     analyses = sum(r.total_analyses for r in results.values())

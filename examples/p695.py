@@ -59,7 +59,8 @@ def run(args) -> int:
             elapsed = time.perf_counter() - started
             results[label] = result
             low, high = result.confidence_interval
-            print(f"\n{label}: T = {result.period:.3f} s ({result.period_source}), T1 = {result.analytical_period:.3f} s; "
+            print(f"\n{label}: T = {result.period:.3f} s ({result.period_source}), "
+                  f"T1 = {result.analytical_period:.3f} s; "
                   f"{result.total_analyses} analyses ({result.analyses.mean():.1f} a record, at most "
                   f"{result.analyses.max()}) in {elapsed:.1f} s")
             print(f"  Ŝ_CT = {result.median_collapse_intensity / G:.3f} g (90 % bootstrap {low / G:.3f}-"

@@ -228,7 +228,8 @@ def _collapse(args) -> int:
 def _add_collapse_command(commands) -> None:
     collapse = commands.add_parser("collapse", help="FEMA P695 collapse assessment on a P695 record set (needs the "
                                                     "[p695] extra): Ŝ_CT, CMR, SSF, ACMR, pass/fail, report")
-    collapse.add_argument("building", help="building file, .toml or .json, with story heights (format: vdw_frames.config)")
+    collapse.add_argument("building",
+                          help="building file, .toml or .json, with story heights (format: vdw_frames.config)")
     collapse.add_argument("--set", default="far-field",
                           choices=("far-field", "near-field", "near-field-pulse", "near-field-no-pulse"),
                           help="FEMA P695 record set (default far-field)")

