@@ -35,7 +35,7 @@ BUILDING_FILE = Path(__file__).with_name("ten_story.toml")
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--out", type=Path, default=Path("out_p695"), help="report folder (default ./out_p695)")
+    parser.add_argument("--out", type=Path, default=Path("out"), help="report folder (default ./out)")
     parser.add_argument("--sdc", default="Dmax", help="seismic design category (default Dmax)")
     parser.add_argument("--set", default="far-field", help="FEMA P695 record set (default far-field)")
     args = parser.parse_args(argv)

