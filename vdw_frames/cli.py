@@ -1,4 +1,4 @@
-"""The ``vdw-frames`` command line: ``sine-test``, ``simulate``, ``design`` and
+"""The ``vdw-frames`` command line: ``sine-test``, ``simulate``, ``design``, ``collapse`` and
 ``paper-report``.
 
 Errors are one line ``vdw-frames: error: ...`` on standard error with exit code 2; warnings are one
@@ -192,6 +192,72 @@ def _design(args) -> int:
     return 0
 
 
+def _collapse(args) -> int:
+    """The ``collapse`` command: FEMA P695 collapse assessment of a building file on a P695 record set."""
+    from .assessment import CollapseCriterion, HuntAndFill, collapse_assessment, write_collapse_report
+    from .config import load_analysis
+    from .motion import G
+
+    building, options = load_analysis(args.building)
+    if options:
+        raise ValueError(f"{args.building}: strain-dependent walls (strain_compatible) cannot be assessed; give the "
+                         "walls fixed parameters")
+    period = args.period
+    if period is not None and period.upper() != "T1":
+        try:
+            period = float(period)
+        except ValueError:
+            raise ValueError(f"--period must be T1 or seconds, got {args.period!r}") from None
+    out = _output_folder(args.out)
+    criterion = CollapseCriterion(drift_ratio=args.drift_limit)
+    search = HuntAndFill(tolerance=args.tolerance)
+    buildings = {"bare frame": building.without_walls(), "with walls": building} if args.bare and \
+        building.wall_list else {"building": building}
+    results = {}
+    for label, frame in buildings.items():
+        try:
+            result = collapse_assessment(frame, args.set, sdc=args.sdc, period=period, system=args.system,
+                                         quality=tuple(args.quality), criterion=criterion, search=search)
+        except ImportError as error:  # the optional extra is missing: one error line, exit 2
+            raise ValueError(str(error)) from None
+        results[label] = result
+        print(f"{label}: T = {result.period:.3f} s, S_MT = {result.smt / G:.3f} g, Ŝ_CT = "
+              f"{result.median_collapse_intensity / G:.3f} g, CMR = {result.cmr:.3f}, mu_T = {result.mu_t:.2f}, "
+              f"SSF = {result.ssf:.3f}, ACMR = {result.acmr:.3f} (ACMR20 % = {result.acmr20:.3f}: "
+              f"{'pass' if result.passes_acmr20 else 'FAIL'}; ACMR10 % = {result.acmr10:.3f}: "
+              f"{'pass' if result.passes_acmr10 else 'FAIL'}); {result.total_analyses} analyses "
+              f"({result.analyses.mean():.1f} a record) in {result.seconds:.1f} s")
+    path = write_collapse_report(results, out, title=f"FEMA P695 collapse assessment of {Path(args.building).name}")
+    print(f"report: {path}")
+    return 0
+
+
+def _add_collapse_command(commands) -> None:
+    collapse = commands.add_parser("collapse", help="FEMA P695 collapse assessment on a P695 record set (needs the "
+                                                    "[p695] extra): Ŝ_CT, CMR, SSF, ACMR, pass/fail, report")
+    collapse.add_argument("building",
+                          help="building file, .toml or .json, with story heights (format: vdw_frames.config)")
+    collapse.add_argument("--set", default="far-field",
+                          choices=("far-field", "near-field", "near-field-pulse", "near-field-no-pulse"),
+                          help="FEMA P695 record set (default far-field)")
+    collapse.add_argument("--sdc", default="Dmax", help="seismic design category Bmin ... Dmax (default Dmax)")
+    collapse.add_argument("--period", help="T1 (the analytical period) or seconds (default: C_u T_a)")
+    collapse.add_argument("--system", default="steel-moment-frame",
+                          choices=("steel-moment-frame", "concrete-moment-frame", "steel-eccentrically-braced-frame",
+                                   "steel-buckling-restrained-braced-frame", "other"),
+                          help="structural system for T_a (ASCE 7-16 Table 12.8-2; default steel-moment-frame)")
+    collapse.add_argument("--quality", nargs=3, default=["B", "B", "B"], metavar=("DR", "TD", "MDL"),
+                          help="quality ratings A-D of the design requirements, test data and model (default B B B)")
+    collapse.add_argument("--drift-limit", type=float, default=0.10,
+                          help="story drift ratio counted as collapse (default 0.10)")
+    collapse.add_argument("--tolerance", type=float, default=0.02,
+                          help="hunt-and-fill tolerance on the collapse intensity (default 0.02)")
+    collapse.add_argument("--bare", action="store_true",
+                          help="also assess the frame without its walls, for comparison")
+    collapse.add_argument("--out", default="collapse_report", help="output folder (default ./collapse_report)")
+    collapse.set_defaults(run=_collapse)
+
+
 def _paper_report(args) -> int:
     from .paper.report import write_paper_report
 
@@ -234,6 +300,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.set_defaults(run=_simulate)
 
     _add_design_command(commands)
+    _add_collapse_command(commands)
 
     report = commands.add_parser("paper-report", help="reproduce the paper's tables and figures into DIR/report.md")
     report.add_argument("--out", default="paper_report", help="output folder (default ./paper_report)")

@@ -34,7 +34,7 @@ from .fractional import DEFAULT_METHOD, METHODS, Discretisation, get_method
 if TYPE_CHECKING:
     from .limits import WallLimits
     from .thermal import ThermalProperties
-    from .wall import Wall
+    from .wall import SteppedWall, Wall
 
 MEMORY_STRATEGIES = ("fast", "exact")
 DEFAULT_MEMORY = "fast"
@@ -62,7 +62,7 @@ def amplitude_key(wall: Any) -> tuple | None:
     return tuple(map(tuple, wall.amplitude_table())) if hasattr(wall, "amplitude_table") else None
 
 
-def kernel_constants(wall: Wall | _CombinedWall) -> np.ndarray:
+def kernel_constants(wall: SteppedWall) -> np.ndarray:
     """The kernel's row of 7 constants of a wall assembly (see :mod:`vdw_frames.element.kernel`)."""
     try:
         return np.asarray(wall.kernel_constants(), dtype=float)
@@ -106,7 +106,7 @@ class WallBank:
     deformation d (mm).  :attr:`arrays` holds everything the compiled kernel steps.
     """
 
-    walls: tuple[Wall | _CombinedWall, ...]
+    walls: tuple[SteppedWall, ...]
     dt: float
     steps: int
     method: Discretisation = METHODS[DEFAULT_METHOD]
@@ -273,6 +273,10 @@ class _CombinedWall:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "r", wall_order(self.wall))
+
+    @property
+    def thickness(self) -> float:
+        return self.wall.thickness
 
     @property
     def thermal(self) -> ThermalProperties | None:

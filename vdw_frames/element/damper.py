@@ -50,7 +50,7 @@ from .kernel import AMPLITUDE, FAILURE_MODE, FAILURE_MODES, FAILURE_STEP, HEAT, 
 from .limits import WallLimits
 from .prony import PronySeries, fit_prony
 from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, property_factors
-from .wall import StiffnessMethods, Wall
+from .wall import SteppedWall, StiffnessMethods
 
 __all__ = ["DEFAULT_MEMORY", "MEMORY_STRATEGIES", "WallState", "FDMKDamper", "driven_force"]
 
@@ -269,7 +269,7 @@ class FDMKDamper(StiffnessMethods):
         return driven_force(self, displacement, dt, method, memory)
 
 
-def driven_force(wall: Wall, displacement: ArrayLike, dt: float, method: str | Discretisation = DEFAULT_METHOD,
+def driven_force(wall: SteppedWall, displacement: ArrayLike, dt: float, method: str | Discretisation = DEFAULT_METHOD,
                  memory: str | FastMemory = DEFAULT_MEMORY) -> np.ndarray:
     """Force history (N) of a wall assembly for a displacement history (mm) from rest (see ``force``)."""
     displacement = finite_array("displacement", displacement)
@@ -293,7 +293,7 @@ class WallState:
 
     _INITIAL_CAPACITY = 1024
 
-    def __init__(self, damper: Wall, dt: float, method: str | Discretisation = DEFAULT_METHOD,
+    def __init__(self, damper: SteppedWall, dt: float, method: str | Discretisation = DEFAULT_METHOD,
                  memory: str | FastMemory = DEFAULT_MEMORY) -> None:
         kernel_constants(damper)  # refuses anything that is not a wall
         self.damper = damper

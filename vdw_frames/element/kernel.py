@@ -319,13 +319,14 @@ def track_amplitude(table, w, strain):
     """Follow wall ``w``'s strain amplitude after a commit (``strain`` -).
 
     Half-cycles run between reversals, a = |extreme - turn| / 2 (an offset of the strain, a residual
-    drift, is not amplitude); the first excursion from rest is a quarter cycle, a = |extreme|.  The wall follows the larger of the current half-cycle's amplitude so far
-    and that of the last completed one, reached continuously: where a reversal is confirmed (once the strain
-    has come back by REVERSAL_GATE of the amplitude) the followed amplitude starts from where it was and
-    moves to the completed half-cycle's as the new half-cycle's extreme covers the rest of its span, 2 a,
-    a monotone progress.  So a steady sine of amplitude A gives A at every step (the parameters are those of
-    the test at A), a growing motion is followed at once, a decaying one within a half-cycle, and the
-    parameters never jump (a jump would make the force jump: a spurious oscillation)."""
+    drift, is not amplitude); the first excursion from rest is a quarter cycle, a = |extreme|.  The wall
+    follows the larger of the current half-cycle's amplitude so far and that of the last completed one,
+    reached continuously: where a reversal is confirmed (once the strain has come back by REVERSAL_GATE of
+    the amplitude) the followed amplitude starts from where it was and moves to the completed
+    half-cycle's as the new half-cycle's extreme covers the rest of its span, 2 a, a monotone progress.
+    So a steady sine of amplitude A gives A at every step (the parameters are those of the test at A), a
+    growing motion is followed at once, a decaying one within a half-cycle, and the parameters never jump
+    (a jump would make the force jump: a spurious oscillation)."""
     direction, turn, extreme = table[w, DIRECTION], table[w, TURN], table[w, EXTREME]
     if direction == 0.0:
         if strain != turn:

@@ -146,14 +146,14 @@ class StrainDependentDamper:
                   memory: str | FastMemory = DEFAULT_MEMORY) -> WallState:
         """A fresh trial/commit state on steps of ``dt`` s, following its own amplitude (see
         :func:`vdw_frames.element.kernel.track_amplitude`); displacement mm, force N."""
-        self.common_order  # refuses a family without one r
+        _ = self.common_order  # refuses a family without one r
         return WallState(self, dt, method=method, memory=memory)
 
     def force(self, displacement: ArrayLike, dt: float, method: str | Discretisation = DEFAULT_METHOD,
               memory: str | FastMemory = DEFAULT_MEMORY) -> np.ndarray:
         """Force history (N) for a displacement history (mm) every ``dt`` s from rest, the parameters following
         the wall's own strain amplitude step by step (:func:`vdw_frames.element.kernel.track_amplitude`)."""
-        self.common_order
+        _ = self.common_order  # refuses a family without one r
         return driven_force(self, displacement, dt, method, memory)
 
     @classmethod

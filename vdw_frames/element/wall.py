@@ -62,6 +62,22 @@ class Wall(Protocol):
         ...
 
 
+@runtime_checkable
+class SteppedWall(Protocol):
+    """What the time-stepping kernel needs of a wall (a :class:`Wall`, or a strain-dependent wall that follows
+    its amplitude): its layers' ``area`` (mm^2) and ``thickness`` (mm) and its kernel constants."""
+
+    @property
+    def area(self) -> float: ...
+
+    @property
+    def thickness(self) -> float: ...
+
+    def kernel_constants(self) -> tuple:
+        """The step kernel's row of 7 constants (:mod:`vdw_frames.element.kernel`)."""
+        ...
+
+
 class StiffnessMethods:
     """K', K'', C_d and the loss factor of anything with ``complex_stiffness(f)`` (N/mm at f Hz)."""
 

@@ -25,9 +25,9 @@ from numpy.typing import ArrayLike
 from .. import _warnings
 from .._files import write_text
 from .._validation import finite_array, positive, show
+from ..element.bank import wall_order
 from ..element.damper import DEFAULT_MEMORY
 from ..element.fast_memory import FastMemory
-from ..element.bank import wall_order
 from ..element.fractional import DEFAULT_METHOD, Discretisation
 from ..motion.record import GroundMotion
 from .building import ShearBuilding

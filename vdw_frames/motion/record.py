@@ -30,11 +30,14 @@ class GroundMotion:
 
     ``acceleration`` mm/s^2 (1-D, finite, non-empty; stored as a read-only copy), ``dt`` s (> 0),
     ``name`` a label (file stem for records read from files).  Sample ``i`` is at time ``i * dt``.
+    ``metadata``: None or a frozen dataclass describing the record (e.g. the FEMA P695 sets'
+    :class:`~vdw_frames.motion.p695.RecordMetadata`); scaling and resampling keep it.
     """
 
     acceleration: np.ndarray
     dt: float
     name: str = ""
+    metadata: object = None
 
     def __post_init__(self) -> None:
         acceleration = finite_array("acceleration", self.acceleration).copy()
@@ -45,6 +48,11 @@ class GroundMotion:
             raise ValueError(f"name must be a string, got {show(self.name)}")
         object.__setattr__(self, "acceleration", acceleration)
         object.__setattr__(self, "dt", positive("dt", self.dt))
+        metadata = self.metadata
+        params = getattr(type(metadata), "__dataclass_params__", None)  # set on every dataclass
+        frozen = params is not None and not isinstance(metadata, type) and bool(params.frozen)
+        if metadata is not None and not frozen:
+            raise ValueError(f"metadata must be None or a frozen dataclass instance, got {type(metadata).__name__}")
 
     def __repr__(self) -> str:
         return (f"GroundMotion(name={self.name!r}, points={self.acceleration.size}, dt={self.dt!r} s, "
@@ -66,9 +74,9 @@ class GroundMotion:
         return (self.acceleration.size - 1) * self.dt
 
     def scaled(self, factor: float) -> GroundMotion:
-        """A new record with acceleration x ``factor`` (dimensionless, finite); dt and name kept."""
+        """A new record with acceleration x ``factor`` (dimensionless, finite); dt, name and metadata kept."""
         factor = finite_scalar("factor", factor)
-        return GroundMotion(self.acceleration * factor, self.dt, self.name)
+        return GroundMotion(self.acceleration * factor, self.dt, self.name, self.metadata)
 
     def scale_factor_to_pga(self, target: float) -> float:
         """The factor (dimensionless) that brings the PGA to ``target`` mm/s^2 (> 0)."""
@@ -128,7 +136,7 @@ class GroundMotion:
         divided by the whole number of sub-steps (equal to ``dt`` within 1e-6 relative)."""
         substeps = self.substeps(dt)
         self._check_memory(dt, substeps)
-        return GroundMotion(self.interpolated(substeps), self.dt / substeps, self.name)
+        return GroundMotion(self.interpolated(substeps), self.dt / substeps, self.name, self.metadata)
 
     def substeps(self, dt: float) -> int:
         """The whole number ``m`` of steps of ``dt`` s in one record step (see :meth:`acceleration_at`);

@@ -8,9 +8,12 @@ suffix (``.png``, ``.pdf``, ``.svg``, ...); a path without one gets ``.png`` add
 - :mod:`.response`: one analysis -- :func:`plot_drift_envelope`, :func:`plot_roof_displacement`,
   :func:`plot_wall_hysteresis`, :func:`plot_story_hysteresis`, :func:`plot_energy`;
 - :mod:`.ida`: :func:`plot_ida_curves`, :func:`plot_fragility`;
-- :mod:`.design`: :func:`plot_damping_curve`.
+- :mod:`.design`: :func:`plot_damping_curve`;
+- :mod:`.collapse`: FEMA P695 assessments -- :func:`plot_collapse_ida`, :func:`plot_pushover`,
+  :func:`plot_collapse_fragility`.
 """
 
+from .collapse import plot_collapse_fragility, plot_collapse_ida, plot_pushover
 from .design import plot_damping_curve
 from .element import plot_loops
 from .ida import plot_fragility, plot_ida_curves
@@ -22,5 +25,6 @@ from .response import (
                        plot_wall_hysteresis,
 )
 
-__all__ = ["plot_wall_hysteresis", "plot_damping_curve", "plot_drift_envelope", "plot_energy", "plot_fragility",
-           "plot_ida_curves", "plot_loops", "plot_roof_displacement", "plot_story_hysteresis"]
+__all__ = ["plot_collapse_fragility", "plot_collapse_ida", "plot_damping_curve", "plot_drift_envelope", "plot_energy",
+           "plot_fragility", "plot_ida_curves", "plot_loops", "plot_pushover", "plot_roof_displacement",
+           "plot_story_hysteresis", "plot_wall_hysteresis"]

