@@ -90,10 +90,12 @@ class CollapseCriterion:
     collapse (numerical instability near collapse, as is usual in IDA); False makes such a run an error
     instead, since a run that stopped cannot be called standing.
 
-    ``wall_failure``: walls that tear as a collapse mode.  The wall model here does not fail (it stays
-    linear viscoelastic at any strain), so True is refused until walls that fail exist; the check then
-    goes in :meth:`collapsed`, which every analysis of the assessment passes through.  Collapse modes
-    that no model here simulates (P695 Sec. 5.5, non-simulated modes) are not included.
+    ``wall_failure`` (default False): the failure of any wall (a limit of its
+    :class:`~vdw_frames.element.limits.WallLimits` exceeded: rupture, debonding, bond strength,
+    temperature) counts as collapse too.  Off by default: a failed wall leaves the frame standing (the
+    analysis goes on without it), so collapse stays a frame event unless the user decides that losing a
+    wall is the limit state.  Walls without limits never fail.  Collapse modes that no model here
+    simulates (P695 Sec. 5.5, non-simulated modes) are not included.
     """
 
     drift_ratio: float = 0.10
@@ -105,25 +107,23 @@ class CollapseCriterion:
         for name in ("non_convergence", "wall_failure"):
             if not isinstance(getattr(self, name), (bool, np.bool_)):
                 raise ValueError(f"{name} must be True or False, got {getattr(self, name)!r}")
-        if self.wall_failure:
-            raise ValueError("wall_failure: the walls of this package do not fail (they stay linear viscoelastic at "
-                             "any strain), so wall failure cannot be a collapse mode yet; it plugs into "
-                             "CollapseCriterion.collapsed once walls that fail exist")
 
     def describe(self) -> str:
         """The limit states included, in words."""
         text = f"a story drift ratio above {self.drift_ratio:g}"
         if self.non_convergence:
             text += ", or an analysis that stops converging"
-        return text + "; not included: wall failure (the walls do not fail) and non-simulated collapse modes"
+        if self.wall_failure:
+            return text + ", or the failure of any wall (its limits); not included: non-simulated collapse modes"
+        return text + "; not included: wall failure (a failed wall leaves the frame standing) and non-simulated " \
+            "collapse modes"
 
     def collapsed(self, result, label: str) -> bool:
-        """Whether the :class:`~vdw_frames.SimulationResult` ``result`` is a collapse.  (Wall failure, once walls
-        can fail, is checked here.)"""
+        """Whether the :class:`~vdw_frames.SimulationResult` ``result`` is a collapse."""
         if not result.converged and not self.non_convergence:
             raise ValueError(f"{label} stopped converging, which this criterion does not count as collapse "
                              "(non_convergence=False)")
-        return bool(result.collapsed or not result.converged)
+        return bool(result.collapsed or not result.converged or (self.wall_failure and result.wall_failed.any()))
 
 
 @dataclass(frozen=True)
