@@ -23,8 +23,8 @@ Keys (units N-mm-s-tonne)::
     parameters = "fitted-300"           # recommended set for 225, 300 or 450 % strain ...
     # parameters = {G1 = 0.0, G2 = 3.0, eta1 = 0.3, eta2 = 2.0, r = 0.5}   # ... or explicit (MPa, MPa*s^r)
     # parameters = "strain-dependent"   # ... or the paper's strain-dependent model (225-450 %)
-    area = 1.0e6                        # mm^2, optional (default: the paper's 1e6)
-    thickness = 10.0                    # mm, optional (default: the paper's 10)
+    area = 1.0e6                        # mm^2, optional (default: the paper's 1e6); or one per listed story
+    thickness = 10.0                    # mm, optional (default: the paper's 10); or one per listed story
 
     [walls.thermal]                     # optional: walls that heat (vdw_frames.element.thermal)
     shift = "isd110-loss-peak"          # the examples' shift law (its source: ISD110_LOSS_PEAK.source), or
@@ -160,8 +160,8 @@ def building_from_dict(data: dict[str, Any]) -> ShearBuilding:
     stories = len(data["masses"])
     dampers: dict[int, list[FDMKDamper | StrainDependentDamper]] = {}
     for group in data.get("walls", []):
-        wall, story_numbers, per_story = _wall_group(group, stories)
-        for story in story_numbers:
+        walls, per_story = _wall_group(group, stories)
+        for story, wall in walls:
             dampers.setdefault(story, []).extend([wall] * per_story)
     # damping_modes only when the file gives them: else the building picks its default.
     modes = {"damping_modes": tuple(data["damping_modes"])} if "damping_modes" in data else {}
@@ -210,12 +210,32 @@ def simulate_options(data: dict[str, Any]) -> dict[str, Any]:
     return {"strain_compatible": value} if value is not False else {}
 
 
-def _wall_group(group: object, stories: int) -> tuple[FDMKDamper | StrainDependentDamper, Any, int]:
+def _wall_group(group: object, stories: int) -> tuple[list[tuple[int, FDMKDamper | StrainDependentDamper]], int]:
+    """([(story, wall)], walls per story) of one ``[[walls]]`` entry; area and thickness may be lists, one
+    value per listed story."""
     if not isinstance(group, dict):
         raise ValueError(f"each walls entry must be a table, got {group!r}")
     unknown = set(group) - _WALL_KEYS
     if unknown:
         raise ValueError(f"unknown walls keys {sorted(unknown)}; expected some of {sorted(_WALL_KEYS)}")
+    story_numbers = _story_numbers(group.get("stories", "all"), stories)
+    per_story = whole_number("walls per_story", group.get("per_story", 1), 1)
+    if per_story > MAX_PER_STORY:
+        raise ValueError(f"walls per_story must be at most {MAX_PER_STORY}, got {per_story}")
+    sizes = {key: group[key] for key in ("area", "thickness") if isinstance(group.get(key), list)}
+    for key, values in sizes.items():
+        if len(values) != len(story_numbers):
+            raise ValueError(f"walls {key} must be one number or one per listed story ({len(story_numbers)} "
+                             f"stories), got {len(values)} values")
+    walls = []
+    for index, story in enumerate(story_numbers):
+        each = {key: values[index] for key, values in sizes.items()}
+        walls.append((story, _wall(dict(group, **each))))
+    return walls, per_story
+
+
+def _wall(group: dict[str, Any]) -> FDMKDamper | StrainDependentDamper:
+    """One wall of a ``[[walls]]`` entry whose area and thickness are numbers."""
     geometry = {key: group[key] for key in ("area", "thickness") if key in group}
     parameters = group.get("parameters")
     if isinstance(parameters, str) and parameters.startswith("fitted-"):
@@ -238,10 +258,14 @@ def _wall_group(group: object, stories: int) -> tuple[FDMKDamper | StrainDepende
         extras["limits"] = _limits(group["limits"])
     if extras:
         wall = dataclasses.replace(wall, **extras)
-    story_numbers = group.get("stories", "all")
+    return wall
+
+
+def _story_numbers(story_numbers: object, stories: int) -> list[int]:
+    """The story numbers of a ``stories`` key ("all" or a list of distinct story numbers)."""
     if story_numbers == "all":
-        story_numbers = range(1, stories + 1)
-    elif isinstance(story_numbers, list):
+        return list(range(1, stories + 1))
+    if isinstance(story_numbers, list):
         numbers = []
         for number in story_numbers:
             try:
@@ -255,13 +279,8 @@ def _wall_group(group: object, stories: int) -> tuple[FDMKDamper | StrainDepende
         if len(set(numbers)) != len(numbers):
             raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got "
                              f"{show(story_numbers)}")
-        story_numbers = numbers
-    else:
-        raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got {show(story_numbers)}")
-    per_story = whole_number("walls per_story", group.get("per_story", 1), 1)
-    if per_story > MAX_PER_STORY:
-        raise ValueError(f"walls per_story must be at most {MAX_PER_STORY}, got {per_story}")
-    return wall, story_numbers, per_story
+        return numbers
+    raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got {show(story_numbers)}")
 
 
 def _table(name: str, value: object, keys: set[str]) -> dict[str, Any]:

@@ -132,7 +132,9 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     require_finite("the response", out.displacement[keep])
     time = np.arange(start, start + filled) * dt
     share = np.array([walls[i][1].area / groups[g][1].area for i, g in enumerate(group_of_wall)])
-    _warn_strain_range(walls, out.peak_group_strain[group_of_wall])
+    above = bank.state(kernel.ABOVE_RANGE)[group_of_wall] * dt
+    amplitude = out.group_amplitude[keep].max(axis=0, initial=0.0)[group_of_wall] if out.group_amplitude.size else None
+    _warn_strain_range(walls, out.peak_group_strain[group_of_wall], above, amplitude)
     _warn_temperature_range(groups, bank, dt)
     failure = np.stack([bank.state(kernel.FAILURE_STEP), bank.state(kernel.FAILURE_MODE)], axis=1).astype(np.int64)
     wall_energies = None
@@ -206,15 +208,35 @@ def _warn_temperature_range(groups, bank: WallBank, dt: float) -> None:
                        "the range): " + "; ".join(outside), UserWarning, stacklevel=4)
 
 
-def _warn_strain_range(walls: Sequence[tuple[int, Wall]], peak_wall_strain: np.ndarray) -> None:
-    outside = []
+def _warn_strain_range(walls: Sequence[tuple[int, Wall]], peak_wall_strain: np.ndarray, above_seconds: np.ndarray,
+                       peak_amplitude: np.ndarray | None) -> None:
+    """Warn when a wall of fixed parameters strains beyond the range they were identified for, or an
+    amplitude-following wall follows an amplitude above its identified ones, or never reaches them (its
+    parameters are then those of the nearest end: an extrapolation).  The time an amplitude-following wall
+    spends below the range as a record builds up and dies out is counted, not warned about
+    (``result.wall_time_outside_range``); its peak strain may exceed its amplitude by a drift offset,
+    which is not amplitude."""
+    outside, beyond = [], []
     for index, (story, wall) in enumerate(walls):
         if wall.strain_range is None:
             continue
-        peak = float(peak_wall_strain[index])
         low, high = wall.strain_range
+        if hasattr(wall, "amplitude_table"):
+            if peak_amplitude is None:  # pragma: no cover - amplitude-following walls are followed
+                continue
+            if above_seconds[index] > 0.0:
+                beyond.append(f"story {story}: up to {100 * peak_amplitude[index]:.0f} % for "
+                              f"{above_seconds[index]:.3g} s (range {100 * low:.0f}-{100 * high:.0f} %)")
+            elif peak_amplitude[index] < low:
+                beyond.append(f"story {story}: at most {100 * peak_amplitude[index]:.0f} %, below the range "
+                              f"{100 * low:.0f}-{100 * high:.0f} % throughout")
+            continue
+        peak = float(peak_wall_strain[index])
         if not low <= peak <= high:
             outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %)")
     if outside:
         _warnings.warn("wall peak strain outside the range its parameters were identified for: "
                        + "; ".join(dict.fromkeys(outside)), UserWarning, stacklevel=4)
+    if beyond:
+        _warnings.warn("wall strain amplitude outside the amplitudes its parameters were identified at (those of "
+                       "the nearest are used): " + "; ".join(dict.fromkeys(beyond)), UserWarning, stacklevel=4)
