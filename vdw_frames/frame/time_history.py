@@ -138,11 +138,12 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     _warn_temperature_range(groups, bank, dt)
     failure = np.stack([bank.state(kernel.FAILURE_STEP), bank.state(kernel.FAILURE_MODE)], axis=1).astype(np.int64)
     wall_energies = None
-    if followed and bank.state(kernel.TRACKED).all():
-        failed = failure[:, 0] >= 0
-        released = np.where((np.arange(start, start + filled)[:, None] >= failure[:, 0]) & failed,
-                            bank.state(kernel.RELEASED), 0.0)
-        wall_energies = (out.group_heat[keep].sum(axis=1), out.wall_stored[keep], released.sum(axis=1),
+    if followed and bank.state(kernel.ENERGY).all():
+        released = np.zeros(filled)  # from each failure's row on, the stored energy it released
+        for step, energy in zip(failure[:, 0], bank.state(kernel.RELEASED), strict=True):
+            if step >= 0:
+                released[max(int(step) - start, 0):] += energy
+        wall_energies = (out.group_heat[keep].sum(axis=1), out.wall_stored[keep], released,
                          out.wall_parameter_loss[keep])
     return SimulationResult(
         building=building, time=time, ground_acceleration=ground[keep], displacement=out.displacement[keep],
