@@ -53,19 +53,11 @@ def example_building() -> vdw.ShearBuilding:
     return load_building(BUILDING_FILE)
 
 
-def fixed_walls(building: vdw.ShearBuilding, strain: float = 3.0) -> vdw.ShearBuilding:
-    """``building`` with every strain-dependent wall at one amplitude (its thermal description and limits
-    kept): the walls of fixed parameters the package had before they followed their amplitude."""
-    return building.with_walls({story: tuple(wall.at(strain) if isinstance(wall, vdw.StrainDependentDamper)
-                                             else wall for wall in walls)
-                                for story, walls in building.walls.items()})
-
-
 def classical_walls(building: vdw.ShearBuilding, strain: float = 3.0) -> vdw.ShearBuilding:
     """``building`` with walls of fixed parameters at ``strain`` that neither heat nor fail: the classical
     linear viscoelastic walls another program (OpenSees) can take."""
     return building.with_walls({story: tuple(dataclasses.replace(wall, thermal=None, limits=None) for wall in walls)
-                                for story, walls in fixed_walls(building, strain).walls.items()})
+                                for story, walls in building.walls_at(strain).walls.items()})
 
 
 def run_models(building: vdw.ShearBuilding, motion: vdw.GroundMotion) -> dict[str, vdw.SimulationResult]:
@@ -75,7 +67,7 @@ def run_models(building: vdw.ShearBuilding, motion: vdw.GroundMotion) -> dict[st
         "bare frame": vdw.simulate(building.without_walls(), motion, **options),
         MODELS[0]: vdw.simulate(building, motion, **options),
         MODELS[1]: vdw.simulate(building, motion, strain_compatible=True, **options),
-        MODELS[2]: vdw.simulate(fixed_walls(building), motion, **options),
+        MODELS[2]: vdw.simulate(building.walls_at(3.0), motion, **options),
     }
 
 

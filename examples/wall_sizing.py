@@ -79,7 +79,7 @@ def example_suite(records: Path = DEFAULT_RECORDS) -> list[GroundMotion]:
     """The shipped record at the example's intensity and the shared records scaled to its spectrum."""
     template = next(iter(example_walls().values()))
     walled = stiffness_design(example_frame(), template)
-    period = modal_analysis(_at(walled, centre_strain(template))).periods[0]
+    period = modal_analysis(walled.walls_at(centre_strain(template))).periods[0]
     periods = np.geomspace(PERIOD_RANGE[0] * period, PERIOD_RANGE[1] * period, 60)
     shipped = default_record()
     target = shipped.spectrum(periods)
@@ -98,11 +98,6 @@ def stiffness_design(frame: vdw.ShearBuilding, template: vdw.StrainDependentDamp
                            stories=list(WALLED_STORIES))
     return frame.with_walls({story: (dataclasses.replace(unit, area=wall.area, thickness=wall.thickness),)
                              for story, wall in sized.wall_list})
-
-
-def _at(building: vdw.ShearBuilding, strain: float) -> vdw.ShearBuilding:
-    """The building with every strain-dependent wall at one amplitude (for the modal analysis)."""
-    return building.with_walls({story: (wall.at(strain),) for story, wall in building.wall_list})
 
 
 def size_example_walls(records: Path = DEFAULT_RECORDS) -> LayerSizing:

@@ -62,8 +62,16 @@ def test_sized_r1_walls_meet_the_target_by_the_state_space_eigenvalues(distribut
         assert dataclasses.replace(wall, area=KELVIN_MAXWELL.area) == KELVIN_MAXWELL
 
 
-def test_sizing_the_example_frame_meets_the_target_and_keeps_everything_else():
+def _example_at_the_range_centre():
+    """The example frame with its walls at the centre, in logarithm, of their range (the design command's default)."""
     building = load_building(ROOT / "examples" / "ten_story.toml")
+    low, high = building.wall_list[0][1].strain_range
+    assert (low, high) == (2.25, 4.5)
+    return building.walls_at(np.sqrt(low * high))
+
+
+def test_sizing_the_example_frame_meets_the_target_and_keeps_everything_else():
+    building = _example_at_the_range_centre()
     wall = building.wall_list[0][1]
     sized = size_walls(building, wall, 0.10)
     result = modal_analysis(sized, 1)
@@ -180,7 +188,7 @@ def test_batch_envelope_over_property_factors():
 # ------------------------------------------------------------------------------ the design command
 def test_design_command_on_the_example(tmp_path, capsys):
     path = ROOT / "examples" / "ten_story.toml"
-    building = load_building(path)
+    building = _example_at_the_range_centre()
     expected = modal_analysis(building, [1, 2, 3, 4, 5])
     curve = damping_curve(building, building.wall_list[0][1])
     target = round(0.5 * (expected.damping_ratios[0] + curve.best_damping_ratio), 3)
@@ -194,6 +202,7 @@ def test_design_command_on_the_example(tmp_path, capsys):
     np.testing.assert_allclose(table[:, 5], 100 * expected.energy_damping_ratios, atol=5e-3)
     np.testing.assert_allclose(table[:, 6], 100 * expected.added_damping, atol=5e-3)
     assert f"largest achievable: xi = {100 * curve.best_damping_ratio:.2f} %" in out
+    assert "strain-dependent walls at 318 % (the centre, in logarithm, of their identified range, 225-450 %)" in out
     assert f"target {100 * target:g} %:" in out and f"xi = {100 * target:.2f} %" in out
     figure = tmp_path / "design_damping.png"
     assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -213,3 +222,15 @@ def test_design_command_without_walls(tmp_path, capsys):
     path.write_text('{"masses": [300, 300], "stiffnesses": [2e5, 1.5e5]}')
     assert cli.main(["design", str(path), "--out", str(tmp_path)]) == 0
     assert "no walls in the building file" in capsys.readouterr().out
+
+
+def test_design_command_takes_the_amplitude_of_strain_dependent_walls(tmp_path, capsys):
+    path = ROOT / "examples" / "ten_story.toml"
+    assert cli.main(["design", str(path), "--strain", "400", "--modes", "1", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    expected = modal_analysis(load_building(path).walls_at(4.0), 1)
+    assert "strain-dependent walls at 400 % (--strain, 225-450 %)" in out
+    row = next(line.split() for line in out.splitlines() if re.match(r"\s+1 ", line))
+    assert float(row[4]) == pytest.approx(100 * expected.damping_ratios[0], abs=5e-3)
+    assert cli.main(["design", str(path), "--strain", "-1", "--out", str(tmp_path)]) == 2
+    assert "--strain must be a positive amplitude in %, got -1.0" in capsys.readouterr().err
