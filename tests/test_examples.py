@@ -11,13 +11,14 @@ import warnings
 
 import numpy as np
 import pytest
+from scipy import stats
 from shared_data import REPO as ROOT
 from shared_data import shared_record
 
 from vdw_frames import Bilinear, cli, modal_analysis, paper, simulate
 from vdw_frames.config import building_from_dict, load_building
 from vdw_frames.element import ISD110_LOSS_PEAK
-from vdw_frames.motion import G, default_record_path, read_at2
+from vdw_frames.motion import G, GroundMotion, default_record_path, read_at2, write_at2
 
 FIGURES = ("drift_envelope.png", "roof_displacement.png", "story_hysteresis_bare.png", "story_hysteresis_walls.png",
            "wall_hysteresis.png", "wall_amplitude.png", "wall_temperature.png", "energy.png")
@@ -220,33 +221,52 @@ def test_building_file_validation(data, match):
         building_from_dict(data)
 
 
-def test_ida_example_steps_records_to_collapse(tmp_path, capsys):
+def test_ida_example_reports_collapse_and_wall_failure(tmp_path, capsys):
+    # Two records: the shipped one and the same accelerogram reversed in time (another response history).
     records = tmp_path / "records"
     records.mkdir()
-    (records / "synthetic.AT2").write_bytes(default_record_path().read_bytes())
+    shipped = read_at2(default_record_path())
+    write_at2(GroundMotion(shipped.acceleration[::-1].copy(), shipped.dt, name="reversed"), records / "reversed.AT2")
     ida = runpy.run_path(str(ROOT / "examples" / "ida.py"), run_name="ida")
-    assert ida["main"](["--out", str(tmp_path), "--records", str(records), "--step", "0.5", "--cap", "4.0"]) == 0
+    assert ida["main"](["--out", str(tmp_path), "--records", str(records), "--step", "0.2", "--cap", "4.0"]) == 0
     printed = capsys.readouterr().out
     building = load_building(ROOT / "examples" / "ten_story.toml")
     period = building.without_walls().periods[0]
+    tables = {label: list(csv.DictReader((tmp_path / f"ida_{label}.csv").open()))
+              for label in ("bare_frame", "with_VDW", "ideal_walls")}
     for label, frame in (("bare_frame", building.without_walls()), ("with_VDW", building)):
-        rows = list(csv.DictReader((tmp_path / f"ida_{label}.csv").open()))
-        assert {row["record"] for row in rows} == {"synthetic", "synthetic_kt_035g"}  # the folder's and the shipped one
-        # Each row is the package's own analysis at that Sa(T1); the last level of each record collapsed.
-        first = rows[0]
-        motion = read_at2(default_record_path())
-        scaled = motion.scaled_to_spectral_acceleration(float(first["sa_g"]) * G, period)
+        rows = tables[label]
+        assert {row["record"] for row in rows} == {"reversed", "synthetic_kt_035g"}
+        # A row is the package's own analysis at that Sa(T1), written here independently.
+        row = rows[1]
+        motion = read_at2(records / "reversed.AT2") if row["record"] == "reversed" else shipped
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", UserWarning)
-            expected = simulate(frame, scaled).peak_drift_ratio.max()
-        assert float(first["largest_drift_ratio"]) == pytest.approx(expected, rel=1e-9)
-        for record in {row["record"] for row in rows}:  # stepped up until the first collapse or the cap
+            expected = simulate(frame, motion.scaled_to_spectral_acceleration(float(row["sa_g"]) * G, period))
+        assert float(row["largest_drift_ratio"]) == pytest.approx(expected.peak_drift_ratio.max(), rel=1e-9)
+        assert int(row["wall_failed"]) == int(expected.wall_failed.any())
+        for record in ("reversed", "synthetic_kt_035g"):  # stepped up until the first collapse or the cap
             runs = [row for row in rows if row["record"] == record]
             outcome = [row["collapsed"] for row in runs]
-            standing = float(runs[-1]["sa_g"]) == pytest.approx(4.0) and outcome == ["0"] * len(runs)
-            assert standing or outcome == ["0"] * (len(outcome) - 1) + ["1"]
-            assert [float(row["sa_g"]) for row in runs] == pytest.approx(0.5 * np.arange(1, len(runs) + 1))
-    assert "median collapse Sa(T1)" in printed and "collapse-margin gain" in printed
-    assert "strain-dependent walls" in printed
+            assert outcome == ["0"] * (len(outcome) - 1) + ["1"]
+            assert [float(row["sa_g"]) for row in runs] == pytest.approx(0.2 * np.arange(1, len(runs) + 1))
+    # The walls fail before the walled frame collapses; the printed per-record levels are the CSV's.
+    first_failure = {}
+    for record in ("reversed", "synthetic_kt_035g"):
+        runs = [row for row in tables["with_VDW"] if row["record"] == record]
+        first_failure[record] = next(float(row["sa_g"]) for row in runs if row["wall_failed"] == "1")
+        collapse = float(runs[-1]["sa_g"])
+        assert first_failure[record] < collapse
+        assert re.search(rf"{record} +collapse Sa\(T1\): {collapse:.2f} g; first wall failure: "
+                         rf"{first_failure[record]:.2f} g", printed)
+    # The median first-wall-failure intensity is the lognormal maximum-likelihood fit of those levels
+    # (uncensored: every record's walls failed), computed here with scipy directly.
+    shape, _, scale = stats.lognorm.fit(list(first_failure.values()), floc=0.0)
+    assert f"with VDW: median first-wall-failure Sa(T1) = {scale:.3f} g, dispersion beta = {shape:.2f}" in printed
+    # Ideal walls (never heat, never fail) stand far beyond the walled frame's collapse: the old, wrong margin.
+    collapse = {row["record"]: float(row["sa_g"]) for row in tables["with_VDW"]}  # the last level: collapse
+    ideal = {row["record"]: float(row["sa_g"]) for row in tables["ideal_walls"]}
+    assert all(ideal[record] > 2 * collapse[record] for record in ideal)
+    assert "NOT a margin" in printed and "wall failure counted as collapse" in printed
     for name in ("ida_curves.png", "fragility.png"):
         assert (tmp_path / name).stat().st_size > 10_000

@@ -66,7 +66,8 @@ def read_text(path: str | os.PathLike[str], what: str = "file", strict: bool = T
     except OSError as error:
         raise ValueError(f"{path}: cannot read the {what} ({error.strerror or error})") from None
     if len(data) > MAX_TEXT_BYTES:
-        raise ValueError(f"{path}: grew beyond {MAX_TEXT_BYTES:,} bytes while it was read; {what}s above that are refused")
+        raise ValueError(f"{path}: grew beyond {MAX_TEXT_BYTES:,} bytes while it was read; {what}s above that "
+                         "are refused")
     if data.startswith(b"\x1f\x8b"):
         raise ValueError(f"{path}: a gzip-compressed file; decompress it first (e.g. gunzip)")
     if data.startswith(b"PK\x03\x04"):

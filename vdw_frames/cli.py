@@ -160,13 +160,16 @@ def _design(args) -> int:
         raise ValueError(f"--strain must be a positive amplitude in %, got {args.strain}")
     if building.strain_dependent:
         # A modal analysis needs one amplitude: the engineer's, or the centre (in logarithm) of the range
-        # where the walls' parameters were identified, which the layer-sizing rule aims the amplitudes at.
-        ranges = [wall.strain_range for _, wall in building.wall_list if isinstance(wall, StrainDependentDamper)]
-        low, high = max(r[0] for r in ranges), min(r[1] for r in ranges)
-        strain = args.strain / 100.0 if args.strain is not None else math.sqrt(low * high)
-        how = "--strain" if args.strain is not None else "the centre, in logarithm, of their identified range"
-        print(f"strain-dependent walls at {100 * strain:.0f} % ({how}, {100 * low:.0f}-{100 * high:.0f} %)")
-        building = building.walls_at(strain)
+        # where each wall's parameters were identified, which the layer-sizing rule aims the amplitudes at.
+        family = [wall for _, wall in building.wall_list if isinstance(wall, StrainDependentDamper)]
+        ranges = ", ".join(sorted({f"{100 * w.strain_range[0]:.0f}-{100 * w.strain_range[1]:.0f} %" for w in family}))
+        if args.strain is not None:
+            print(f"strain-dependent walls at {args.strain:g} % (--strain; identified over {ranges})")
+        else:
+            centres = ", ".join(sorted({f"{100 * w.centre_strain:.0f} %" for w in family}))
+            print(f"strain-dependent walls at {centres} (the centre, in logarithm, of their identified range, "
+                  f"{ranges}; --strain to choose)")
+        building = building.walls_at(None if args.strain is None else args.strain / 100.0)
     modes = modal_analysis(building)
     walls = building.wall_list
     print(f"{args.building}: {building.stories} stories, {len(walls)} walls, inherent damping "

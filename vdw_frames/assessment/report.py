@@ -129,8 +129,8 @@ def markdown(assessments: dict, title: str = "FEMA P695 collapse assessment") ->
         lines += ["## Cautions", ""]
         for label, a in warned:
             lines.append(f"- {label}: {len(a.strain_warnings)} of {a.total_analyses} analyses took walls outside the "
-                         f"strain range their parameters were identified for (e.g. \"{a.strain_warnings[0]}\"); the "
-                         "walls stay linear there and never fail, so the collapse intensities are upper bounds.")
+                         f"strains their parameters were identified for (e.g. \"{a.strain_warnings[0]}\"); "
+                         f"{a.strain_caution}.")
         lines.append("")
     lines += ["## Files", "", "- `records_<label>.csv`: one row per record (collapse intensity and bracket, g).",
               "- `analyses_<label>.csv`: one row per analysis (the IDA points).",

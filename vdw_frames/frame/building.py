@@ -288,16 +288,21 @@ class ShearBuilding:
         """True when some wall is a :class:`StrainDependentDamper` (parameters that follow its strain amplitude)."""
         return any(isinstance(wall, StrainDependentDamper) for _, wall in self.wall_list)
 
-    def walls_at(self, strain: float) -> ShearBuilding:
+    def walls_at(self, strain: float | None = None) -> ShearBuilding:
         """This building with each strain-dependent wall fixed at the amplitude ``strain`` (dimensionless;
-        3.0 = 300 %), its thermal description and limits kept; other walls unchanged.
+        3.0 = 300 %), or with None at the centre, in logarithm, of its own identified range
+        (:attr:`~vdw_frames.StrainDependentDamper.centre_strain`); thermal description and limits kept,
+        other walls unchanged.
 
-        What a frequency-domain analysis (modal damping, sizing) of amplitude-following walls needs: one
-        amplitude, chosen by the engineer. Clamped to each wall's identified range with a ``UserWarning``.
+        What a frequency-domain analysis (modal damping, sizing, a period) of amplitude-following walls
+        needs: one amplitude.  Clamped to each wall's identified range with a ``UserWarning``.
         """
-        return self.with_walls({story: tuple(wall.at(strain) if isinstance(wall, StrainDependentDamper) else wall
-                                             for wall in walls)
-                                for story, walls in self.walls.items()})
+        def fixed(wall: Wall | StrainDependentDamper) -> Wall:
+            if not isinstance(wall, StrainDependentDamper):
+                return wall
+            return wall.at(wall.centre_strain if strain is None else strain)
+
+        return self.with_walls({story: tuple(fixed(wall) for wall in walls) for story, walls in self.walls.items()})
 
     def without_walls(self) -> ShearBuilding:
         """The same frame (stories, P-Delta, damping) with no walls."""

@@ -38,6 +38,7 @@ from .._validation import positive
 from ..motion.record import G, GroundMotion
 from .batch import run_batch, scale_factors_to_spectral_acceleration
 from .building import ShearBuilding
+from .time_history import is_strain_range_warning
 
 COLLAPSE_LIMIT_STATES = "a story drift ratio beyond collapse_drift_ratio, or an analysis that stops converging"
 
@@ -163,7 +164,7 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[Grou
     return IDAResult(tuple(m.name for m in motions), float(period), levels,
                      tuple(np.array(x) for x in intensities), tuple(np.array(x) for x in drift),
                      tuple(np.array(x, dtype=bool) for x in collapsed), _first_level(intensities, collapsed),
-                     tuple(message for message in messages if "outside the range" in message),
+                     tuple(message for message in messages if is_strain_range_warning(message)),
                      tuple(np.array(x, dtype=bool) for x in wall_failed), _first_level(intensities, wall_failed),
                      limit_states)
 

@@ -209,6 +209,16 @@ def _warn_temperature_range(groups, bank: WallBank, dt: float) -> None:
                        "the range): " + "; ".join(outside), UserWarning, stacklevel=4)
 
 
+_PEAK_OUTSIDE = "wall peak strain outside the range its parameters were identified for: "
+_AMPLITUDE_OUTSIDE = "wall strain amplitude outside the amplitudes its parameters were identified at"
+
+
+def is_strain_range_warning(message: str) -> bool:
+    """Whether ``message`` is one of the warnings of walls outside the strains their parameters were
+    identified for (peak strain of a fixed-parameter wall, or amplitude of an amplitude-following one)."""
+    return _PEAK_OUTSIDE in message or _AMPLITUDE_OUTSIDE in message
+
+
 def _warn_strain_range(walls: Sequence[tuple[int, Wall]], peak_wall_strain: np.ndarray, above_seconds: np.ndarray,
                        peak_amplitude: np.ndarray | None) -> None:
     """Warn when a wall of fixed parameters strains beyond the range they were identified for, or an
@@ -236,8 +246,7 @@ def _warn_strain_range(walls: Sequence[tuple[int, Wall]], peak_wall_strain: np.n
         if not low <= peak <= high:
             outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %)")
     if outside:
-        _warnings.warn("wall peak strain outside the range its parameters were identified for: "
-                       + "; ".join(dict.fromkeys(outside)), UserWarning, stacklevel=4)
+        _warnings.warn(_PEAK_OUTSIDE + "; ".join(dict.fromkeys(outside)), UserWarning, stacklevel=4)
     if beyond:
-        _warnings.warn("wall strain amplitude outside the amplitudes its parameters were identified at (those of "
-                       "the nearest are used): " + "; ".join(dict.fromkeys(beyond)), UserWarning, stacklevel=4)
+        _warnings.warn(_AMPLITUDE_OUTSIDE + " (those of the nearest are used): " + "; ".join(dict.fromkeys(beyond)),
+                       UserWarning, stacklevel=4)
