@@ -33,6 +33,17 @@ def _wall_index(result: SimulationResult, wall: int) -> int:
     return number - 1
 
 
+def _finish_history(figure, axes, ylabel: str, title: str | None, path: Path) -> Path:
+    """Label a history against time (s), grid, legend and title; save the figure to ``path``."""
+    axes.set_xlabel("time (s)")
+    axes.set_ylabel(ylabel)
+    axes.grid(True, alpha=0.3)
+    axes.legend(fontsize="small", loc="best")
+    if title:
+        axes.set_title(title)
+    return save(figure, path)
+
+
 def plot_wall_temperature(results: Mapping[str, SimulationResult], wall: int, path: str | os.PathLike[str],
                           title: str | None = None) -> Path:
     """Temperature of wall ``wall``'s layers (degC) against time (s), one line per result (each wall must
@@ -46,13 +57,7 @@ def plot_wall_temperature(results: Mapping[str, SimulationResult], wall: int, pa
         if temperature is None or not np.isfinite(temperature[:, index]).all():
             raise ValueError(f"{label}: wall {wall} has no temperature (no thermal description)")
         axes.plot(result.time, temperature[:, index], lw=1.0, label=label)
-    axes.set_xlabel("time (s)")
-    axes.set_ylabel(f"wall {wall} temperature (degC)")
-    axes.grid(True, alpha=0.3)
-    axes.legend(fontsize="small", loc="best")
-    if title:
-        axes.set_title(title)
-    return save(figure, path)
+    return _finish_history(figure, axes, f"wall {wall} temperature (degC)", title, path)
 
 
 def plot_wall_loops(result: SimulationResult, wall: int, windows: Sequence[tuple[float, float]],
@@ -108,10 +113,4 @@ def plot_wall_amplitude(results: Mapping[str, SimulationResult], wall: int, path
     if strain_range is not None:
         axes.axhspan(100.0 * strain_range[0], 100.0 * strain_range[1], color="tab:green", alpha=0.12,
                      label="identified range")
-    axes.set_xlabel("time (s)")
-    axes.set_ylabel(f"wall {wall} strain (%)")
-    axes.grid(True, alpha=0.3)
-    axes.legend(fontsize="small", loc="best")
-    if title:
-        axes.set_title(title)
-    return save(figure, path)
+    return _finish_history(figure, axes, f"wall {wall} strain (%)", title, path)
