@@ -69,9 +69,10 @@ try:
     import vdw_frames  # noqa: F401
 except ImportError:  # run from a checkout without an install
     sys.path.insert(0, str(ROOT))
-from vdw_frames import Bilinear, FDMKDamper, ShearBuilding, run_batch, simulate
-from vdw_frames.element import FastMemory
-from vdw_frames.motion import G, GroundMotion, read_at2
+# After the fallback above, which may put the checkout on the path first.
+from vdw_frames import Bilinear, FDMKDamper, ShearBuilding, run_batch, simulate  # noqa: E402
+from vdw_frames.element import FastMemory  # noqa: E402
+from vdw_frames.motion import G, GroundMotion, read_at2  # noqa: E402
 
 # The fast memory on every record length (by default records under 2 048 steps use the exact memory).
 FAST = FastMemory(exact_below=0)
@@ -115,7 +116,7 @@ def load_record():
 def timed(function, repeats):
     """(best time in s, result of the last call); repeats only while a run is shorter than SHORT_RUN."""
     best, result = math.inf, None
-    for attempt in range(repeats):
+    for _ in range(repeats):
         started = time.perf_counter()
         result = function()
         elapsed = time.perf_counter() - started
@@ -170,7 +171,8 @@ def part_a(building, motion, fast, quick, repeats):
             known = max(measured)
             estimate = measured[known] * (steps / known) ** 2
         if estimate is None or estimate <= EXACT_BUDGET:
-            exact_time, exact = timed(lambda: simulate(building, record, dt=dt, memory="exact"), repeats)
+            exact_time, exact = timed(lambda record=record, dt=dt: simulate(building, record, dt=dt, memory="exact"),
+                                      repeats)
             timings["exact"][steps] = exact_time
             exact_cell = f"{exact_time:.3f}"
         else:
@@ -178,7 +180,8 @@ def part_a(building, motion, fast, quick, repeats):
             extrapolated = True
         fast_cell = ratio_cell = peak_cell = history_cell = "-"
         if fast:
-            fast_time, result = timed(lambda: simulate(building, record, dt=dt, memory=FAST), repeats)
+            fast_time, result = timed(lambda record=record, dt=dt: simulate(building, record, dt=dt, memory=FAST),
+                                      repeats)
             timings["fast"][steps] = fast_time
             fast_cell = f"{fast_time:.3f}"
             reference_time = exact_time if exact_time is not None else estimate
@@ -269,7 +272,7 @@ def part_c(building, motion, source, fast, timings, quick, repeats):
     if fast:
         fast_times = timings["fast"]
         ordered = sorted(fast_times)
-        for low, high in zip(ordered, ordered[1:]):
+        for low, high in zip(ordered, ordered[1:], strict=False):
             growth = fast_times[high] / fast_times[low]
             verdict = "meets" if growth <= 11.0 * high / low / 10.0 else "misses"
             print(f"    fast memory, {high / low:.0f}x the steps ({low} -> {high}): {growth:.2f}x the time "
@@ -531,8 +534,9 @@ def part_p695():
     for label, building in buildings.items():
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            fixed, _ = timed(lambda: simulate(building, GroundMotion(long.acceleration[:20], long.dt)), 20)
-            whole, run = timed(lambda: simulate(building, long.scaled(0.5)), 3)
+            short = GroundMotion(long.acceleration[:20], long.dt)
+            fixed, _ = timed(lambda building=building, short=short: simulate(building, short), 20)
+            whole, run = timed(lambda building=building: simulate(building, long.scaled(0.5)), 3)
         per_step = (whole - fixed) / run.time.size
         result = results[label]
         model = result.total_analyses * fixed + result.steps.sum() * per_step

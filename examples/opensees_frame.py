@@ -109,7 +109,7 @@ def build_frame(ops) -> np.ndarray:
             ends = [joint(floor, bay), joint(floor, bay + 1)]
             if bay == WALL_BAY:
                 ends.insert(1, midspan(floor))
-            for start, end in zip(ends, ends[1:]):
+            for start, end in zip(ends, ends[1:], strict=False):
                 tag = 2000 + 100 * floor + len(beams)
                 ops.element("forceBeamColumn", tag, start, end, 2, 2)
                 beams.append(tag)
@@ -329,7 +329,8 @@ def main(argv=None) -> int:
                   for label in ("walls (bridge)", "walls (Prony)")]
         strain = 100 * np.abs(bridge["wall_strain"][:, story]).max()
         print(f"  {story + 1}    {ratios[0]:6.3f}  {ratios[1]:6.3f}  {ratios[2]:6.3f}  "
-              f"{100 * (ratios[2] / ratios[1] - 1):+6.2f} %       {forces[0]:8.1f} {forces[1]:8.1f}        {strain:8.1f}")
+              f"{100 * (ratios[2] / ratios[1] - 1):+6.2f} %       {forces[0]:8.1f} {forces[1]:8.1f}        "
+              f"{strain:8.1f}")
     steps = min(bridge["drift"].shape[0], prony["drift"].shape[0])
     history = np.abs(prony["drift"][:steps] - bridge["drift"][:steps]).max() / np.abs(bridge["drift"]).max()
     bare_peak, bridge_peak = (np.abs(results[label]["drift"]).max(axis=0) / heights
