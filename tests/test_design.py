@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 import reference
+from reference import state_space_eigenvalues
 from scipy.linalg import eigh
-from test_modal import state_space_eigenvalues
 
 from vdw_frames import (
     FDMKDamper,

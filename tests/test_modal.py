@@ -5,7 +5,8 @@ import dataclasses
 
 import numpy as np
 import pytest
-from scipy.linalg import eig, eigh
+from reference import state_space_eigenvalues
+from scipy.linalg import eigh
 from scipy.optimize import brentq, minimize_scalar
 
 import vdw_frames.frame.modal as modal
@@ -22,65 +23,6 @@ def four_story(walls, **options):
 
 
 # ------------------------------------------------------------------------------ r = 1: state space
-def state_space_eigenvalues(building):
-    """Eigenvalues of the first-order model with the walls' internal degrees of freedom.
-
-    States: floor displacements u and velocities v; per wall the Maxwell dashpot's displacement q
-    (c2 q' = k2 (w - q)) and, for a supported wall, the wall's own deformation w, a massless node
-    (c1 w' = k_s (d - w) - k1 w - k2 (w - q)).  Written from the mechanics, not from k(s).
-    """
-    n = building.stories
-    inverse_mass = np.diag(1.0 / np.asarray(building.masses))
-    stiffness = np.array(building.stiffness_matrix)
-    gravity = np.asarray(building.geometric_stiffness)
-    for k in range(n):  # P-Delta: -P/h springs between the floors
-        unit = np.zeros(n)
-        unit[k] = 1.0
-        if k:
-            unit[k - 1] = -1.0
-        stiffness += gravity[k] * np.outer(unit, unit)
-    internal = sum(2 if isinstance(wall, SupportedDamper) else 1 for _, wall in building.wall_list)
-    size = 2 * n + internal
-    a = np.zeros((size, size))
-    a[:n, n:2 * n] = np.eye(n)
-    a[n:2 * n, :n] = -inverse_mass @ stiffness
-    a[n:2 * n, n:2 * n] = -inverse_mass @ np.asarray(building.damping_matrix)
-    column = 2 * n
-    for story, wall in building.wall_list:
-        b = np.zeros(n)
-        b[story - 1] = 1.0
-        if story > 1:
-            b[story - 2] = -1.0
-        material = wall.damper if isinstance(wall, SupportedDamper) else wall
-        assert material.r == 1.0
-        scale = material.area / material.thickness
-        k1, c1, k2, c2 = (material.G1 * scale, material.eta1 * scale, material.G2 * scale, material.eta2 * scale)
-        q = column
-        column += 1
-        if isinstance(wall, SupportedDamper):
-            w = column
-            column += 1
-            k_s = wall.support_stiffness
-            a[n:2 * n, :n] -= inverse_mass @ np.outer(b, k_s * b)
-            a[n:2 * n, w] += inverse_mass @ b * k_s
-            a[w, :n] += k_s * b / c1
-            a[w, w] -= (k_s + k1 + k2) / c1
-            a[w, q] += k2 / c1
-            a[q, w] += k2 / c2
-            a[q, q] -= k2 / c2
-        else:
-            a[n:2 * n, :n] -= inverse_mass @ np.outer(b, (k1 + k2) * b)
-            a[n:2 * n, n:2 * n] -= inverse_mass @ np.outer(b, c1 * b)
-            a[n:2 * n, q] += inverse_mass @ b * k2
-            a[q, :n] += k2 / c2 * b
-            a[q, q] -= k2 / c2
-    values, vectors = eig(a)
-    upper = values.imag > 1e-9 * np.abs(values)
-    values, vectors = values[upper], vectors[:n, upper]
-    order = np.argsort(np.abs(values))
-    return values[order], vectors[:, order]
-
-
 KELVIN_MAXWELL_BUILDINGS = {
     "rayleigh": lambda: four_story({1: KELVIN_MAXWELL, 2: [KELVIN_MAXWELL, KELVIN_MAXWELL], 4: KELVIN_MAXWELL}),
     "modal + P-Delta": lambda: four_story({1: KELVIN_MAXWELL, 3: KELVIN_MAXWELL}, damping_model="modal",

@@ -12,6 +12,8 @@ rounding; with walls the only differences are the dampers' own time discretisati
 import numpy as np
 import opensees_frame
 import pytest
+from opensees_frame import imposed_force
+from reference import history_deviation, peak_deviation
 
 from vdw_frames import FDMKDamper, ShearBuilding, simulate
 
@@ -28,53 +30,6 @@ def ten_story(walls=True):
     walls = {story: [WALL_A, WALL_B] if story <= 5 else [WALL_A] for story in range(1, 11)} if walls else None
     return ShearBuilding([500.0] * 10, np.linspace(800e3, 400e3, 10), walls=walls)
 
-
-
-def peak_deviation(drift, reference):
-    """max over stories of |peak |drift| / peak |reference| - 1|."""
-    return np.abs(np.abs(drift).max(axis=0) / np.abs(reference).max(axis=0) - 1.0).max()
-
-
-def history_deviation(drift, reference):
-    return np.abs(drift - reference).max() / np.abs(reference).max()
-
-
-def imposed_force(ops, material, displacement, dt):
-    """Force history (N) of one zeroLength element whose free end follows ``displacement`` (mm).
-
-    ``material``: the ``uniaxialMaterial`` arguments, or a function defining the material that returns its tag.
-    """
-    ops.wipe()
-    ops.model("basic", "-ndm", 1, "-ndf", 1)
-    ops.node(0, 0.0)
-    ops.fix(0, 1)
-    ops.node(1, 0.0)
-    ops.mass(1, 1.0)
-    if callable(material):
-        tag = material(ops)
-    else:
-        ops.uniaxialMaterial(*material)
-        tag = material[1]
-    ops.element("zeroLength", 1, 0, 1, "-mat", tag, "-dir", 1)
-    values = list(displacement)
-    ops.timeSeries("Path", 1, "-dt", dt, "-values", *values, values[-1])
-    ops.pattern("Plain", 1, 1)
-    ops.sp(1, 1, 1.0)
-    # Penalty, not Transformation: the Transformation handler leaves the velocity of an imposed DOF at
-    # zero, which the Elastic material's eta term needs.
-    ops.constraints("Penalty", 1e16, 1e16)
-    ops.numberer("Plain")
-    ops.system("BandGeneral")
-    ops.test("NormDispIncr", 1e-12, 20)
-    ops.algorithm("Newton")
-    ops.integrator("Newmark", 0.5, 0.25)
-    ops.analysis("Transient")
-    force = [0.0]
-    for _ in range(len(values) - 1):
-        assert ops.analyze(1, dt) == 0
-        force.append(ops.eleResponse(1, "basicForce")[0])
-    ops.wipe()
-    return np.array(force)
 
 
 def test_opensees_materials_are_the_r1_branches_in_force_and_displacement(ops):

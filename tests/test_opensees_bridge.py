@@ -15,9 +15,9 @@ import warnings
 import numpy as np
 import opensees_frame
 import pytest
-from test_opensees import WALL_A as R1_WALL_A
-from test_opensees import history_deviation, peak_deviation
-from test_opensees import ten_story as r1_ten_story
+from builders import CLASSICAL_WALL_A as R1_WALL_A
+from builders import classical_ten_story as r1_ten_story
+from reference import history_deviation, peak_deviation
 
 from vdw_frames import Bilinear, FDMKDamper, ShearBuilding, SupportedDamper, simulate
 from vdw_frames.element import FastMemory

@@ -11,9 +11,10 @@ import warnings
 import numpy as np
 import opensees_frame
 import pytest
+from builders import fractional_ten_story
 from reference import closed_form_moduli
 from shared_data import shared_record
-from test_opensees import peak_deviation
+from reference import peak_deviation
 
 from vdw_frames import FDMKDamper, SupportedDamper, simulate
 from vdw_frames.element.prony import PronySeries, fit_prony
@@ -105,8 +106,6 @@ def test_opensees_prony_material_has_the_series_complex_stiffness(series):
     # A steady-state sine test of the native material: zeroLength, imposed u = U sin(w t) after a smooth
     # start, the last cycles' force fitted to K' u + (K''/w) u'.  dt = tau_min / 20 (OpenSees's Maxwell is
     # second order in dt / tau).
-    from test_opensees import imposed_force
-
     ops = opensees_frame.opensees()
     prony = series[0.5]
     for frequency in (0.3, 1.0, 3.0):
@@ -115,7 +114,7 @@ def test_opensees_prony_material_has_the_series_complex_stiffness(series):
         t = np.arange(round((12.0 / frequency + 3.0 * prony.relaxation_times.max()) / dt)) * dt
         ramp = np.clip(t * frequency / 2.0, 0.0, 1.0)  # two cycles to full amplitude
         u = 5.0 * ramp**2 * (3.0 - 2.0 * ramp) * np.sin(omega * t)
-        ops_force = imposed_force(ops, lambda ops: prony_material(ops, 1, prony), u, dt)
+        ops_force = opensees_frame.imposed_force(ops, lambda ops: prony_material(ops, 1, prony), u, dt)
         last = t > t[-1] - 2.0 / frequency
         design = np.column_stack([np.sin(omega * t[last]), np.cos(omega * t[last])]) * 5.0
         storage, loss = np.linalg.lstsq(design, ops_force[last], rcond=None)[0]
@@ -127,10 +126,8 @@ def test_native_prony_frame_matches_simulate_within_two_percent():
     # The 10-story frame of test_opensees_bridge with fractional walls; OpenSees runs each wall as its Prony
     # series (1 % on 0.1-10 Hz), vdw_frames the exact walls; both at a quarter of the record's step, where
     # both have converged (measured 0.05 %; 1.3 % at the record's step, where OpenSees's Maxwell is coarse).
-    from test_opensees_bridge import ten_story
-
     record = read_at2(shared_record("elCentro.AT2"))
-    building = ten_story()
+    building = fractional_ten_story()
     dt = record.dt / 4
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)
