@@ -22,7 +22,7 @@ ABEL = dict(G1=0.0, G2=0.0, eta1=1.0, eta2=0.0, r=1.0)
 # Both branches active (a spring and a dashpot in the Kelvin branch), for any order r.
 BOTH_BRANCHES = dict(G1=0.5, G2=3.0, eta1=0.3, eta2=2.0)
 # A classical (r = 1) Kelvin + Maxwell wall, whose modes a state-space model gives exactly.
-KELVIN_MAXWELL = dict(G1=0.5, G2=3.0, eta1=0.4, eta2=2.0, r=1.0)
+CLASSICAL_KELVIN_MAXWELL = dict(G1=0.5, G2=3.0, eta1=0.4, eta2=2.0, r=1.0)
 # Ground accelerations in g that AT2 test files hold.
 VALUES_G = [0.1, -0.25, 0.3125, 0.0, -0.5, 0.125, 0.0625]
 

@@ -131,13 +131,13 @@ def build(building, tolerance=1e-9, max_iterations=50, algorithm="Newton", paral
     floors = list(range(1, building.stories + 1))
     ops.node(0, 0.0)
     ops.fix(0, 1)
-    for node, mass in zip(floors, building.masses):
+    for node, mass in zip(floors, building.masses, strict=True):
         ops.node(node, 0.0)
         ops.mass(node, mass)
 
     tag = 0
     frame_springs = []
-    for story, (stiffness, model) in enumerate(zip(building.stiffnesses, building.story_models), start=1):
+    for story, (stiffness, model) in enumerate(zip(building.stiffnesses, building.story_models, strict=True), start=1):
         tag += 1
         story_material(tag, stiffness, model)
         ops.element("zeroLength", tag, story - 1, story, "-mat", tag, "-dir", 1, "-doRayleigh", 1)
