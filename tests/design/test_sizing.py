@@ -49,6 +49,7 @@ def test_sized_r1_walls_meet_the_target_by_the_state_space_eigenvalues(distribut
         assert dataclasses.replace(wall, area=KELVIN_MAXWELL.area) == KELVIN_MAXWELL
 
 
+@pytest.mark.slow
 def test_sizing_the_example_frame_meets_the_target_and_keeps_everything_else():
     building = example_ten_story()
     wall = building.wall_list[0][1]
@@ -63,6 +64,7 @@ def test_sizing_the_example_frame_meets_the_target_and_keeps_everything_else():
     assert sized.wall_list[0][1].area < curve.best_factor * wall.area
 
 
+@pytest.mark.slow
 def test_damping_saturates_then_falls_and_an_unreachable_target_names_the_maximum():
     building = five_story({1: KELVIN_MAXWELL, 2: KELVIN_MAXWELL})
     curve = damping_curve(building, KELVIN_MAXWELL, factors=np.geomspace(0.05, 200.0, 30))

@@ -147,6 +147,7 @@ def test_any_order_and_window(method, r, window):
 
 
 # ----------------------------------------------------------------------------- force histories
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "method, r, dt, parameters",
     [
@@ -163,6 +164,7 @@ def test_force_history_matches_exact_memory_over_100000_steps(method, r, dt, par
     assert_force_close(exact, fast, 1e-7)  # measured <= ~1e-9
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("dt", [0.001, 0.02])
 @pytest.mark.parametrize("r", ORDERS)
 @pytest.mark.parametrize("method", sorted(METHODS))

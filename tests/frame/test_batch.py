@@ -66,6 +66,7 @@ def test_spectral_scale_factors_hit_the_target():
         assert motion.scaled(factor).scale_factor_to_spectral_acceleration(2000.0, 0.5) == pytest.approx(1.0)
 
 
+@pytest.mark.slow
 def test_batch_on_a_dask_local_cluster():
     distributed = pytest.importorskip("distributed", reason="dask[distributed] not installed (extra 'dask')")
     cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None)

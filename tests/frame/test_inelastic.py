@@ -71,6 +71,7 @@ def test_opensees_and_vdw_frames_converge_together_under_dt_refinement(ops):
     assert np.abs(result.base_shear + reaction).max() < 1e-3 * np.abs(reaction).max()
 
 
+@pytest.mark.slow
 @pytest.mark.opensees
 def test_bouc_wen_frame_matches_opensees_bouc_wen(ops):
     # OpenSees integrates z by backward Euler (first order), vdw_frames by TR-BDF2 (second order); at dt / 16
@@ -87,6 +88,7 @@ def test_bouc_wen_frame_matches_opensees_bouc_wen(ops):
     assert np.abs(result.story_shear[:, 0] - spring_force[:, 0]).max() < 0.01 * np.abs(spring_force[:, 0]).max()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("model", [Bilinear, BoucWen])
 def test_inelastic_frame_with_fractional_walls_converges_at_second_order(model):
     # Errors against a 16x finer solution; sub-steps of the record (linear interpolation of the ground motion).

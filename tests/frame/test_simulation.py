@@ -157,6 +157,7 @@ def test_fast_memory_meets_the_bar_against_exact(r, dt, duration):
     assert peak <= 1e-6 and force <= 1e-6, (peak, force)
 
 
+@pytest.mark.slow
 def test_fast_memory_meets_the_bar_over_100000_steps():
     peak, force = _fast_versus_exact(0.6, 0.001, 100.0)
     assert peak <= 1e-6 and force <= 1e-6, (peak, force)

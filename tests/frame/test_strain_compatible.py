@@ -42,6 +42,7 @@ def peak_wall_strain(result):
     return np.array([result.peak_drift[story - 1] / wall.thickness for story, wall in result.building.wall_list])
 
 
+@pytest.mark.slow
 @pytest.mark.records
 @pytest.mark.parametrize("pga", [0.1, 0.4, 0.8])
 @pytest.mark.parametrize("name", RECORDS)
@@ -96,6 +97,7 @@ def test_clamping_warns_with_the_wall_and_the_strain_reached():
     assert all(d == paper.strain_dependent(area=0.5e6, common_order=False).at(2.25) for d in result.equivalent_walls)
 
 
+@pytest.mark.slow
 @pytest.mark.records
 def test_result_fields_and_the_equivalent_linear_building():
     motion = read_at2(shared_record("IELC180.AT2")).scaled_to_pga(0.8 * G)
@@ -169,6 +171,7 @@ def test_energy_weighted_amplitude_of_known_histories():
     assert energy_weighted_amplitude(np.ones(10)) == 0.0
 
 
+@pytest.mark.slow
 @pytest.mark.records
 @pytest.mark.skipif(not SHARED.is_dir(), reason=f"shared ground motions not found at {SHARED}")
 @pytest.mark.parametrize("elastic, median, spread", [(True, 0.62, 0.05), (False, 0.53, 0.13)])

@@ -64,6 +64,7 @@ def test_seismic_example_reports_a_missing_record_in_one_line(tmp_path, capsys):
     assert error.count("\n") == 1 and "missing.AT2" in error
 
 
+@pytest.mark.slow
 def test_example_building_file_matches_its_description():
     building = load_building(EXAMPLE_BUILDING)
     np.testing.assert_allclose(building.periods[:4], [1.984, 0.708, 0.435, 0.319], atol=5e-4)
@@ -132,6 +133,7 @@ def test_example_script_reports_a_missing_record(tmp_path, capsys):
     assert err == f"seismic_simulation.py: error: {missing}: no such AT2 file\n"
 
 
+@pytest.mark.slow
 @pytest.mark.opensees
 def test_opensees_frame_example_runs_and_its_prony_frame_follows_the_bridge(tmp_path, capsys):
     example = runpy.run_path(str(REPO / "examples" / "opensees_frame.py"), run_name="example")

@@ -14,6 +14,8 @@ from pathlib import Path
 import pytest
 from shared_data import REPO
 
+pytestmark = pytest.mark.slow  # a wheel build and fresh interpreters that compile everything: ~20 s each
+
 
 def _run(command, cwd, **options):
     env = {key: value for key, value in os.environ.items() if key not in ("PYTHONPATH", "PYTHONHOME")}

@@ -3,7 +3,7 @@ they were written with; mutated files give a finite GroundMotion or a ValueError
 exception; write_at2 -> read_at2 round-trips any finite record and never destroys the target.
 
 The expected values are parsed here with Python's float() from the very text written, independently
-of the package's tokenizer.  ``VDW_FUZZ_EXAMPLES=5000 python -m pytest tests/test_readers_fuzz.py``
+of the package's tokenizer.  ``VDW_FUZZ_EXAMPLES=5000 python -m pytest tests/motion/test_readers_fuzz.py``
 fuzzes harder than the default 150 examples a test.
 """
 

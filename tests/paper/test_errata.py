@@ -29,6 +29,7 @@ def numbers():
 
 
 # ------------------------------------------------------------------------------------ parameter sets
+@pytest.mark.slow
 def test_recommended_set_in_the_report_is_paper_fitted(sets):
     relative = next(s for s in sets if s.key == paper.RECOMMENDED_RESIDUAL)
     for strain in paper.STRAINS:
@@ -100,6 +101,7 @@ def test_table4_under_printed_eq10(candidates):
 
 
 # ------------------------------------------------------------------------------------ errata
+@pytest.mark.slow
 def test_table4_under_the_correct_model(numbers):
     storage, loss = closed_form(T4, paper.FREQUENCIES)
     np.testing.assert_allclose(numbers["model_table4"].real, storage, rtol=1e-12)

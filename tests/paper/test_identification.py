@@ -136,6 +136,7 @@ def test_bound_flags_for_a_classical_maxwell_plus_dashpot():
 
 
 # ------------------------------------------------------------------------------------ global optimum
+@pytest.mark.slow
 @pytest.mark.parametrize("strain", paper.STRAINS)
 @pytest.mark.parametrize("residual", ["absolute", "relative"])
 def test_reaches_the_global_minimum_on_the_paper_tables(strain, residual):
@@ -169,6 +170,7 @@ def test_paper_optima_and_their_bounds(case):
     assert result.at_bound == bounds
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("grid", [(5, 7), (11, 13), (17, 19), (81, 121)])
 def test_result_does_not_depend_on_the_search_grid(grid):
     # Different grids start the local polish from different points; on every paper table and both
@@ -181,6 +183,7 @@ def test_result_does_not_depend_on_the_search_grid(grid):
             assert other.sse == pytest.approx(reference.sse, rel=1e-9), (strain, residual)
 
 
+@pytest.mark.slow
 def test_no_random_start_finds_a_lower_sum():
     f, storage, loss = paper.table_moduli(450)
     result = identify(f, storage, loss, residual="relative")

@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+import pytest
+
 from vdw_frames.paper.report import write_paper_report
 
+pytestmark = pytest.mark.slow  # the report re-runs every identification: ~15 s each
 
-def test_report_end_to_end(tmp_path):
+
+def test_report_has_its_sections_errata_numbers_and_figures(tmp_path):
     path = write_paper_report(tmp_path / "out")
     assert path == tmp_path / "out" / "report.md"
     text = path.read_text()

@@ -75,6 +75,7 @@ def test_passivity_on_a_dense_frequency_strain_grid():
     assert worst > 0.0
 
 
+@pytest.mark.slow
 def test_the_identification_reproduces_the_stored_model():
     result = paper.identify_strain_dependent()
     for name, values in paper.STRAIN_DEPENDENT.items():
