@@ -17,7 +17,7 @@ from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
 from typing import Any
 
-from .element import FDMKDamper, StrainDependentDamper, SupportedDamper, sine_test
+from .element import FDMKDamper, StrainDependentDamper, SupportedDamper, ThermalProperties, WallLimits, sine_test
 from .frame import Bilinear, BoucWen, ShearBuilding, incremental_dynamic_analysis, modal_analysis, run_batch, simulate
 from .motion import G, GroundMotion, read_at2, read_two_column
 
@@ -35,6 +35,8 @@ __all__ = [
     "ShearBuilding",
     "StrainDependentDamper",
     "SupportedDamper",
+    "ThermalProperties",
+    "WallLimits",
     "identify",
     "incremental_dynamic_analysis",
     "modal_analysis",

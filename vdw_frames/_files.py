@@ -59,15 +59,15 @@ def read_text(path: str | os.PathLike[str], what: str = "file", strict: bool = T
     if not stat.S_ISREG(info.st_mode):
         raise ValueError(f"{path}: not a regular file (a FIFO, socket or device); give the {what} itself")
     if info.st_size > MAX_TEXT_BYTES:
-        raise ValueError(f"{path}: {info.st_size:,} bytes, above the {MAX_TEXT_BYTES // 1024**2} MiB a {what} "
-                         "may have")
+        raise ValueError(f"{path}: {info.st_size:,} bytes; {what}s above {MAX_TEXT_BYTES:,} bytes are refused")
     try:
         with open(path, "rb") as handle:
             data = handle.read(MAX_TEXT_BYTES + 1)
     except OSError as error:
         raise ValueError(f"{path}: cannot read the {what} ({error.strerror or error})") from None
     if len(data) > MAX_TEXT_BYTES:
-        raise ValueError(f"{path}: grew beyond {MAX_TEXT_BYTES // 1024**2} MiB while it was read")
+        raise ValueError(f"{path}: grew beyond {MAX_TEXT_BYTES:,} bytes while it was read; {what}s above that "
+                         "are refused")
     if data.startswith(b"\x1f\x8b"):
         raise ValueError(f"{path}: a gzip-compressed file; decompress it first (e.g. gunzip)")
     if data.startswith(b"PK\x03\x04"):

@@ -87,8 +87,13 @@ _install_locators()
 
 
 def njit(*args: Any, cache: bool = False, **options: Any) -> Any:
-    """``numba.njit``, used as ``@njit(cache=True)``; falls back to ``cache=False`` (one warning) when
-    numba cannot place a cache for the function."""
+    """``numba.njit``, used as ``@njit(cache=True)``, with ``error_model="numpy"``; falls back to
+    ``cache=False`` (one warning) when numba cannot place a cache for the function."""
+
+    # IEEE division (x / 0 is inf or NaN) instead of a Python ZeroDivisionError check on every division:
+    # 20 % off the frame's step.  The compiled code already treats a non-finite value as a failure (the
+    # integrator's NaN-aware norms, require_finite on every result), so no exception is lost.
+    options.setdefault("error_model", "numpy")
 
     def compile_(function: Callable[..., Any]) -> Any:
         global _warned

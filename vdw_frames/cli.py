@@ -94,7 +94,7 @@ def _simulate(args) -> int:
     print(f"{args.building}: {building.stories} stories, T1 = {building.periods[0]:.3f} s (bare frame), "
           f"{len(building.wall_list)} FDMK walls")
     print(f"record {motion.name}: PGA = {motion.pga / G:.3f} g, dt = {result.time[1]:g} s, {result.time.size} steps")
-    print(f"{'story':>5s} {'drift mm':>9s} {'ratio %':>8s} {'floor acc g':>11s} {'damper kN':>10s} {'strain %':>9s}")
+    print(f"{'story':>5s} {'drift mm':>9s} {'ratio %':>8s} {'floor acc g':>11s} {'walls kN':>10s} {'strain %':>9s}")
     ratio = result.peak_drift_ratio
     for k in range(building.stories):
         walled = k + 1 in building.walls  # '-' where a value does not exist (no heights, no walls)
@@ -110,19 +110,37 @@ def _simulate(args) -> int:
               + ", ".join(f"story {story} {100 * strain:.0f} %"
                           for (story, _), strain in zip(building.wall_list, result.wall_effective_strain,
                                                         strict=True)))
+    _print_wall_states(result)
     energy = result.energy
-    share = energy.wall_work[-1] / energy.input[-1] if energy.input[-1] > 0 else 0.0
+    heat = energy.wall_heat if energy.wall_heat is not None else energy.wall_work
+    share = heat[-1] / energy.input[-1] if energy.input[-1] > 0 else 0.0
     print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; walls dissipate "
-          f"{100 * share:.0f} % of the input energy")
+          f"{100 * share:.0f} % of the input energy as heat")
     if out is not None:
         paths = [plotting.plot_drift_envelope({"response": result}, out / "drift_envelope.png"),
                  plotting.plot_roof_displacement({"response": result}, out / "roof_displacement.png"),
                  plotting.plot_energy(result, out / "energy.png")]
         if building.wall_list:
             story = int(np.argmax(result.peak_story_wall_force)) + 1
-            paths.append(plotting.plot_wall_hysteresis(result, story, out / "damper_hysteresis.png"))
+            paths.append(plotting.plot_wall_hysteresis(result, story, out / "wall_hysteresis.png"))
         print("figures: " + ", ".join(str(p) for p in paths))
     return 0
+
+
+def _print_wall_states(result) -> None:
+    """Per wall, when the walls follow their amplitude, heat or can fail: the largest amplitude followed,
+    the temperature rise and how and when the wall failed ('-' where the wall has no such state)."""
+    amplitude, rise, failed = result.wall_amplitude, result.peak_temperature_rise, result.wall_failed
+    if amplitude is None and rise is None and not failed.any():
+        return
+    print(f"{'wall':>5s} {'story':>5s} {'amplitude %':>11s} {'dT K':>6s} {'failed':>20s}")
+    times, modes = result.wall_failure_time, result.wall_failure_mode
+    for w, (story, _) in enumerate(result.building.wall_list):
+        followed = amplitude[:, w].max() if amplitude is not None else 0.0
+        heated = rise[w] if rise is not None and math.isfinite(rise[w]) else None
+        print(f"{w + 1:5d} {story:5d} {f'{100 * followed:11.0f}' if followed > 0.0 else '-':>11s} "
+              f"{f'{heated:6.1f}' if heated is not None else '-':>6s} "
+              f"{f'{modes[w]} at {times[w]:.2f} s' if failed[w] else 'no':>20s}")
 
 
 def _design(args) -> int:
@@ -138,6 +156,20 @@ def _design(args) -> int:
         raise ValueError(f"--modes must be >= 1, got {args.modes}")
     out = _output_folder(args.out)
     building = load_building(args.building)
+    if args.strain is not None and not args.strain > 0.0:
+        raise ValueError(f"--strain must be a positive amplitude in %, got {args.strain}")
+    if building.strain_dependent:
+        # A modal analysis needs one amplitude: the engineer's, or the centre (in logarithm) of the range
+        # where each wall's parameters were identified, which the layer-sizing rule aims the amplitudes at.
+        family = [wall for _, wall in building.wall_list if isinstance(wall, StrainDependentDamper)]
+        ranges = ", ".join(sorted({f"{100 * w.strain_range[0]:.0f}-{100 * w.strain_range[1]:.0f} %" for w in family}))
+        if args.strain is not None:
+            print(f"strain-dependent walls at {args.strain:g} % (--strain; identified over {ranges})")
+        else:
+            centres = ", ".join(sorted({f"{100 * w.centre_strain:.0f} %" for w in family}))
+            print(f"strain-dependent walls at {centres} (the centre, in logarithm, of their identified range, "
+                  f"{ranges}; --strain to choose)")
+        building = building.walls_at(None if args.strain is None else args.strain / 100.0)
     modes = modal_analysis(building)
     walls = building.wall_list
     print(f"{args.building}: {building.stories} stories, {len(walls)} walls, inherent damping "
@@ -157,7 +189,7 @@ def _design(args) -> int:
     # The template: the lowest walled story's walls as one (identical walls in parallel add their areas).
     lowest = building.walls[min(building.walls)]
     template = lowest[0].resized(len(lowest)) if all(wall == lowest[0] for wall in lowest) else lowest[0]
-    assert not isinstance(template, StrainDependentDamper)  # modal_analysis above refused such walls
+    assert not isinstance(template, StrainDependentDamper)  # fixed at one amplitude above
     stories = sorted(building.walls)
     curve = damping_curve(building, template, args.mode, args.distribution, stories)
     area = template.area / 1e6
@@ -275,6 +307,9 @@ def _add_design_command(commands) -> None:
     design.add_argument("--distribution", default="uniform", choices=("uniform", "stiffness", "drift"),
                         help="wall area over the walled stories (default uniform)")
     design.add_argument("--modes", type=int, default=5, help="modes in the table (default 5)")
+    design.add_argument("--strain", type=float,
+                        help="amplitude, %%, at which strain-dependent walls are analysed (default: the centre, in "
+                             "logarithm, of their identified range)")
     design.add_argument("--out", default="out", help="folder for the figure (default ./out)")
     design.set_defaults(run=_design)
 

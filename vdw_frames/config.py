@@ -23,18 +23,36 @@ Keys (units N-mm-s-tonne)::
     parameters = "fitted-300"           # recommended set for 225, 300 or 450 % strain ...
     # parameters = {G1 = 0.0, G2 = 3.0, eta1 = 0.3, eta2 = 2.0, r = 0.5}   # ... or explicit (MPa, MPa*s^r)
     # parameters = "strain-dependent"   # ... or the paper's strain-dependent model (225-450 %)
-    area = 1.0e6                        # mm^2, optional (default: the paper's 1e6)
-    thickness = 10.0                    # mm, optional (default: the paper's 10)
+    area = 1.0e6                        # mm^2, optional (default: the paper's 1e6); or one per listed story
+    thickness = 10.0                    # mm, optional (default: the paper's 10); or one per listed story
 
+    [walls.thermal]                     # optional: walls that heat (vdw_frames.element.thermal)
+    shift = "isd110-loss-peak"          # the examples' shift law (its source: ISD110_LOSS_PEAK.source), or
+    # shift = {law = "wlf", C1 = 8.0, C2 = 120.0, reference = 21.2, valid = [0, 60], source = "..."}
+    # shift = {law = "arrhenius", activation_energy = 2.0e5, reference = 21.2, valid = [0, 60], source = "..."}
+    # shift = {law = "log-linear", degrees_per_decade = 19.45, reference = 21.2, valid = [0, 70], source = "..."}
+    heat_capacity = 1.8                 # MPa/K = J/(cm^3 K), volumetric
+    temperature = 21.2                  # degC, initial and ambient (optional: the law's reference)
+    cooling_time = 600.0                # s, optional (default: adiabatic)
+
+    [walls.limits]                      # optional: walls that fail (vdw_frames.element.limits); any subset
+    strain = 8.5                        # -, shear strain of rupture or debonding (8.5 = 850 %)
+    stress = 2.0                        # MPa, bond shear strength
+    temperature = 80.0                  # degC, the material's limit (walls with a thermal table)
+    residual = 0.0                      # share of its force a failed wall keeps, in [0, 1)
+    source = "..."                      # where the limits come from (the paper gives none)
+
+In TOML a wall group's ``[walls.thermal]`` and ``[walls.limits]`` tables follow its ``[[walls]]`` entry.
 JSON files use the same keys ("walls" a list of objects).  TOML is read by tomllib (tomli before Python 3.11).
 
 Strain-dependent walls
 ----------------------
-``parameters = "strain-dependent"`` gives the group :func:`vdw_frames.paper.strain_dependent` walls,
-whose FDMK parameters follow their strain amplitude.  A building with such walls is analysed by the
-strain-compatible (equivalent-linear) iteration of :mod:`vdw_frames.frame.strain_compatible`, which
-the file asks for with the top-level ``strain_compatible = true`` (before any ``[[walls]]`` in TOML),
-or with a table of the iteration's settings (:class:`~vdw_frames.frame.strain_compatible.StrainCompatibleOptions`;
+``parameters = "strain-dependent"`` gives the group :func:`vdw_frames.paper.strain_dependent` walls (one
+common fractional order), whose FDMK parameters follow their own strain amplitude step by step in the
+time-history analysis (:func:`vdw_frames.element.kernel.track_amplitude`).  The strain-compatible
+(equivalent-linear) iteration of :mod:`vdw_frames.frame.strain_compatible` runs instead when the file
+asks for it with the top-level ``strain_compatible = true`` (before any ``[[walls]]`` in TOML), or with a
+table of the iteration's settings (:class:`~vdw_frames.frame.strain_compatible.StrainCompatibleOptions`;
 any of them, the rest default)::
 
     [strain_compatible]
@@ -45,8 +63,7 @@ any of them, the rest default)::
 
 :func:`load_analysis` returns the building and the keyword arguments for
 :func:`~vdw_frames.frame.simulation.simulate` that the file asks for (``vdw-frames simulate`` uses it);
-it refuses strain-dependent walls without ``strain_compatible``, which no fixed-parameter analysis
-can take.  :func:`load_building` returns the building alone.
+:func:`load_building` returns the building alone.
 
 Files are UTF-8 (a byte-order mark is allowed).  Story numbers are whole numbers (``2`` or ``2.0``),
 each at most once in a group.  Anything malformed is a ValueError naming the file and the key.
@@ -54,6 +71,7 @@ each at most once in a group.  Anything malformed is a ValueError naming the fil
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 import sys
@@ -67,17 +85,27 @@ else:  # Python 3.10: the same parser, as a package
 from ._files import read_text
 from ._validation import show, whole_number
 from .element.damper import FDMKDamper
+from .element.limits import WallLimits
 from .element.strain_dependent import StrainDependentDamper
+from .element.thermal import ISD110_LOSS_PEAK, WLF, Arrhenius, LogLinear, ThermalProperties
 from .frame.building import ShearBuilding
 from .frame.hysteresis import Bilinear, BoucWen
 from .frame.strain_compatible import StrainCompatibleOptions
+from .paper.data import fitted
+from .paper.strain_dependence import strain_dependent
 
 _BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "damping_model",
                   "gravity_loads", "hysteresis", "walls", "strain_compatible"}
 _HYSTERESIS_KEYS = {"bilinear": {"model", "yield_forces", "hardening"},
                     "bouc-wen": {"model", "yield_forces", "hardening", "exponent", "beta", "gamma"}}
 _STRAIN_COMPATIBLE_KEYS = {"effective_strain_ratio", "initial_strain", "tolerance", "max_iterations"}
-_WALL_KEYS = {"stories", "per_story", "parameters", "area", "thickness"}
+_WALL_KEYS = {"stories", "per_story", "parameters", "area", "thickness", "thermal", "limits"}
+_THERMAL_KEYS = {"shift", "heat_capacity", "temperature", "cooling_time"}
+_LIMIT_KEYS = {"strain", "stress", "temperature", "residual", "source"}
+_SHIFT_LAWS: dict[str, tuple[type[WLF] | type[Arrhenius] | type[LogLinear], set[str]]] = {
+    "wlf": (WLF, {"C1", "C2"}), "arrhenius": (Arrhenius, {"activation_energy"}),
+    "log-linear": (LogLinear, {"degrees_per_decade"})}
+_NAMED_SHIFT_LAWS = {"isd110-loss-peak": ISD110_LOSS_PEAK}
 _PARAMETER_KEYS = {"G1", "G2", "eta1", "eta2", "r"}
 MAX_PER_STORY = 1000
 """Most walls one group may put in parallel on a story (a bound, so a typo cannot exhaust memory)."""
@@ -85,15 +113,14 @@ MAX_PER_STORY = 1000
 
 def load_building(path: str | os.PathLike[str]) -> ShearBuilding:
     """Read a :class:`ShearBuilding` from a ``.toml`` or ``.json`` file (format in the module docstring)."""
-    return load_analysis(path, require_analysis=False)[0]
+    return load_analysis(path)[0]
 
 
-def load_analysis(path: str | os.PathLike[str], require_analysis: bool = True) -> tuple[ShearBuilding, dict[str, Any]]:
+def load_analysis(path: str | os.PathLike[str]) -> tuple[ShearBuilding, dict[str, Any]]:
     """(building, keyword arguments for ``simulate``) from a ``.toml`` or ``.json`` building file.
 
     The keywords are ``{"strain_compatible": True or StrainCompatibleOptions}`` when the file asks for a
-    strain-compatible analysis, else empty.  With ``require_analysis`` strain-dependent walls without
-    ``strain_compatible`` are refused (see the module docstring).
+    strain-compatible analysis, else empty.
     """
     path, text = read_text(path, "building file")
     try:
@@ -108,11 +135,7 @@ def load_analysis(path: str | os.PathLike[str], require_analysis: bool = True) -
             raise
         raise ValueError(f"{path}: not valid {path.suffix[1:].upper()}: {error}") from None
     try:
-        building, options = building_from_dict(data), simulate_options(data)
-        if require_analysis and building.strain_dependent and not options:
-            raise ValueError("walls with parameters = 'strain-dependent' need strain_compatible = true (the "
-                             "equivalent-linear analysis); or give the walls fixed parameters, e.g. 'fitted-300'")
-        return building, options
+        return building_from_dict(data), simulate_options(data)
     except ValueError as error:
         raise ValueError(f"{path}: {error}") from None
 
@@ -137,8 +160,8 @@ def building_from_dict(data: dict[str, Any]) -> ShearBuilding:
     stories = len(data["masses"])
     dampers: dict[int, list[FDMKDamper | StrainDependentDamper]] = {}
     for group in data.get("walls", []):
-        wall, story_numbers, per_story = _wall_group(group, stories)
-        for story in story_numbers:
+        walls, per_story = _wall_group(group, stories)
+        for story, wall in walls:
             dampers.setdefault(story, []).extend([wall] * per_story)
     # damping_modes only when the file gives them: else the building picks its default.
     modes = {"damping_modes": tuple(data["damping_modes"])} if "damping_modes" in data else {}
@@ -187,15 +210,32 @@ def simulate_options(data: dict[str, Any]) -> dict[str, Any]:
     return {"strain_compatible": value} if value is not False else {}
 
 
-def _wall_group(group: object, stories: int) -> tuple[FDMKDamper | StrainDependentDamper, Any, int]:
-    from .paper.data import fitted
-    from .paper.strain_dependence import strain_dependent
-
+def _wall_group(group: object, stories: int) -> tuple[list[tuple[int, FDMKDamper | StrainDependentDamper]], int]:
+    """([(story, wall)], walls per story) of one ``[[walls]]`` entry; area and thickness may be lists, one
+    value per listed story."""
     if not isinstance(group, dict):
         raise ValueError(f"each walls entry must be a table, got {group!r}")
     unknown = set(group) - _WALL_KEYS
     if unknown:
         raise ValueError(f"unknown walls keys {sorted(unknown)}; expected some of {sorted(_WALL_KEYS)}")
+    story_numbers = _story_numbers(group.get("stories", "all"), stories)
+    per_story = whole_number("walls per_story", group.get("per_story", 1), 1)
+    if per_story > MAX_PER_STORY:
+        raise ValueError(f"walls per_story must be at most {MAX_PER_STORY}, got {per_story}")
+    sizes = {key: group[key] for key in ("area", "thickness") if isinstance(group.get(key), list)}
+    for key, values in sizes.items():
+        if len(values) != len(story_numbers):
+            raise ValueError(f"walls {key} must be one number or one per listed story ({len(story_numbers)} "
+                             f"stories), got {len(values)} values")
+    walls = []
+    for index, story in enumerate(story_numbers):
+        each = {key: values[index] for key, values in sizes.items()}
+        walls.append((story, _wall(dict(group, **each))))
+    return walls, per_story
+
+
+def _wall(group: dict[str, Any]) -> FDMKDamper | StrainDependentDamper:
+    """One wall of a ``[[walls]]`` entry whose area and thickness are numbers."""
     geometry = {key: group[key] for key in ("area", "thickness") if key in group}
     parameters = group.get("parameters")
     if isinstance(parameters, str) and parameters.startswith("fitted-"):
@@ -211,10 +251,21 @@ def _wall_group(group: object, stories: int) -> tuple[FDMKDamper | StrainDepende
     else:
         raise ValueError(f"walls parameters must be 'fitted-225', 'fitted-300', 'fitted-450', 'strain-dependent' "
                          f"or a table with exactly {sorted(_PARAMETER_KEYS)}, got {parameters!r}")
-    story_numbers = group.get("stories", "all")
+    extras: dict[str, Any] = {}
+    if "thermal" in group:
+        extras["thermal"] = _thermal(group["thermal"])
+    if "limits" in group:
+        extras["limits"] = _limits(group["limits"])
+    if extras:
+        wall = dataclasses.replace(wall, **extras)
+    return wall
+
+
+def _story_numbers(story_numbers: object, stories: int) -> list[int]:
+    """The story numbers of a ``stories`` key ("all" or a list of distinct story numbers)."""
     if story_numbers == "all":
-        story_numbers = range(1, stories + 1)
-    elif isinstance(story_numbers, list):
+        return list(range(1, stories + 1))
+    if isinstance(story_numbers, list):
         numbers = []
         for number in story_numbers:
             try:
@@ -228,10 +279,50 @@ def _wall_group(group: object, stories: int) -> tuple[FDMKDamper | StrainDepende
         if len(set(numbers)) != len(numbers):
             raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got "
                              f"{show(story_numbers)}")
-        story_numbers = numbers
+        return numbers
+    raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got {show(story_numbers)}")
+
+
+def _table(name: str, value: object, keys: set[str]) -> dict[str, Any]:
+    """A table with only ``keys``."""
+    if not isinstance(value, dict):
+        raise ValueError(f"{name} must be a table of {sorted(keys)}, got {show(value)}")
+    unknown = set(value) - keys
+    if unknown:
+        raise ValueError(f"unknown {name} keys {sorted(unknown)}; expected some of {sorted(keys)}")
+    return value
+
+
+def _thermal(value: object) -> ThermalProperties:
+    """The :class:`ThermalProperties` of a ``[walls.thermal]`` table (module docstring)."""
+    table = _table("walls thermal", value, _THERMAL_KEYS)
+    if "shift" not in table or "heat_capacity" not in table:
+        raise ValueError("walls thermal needs shift and heat_capacity (MPa/K = J/(cm^3 K))")
+    shift = table["shift"]
+    if isinstance(shift, str):
+        if shift not in _NAMED_SHIFT_LAWS:
+            raise ValueError(f"walls thermal shift must be one of {sorted(_NAMED_SHIFT_LAWS)} or a table with law = "
+                             f"{' / '.join(repr(law) for law in _SHIFT_LAWS)}, got {shift!r}")
+        law: WLF | Arrhenius | LogLinear = _NAMED_SHIFT_LAWS[shift]
     else:
-        raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got {show(story_numbers)}")
-    per_story = whole_number("walls per_story", group.get("per_story", 1), 1)
-    if per_story > MAX_PER_STORY:
-        raise ValueError(f"walls per_story must be at most {MAX_PER_STORY}, got {per_story}")
-    return wall, story_numbers, per_story
+        if not isinstance(shift, dict) or shift.get("law") not in _SHIFT_LAWS:
+            raise ValueError(f"walls thermal shift must be one of {sorted(_NAMED_SHIFT_LAWS)} or a table with law = "
+                             f"{' / '.join(repr(law) for law in _SHIFT_LAWS)}, got {show(shift)}")
+        kind, constants = _SHIFT_LAWS[shift["law"]]
+        fields = _table(f"walls thermal shift ({shift['law']})", shift,
+                        constants | {"law", "reference", "valid", "source"})
+        missing = (constants | {"reference", "valid"}) - set(fields)
+        if missing:
+            raise ValueError(f"walls thermal shift ({shift['law']}) needs {sorted(missing)}")
+        valid = fields["valid"]
+        if not isinstance(valid, list) or len(valid) != 2:
+            raise ValueError(f"walls thermal shift valid must be [low, high] (degC), got {show(valid)}")
+        arguments = {key: item for key, item in fields.items() if key != "law"}
+        law = kind(**{**arguments, "valid": tuple(valid)})
+    options = {key: table[key] for key in ("temperature", "cooling_time") if key in table}
+    return ThermalProperties(law, table["heat_capacity"], **options)
+
+
+def _limits(value: object) -> WallLimits:
+    """The :class:`WallLimits` of a ``[walls.limits]`` table (module docstring)."""
+    return WallLimits(**_table("walls limits", value, _LIMIT_KEYS))

@@ -121,13 +121,20 @@ def test_hunt_and_fill_settings_are_checked(kwargs, match):
 
 
 def test_collapse_criterion():
-    stopped = types.SimpleNamespace(converged=False, collapsed=False)
+    intact = np.zeros(2, dtype=bool)
+    stopped = types.SimpleNamespace(converged=False, collapsed=False, wall_failed=intact)
     assert CollapseCriterion().collapsed(stopped, "run") is True
-    assert CollapseCriterion().collapsed(types.SimpleNamespace(converged=True, collapsed=False), "run") is False
+    standing = types.SimpleNamespace(converged=True, collapsed=False, wall_failed=intact)
+    assert CollapseCriterion().collapsed(standing, "run") is False
     with pytest.raises(ValueError, match="stopped converging"):
         CollapseCriterion(non_convergence=False).collapsed(stopped, "run")
-    with pytest.raises(ValueError, match="walls of this package do not fail"):
-        CollapseCriterion(wall_failure=True)
+    # A failed wall leaves the frame standing unless the criterion counts wall failure.
+    torn = types.SimpleNamespace(converged=True, collapsed=False, wall_failed=np.array([False, True]))
+    assert CollapseCriterion().collapsed(torn, "run") is False
+    assert CollapseCriterion(wall_failure=True).collapsed(torn, "run") is True
+    assert CollapseCriterion(wall_failure=True).collapsed(standing, "run") is False
+    assert "not included: wall failure" in CollapseCriterion().describe()
+    assert "or the failure of any wall" in CollapseCriterion(wall_failure=True).describe()
     with pytest.raises(ValueError, match="drift_ratio must be > 0"):
         CollapseCriterion(drift_ratio=0.0)
 

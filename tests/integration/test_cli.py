@@ -7,6 +7,7 @@ import json
 import re
 import subprocess
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -17,7 +18,7 @@ import vdw_frames as vdw
 from vdw_frames import cli, modal_analysis, paper, simulate
 from vdw_frames.config import building_from_dict, load_building
 from vdw_frames.design import damping_curve
-from vdw_frames.motion import default_record, default_record_path, read_at2
+from vdw_frames.motion import G, default_record, default_record_path, read_at2
 
 
 # ---------------------------------------------------------------------------------------------- simulate
@@ -30,12 +31,33 @@ def test_cli_simulate_with_a_json_building(tmp_path, capsys):
     assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert "2 stories" in out and "2 FDMK walls" in out
-    assert (tmp_path / "damper_hysteresis.png").exists()
+    assert (tmp_path / "wall_hysteresis.png").exists()
     # The printed table is the package's own result for the same building and record.
     expected = simulate(building_from_dict(spec), read_at2(default_record_path()))
     row = next(line.split() for line in out.splitlines() if line.strip().startswith("1 "))
     assert float(row[1]) == pytest.approx(expected.peak_drift[0], abs=0.006)
     assert float(row[4]) == pytest.approx(expected.peak_story_wall_force[0] / 1e3, abs=0.06)
+
+
+def test_cli_simulate_prints_what_the_example_walls_followed_heated_and_failed(capsys):
+    path = EXAMPLE_BUILDING
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # at 0.7 g the walls leave their tested amplitudes
+        assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--scale", "0.7"]) == 0
+        expected = simulate(load_building(path), read_at2(default_record_path()).scaled_to_pga(0.7 * G))
+    out = capsys.readouterr().out
+    wall_row = r"\s+\d+ +\d+ +\d+ +[0-9.]+ +(no|strain)"
+    rows = [line.split(maxsplit=4) for line in out.splitlines() if re.match(wall_row, line)]
+    assert [int(row[1]) for row in rows] == list(range(1, 11))
+    np.testing.assert_allclose([float(row[2]) for row in rows], 100 * expected.wall_amplitude.max(axis=0), atol=0.5)
+    np.testing.assert_allclose([float(row[3]) for row in rows], expected.peak_temperature_rise, atol=0.05)
+    failed = [row[4].strip() != "no" for row in rows]
+    assert failed == list(expected.wall_failed) and any(failed)  # at twice the example's intensity, walls fail
+    for row, time, mode in zip(rows, expected.wall_failure_time, expected.wall_failure_mode, strict=True):
+        if time is not None:
+            assert row[4].strip() == f"{mode} at {time:.2f} s"
+    energy = expected.energy
+    assert f"walls dissipate {100 * energy.wall_heat[-1] / energy.input[-1]:.0f} % of the input energy as heat" in out
 
 
 def test_cli_prints_dashes_for_values_that_do_not_exist(tmp_path, capsys):
@@ -130,11 +152,12 @@ def test_cli_help(command):
 # ---------------------------------------------------------------------------------------------- design
 @pytest.mark.slow
 def test_design_command_on_the_example(tmp_path, capsys):
-    building = load_building(EXAMPLE_BUILDING)
+    path = EXAMPLE_BUILDING
+    building = _example_at_the_range_centre()
     expected = modal_analysis(building, [1, 2, 3, 4, 5])
     curve = damping_curve(building, building.wall_list[0][1])
     target = round(0.5 * (expected.damping_ratios[0] + curve.best_damping_ratio), 3)
-    assert cli.main(["design", str(EXAMPLE_BUILDING), "--target", str(target), "--out", str(tmp_path)]) == 0
+    assert cli.main(["design", str(path), "--target", str(target), "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     rows = [line.split() for line in out.splitlines() if re.match(r"\s+[1-5] ", line)][:5]
     table = np.array(rows, dtype=float)
@@ -144,6 +167,8 @@ def test_design_command_on_the_example(tmp_path, capsys):
     np.testing.assert_allclose(table[:, 5], 100 * expected.energy_damping_ratios, atol=5e-3)
     np.testing.assert_allclose(table[:, 6], 100 * expected.added_damping, atol=5e-3)
     assert f"largest achievable: xi = {100 * curve.best_damping_ratio:.2f} %" in out
+    assert ("strain-dependent walls at 318 % (the centre, in logarithm, of their identified range, 225-450 %; "
+            "--strain to choose)") in out
     assert f"target {100 * target:g} %:" in out and f"xi = {100 * target:.2f} %" in out
     figure = tmp_path / "design_damping.png"
     assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -151,7 +176,8 @@ def test_design_command_on_the_example(tmp_path, capsys):
 
 @pytest.mark.slow
 def test_design_command_refuses_an_unreachable_target_after_the_table(tmp_path, capsys):
-    assert cli.main(["design", str(EXAMPLE_BUILDING), "--target", "0.5", "--out", str(tmp_path)]) == 2
+    path = EXAMPLE_BUILDING
+    assert cli.main(["design", str(path), "--target", "0.5", "--out", str(tmp_path)]) == 2
     captured = capsys.readouterr()
     assert "largest achievable" in captured.out and (tmp_path / "design_damping.png").exists()
     assert re.match(r"vdw-frames: error: target_damping 0\.5 is out of reach: the largest achievable mode-1 damping "
@@ -163,3 +189,22 @@ def test_design_command_without_walls(tmp_path, capsys):
     path.write_text('{"masses": [300, 300], "stiffnesses": [2e5, 1.5e5]}')
     assert cli.main(["design", str(path), "--out", str(tmp_path)]) == 0
     assert "no walls in the building file" in capsys.readouterr().out
+
+
+def test_design_command_takes_the_amplitude_of_strain_dependent_walls(tmp_path, capsys):
+    path = EXAMPLE_BUILDING
+    assert cli.main(["design", str(path), "--strain", "400", "--modes", "1", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    expected = modal_analysis(load_building(path).walls_at(4.0), 1)
+    assert "strain-dependent walls at 400 % (--strain; identified over 225-450 %)" in out
+    row = next(line.split() for line in out.splitlines() if re.match(r"\s+1 ", line))
+    assert float(row[4]) == pytest.approx(100 * expected.damping_ratios[0], abs=5e-3)
+    assert cli.main(["design", str(path), "--strain", "-1", "--out", str(tmp_path)]) == 2
+    assert "--strain must be a positive amplitude in %, got -1.0" in capsys.readouterr().err
+
+
+def _example_at_the_range_centre():
+    """The example frame with its walls at the centre, in logarithm, of their range (the design command's default)."""
+    building = load_building(EXAMPLE_BUILDING)
+    assert building.wall_list[0][1].strain_range == (2.25, 4.5)
+    return building.walls_at(np.sqrt(2.25 * 4.5))

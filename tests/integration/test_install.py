@@ -64,7 +64,7 @@ def test_wheel_installs_and_runs_the_default_simulation(tmp_path):
     assert example.returncode == 0, example.stderr
     assert "record synthetic_kt_035g: 2501 points, dt = 0.01 s, PGA = 0.350 g" in example.stdout
     assert "peak drift ratio (%)" in example.stdout
-    for name in ("drift_envelope.png", "roof_displacement.png", "damper_hysteresis.png", "energy.png"):
+    for name in ("drift_envelope.png", "roof_displacement.png", "wall_hysteresis.png", "energy.png"):
         assert (tmp_path / "figures" / name).stat().st_size > 10_000
 
     # The installed console script, on the installed record.

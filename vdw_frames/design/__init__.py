@@ -2,11 +2,14 @@
 
 - :mod:`.sizing`: :func:`size_walls` (walls for a target damping ratio of one mode),
   :func:`damping_curve` (:class:`SizingCurve`: period and damping ratio against the wall size), both
-  from the complex modes of :func:`vdw_frames.frame.modal_analysis`.
+  from the complex modes of :func:`vdw_frames.frame.modal_analysis`;
+- :mod:`.layers`: :func:`size_layers` (:class:`LayerSizing`: layer thicknesses that keep strain-dependent
+  walls inside their identified amplitudes over a suite of records).
 
 Units: N, mm, s, tonne; periods s, areas mm^2.
 """
 
+from .layers import LayerSizing, size_layers
 from .sizing import DISTRIBUTIONS, SizingCurve, damping_curve, size_walls
 
-__all__ = ["DISTRIBUTIONS", "SizingCurve", "damping_curve", "size_walls"]
+__all__ = ["DISTRIBUTIONS", "LayerSizing", "SizingCurve", "damping_curve", "size_layers", "size_walls"]

@@ -11,7 +11,9 @@
 - :mod:`.prony`: :class:`PronySeries`, a generalized Maxwell model fitted to a wall over a band
   (``wall.prony(f_min, f_max)``), for programs that cannot host the exact wall;
 - :mod:`.strain_dependent`: :class:`StrainDependentDamper`, FDMK parameters as functions of the
-  strain amplitude.
+  strain amplitude (followed step by step in the time domain);
+- :mod:`.thermal`: temperature -- shift laws (:class:`WLF`, :class:`Arrhenius`, :class:`LogLinear`),
+  :class:`ThermalProperties`, self-heating; :mod:`.limits`: :class:`WallLimits`, walls that fail.
 
 Units: N, mm, s; moduli MPa, viscosities MPa*s^r.
 """
@@ -20,13 +22,16 @@ from .bank import WallBank
 from .damper import FDMKDamper, WallState
 from .fast_memory import FastMemory
 from .fractional import BDF2, DampedTwoStep, Discretisation, GrunwaldLetnikov, Trapezoidal
+from .limits import WallLimits
 from .material import Material
 from .prony import PronySeries
 from .sine import SineTestResult, sine_test
 from .strain_dependent import StrainDependentDamper
 from .supported import SupportedDamper
+from .thermal import ISD110_LOSS_PEAK, WLF, Arrhenius, LogLinear, ThermalProperties
 from .wall import Wall
 
-__all__ = ["BDF2", "DampedTwoStep", "WallState", "Discretisation", "FDMKDamper", "FastMemory",
-           "GrunwaldLetnikov", "Material", "PronySeries", "SineTestResult", "StrainDependentDamper",
-           "SupportedDamper", "Trapezoidal", "Wall", "WallBank", "sine_test"]
+__all__ = ["BDF2", "ISD110_LOSS_PEAK", "WLF", "Arrhenius", "DampedTwoStep", "Discretisation", "FDMKDamper",
+           "FastMemory", "GrunwaldLetnikov", "LogLinear", "Material", "PronySeries", "SineTestResult",
+           "StrainDependentDamper", "SupportedDamper", "ThermalProperties", "Trapezoidal", "Wall", "WallBank",
+           "WallLimits", "WallState", "sine_test"]

@@ -133,6 +133,7 @@ class WallBank:
         tables = [wall.amplitude_table() if hasattr(wall, "amplitude_table") else np.zeros((0, 5))
                   for wall in self.walls]
         table = np.zeros((count, kernel.STATE_FIELDS))
+        table[:, kernel.ENERGY] = [t is not None or lim is not None for t, lim in zip(thermals, limits, strict=True)]
         table[:, kernel.TRACKED] = [t is not None or lim is not None or nodes.size > 0
                                     for t, lim, nodes in zip(thermals, limits, tables, strict=True)]
         table[:, kernel.BASE_G1:kernel.BASE_ETA2 + 1] = constants[:, :4]
@@ -141,6 +142,8 @@ class WallBank:
         amplitude_table = np.zeros((count, max((nodes.shape[0] for nodes in tables), default=0), 5))
         for w, nodes in enumerate(tables):
             amplitude_table[w, :nodes.shape[0]] = nodes
+            if nodes.shape[0]:
+                table[w, kernel.AMPLITUDE_LOW], table[w, kernel.AMPLITUDE_HIGH] = np.exp(nodes[[0, -1], 0])
         for w, (wall_thermal, c) in enumerate(zip(thermals, constants, strict=True)):
             table[w, kernel.T_KIND:kernel.T_HIGH + 1] = thermal.thermal_row(wall_thermal, c[4] * c[5], self.dt)
         table[:, kernel.TEMPERATURE] = [t.temperature if t is not None else np.nan for t in thermals]
@@ -151,7 +154,9 @@ class WallBank:
         table[:, kernel.FAILURE_STEP] = -1.0
         table[:, kernel.SCALE] = 1.0
         table[:, kernel.OUTSIDE] = -1.0
-        tracked = np.flatnonzero(table[:, kernel.TRACKED])
+        table[:, kernel.AMPLITUDE_USED] = np.nan  # nothing interpolated yet
+        table[:, kernel.SHIFT_ANCHOR] = np.nan  # no exp taken yet
+        tracked = np.flatnonzero(table[:, kernel.ENERGY])
         xi = thermal.diffusive_nodes(self.dt) if tracked.size else np.zeros(0)
         e, ratio, A, B, C = thermal.node_coefficients(xi, self.dt).T
         nodes = np.zeros((count, 5, xi.size))

@@ -66,9 +66,11 @@ _LN10 = math.log(10.0)
  LIMIT_STRAIN, LIMIT_STRESS, LIMIT_TEMPERATURE, RESIDUAL, FAILURE_STEP, FAILURE_MODE, SCALE, OUTSIDE,
  PREVIOUS_STRAIN, PREVIOUS_DASHPOT_STRAIN, TAIL_DASHPOT, TAIL_SPRING,
  AMPLITUDE_NODES, TURN, EXTREME, DIRECTION, LAST_AMPLITUDE, AMPLITUDE, BELOW_RANGE, ABOVE_RANGE,
- NODE_C_SUM, FOLLOWED_AT_TURN, CONFIRMED_AT) = range(44)
-STATE_FIELDS = 44
-"""TRACKED: 1 when the wall's heat and stored energy are followed (a thermal description or limits);
+ NODE_C_SUM, FOLLOWED_AT_TURN, CONFIRMED_AT, ENERGY, AMPLITUDE_LOW, AMPLITUDE_HIGH,
+ AMPLITUDE_USED, AT_G1, AT_G2, AT_ETA1, AT_ETA2, SHIFT_ANCHOR, SHIFT_FACTOR) = range(54)
+STATE_FIELDS = 54
+"""TRACKED: 1 when the wall's state is followed (a thermal description, limits or amplitude following);
+ENERGY: 1 when its heat and stored energy are (a thermal description or limits: the diffusive nodes);
 BASE_*: G1, G2 (MPa), eta1, eta2 (MPa s^r) at the reference temperature (fixed walls); ORDER: r;
 T_*: the thermal row (thermal.thermal_row: law kind (0: none), its two parameters and reference (degC),
 rho c V (N*mm/K), ambient (degC), exp(-dt / tau), (tau / dt)(1 - exp(-dt / tau)), validity range (degC));
@@ -83,7 +85,10 @@ fixed parameters), TURN and EXTREME (strain at the last reversal, extreme of the
 DIRECTION (+1, -1, 0 at rest), LAST_AMPLITUDE (of the last completed half-cycle), AMPLITUDE (the one the
 parameters follow), BELOW_RANGE and ABOVE_RANGE (steps spent outside the table's range); NODE_C_SUM:
 sum_k c_k C_k of the diffusive nodes (WallStates.nodes); FOLLOWED_AT_TURN and CONFIRMED_AT: the amplitude
-followed, and the strain, when the last reversal was confirmed."""
+followed, and the strain, when the last reversal was confirmed; AMPLITUDE_LOW and AMPLITUDE_HIGH: the
+amplitude table's range (-); AMPLITUDE_USED and AT_*: the amplitude the coefficients were last
+interpolated at and G1, G2, eta1, eta2 there (reused while the amplitude stays); SHIFT_ANCHOR and
+SHIFT_FACTOR: an exponent ln a_T^r and its exp (NaN: none yet), from which nearby factors are found."""
 FAILURE_MODES = ("", "strain", "stress", "temperature")
 """Names of the FAILURE_MODE column."""
 
@@ -289,20 +294,31 @@ def set_coefficients(table, amplitude_table, constants, w):
     G1, G2, eta1, eta2 = table[w, BASE_G1], table[w, BASE_G2], table[w, BASE_ETA1], table[w, BASE_ETA2]
     count = int(table[w, AMPLITUDE_NODES])
     if count > 0:
-        x = math.log(max(table[w, AMPLITUDE], 1e-300))
-        k = 0
-        while k < count - 2 and x > amplitude_table[w, k + 1, 0]:
-            k += 1
-        low, high = amplitude_table[w, k, 0], amplitude_table[w, k + 1, 0]
-        t = min(max((x - low) / (high - low), 0.0), 1.0)
-        G1 = amplitude_table[w, k, 1] + t * (amplitude_table[w, k + 1, 1] - amplitude_table[w, k, 1])
-        G2 = amplitude_table[w, k, 2] + t * (amplitude_table[w, k + 1, 2] - amplitude_table[w, k, 2])
-        eta1 = amplitude_table[w, k, 3] + t * (amplitude_table[w, k + 1, 3] - amplitude_table[w, k, 3])
-        eta2 = amplitude_table[w, k, 4] + t * (amplitude_table[w, k + 1, 4] - amplitude_table[w, k, 4])
+        amplitude = table[w, AMPLITUDE]
+        if amplitude != table[w, AMPLITUDE_USED]:  # (held within much of a half-cycle: reuse the last)
+            x = math.log(max(amplitude, 1e-300))
+            k = 0
+            while k < count - 2 and x > amplitude_table[w, k + 1, 0]:
+                k += 1
+            low, high = amplitude_table[w, k, 0], amplitude_table[w, k + 1, 0]
+            t = min(max((x - low) / (high - low), 0.0), 1.0)
+            for column, field in ((1, AT_G1), (2, AT_G2), (3, AT_ETA1), (4, AT_ETA2)):
+                table[w, field] = (amplitude_table[w, k, column]
+                                   + t * (amplitude_table[w, k + 1, column] - amplitude_table[w, k, column]))
+            table[w, AMPLITUDE_USED] = amplitude
+        G1, G2, eta1, eta2 = table[w, AT_G1], table[w, AT_G2], table[w, AT_ETA1], table[w, AT_ETA2]
     factor = 1.0
     if table[w, T_KIND] != 0.0:
         temperature = min(max(table[w, TEMPERATURE], table[w, T_LOW]), table[w, T_HIGH])
-        factor = math.exp(_LN10 * table[w, ORDER] * _log10_shift(table, w, temperature))
+        exponent = _LN10 * table[w, ORDER] * _log10_shift(table, w, temperature)
+        x = exponent - table[w, SHIFT_ANCHOR]
+        if abs(x) <= 1e-3:  # exp(anchor + x) = exp(anchor) exp(x), the series to x^5: exact to rounding
+            factor = table[w, SHIFT_FACTOR] * (1.0 + x * (1.0 + x * (0.5 + x * (1.0 / 6.0 + x * (1.0 / 24.0
+                                                                                              + x / 120.0)))))
+        else:  # (the first call too: the anchor starts as NaN)
+            factor = math.exp(exponent)
+            table[w, SHIFT_ANCHOR] = exponent
+            table[w, SHIFT_FACTOR] = factor
     constants[w, 0] = G1
     constants[w, 1] = G2
     constants[w, 2] = eta1 * factor
@@ -349,6 +365,17 @@ def track_amplitude(table, w, strain):
     table[w, AMPLITUDE] = max(0.5 * abs(extreme - turn), before + (completed - before) * progress)
 
 
+@njit(cache=True, inline="always")
+def _follow_amplitude(table, w, strain):
+    """The amplitude of an amplitude-following wall ``w`` after a commit, and its steps outside its range."""
+    if table[w, AMPLITUDE_NODES] > 0.0:
+        track_amplitude(table, w, strain)
+        if table[w, AMPLITUDE] < table[w, AMPLITUDE_LOW]:
+            table[w, BELOW_RANGE] += 1.0
+        elif table[w, AMPLITUDE] > table[w, AMPLITUDE_HIGH]:
+            table[w, ABOVE_RANGE] += 1.0
+
+
 @njit(cache=True, fastmath=_FAST)
 def update_walls(states, constants, values, force, count):
     """After the commit of step ``count`` (forces (W,) N, the memory advanced, ``values`` (2, W) the
@@ -360,10 +387,14 @@ def update_walls(states, constants, values, force, count):
     for w in range(constants.shape[0]):
         if table[w, TRACKED] == 0.0:
             continue
+        strain, maxwell = values[0, w], values[1, w]
+        if table[w, ENERGY] == 0.0:  # a wall that only follows its amplitude: no heat, no energy split
+            _follow_amplitude(table, w, strain)
+            set_coefficients(table, amplitude_table, constants, w)
+            continue
         G1, G2, eta1, eta2 = constants[w, 0], constants[w, 1], constants[w, 2], constants[w, 3]
         scale = table[w, SCALE]  # a failed wall keeps its residual share
         volume = constants[w, 4] * constants[w, 5] * scale
-        strain, maxwell = values[0, w], values[1, w]
         maxwell_branch = G2 > 0.0 and eta2 > 0.0  # a Maxwell branch without G2 or eta2 carries no stress
         springs = 0.5 * G1 * strain * strain
         strain_v = 0.0
@@ -399,12 +430,7 @@ def update_walls(states, constants, values, force, count):
                 table[w, RELEASED] = (1.0 - table[w, RESIDUAL]) * stored
                 table[w, SCALE] = table[w, RESIDUAL]
                 stored *= table[w, RESIDUAL]
-        if table[w, AMPLITUDE_NODES] > 0.0:
-            track_amplitude(table, w, strain)
-            if table[w, AMPLITUDE] < math.exp(amplitude_table[w, 0, 0]):
-                table[w, BELOW_RANGE] += 1.0
-            elif table[w, AMPLITUDE] > math.exp(amplitude_table[w, int(table[w, AMPLITUDE_NODES]) - 1, 0]):
-                table[w, ABOVE_RANGE] += 1.0
+        _follow_amplitude(table, w, strain)
         set_coefficients(table, amplitude_table, constants, w)
         # The same state stores another energy under the next step's parameters (temperature, amplitude): the
         # difference does no work and warms nothing in this model; it is accounted, not hidden in the heat.

@@ -25,6 +25,7 @@ thickness mm, frequency Hz, stiffness N/mm.
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import overload
@@ -35,6 +36,7 @@ from numpy.typing import ArrayLike
 from .. import _warnings
 from .._validation import (
     finite_array,
+    finite_scalar,
     fractional_order,
     non_negative,
     positive,
@@ -46,7 +48,7 @@ from .damper import DEFAULT_MEMORY, FDMKDamper, WallState, driven_force
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, Discretisation
 from .limits import WallLimits
-from .thermal import ThermalProperties
+from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, property_factors
 
 PARAMETERS = ("G1", "G2", "eta1", "eta2", "r")
 
@@ -191,6 +193,36 @@ class StrainDependentDamper:
         return dataclasses.replace(self, G1=times("G1", self.G1), G2=times("G2", self.G2),
                                    eta1=times("eta1", self.eta1), eta2=times("eta2", self.eta2))
 
+    def at_temperature(self, temperature: float, shift: ShiftLaw | None = None) -> StrainDependentDamper:
+        """The isothermal wall at ``temperature`` (degC): at every node amplitude eta1 and eta2 times
+        a_T(temperature)^r, G1, G2, r kept (:meth:`FDMKDamper.at_temperature`, node by node).  ``shift``:
+        the law (default: this wall's ``thermal.shift``).  The result has no thermal description."""
+        law = shift if shift is not None else (self.thermal.shift if self.thermal is not None else None)
+        if law is None:
+            raise ValueError("at_temperature needs a shift law: give shift=..., or a wall with a thermal description")
+        if not isinstance(law, SHIFT_LAWS):
+            raise ValueError(f"shift must be a WLF, Arrhenius or LogLinear law, got {type(law).__name__}")
+        log10_shift = law.log10_shift(finite_scalar("temperature", temperature))
+        factors = [float(10.0 ** (r * log10_shift)) for r in self.r]
+
+        def times(name: str, values: tuple[float, ...]) -> tuple[float, ...]:
+            return tuple(scaled_value(name, v, f, "a_T^r") for v, f in zip(values, factors, strict=True))
+
+        return dataclasses.replace(self, eta1=times("eta1", self.eta1), eta2=times("eta2", self.eta2), thermal=None)
+
+    def at_ambient(self, temperature: float) -> StrainDependentDamper:
+        """This wall starting at, and cooling towards, ``temperature`` (degC), its heating kept; a ValueError
+        without a thermal description."""
+        if self.thermal is None:
+            raise ValueError("at_ambient needs a wall with a thermal description (thermal=ThermalProperties(...))")
+        return dataclasses.replace(self, thermal=self.thermal.at(temperature))
+
+    def property_factors(self, temperatures: ArrayLike, frequency: float, strain: float) -> PropertyFactors:
+        """Property-modification factors of K' and K'' (separately) at ``frequency`` (Hz) and amplitude
+        ``strain`` (-) over ambient ``temperatures`` (degC): those of :meth:`at` ``(strain)``
+        (:func:`vdw_frames.element.thermal.property_factors`)."""
+        return property_factors(self.at(strain), temperatures, frequency)
+
     def resized(self, factor: float) -> StrainDependentDamper:
         """``factor`` walls' worth (> 0, -): the shear area times ``factor``; material and thickness kept."""
         factor = positive("factor", factor)
@@ -200,6 +232,14 @@ class StrainDependentDamper:
     def strain_range(self) -> tuple[float, float]:
         """(lowest, highest) node amplitude, dimensionless: where the parameters were identified."""
         return self.strains[0], self.strains[-1]
+
+    @property
+    def centre_strain(self) -> float:
+        """sqrt(lowest x highest) node amplitude, dimensionless: the centre, in logarithm, of
+        :attr:`strain_range` (3.18 for the paper's 225-450 %), the one amplitude a frequency-domain analysis
+        of the wall uses by default."""
+        low, high = self.strain_range
+        return math.sqrt(low * high)
 
     @property
     def stiffness_scale(self) -> float:

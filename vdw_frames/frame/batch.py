@@ -70,6 +70,8 @@ class BatchTask:
             "peak_base_shear": np.array([result.peak_base_shear]),
             "peak_story_wall_force": result.peak_story_wall_force,
             "peak_temperature_rise": _story_temperature_rise(result),
+            "wall_failed": result.wall_failed,
+            "wall_failure_time": np.array([np.inf if t is None else t for t in result.wall_failure_time]),
         }
 
 
@@ -115,7 +117,11 @@ class BatchResult:
     an array of its shape holding the factor that gave each value (None otherwise); with
     ``ambient_temperatures``, likewise ``ambient_temperatures`` and ``governing_temperature`` (degC).
     ``peak_temperature_rise`` (K): the largest temperature rise of the walls of each story (0 where no wall
-    has a thermal description; None when no wall's heat is followed).
+    has a thermal description; None when no wall's heat is followed).  ``wall_failed`` (motions, scales,
+    walls) bool: which walls failed in each run (walls with :class:`~vdw_frames.element.limits.WallLimits`;
+    ``building.wall_list`` order, their stories in ``wall_stories``); ``wall_failure_time`` (s, same
+    shape, masked where the wall stood); with property factors or temperatures: failed in any variant, at
+    the earliest time.
     """
 
     motion_names: tuple[str, ...]
@@ -130,6 +136,9 @@ class BatchResult:
     collapsed: np.ndarray
     converged: np.ndarray
     peak_temperature_rise: np.ndarray | None = None
+    wall_stories: tuple[int, ...] = ()
+    wall_failed: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 0, 0), dtype=bool))
+    wall_failure_time: np.ma.MaskedArray = dataclasses.field(default_factory=lambda: np.ma.zeros((0, 0, 0)))
     property_factors: tuple[float, ...] | None = None
     governing_factor: dict[str, np.ndarray] | None = None
     ambient_temperatures: tuple[float, ...] | None = None
@@ -142,7 +151,8 @@ class BatchResult:
         handle = io.StringIO(newline="")
         writer = csv.writer(handle)
         writer.writerow(["motion", "scale", "pga_mm_s2", "story"]
-                        + [f"{name}_{_UNITS[name]}" for name in PEAKS] + list(OUTCOMES))
+                        + [f"{name}_{_UNITS[name]}" for name in PEAKS] + list(OUTCOMES) + ["walls_failed"])
+        wall_stories = np.array(self.wall_stories, dtype=int)
         for m, name in enumerate(self.motion_names):
             for s in range(self.scales.shape[1]):
                 for k in range(stories):
@@ -150,7 +160,8 @@ class BatchResult:
                     for peak in PEAKS:
                         values = getattr(self, peak)
                         row.append("" if values is None else repr(float(values[m, s, k if values.shape[2] > 1 else 0])))
-                    writer.writerow(row + [int(getattr(self, outcome)[m, s]) for outcome in OUTCOMES])
+                    failed = int(self.wall_failed[m, s, wall_stories == k + 1].sum()) if wall_stories.size else 0
+                    writer.writerow(row + [int(getattr(self, outcome)[m, s]) for outcome in OUTCOMES] + [failed])
         return write_text(path, handle.getvalue(), "CSV file")
 
 
@@ -267,9 +278,14 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
         return np.array([[peaks[(m, s)][name] for s in range(factors.shape[1])] for m in range(len(motions))])
 
     pga = np.array([[abs(f) * motion.pga for f in row] for row, motion in zip(factors, motions, strict=True)])
+    walls = len(building.wall_list)
+    failed = stack("wall_failed").reshape(len(motions), factors.shape[1], walls).astype(bool)
+    failure_time = stack("wall_failure_time").reshape(failed.shape)
     return BatchResult(motion_names=tuple(m.name for m in motions), scales=np.array(factors), pga=pga,
                        **{name: stack(name) for name in PEAKS},
-                       **{name: stack(name).astype(bool) for name in OUTCOMES})
+                       **{name: stack(name).astype(bool) for name in OUTCOMES},
+                       wall_stories=tuple(story for story, _ in building.wall_list), wall_failed=failed,
+                       wall_failure_time=np.ma.masked_array(np.where(failed, failure_time, 0.0), mask=~failed))
 
 
 def _label(motions: Sequence[GroundMotion], m: int) -> str:
@@ -324,6 +340,10 @@ def _property_envelope(building: ShearBuilding, property_factors: ArrayLike | No
         by_factor[name] = np.array([c[0] for c in combinations])[worst]
         if ambient_temperatures is not None:
             by_temperature[name] = np.array([c[1] for c in combinations])[worst]
+    envelope["wall_failed"] = np.any([result.wall_failed for result in results], axis=0)
+    earliest = np.min([result.wall_failure_time.filled(np.inf) for result in results], axis=0)
+    envelope["wall_failure_time"] = np.ma.masked_array(np.where(envelope["wall_failed"], earliest, 0.0),
+                                                       mask=~envelope["wall_failed"])
     envelope["collapsed"] = np.any([result.collapsed for result in results], axis=0)
     envelope["converged"] = np.all([result.converged for result in results], axis=0)
     return dataclasses.replace(

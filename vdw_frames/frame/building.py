@@ -288,6 +288,22 @@ class ShearBuilding:
         """True when some wall is a :class:`StrainDependentDamper` (parameters that follow its strain amplitude)."""
         return any(isinstance(wall, StrainDependentDamper) for _, wall in self.wall_list)
 
+    def walls_at(self, strain: float | None = None) -> ShearBuilding:
+        """This building with each strain-dependent wall fixed at the amplitude ``strain`` (dimensionless;
+        3.0 = 300 %), or with None at the centre, in logarithm, of its own identified range
+        (:attr:`~vdw_frames.StrainDependentDamper.centre_strain`); thermal description and limits kept,
+        other walls unchanged.
+
+        What a frequency-domain analysis (modal damping, sizing, a period) of amplitude-following walls
+        needs: one amplitude.  Clamped to each wall's identified range with a ``UserWarning``.
+        """
+        def fixed(wall: Wall | StrainDependentDamper) -> Wall:
+            if not isinstance(wall, StrainDependentDamper):
+                return wall
+            return wall.at(wall.centre_strain if strain is None else strain)
+
+        return self.with_walls({story: tuple(fixed(wall) for wall in walls) for story, walls in self.walls.items()})
+
     def without_walls(self) -> ShearBuilding:
         """The same frame (stories, P-Delta, damping) with no walls."""
         return dataclasses.replace(self, walls={})
@@ -380,9 +396,9 @@ def require_fixed_walls(building: ShearBuilding | None, analysis: str) -> None:
     """ValueError when ``building`` has strain-dependent walls, which ``analysis`` cannot take."""
     if isinstance(building, ShearBuilding) and building.strain_dependent:
         raise ValueError(f"{analysis} needs fixed wall parameters, but this building has strain-dependent walls "
-                         "(StrainDependentDamper): pass strain_compatible=True (to simulate or run_batch) for the "
-                         "equivalent-linear analysis, or give each wall its parameters at one strain amplitude "
-                         "with wall.at(strain)")
+                         "(StrainDependentDamper), whose parameters follow their amplitude: give each wall its "
+                         "parameters at one strain amplitude with wall.at(strain), or analyse in time (simulate "
+                         "follows the amplitude; strain_compatible=True iterates an equivalent-linear building)")
 
 
 def _read_only(array: np.ndarray) -> np.ndarray:

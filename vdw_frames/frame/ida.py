@@ -8,6 +8,13 @@ simply a drift beyond which the model means nothing) or when the analysis stops 
 instability near collapse is collapse, as is usual in IDA practice); the record's collapse intensity is
 the first level that collapses.  Records that reach ``cap`` standing are right-censored.
 
+Walls with limits (:class:`~vdw_frames.element.limits.WallLimits`) can fail before the frame collapses.
+Each record's first wall-failure intensity -- the first level at which any wall failed -- is reported
+beside its collapse intensity, with a fragility of its own; a record whose walls stood up to its last
+level is censored there.  Wall failure is not collapse (the frame goes on without the wall) unless
+``wall_failure_collapse=True``; :attr:`IDAResult.limit_states` says which limit states the collapse
+intensities include.
+
 The collapse fragility P(collapse | Sa) = Phi(ln(Sa / theta) / beta) is fitted to the collapse
 intensities by maximum likelihood (``scipy.stats.lognorm`` on ``scipy.stats.CensoredData``, so that
 records standing at the cap count as "above the cap"): theta is the median collapse intensity and beta
@@ -21,16 +28,19 @@ from __future__ import annotations
 import concurrent.futures
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validation import positive
-from ..motion.record import GroundMotion
+from ..motion.record import G, GroundMotion
 from .batch import run_batch, scale_factors_to_spectral_acceleration
 from .building import ShearBuilding
+from .time_history import is_strain_range_warning
+
+COLLAPSE_LIMIT_STATES = "a story drift ratio beyond collapse_drift_ratio, or an analysis that stops converging"
 
 
 @dataclass(frozen=True)
@@ -53,9 +63,11 @@ class IDAResult:
 
     ``motion_names``; ``period`` (s) and ``levels`` (mm/s^2, the Sa steps); per record (tuples, one entry a
     record): ``intensities`` (the levels run, mm/s^2), ``peak_drift_ratio`` (the largest story drift ratio
-    of each run, -), ``collapsed`` (bool per run: collapse or non-convergence); ``collapse_intensity``
-    (mm/s^2, masked where the record stood at the cap); ``strain_warnings``: the strain-range warnings
-    of the runs (text), counted, not silenced.
+    of each run, -), ``collapsed`` (bool per run, by the limit states of ``limit_states``);
+    ``collapse_intensity`` (mm/s^2, masked where the record stood at the cap); ``strain_warnings``: the
+    strain-range warnings of the runs (text), counted, not silenced.  ``wall_failed`` (bool per run: any
+    wall failed) and ``wall_failure_intensity`` (mm/s^2, the first level with a failed wall, masked where
+    no wall failed up to the record's last level); ``limit_states``: what a collapse is, in words.
     """
 
     motion_names: tuple[str, ...]
@@ -66,21 +78,29 @@ class IDAResult:
     collapsed: tuple[np.ndarray, ...]
     collapse_intensity: np.ma.MaskedArray
     strain_warnings: tuple[str, ...]
+    wall_failed: tuple[np.ndarray, ...] = ()
+    wall_failure_intensity: np.ma.MaskedArray = field(default_factory=lambda: np.ma.masked_array([]))
+    limit_states: str = COLLAPSE_LIMIT_STATES
 
     @property
     def analyses(self) -> int:
         return sum(len(runs) for runs in self.intensities)
 
-    def fragility(self) -> Fragility:
-        """Maximum-likelihood lognormal fit of the collapse intensities (censored at the cap)."""
+    def fragility(self, limit_state: str = "collapse") -> Fragility:
+        """Maximum-likelihood lognormal fit of the collapse intensities (``limit_state="collapse"``) or of
+        the first wall-failure intensities (``"wall failure"``), each censored at the record's last level."""
         from scipy import stats
 
-        collapsed = self.collapse_intensity.compressed()
+        if limit_state not in ("collapse", "wall failure"):
+            raise ValueError(f"limit_state must be 'collapse' or 'wall failure', got {limit_state!r}")
+        observed = self.collapse_intensity if limit_state == "collapse" else self.wall_failure_intensity
+        collapsed = observed.compressed()
         standing = np.array([self.intensities[m][-1] for m in range(len(self.motion_names))
-                             if np.ma.getmaskarray(self.collapse_intensity)[m]])
+                             if np.ma.getmaskarray(observed)[m]])
         if collapsed.size < 2:
-            raise ValueError(f"a fragility needs at least two collapses, got {collapsed.size} "
-                             f"(raise the cap above {self.levels[-1]:g} mm/s^2)")
+            what = "collapses" if limit_state == "collapse" else "wall failures"
+            raise ValueError(f"a fragility needs at least two {what}, got {collapsed.size} "
+                             f"(raise the cap above {self.levels[-1] / G:.4g} g = {self.levels[-1]:.6g} mm/s^2)")
         data = stats.CensoredData(uncensored=collapsed, right=standing) if standing.size else collapsed
         shape, _, scale = stats.lognorm.fit(data, floc=0.0)
         return Fragility(float(scale), float(shape))
@@ -88,14 +108,15 @@ class IDAResult:
 
 def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[GroundMotion], step: float, cap: float,
                                  period: float | None = None, executor: concurrent.futures.Executor | None = None,
-                                 **options: Any) -> IDAResult:
+                                 wall_failure_collapse: bool = False, **options: Any) -> IDAResult:
     """IDA of ``building`` under ``motions`` (GroundMotion, mm/s^2): Sa(``period``, 5 %) from ``step`` in steps
     of ``step`` up to ``cap`` (mm/s^2) or collapse, record by record (module docstring).
 
     ``period`` (s): the intensity measure's period, default the bare elastic frame's T1.  ``executor``:
     as for :func:`run_batch` (one pool for the whole analysis is much faster than one per level).
     ``options`` go to :func:`run_batch` and :func:`simulate` (``collapse_drift_ratio`` (default 0.10, needs
-    story heights), ``method``, ``memory``, ``strain_compatible``, ...).
+    story heights), ``method``, ``memory``, ``strain_compatible``, ...).  ``wall_failure_collapse``: count
+    the failure of any wall as collapse (default False: a failed wall leaves the frame standing).
     """
     from .. import _warnings
 
@@ -107,6 +128,8 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[Grou
     motions = list(motions)
     if not motions or not all(isinstance(m, GroundMotion) for m in motions):
         raise ValueError("motions must be a non-empty sequence of GroundMotion objects")
+    if not isinstance(wall_failure_collapse, (bool, np.bool_)):
+        raise ValueError(f"wall_failure_collapse must be True or False, got {wall_failure_collapse!r}")
     step, cap = positive("step", step), positive("cap", cap)
     if cap < step:
         raise ValueError(f"cap = {cap:g} mm/s^2 must be at least one step ({step:g} mm/s^2)")
@@ -118,6 +141,7 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[Grou
     intensities: list[list[float]] = [[] for _ in motions]
     drift: list[list[float]] = [[] for _ in motions]
     collapsed: list[list[bool]] = [[] for _ in motions]
+    wall_failed: list[list[bool]] = [[] for _ in motions]
     messages: list[str] = []
     standing = list(range(len(motions)))
     for index, level in enumerate(levels):
@@ -131,13 +155,22 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[Grou
         for row, m in enumerate(standing):
             intensities[m].append(level)
             drift[m].append(float(batch.peak_drift_ratio[row, 0].max()))
-            collapsed[m].append(bool(batch.collapsed[row, 0] or not batch.converged[row, 0]))
+            wall_failed[m].append(bool(batch.wall_failed[row, 0].any()))
+            collapsed[m].append(bool(batch.collapsed[row, 0] or not batch.converged[row, 0]
+                                     or (wall_failure_collapse and wall_failed[m][-1])))
         standing = [m for m in standing if not collapsed[m][-1]]
-    first = [next((sa for sa, c in zip(intensities[m], collapsed[m], strict=True) if c), None)
-             for m in range(len(motions))]
-    collapse_intensity = np.ma.masked_array([0.0 if sa is None else sa for sa in first],
-                                            mask=[sa is None for sa in first])
+    limit_states = COLLAPSE_LIMIT_STATES + (", or the failure of any wall" if wall_failure_collapse else
+                                            " (wall failure not included: a failed wall leaves the frame standing)")
     return IDAResult(tuple(m.name for m in motions), float(period), levels,
                      tuple(np.array(x) for x in intensities), tuple(np.array(x) for x in drift),
-                     tuple(np.array(x, dtype=bool) for x in collapsed), collapse_intensity,
-                     tuple(message for message in messages if "outside the range" in message))
+                     tuple(np.array(x, dtype=bool) for x in collapsed), _first_level(intensities, collapsed),
+                     tuple(message for message in messages if is_strain_range_warning(message)),
+                     tuple(np.array(x, dtype=bool) for x in wall_failed), _first_level(intensities, wall_failed),
+                     limit_states)
+
+
+def _first_level(intensities: list[list[float]], happened: list[list[bool]]) -> np.ma.MaskedArray:
+    """Per record, the first level (mm/s^2) at which an event happened; masked where it never did."""
+    first = [next((sa for sa, h in zip(levels, events, strict=True) if h), None)
+             for levels, events in zip(intensities, happened, strict=True)]
+    return np.ma.masked_array([0.0 if sa is None else sa for sa in first], mask=[sa is None for sa in first])

@@ -280,18 +280,20 @@ def _solve(frame, dt, work):
 
 
 @njit(cache=True)
-def integrate(ground, dt, frame, stories, walls, newton, out):
-    """Newmark average acceleration with Newton-Raphson, steps 1 .. N-1 (step 0 is rest), in place.
+def integrate(ground, dt, frame, stories, walls, newton, out, start):
+    """Newmark average acceleration with Newton-Raphson, rows 1 .. N-1 from the state in row 0, in place.
 
     ``ground`` (N,) mm/s^2; ``dt`` s; ``frame`` :class:`FrameArrays`; ``stories`` :class:`StoryArrays`
     (its committed state advances); ``walls`` :class:`WallArrays` (its bank's memory advances);
-    ``newton`` :class:`NewtonSettings`; ``out`` :class:`Histories`.  Returns the number of steps filled;
+    ``newton`` :class:`NewtonSettings`; ``out`` :class:`Histories`, whose row 0 holds the starting state
+    (rest, or a state the stories and walls were brought to by :func:`replay`); ``start``: the number of
+    steps the walls have committed before row 0 (0 from rest).  Returns the number of rows filled;
     ``out.outcome`` receives (status, failed or collapsed story, Newton corrections).
     """
     steps, n = out.displacement.shape
     bank = walls.bank
     groups = walls.group_story.shape[0]
-    masses, geometric = frame.masses, frame.geometric
+    geometric = frame.geometric
     a0, v1 = 4.0 / dt**2, 2.0 / dt
     work = Scratch(np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
                    np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros((2, n)), np.zeros((n, n)),
@@ -300,10 +302,10 @@ def integrate(ground, dt, frame, stories, walls, newton, out):
     for s in range(n):
         initial_stiffness[s] = stories.parameters[s, 0] + geometric[s]
     trial = np.zeros(n)
-    old_damping_force = np.zeros(n)
-    for i in range(n):  # (loops, not slice assignments: those compile numba's shape-error machinery)
-        out.acceleration[0, i] = -ground[0]
-        out.energy[0, 1] += 0.5 * masses[i] * out.velocity[0, i] ** 2
+    old_damping_force = np.zeros(n)  # C v of row 0 (loops, not slice operations: those compile numba's
+    for i in range(n):               # shape-error machinery)
+        for j in range(n):
+            old_damping_force[i] += frame.damping[i, j] * out.velocity[0, j]
     total_iterations = 0
     for step in range(steps - 1):
         u_n, v_n, a_n = out.displacement[step], out.velocity[step], out.acceleration[step]
@@ -380,7 +382,7 @@ def integrate(ground, dt, frame, stories, walls, newton, out):
             stories.committed[s, 1] = work.trial_state[s]
         for g in range(groups):
             work.wall_deformation[g] = work.drift[walls.group_story[g]]
-        kernel.bank_commit(bank, step, work.wall_deformation, work.wall_force, work.wall_strain)
+        kernel.bank_commit(bank, start + step, work.wall_deformation, work.wall_force, work.wall_strain)
         for g in range(groups):
             out.group_force[step + 1, g] = work.wall_force[g]
             out.group_strain[step + 1, g] = work.wall_strain[g]
@@ -411,6 +413,43 @@ def integrate(ground, dt, frame, stories, walls, newton, out):
                     return step + 2
     out.outcome[0], out.outcome[1], out.outcome[2] = FINISHED, 0, total_iterations
     return steps
+
+
+@njit(cache=True)
+def replay(drift, stories, walls, out):
+    """Commit the stories and the walls through a drift history as the integrator commits them, and write
+    the state of its last row into row 0 of ``out``'s story and wall histories.
+
+    ``drift`` (k + 1, n) mm: every story's drift from rest (row 0) to step k; ``stories``
+    :class:`StoryArrays` and ``walls`` :class:`WallArrays` at rest (their committed states advance k
+    steps); ``out`` :class:`Histories` (row 0 of story_shear, story_wall_force, group_force and
+    group_strain is written).  A frame with fractional walls and hysteretic stories is hereditary: its
+    state is its history, so committing the same drifts reproduces the states the analysis reached.
+    Returns the walls' work over the history (N*mm, trapezoidal increments, as the integrator's energy).
+    """
+    steps, n = drift.shape
+    groups = walls.group_story.shape[0]
+    deformation, force, strain = np.zeros(groups), np.zeros(groups), np.zeros(groups)
+    story_wall = np.zeros(n)
+    wall_work = 0.0
+    for j in range(1, steps):
+        for s in range(n):
+            out.story_shear[0, s], _, value = story_trial(stories, s, drift[j, s])
+            stories.committed[s, 0] = drift[j, s]
+            stories.committed[s, 1] = value
+        for g in range(groups):
+            deformation[g] = drift[j, walls.group_story[g]]
+        kernel.bank_commit(walls.bank, j - 1, deformation, force, strain)
+        for s in range(n):
+            story_wall[s] = 0.0
+        for g in range(groups):
+            story_wall[walls.group_story[g]] += force[g]
+            out.group_force[0, g] = force[g]
+            out.group_strain[0, g] = strain[g]
+        for s in range(n):
+            wall_work += 0.5 * (story_wall[s] + out.story_wall_force[0, s]) * (drift[j, s] - drift[j - 1, s])
+            out.story_wall_force[0, s] = story_wall[s]
+    return wall_work
 
 
 @njit(cache=True, inline="always")

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import _warnings
-from .._validation import require_finite
+from .._validation import finite_array, positive, require_finite, show, whole_number
 from ..element.kernel import FAILURE_MODES
 from .building import ShearBuilding
 
@@ -79,6 +79,57 @@ class EnergyHistory:
 
 
 @dataclass(frozen=True)
+class FrameState:
+    """The state of a frame at one committed step of an analysis, to start another from
+    (``simulate(..., initial_state=state)``; :meth:`SimulationResult.state_at` gives it).
+
+    A frame with fractional walls and hysteretic stories is hereditary: its state is its history.  So the
+    state holds every story's ``drift`` (mm, (step + 1, stories)) from rest to the step, and an analysis
+    started from it commits its own stories and walls through that history, as the analysis that made it
+    did, before going on: the stories' and walls' memory, temperature, amplitude and failure are those
+    their own history gives.  That is what lets a state start a frame whose walls differ -- the frame
+    without a wall that failed, a retrofit, an aftershock on the damaged frame.  ``displacement`` (mm),
+    ``velocity`` (mm/s) and ``acceleration`` (mm/s^2, relative to the ground) of every floor at the step,
+    (stories,); ``step``: the step's index from rest; ``dt`` (s): the step of the analysis.
+    """
+
+    step: int
+    dt: float
+    displacement: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+    drift: np.ndarray
+
+    def __post_init__(self) -> None:
+        step = whole_number("step", self.step, 0)
+        object.__setattr__(self, "step", step)
+        object.__setattr__(self, "dt", positive("dt", self.dt))
+        drift = finite_array("drift", self.drift, ndim=2)
+        if drift.shape[0] != step + 1 or drift.shape[1] == 0:
+            raise ValueError(f"drift must hold step + 1 = {step + 1} rows (rest to the step) of at least one story, "
+                             f"got shape {drift.shape}")
+        for name in ("displacement", "velocity", "acceleration", "drift"):
+            values = drift if name == "drift" else finite_array(name, getattr(self, name))
+            if name != "drift" and values.shape != (drift.shape[1],):
+                raise ValueError(f"{name} must hold one value per floor ({drift.shape[1]}), got shape {values.shape}")
+            values = values.copy()
+            values.flags.writeable = False
+            object.__setattr__(self, name, values)
+        if np.any(self.drift[0] != 0.0):
+            raise ValueError(f"drift must start from rest: row 0 is {show(self.drift[0].tolist())}")
+
+    @property
+    def stories(self) -> int:
+        """The number of stories."""
+        return int(self.drift.shape[1])
+
+    @property
+    def time(self) -> float:
+        """The time of the state, s."""
+        return self.step * self.dt
+
+
+@dataclass(frozen=True)
 class SimulationResult:
     """Response histories of :func:`simulate` (rows: time steps; they end where the analysis stopped).
 
@@ -140,6 +191,32 @@ class SimulationResult:
                                       repr=False)  # (groups, 2): step (-1 intact), mode
     group_amplitude: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # (steps, groups)
     group_outside_range: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)), repr=False)  # s (groups, 2)
+    initial_state: FrameState | None = field(default=None, repr=False)  # where the analysis started, None: rest
+
+    @property
+    def first_step(self) -> int:
+        """The index from rest of this result's row 0 (0 unless it started from an ``initial_state``)."""
+        return 0 if self.initial_state is None else self.initial_state.step
+
+    def state_at(self, step: int) -> FrameState:
+        """The frame's state at row ``step`` of this result (negative counts from the end, as in numpy), to
+        start another analysis from: ``simulate(other_building, motion, initial_state=result.state_at(k))``
+        goes on from t = ``time[k]`` (see :class:`FrameState`)."""
+        rows = self.time.size
+        index = whole_number("step", step, -rows)
+        if index >= rows:
+            raise ValueError(f"step must be a row of this result (-{rows} ... {rows - 1}), got {show(step)}")
+        index %= rows
+        if self.time.size > 1:
+            dt = float(self.time[1] - self.time[0])
+        elif self.initial_state is not None:
+            dt = self.initial_state.dt
+        else:
+            raise ValueError("state_at needs a result of at least two steps (its time step)")
+        prefix = self.initial_state.drift[:-1] if self.initial_state is not None else np.zeros((0, self.drift.shape[1]))
+        return FrameState(step=self.first_step + index, dt=dt, displacement=self.displacement[index],
+                          velocity=self.velocity[index], acceleration=self.acceleration[index],
+                          drift=np.concatenate([prefix, self.drift[:index + 1]]))
 
     @cached_property
     def wall_amplitude(self) -> np.ndarray | None:

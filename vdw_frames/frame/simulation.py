@@ -19,7 +19,7 @@ from ..element.fractional import DEFAULT_METHOD, Discretisation
 from ..motion.record import GroundMotion
 from .building import ShearBuilding
 from .integrator import NewtonRaphson
-from .results import SimulationResult
+from .results import FrameState, SimulationResult
 from .strain_compatible import StrainCompatibleOptions, strain_compatible_simulation
 from .time_history import time_history
 
@@ -27,7 +27,8 @@ from .time_history import time_history
 def simulate(building: ShearBuilding, ground_motion: GroundMotion, dt: float | None = None,
              method: str | Discretisation = DEFAULT_METHOD, memory: str | FastMemory = DEFAULT_MEMORY,
              strain_compatible: bool | StrainCompatibleOptions = False, *, collapse_drift_ratio: float | None = 0.10,
-             free_vibration: float = 0.0, newton: NewtonRaphson | None = None) -> SimulationResult:
+             free_vibration: float = 0.0, newton: NewtonRaphson | None = None,
+             initial_state: FrameState | None = None) -> SimulationResult:
     """Integrate ``building`` under ``ground_motion`` (a :class:`~vdw_frames.GroundMotion`, mm/s^2).
 
     ``dt`` (s) defaults to the record's step; a smaller step must divide it to a relative 1e-6 (the
@@ -45,10 +46,18 @@ def simulate(building: ShearBuilding, ground_motion: GroundMotion, dt: float | N
     to the record, so that residual drifts are measured at rest.  ``newton``: the convergence settings
     (:class:`NewtonRaphson`); a linear building takes one solve per step whatever they are.
 
+    Walls may carry a thermal description (they heat, :mod:`vdw_frames.element.thermal`) and limits (they
+    fail, :mod:`vdw_frames.element.limits`); :class:`~vdw_frames.StrainDependentDamper` walls with one
+    common r follow their own strain amplitude step by step (:func:`vdw_frames.element.kernel.track_amplitude`).
     ``strain_compatible``: ``True`` (or a :class:`~vdw_frames.StrainCompatibleOptions`) runs the
-    equivalent-linear iteration of :mod:`vdw_frames.frame.strain_compatible` for buildings with
-    :class:`~vdw_frames.StrainDependentDamper` walls, which a plain run (``False``, the default) refuses;
-    its result is the response of the equivalent-linear building (``result.building``).
+    equivalent-linear iteration of :mod:`vdw_frames.frame.strain_compatible` instead, for buildings with
+    strain-dependent walls; its result is the response of the equivalent-linear building
+    (``result.building``).
+
+    ``initial_state``: a :class:`~vdw_frames.frame.results.FrameState` (``result.state_at(step)`` of an
+    earlier analysis at the same dt) to start from instead of rest: the stories and walls of ``building``
+    are committed through the state's drift history, then the analysis goes on under the record from the
+    state's time (the result's rows start there; its energies count from the state).
 
     A step that fails to converge even with the fallbacks stops the analysis with
     ``result.converged = False`` and a ``RuntimeWarning`` naming the time and story; never NaN.  Warns
@@ -58,5 +67,8 @@ def simulate(building: ShearBuilding, ground_motion: GroundMotion, dt: float | N
     options: dict[str, Any] = dict(dt=dt, method=method, memory=memory, collapse_drift_ratio=collapse_drift_ratio,
                                    free_vibration=free_vibration, newton=newton)
     if strain_compatible is not False:
+        if initial_state is not None:
+            raise ValueError("initial_state is for time-history analyses: the strain-compatible iteration reruns "
+                             "the whole record (strain_compatible=False)")
         return strain_compatible_simulation(building, ground_motion, strain_compatible, **options)
-    return time_history(building, ground_motion, **options)
+    return time_history(building, ground_motion, initial_state=initial_state, **options)

@@ -24,9 +24,19 @@ from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation, get_method
 from ..motion.record import GroundMotion
 from .building import ShearBuilding
-from .hysteresis import story_arrays
-from .integrator import COLLAPSED, ENERGIES, FAILED, FrameArrays, Histories, NewtonRaphson, WallArrays, integrate
-from .results import SimulationResult, energy_history
+from .hysteresis import StoryArrays, story_arrays
+from .integrator import (
+    COLLAPSED,
+    ENERGIES,
+    FAILED,
+    FrameArrays,
+    Histories,
+    NewtonRaphson,
+    WallArrays,
+    integrate,
+    replay,
+)
+from .results import FrameState, SimulationResult, energy_history
 
 if TYPE_CHECKING:
     from ..element.wall import Wall
@@ -34,8 +44,8 @@ if TYPE_CHECKING:
 
 def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float | None = None,
                  method: str | Discretisation = DEFAULT_METHOD, memory: str | FastMemory = DEFAULT_MEMORY, *,
-                 collapse_drift_ratio: float | None = 0.10,
-                 free_vibration: float = 0.0, newton: NewtonRaphson | None = None) -> SimulationResult:
+                 collapse_drift_ratio: float | None = 0.10, free_vibration: float = 0.0,
+                 newton: NewtonRaphson | None = None, initial_state: FrameState | None = None) -> SimulationResult:
     """Integrate ``building`` under ``ground_motion`` (mm/s^2): walls of fixed parameters, walls that heat
     (a thermal description), walls that follow their own strain amplitude (strain-dependent walls with a
     common r) and walls that fail (limits).
@@ -65,6 +75,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     dt = ground_motion.dt / substeps
     rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0
     steps, floors = (ground_motion.acceleration.size - 1) * substeps + 1 + rest, building.stories
+    start = 0 if initial_state is None else _check_state(initial_state, dt, steps, floors)
     walls = cast("list[tuple[int, Wall]]", building.wall_list)  # fixed walls only (checked above)
     # Response and result histories (about 14 per floor), each wall's force, strain and exact memory,
     # energies: float64 a step.
@@ -73,10 +84,12 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     ground = ground_motion.interpolated(substeps)
     if rest:
         ground = np.concatenate([ground, np.zeros(rest)])
+    ground = ground[start:]
+    rows = steps - start
 
     groups, group_of_wall = group_walls(walls)
     bank = WallBank(tuple(wall for _, wall in groups), dt, steps, method, memory)
-    followed = steps if bank.arrays.followed else 0
+    followed = rows if bank.arrays.followed else 0
     heights = np.asarray(building.story_heights) if building.story_heights is not None else np.ones(floors)
     collapse_ratio = collapse_drift_ratio if (collapse_drift_ratio and building.story_heights) else 0.0
     frame = FrameArrays(
@@ -85,38 +98,52 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         geometric=np.asarray(building.geometric_stiffness, dtype=float), heights=heights,
         tridiagonal=building.damping_model == "rayleigh", linear=building.is_linear, collapse_ratio=collapse_ratio)
     out = Histories(
-        displacement=np.zeros((steps, floors)), velocity=np.zeros((steps, floors)),
-        acceleration=np.zeros((steps, floors)), drift=np.zeros((steps, floors)),
-        story_shear=np.zeros((steps, floors)), story_wall_force=np.zeros((steps, floors)),
-        base_shear=np.zeros(steps), group_force=np.zeros((steps, len(groups))),
-        group_strain=np.zeros((steps, len(groups))), peak_group_strain=np.zeros(len(groups)),
-        energy=np.zeros((steps, ENERGIES)), outcome=np.zeros(3, dtype=np.int64),
+        displacement=np.zeros((rows, floors)), velocity=np.zeros((rows, floors)),
+        acceleration=np.zeros((rows, floors)), drift=np.zeros((rows, floors)),
+        story_shear=np.zeros((rows, floors)), story_wall_force=np.zeros((rows, floors)),
+        base_shear=np.zeros(rows), group_force=np.zeros((rows, len(groups))),
+        group_strain=np.zeros((rows, len(groups))), peak_group_strain=np.zeros(len(groups)),
+        energy=np.zeros((rows, ENERGIES)), outcome=np.zeros(3, dtype=np.int64),
         group_temperature=np.zeros((followed, len(groups))), group_heat=np.zeros((followed, len(groups))),
         wall_stored=np.zeros(followed), wall_parameter_loss=np.zeros(followed),
         group_amplitude=np.zeros((followed if bank.state(kernel.AMPLITUDE_NODES).any() else 0, len(groups))))
+    stories = story_arrays(building.story_models, building.stiffnesses)
+    wall_arrays = WallArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64), bank.arrays)
+    if initial_state is None:
+        out.acceleration[0] = -ground[0]
+    else:
+        _start_from(initial_state, frame, stories, wall_arrays, out)
     if followed:
         out.group_temperature[0] = bank.state(kernel.TEMPERATURE)
-    filled = integrate(ground, dt, frame, story_arrays(building.story_models, building.stiffnesses),
-                       WallArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64), bank.arrays),
-                       newton.arrays(), out)
+        out.group_heat[0] = bank.state(kernel.HEAT)
+        out.wall_stored[0] = bank.state(kernel.STORED).sum()
+        out.wall_parameter_loss[0] = bank.state(kernel.PARAMETER_LOSS).sum()
+        if out.group_amplitude.shape[0]:
+            out.group_amplitude[0] = bank.state(kernel.AMPLITUDE)
+    filled = integrate(ground, dt, frame, stories, wall_arrays, newton.arrays(), out, start)
     status, story_index, iterations = (int(x) for x in out.outcome)
     if status == FAILED:
-        _warnings.warn(f"simulate: the step to t = {filled * dt:.6g} s did not converge (story {story_index + 1} "
-                       "moved most in the last correction), even with a line search and initial-stiffness "
-                       "iterations; the analysis stops there (result.converged is False)", RuntimeWarning,
+        _warnings.warn(f"simulate: the step to t = {(start + filled) * dt:.6g} s did not converge "
+                       f"(story {story_index + 1} moved most in the last correction), even with a line search "
+                       "and initial-stiffness iterations; the analysis stops there (result.converged is False)",
+                       RuntimeWarning,
                        stacklevel=3)
     keep = slice(0, filled)
     require_finite("the response", out.displacement[keep])
-    time = np.arange(filled) * dt
+    time = np.arange(start, start + filled) * dt
     share = np.array([walls[i][1].area / groups[g][1].area for i, g in enumerate(group_of_wall)])
-    _warn_strain_range(walls, out.peak_group_strain[group_of_wall])
+    above = bank.state(kernel.ABOVE_RANGE)[group_of_wall] * dt
+    amplitude = out.group_amplitude[keep].max(axis=0, initial=0.0)[group_of_wall] if out.group_amplitude.size else None
+    _warn_strain_range(walls, out.peak_group_strain[group_of_wall], above, amplitude)
     _warn_temperature_range(groups, bank, dt)
     failure = np.stack([bank.state(kernel.FAILURE_STEP), bank.state(kernel.FAILURE_MODE)], axis=1).astype(np.int64)
     wall_energies = None
-    if followed and bank.state(kernel.TRACKED).all():
-        failed = failure[:, 0] >= 0
-        released = np.where((np.arange(filled)[:, None] >= failure[:, 0]) & failed, bank.state(kernel.RELEASED), 0.0)
-        wall_energies = (out.group_heat[keep].sum(axis=1), out.wall_stored[keep], released.sum(axis=1),
+    if followed and bank.state(kernel.ENERGY).all():
+        released = np.zeros(filled)  # from each failure's row on, the stored energy it released
+        for step, energy in zip(failure[:, 0], bank.state(kernel.RELEASED), strict=True):
+            if step >= 0:
+                released[max(int(step) - start, 0):] += energy
+        wall_energies = (out.group_heat[keep].sum(axis=1), out.wall_stored[keep], released,
                          out.wall_parameter_loss[keep])
     return SimulationResult(
         building=building, time=time, ground_acceleration=ground[keep], displacement=out.displacement[keep],
@@ -128,7 +155,47 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         collapse_time=float(time[-1]) if status == COLLAPSED else None, newton_iterations=iterations,
         group_temperature=out.group_temperature[keep], group_heat=out.group_heat[keep],
         group_failure=failure, group_amplitude=out.group_amplitude[keep],
-        group_outside_range=np.stack([bank.state(kernel.BELOW_RANGE), bank.state(kernel.ABOVE_RANGE)], axis=1) * dt)
+        group_outside_range=np.stack([bank.state(kernel.BELOW_RANGE), bank.state(kernel.ABOVE_RANGE)], axis=1) * dt,
+        initial_state=initial_state)
+
+
+def _check_state(state: FrameState, dt: float, steps: int, floors: int) -> int:
+    """The step an analysis starts from ``state``, after checking that the state fits it."""
+    if not isinstance(state, FrameState):
+        raise ValueError(f"initial_state must be a FrameState (see SimulationResult.state_at), got "
+                         f"{type(state).__name__}")
+    if abs(state.dt - dt) > 1e-9 * dt:
+        raise ValueError(f"initial_state was reached with dt = {state.dt!r} s, this analysis steps dt = {dt!r} s: "
+                         "a fractional wall's memory is built for one step")
+    if state.stories != floors:
+        raise ValueError(f"initial_state holds {state.stories} stories, the building has {floors}")
+    if state.step >= steps - 1:
+        raise ValueError(f"initial_state is at step {state.step} (t = {state.time:.6g} s), at or past the last "
+                         f"step of the record ({steps - 1}): nothing is left to integrate")
+    return state.step
+
+
+def _start_from(state: FrameState, frame: FrameArrays, stories: StoryArrays, walls: WallArrays,
+                out: Histories) -> None:
+    """Row 0 of ``out`` at ``state``: the stories and walls committed through its drift history
+    (:func:`~vdw_frames.frame.integrator.replay`), the floors' motion, and the energy the state holds.
+
+    The energies of the new analysis count from the state: kinetic, recoverable and P-Delta energy are
+    those of the state, the walls' work that of their history (their stored and dissipated energy), the
+    dissipation of the stories and of the inherent damping starts at 0, and the input starts at their
+    sum -- the balance closes from row 0 on.
+    """
+    wall_work = replay(np.ascontiguousarray(state.drift), stories, walls, out)
+    drift = state.drift[-1]
+    out.displacement[0], out.velocity[0], out.acceleration[0], out.drift[0] = (
+        state.displacement, state.velocity, state.acceleration, drift)
+    kinetic = 0.5 * float(np.dot(frame.masses, state.velocity ** 2))
+    recoverable = float(np.sum(0.5 * out.story_shear[0] ** 2 / stories.parameters[:, 0]))
+    p_delta = float(np.sum(0.5 * frame.geometric * drift ** 2))
+    out.energy[0, 1:] = (kinetic, recoverable, recoverable, 0.0, wall_work, p_delta)
+    out.energy[0, 0] = kinetic + recoverable + wall_work + p_delta
+    out.base_shear[0] = (out.story_shear[0, 0] + frame.geometric[0] * drift[0] + out.story_wall_force[0, 0]
+                         + float(np.dot(frame.story_damping_row, state.velocity)))
 
 
 def _warn_temperature_range(groups, bank: WallBank, dt: float) -> None:
@@ -142,15 +209,44 @@ def _warn_temperature_range(groups, bank: WallBank, dt: float) -> None:
                        "the range): " + "; ".join(outside), UserWarning, stacklevel=4)
 
 
-def _warn_strain_range(walls: Sequence[tuple[int, Wall]], peak_wall_strain: np.ndarray) -> None:
-    outside = []
+_PEAK_OUTSIDE = "wall peak strain outside the range its parameters were identified for: "
+_AMPLITUDE_OUTSIDE = "wall strain amplitude outside the amplitudes its parameters were identified at"
+
+
+def is_strain_range_warning(message: str) -> bool:
+    """Whether ``message`` is one of the warnings of walls outside the strains their parameters were
+    identified for (peak strain of a fixed-parameter wall, or amplitude of an amplitude-following one)."""
+    return _PEAK_OUTSIDE in message or _AMPLITUDE_OUTSIDE in message
+
+
+def _warn_strain_range(walls: Sequence[tuple[int, Wall]], peak_wall_strain: np.ndarray, above_seconds: np.ndarray,
+                       peak_amplitude: np.ndarray | None) -> None:
+    """Warn when a wall of fixed parameters strains beyond the range they were identified for, or an
+    amplitude-following wall follows an amplitude above its identified ones, or never reaches them (its
+    parameters are then those of the nearest end: an extrapolation).  The time an amplitude-following wall
+    spends below the range as a record builds up and dies out is counted, not warned about
+    (``result.wall_time_outside_range``); its peak strain may exceed its amplitude by a drift offset,
+    which is not amplitude."""
+    outside, beyond = [], []
     for index, (story, wall) in enumerate(walls):
         if wall.strain_range is None:
             continue
-        peak = float(peak_wall_strain[index])
         low, high = wall.strain_range
+        if hasattr(wall, "amplitude_table"):
+            if peak_amplitude is None:  # pragma: no cover - amplitude-following walls are followed
+                continue
+            if above_seconds[index] > 0.0:
+                beyond.append(f"story {story}: up to {100 * peak_amplitude[index]:.0f} % for "
+                              f"{above_seconds[index]:.3g} s (range {100 * low:.0f}-{100 * high:.0f} %)")
+            elif peak_amplitude[index] < low:
+                beyond.append(f"story {story}: at most {100 * peak_amplitude[index]:.0f} %, below the range "
+                              f"{100 * low:.0f}-{100 * high:.0f} % throughout")
+            continue
+        peak = float(peak_wall_strain[index])
         if not low <= peak <= high:
             outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %)")
     if outside:
-        _warnings.warn("wall peak strain outside the range its parameters were identified for: "
-                       + "; ".join(dict.fromkeys(outside)), UserWarning, stacklevel=4)
+        _warnings.warn(_PEAK_OUTSIDE + "; ".join(dict.fromkeys(outside)), UserWarning, stacklevel=4)
+    if beyond:
+        _warnings.warn(_AMPLITUDE_OUTSIDE + " (those of the nearest are used): " + "; ".join(dict.fromkeys(beyond)),
+                       UserWarning, stacklevel=4)

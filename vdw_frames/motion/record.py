@@ -76,7 +76,12 @@ class GroundMotion:
     def scaled(self, factor: float) -> GroundMotion:
         """A new record with acceleration x ``factor`` (dimensionless, finite); dt, name and metadata kept."""
         factor = finite_scalar("factor", factor)
-        return GroundMotion(self.acceleration * factor, self.dt, self.name, self.metadata)
+        with np.errstate(over="ignore"):
+            acceleration = self.acceleration * factor
+        if not np.isfinite(acceleration).all():  # named by the factor, not by a sample index
+            raise ValueError(f"factor = {show(factor)} makes the acceleration of {self._label} (PGA "
+                             f"{show(self.pga)} mm/s^2) overflow (inf); use a smaller factor")
+        return GroundMotion(acceleration, self.dt, self.name, self.metadata)
 
     def scale_factor_to_pga(self, target: float) -> float:
         """The factor (dimensionless) that brings the PGA to ``target`` mm/s^2 (> 0)."""

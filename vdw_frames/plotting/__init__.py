@@ -7,6 +7,8 @@ suffix (``.png``, ``.pdf``, ``.svg``, ...); a path without one gets ``.png`` add
 - :mod:`.element`: :func:`plot_loops` (sine tests of a wall);
 - :mod:`.response`: one analysis -- :func:`plot_drift_envelope`, :func:`plot_roof_displacement`,
   :func:`plot_wall_hysteresis`, :func:`plot_story_hysteresis`, :func:`plot_energy`;
+- :mod:`.walls`: the walls of analyses -- :func:`plot_wall_temperature`, :func:`plot_wall_loops`,
+  :func:`plot_wall_amplitude`;
 - :mod:`.ida`: :func:`plot_ida_curves`, :func:`plot_fragility`;
 - :mod:`.design`: :func:`plot_damping_curve`;
 - :mod:`.collapse`: FEMA P695 assessments -- :func:`plot_collapse_ida`, :func:`plot_pushover`,
@@ -24,7 +26,9 @@ from .response import (
                        plot_story_hysteresis,
                        plot_wall_hysteresis,
 )
+from .walls import plot_wall_amplitude, plot_wall_loops, plot_wall_temperature
 
 __all__ = ["plot_collapse_fragility", "plot_collapse_ida", "plot_damping_curve", "plot_drift_envelope", "plot_energy",
            "plot_fragility", "plot_ida_curves", "plot_loops", "plot_pushover", "plot_roof_displacement",
-           "plot_story_hysteresis", "plot_wall_hysteresis"]
+           "plot_story_hysteresis", "plot_wall_amplitude", "plot_wall_hysteresis", "plot_wall_loops",
+           "plot_wall_temperature"]

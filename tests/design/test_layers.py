@@ -1,0 +1,56 @@
+"""size_layers: the rule it states (the suite's smallest and largest followed amplitudes symmetric about
+the centre of the identified range), checked by running the suite again in the test with simulate."""
+
+import warnings
+
+import numpy as np
+import pytest
+
+import vdw_frames as vdw
+from vdw_frames.design import size_layers
+from vdw_frames.motion import synthetic_ground_motion
+
+
+def three_story(walls):
+    masses = np.array([300.0, 300.0, 250.0])
+    weight = np.cumsum((masses * vdw.G)[::-1])[::-1]
+    return vdw.ShearBuilding(masses=masses, stiffnesses=[1.5e5, 1.3e5, 1.0e5], story_heights=[3500.0] * 3,
+                             gravity_loads=weight, hysteresis=[vdw.Bilinear(0.15 * w, 0.03) for w in weight],
+                             walls=walls)
+
+
+SUITE = [synthetic_ground_motion(duration=8.0, dt=0.01, seed=seed, strong_motion_end=5.0, pga=0.3 * vdw.G)
+         for seed in (11, 12, 13)]
+
+
+def test_the_layers_centre_the_suites_amplitudes_in_the_identified_range():
+    family = vdw.paper.strain_dependent(area=0.3e6, thickness=10.0)
+    fixed = vdw.paper.fitted(300, area=0.1e6, thickness=8.0)
+    building = three_story({1: [family, fixed], 2: [family.resized(0.25e6)], 3: [family.resized(0.15e6)]})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sizing = size_layers(building, SUITE, tolerance=0.002)
+        assert sizing.converged and sizing.walls == (0, 2, 3)
+        # Re-run the suite on the returned building, in the test.
+        peaks = np.array([vdw.simulate(sizing.building, motion).wall_amplitude.max(axis=0) for motion in SUITE])
+    lowest, highest = peaks.min(axis=0)[[0, 2, 3]], peaks.max(axis=0)[[0, 2, 3]]
+    np.testing.assert_allclose(sizing.lowest, lowest, rtol=1e-12)
+    np.testing.assert_allclose(sizing.highest, highest, rtol=1e-12)
+    np.testing.assert_allclose(np.sqrt(lowest * highest), np.sqrt(2.25 * 4.5), rtol=0.002)
+    # Area / thickness kept (the stiffness at a given strain), the fixed wall untouched.
+    for (_, before), (_, after) in zip(building.wall_list, sizing.building.wall_list, strict=True):
+        assert after.area / after.thickness == pytest.approx(before.area / before.thickness, rel=1e-12)
+    assert sizing.building.wall_list[1][1] == fixed
+    assert sizing.inside.tolist() == list((lowest >= 2.25) & (highest <= 4.5))
+    assert sizing.margin == pytest.approx(min((lowest / 2.25).min(), (4.5 / highest).min()), rel=1e-12)
+
+
+def test_size_layers_needs_amplitude_following_walls_and_a_suite():
+    fixed = three_story({1: [vdw.paper.fitted(300)]})
+    with pytest.raises(ValueError, match="needs walls that follow their amplitude"):
+        size_layers(fixed, SUITE)
+    walled = three_story({1: [vdw.paper.strain_dependent()]})
+    with pytest.raises(ValueError, match="motions must be a non-empty sequence"):
+        size_layers(walled, [])
+    with pytest.raises(ValueError, match="tolerance must be below 0.5"):
+        size_layers(walled, SUITE, tolerance=0.7)
