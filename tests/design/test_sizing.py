@@ -1,0 +1,117 @@
+"""Wall sizing (vdw_frames.design.sizing): sized walls meet the target by the exact state-space eigenvalues,
+the damping curve saturates, unreachable targets and bad requests are refused.  The design command:
+tests/integration/test_cli.py."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+from builders import CLASSICAL_KELVIN_MAXWELL, example_ten_story
+from reference import state_space_eigenvalues
+from scipy.linalg import eigh
+
+from vdw_frames import FDMKDamper, ShearBuilding, SupportedDamper, modal_analysis, size_walls
+from vdw_frames.design import damping_curve
+from vdw_frames.paper import strain_dependent
+
+KELVIN_MAXWELL = FDMKDamper(**CLASSICAL_KELVIN_MAXWELL, area=5e4)
+
+
+def five_story(walls=None):
+    return ShearBuilding([300.0, 300.0, 280.0, 250.0, 200.0], [2.0e5, 1.8e5, 1.6e5, 1.4e5, 1.1e5], walls=walls)
+
+
+def state_space_ratio(building, mode=1):
+    poles, _ = state_space_eigenvalues(building)
+    return -poles[mode - 1].real / abs(poles[mode - 1])
+
+
+# ------------------------------------------------------------------------------ sizing
+@pytest.mark.parametrize("distribution", ["uniform", "stiffness", "drift"])
+def test_sized_r1_walls_meet_the_target_by_the_state_space_eigenvalues(distribution):
+    # Independent of the modal analysis: the exact eigenvalues of the state-space model with the Maxwell
+    # dashpots' internal degrees of freedom (tests/reference.py).
+    building = five_story()
+    sized = size_walls(building, KELVIN_MAXWELL, 0.12, mode=1, distribution=distribution, stories=[1, 2, 3])
+    assert sorted(sized.walls) == [1, 2, 3]
+    assert state_space_ratio(sized) == pytest.approx(0.12, abs=1e-6)  # the issue asks 1e-3
+    areas = np.array([sized.walls[story][0].area for story in (1, 2, 3)])
+    if distribution == "uniform":
+        np.testing.assert_allclose(areas, areas[0], rtol=1e-14)
+    elif distribution == "stiffness":
+        np.testing.assert_allclose(areas / areas.max(), np.array([2.0, 1.8, 1.6]) / 2.0, rtol=1e-12)
+    else:
+        _, shapes = eigh(np.asarray(building.stiffness_matrix), np.diag(building.masses))
+        drift = np.abs(np.diff(shapes[:, 0], prepend=0.0))[:3]
+        np.testing.assert_allclose(areas / areas.max(), drift / drift.max(), rtol=1e-10)
+    for story in (1, 2, 3):  # only the area changes
+        wall = sized.walls[story][0]
+        assert dataclasses.replace(wall, area=KELVIN_MAXWELL.area) == KELVIN_MAXWELL
+
+
+@pytest.mark.slow
+def test_sizing_the_example_frame_meets_the_target_and_keeps_everything_else():
+    # The example's amplitude-following walls at the centre, in logarithm, of their range (as the design
+    # command takes them by default).
+    building = example_ten_story().walls_at(float(np.sqrt(2.25 * 4.5)))
+    wall = building.wall_list[0][1]
+    sized = size_walls(building, wall, 0.10)
+    result = modal_analysis(sized, 1)
+    assert result.damping_ratios[0] == pytest.approx(0.10, abs=1e-3)
+    assert sorted(sized.walls) == sorted(building.walls)  # default: the stories that had walls
+    assert (sized.masses, sized.stiffnesses, sized.damping_ratio) == (building.masses, building.stiffnesses,
+                                                                      building.damping_ratio)
+    # The smallest walls reaching the target: below the largest achievable size.
+    curve = damping_curve(building, wall)
+    assert sized.wall_list[0][1].area < curve.best_factor * wall.area
+
+
+@pytest.mark.slow
+def test_damping_saturates_then_falls_and_an_unreachable_target_names_the_maximum():
+    building = five_story({1: KELVIN_MAXWELL, 2: KELVIN_MAXWELL})
+    curve = damping_curve(building, KELVIN_MAXWELL, factors=np.geomspace(0.05, 200.0, 30))
+    peak = int(np.nanargmax(curve.damping_ratios))
+    assert 0 < peak < curve.factors.size - 1  # rises, then falls: the walls lock stories 1-2
+    assert np.all(np.diff(curve.periods) < 0)  # they always stiffen
+    # The reported maximum, against the state-space ratio on a fine grid around it.
+    fine = curve.best_factor * np.geomspace(0.8, 1.25, 15)
+    ratios = [state_space_ratio(five_story({1: dataclasses.replace(KELVIN_MAXWELL, area=f * KELVIN_MAXWELL.area),
+                                            2: dataclasses.replace(KELVIN_MAXWELL, area=f * KELVIN_MAXWELL.area)}))
+              for f in fine]
+    assert curve.best_damping_ratio == pytest.approx(max(ratios), abs=1e-5)
+    assert curve.best_damping_ratio >= max(ratios) - 1e-9
+    with pytest.raises(ValueError, match=rf"out of reach: the largest achievable mode-1 damping ratio is "
+                                         rf"{curve.best_damping_ratio:.4f}") as error:
+        size_walls(building, KELVIN_MAXWELL, curve.best_damping_ratio + 0.01)
+    assert f"{curve.best_factor:.3g} x the wall's area" in str(error.value)
+
+
+def test_supported_template_scales_its_support_with_the_area():
+    template = SupportedDamper(KELVIN_MAXWELL, 3e4)
+    sized = size_walls(five_story(), template, 0.08, stories="all")
+    assert sorted(sized.walls) == [1, 2, 3, 4, 5]
+    wall = sized.walls[1][0]
+    factor = wall.area / KELVIN_MAXWELL.area
+    assert wall.support_stiffness == pytest.approx(3e4 * factor, rel=1e-14)
+    assert state_space_ratio(sized) == pytest.approx(0.08, abs=1e-6)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(target_damping=0.04), "not above the bare frame"),
+    (dict(target_damping=1.2), "target_damping must lie in"),
+    (dict(target_damping=0.1, distribution="linear"), "distribution must be one of"),
+    (dict(target_damping=0.1, mode=6), "mode must be a mode number"),
+    (dict(target_damping=0.1, stories=[0, 2]), "stories must be"),
+    (dict(target_damping=0.1, stories=[2, 2]), "stories must be"),
+    (dict(target_damping=0.1, stories="lower"), "stories must be"),
+])
+def test_bad_sizing_requests_are_refused(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        size_walls(five_story(), KELVIN_MAXWELL, **kwargs)
+
+
+def test_sizing_refuses_strain_dependent_walls():
+    with pytest.raises(ValueError, match="strain"):
+        size_walls(five_story(), strain_dependent(area=1e5), 0.1)
+    with pytest.raises(ValueError, match="strain-dependent"):
+        size_walls(five_story({1: strain_dependent(area=1e5)}), KELVIN_MAXWELL, 0.1)

@@ -1,0 +1,84 @@
+"""Sinusoidal test of the element alone (vdw_frames.element.sine), against the frequency-domain solution, and
+the inputs it refuses."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+from builders import README_WALL, TABLE4
+
+from vdw_frames import FDMKDamper, sine_test
+
+PARAMETER_SETS = [TABLE4, dict(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.3),
+                  dict(G1=1.0, G2=2.0, eta1=0.5, eta2=0.5, r=0.9), dict(G1=0.5, G2=5.0, eta1=0.2, eta2=1.0, r=0.1),
+                  dict(G1=0.0, G2=1.0, eta1=0.0, eta2=1.0, r=1.0)]
+
+
+@pytest.mark.parametrize("params", PARAMETER_SETS)
+@pytest.mark.parametrize("frequency", [0.5, 10.0])
+def test_last_loop_is_steady(params, frequency):
+    # The docstring of vdw_frames.element.sine promises the default 5 cycles give the steady loop to 0.1 %.
+    damper = FDMKDamper(**params)
+    result = sine_test(damper, 30.0, frequency)
+    assert result.loop_area == pytest.approx(np.pi * damper.loss_stiffness(frequency) * 30.0**2, rel=1e-3)
+    assert result.storage_stiffness == pytest.approx(damper.storage_stiffness(frequency), rel=1e-3)
+    assert result.loss_stiffness == pytest.approx(damper.loss_stiffness(frequency), rel=1e-3)
+
+
+def test_effective_stiffness_and_damping_ratio_of_an_ellipse():
+    damper = FDMKDamper(**TABLE4)
+    result = sine_test(damper, 22.5, 1.5)
+    # Steady ellipse F = K' u + K'' U cos: peak force U sqrt(K'^2 + K''^2).
+    modulus = abs(damper.complex_modulus(1.5)) * damper.area / damper.thickness
+    assert result.effective_stiffness == pytest.approx(modulus, rel=2e-3)
+    expected = np.pi * damper.loss_stiffness(1.5) / (2 * np.pi * modulus)
+    assert result.equivalent_damping_ratio == pytest.approx(expected, rel=3e-3)
+    assert result.time[-1] == pytest.approx(5 / 1.5)
+    assert result.last_cycle.stop - result.last_cycle.start == 201
+
+
+def test_first_cycle_shows_the_transient():
+    damper = FDMKDamper(**TABLE4)
+    result = sine_test(damper, 30.0, 1.0, cycles=1)
+    steady = np.pi * damper.loss_stiffness(1.0) * 30.0**2
+    assert abs(result.loop_area / steady - 1) > 0.02  # power-law memory of the start
+
+
+def test_sine_test_uses_the_nearest_dividing_step():
+    damper = FDMKDamper(**README_WALL)
+    result = sine_test(damper, 10.0, 1.0, dt=0.003)
+    assert result.requested_dt == 0.003 and result.dt == 1.0 / 333
+    assert result.time[333] == pytest.approx(1.0, rel=1e-15)  # a whole period in whole steps
+    # Against the frequency domain: after 5 cycles the start-up transient leaves < 0.1 % (element.sine).
+    assert result.storage_stiffness == pytest.approx(float(damper.storage_stiffness(1.0)), rel=1e-3)
+    assert result.loss_stiffness == pytest.approx(float(damper.loss_stiffness(1.0)), rel=1e-3)
+    exact = sine_test(damper, 10.0, 1.0, dt=0.005)
+    assert exact.dt == exact.requested_dt == 0.005
+    assert sine_test(damper, 10.0, 1.0).requested_dt is None
+
+
+def test_bad_amplitudes_frequencies_steps_cycles_and_walls_are_refused():
+    damper = FDMKDamper(**TABLE4)
+    with pytest.raises(ValueError, match="amplitude must be > 0"):
+        sine_test(damper, 0.0, 1.0)
+    with pytest.raises(ValueError, match="frequency must be finite"):
+        sine_test(damper, 1.0, math.inf)
+    with pytest.raises(ValueError, match="fewer than 8 steps"):
+        sine_test(damper, 1.0, 1.5, dt=0.1)
+    with pytest.raises(ValueError, match="cycles"):
+        sine_test(damper, 1.0, 1.0, cycles=0)
+    with pytest.raises(ValueError, match="FDMKDamper"):
+        sine_test(TABLE4, 1.0, 1.0)
+    with pytest.raises(ValueError, match="cycles must be a whole number"):
+        sine_test(damper, 1.0, 1.0, cycles=None)
+    with pytest.raises(ValueError, match="cycles must be a whole number"):
+        sine_test(damper, 1.0, 1.0, cycles=math.inf)
+
+
+def test_an_overflowing_sine_test_names_the_amplitude():
+    damper = FDMKDamper(**README_WALL)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ValueError, match=r"overflowed .* amplitude = 1e\+300 mm"):
+            sine_test(damper, 1e300, 1)

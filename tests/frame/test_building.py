@@ -1,0 +1,116 @@
+"""The shear building (vdw_frames.frame.building): its arguments, modes and inherent damping, and its
+frequency-domain responses, against closed forms."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from builders import (
+    README_WALL,
+    SMALL_README_WALL,
+    TEN_STORY_HEIGHTS,
+    TEN_STORY_MASSES,
+    TEN_STORY_STIFFNESSES,
+)
+from reference import fdmk_modulus
+
+from vdw_frames import Bilinear, FDMKDamper, ShearBuilding
+
+
+# ---------------------------------------------------------------------------------------------- arguments
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(masses=[1.0, -2.0]), "masses must be > 0"), (dict(masses=[1.0, np.nan]), "masses must be finite"),
+    (dict(stiffnesses=[1.0, 0.0]), "stiffnesses must be > 0"), (dict(stiffnesses=[1.0]), "stiffnesses has 1"),
+    (dict(damping_ratio=1.0), "damping_ratio"), (dict(damping_ratio=-0.1), "damping_ratio"),
+    (dict(damping_modes=(1, 3)), "damping_modes"), (dict(walls={3: SMALL_README_WALL}), "story"),
+    (dict(walls={0: SMALL_README_WALL}), "story"), (dict(walls={1: "wall"}), "FDMKDamper"),
+    (dict(story_heights=[3000.0]), "story_heights"), (dict(story_heights=[3000.0, -1.0]), "story_heights"),
+    (dict(damping_modes=(1, None)), "damping_modes"), (dict(damping_modes=(1, np.inf)), "damping_modes"),
+    (dict(damping_modes=2), "damping_modes"), (dict(walls=[SMALL_README_WALL]), "walls must be a dict"),
+])
+def test_masses_stiffnesses_damping_walls_and_heights_are_validated(kwargs, match):
+    arguments = dict(masses=[1.0, 1.0], stiffnesses=[1.0, 1.0]) | kwargs
+    with pytest.raises(ValueError, match=match):
+        ShearBuilding(**arguments)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(hysteresis=[Bilinear(1.0)] * 3), "hysteresis has 3 entries for 10 stories"),
+    (dict(hysteresis={11: Bilinear(1.0)}), "hysteresis story must be a story number"),
+    (dict(hysteresis=["steel"] * 10), "hysteresis of story 1 must be Bilinear, BoucWen or None"),
+    (dict(hysteresis=Bilinear(1.0)), "hysteresis must be a sequence"),
+    (dict(gravity_loads=[1.0] * 10, story_heights=None), "gravity_loads need story_heights"),
+    (dict(gravity_loads=[-1.0] * 10), "gravity_loads must be >= 0 N"),
+    (dict(gravity_loads=[1.0] * 9), "gravity_loads has 9 entries"),
+    (dict(damping_model="caughey"), "damping_model must be one of"),
+])
+def test_hysteresis_gravity_loads_and_damping_model_are_validated(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES, **(dict(story_heights=TEN_STORY_HEIGHTS) | kwargs))
+
+
+# ---------------------------------------------------------------------------------------------- modes, damping
+def test_rayleigh_damping_gives_the_ratio_in_the_named_modes():
+    building = ShearBuilding([200.0, 150.0, 100.0], [2e5, 1.5e5, 1e5], damping_ratio=0.04, damping_modes=(1, 3))
+    phi, omega = building.mode_shapes, building.circular_frequencies
+    modal = phi.T @ building.damping_matrix @ phi
+    assert modal[0, 0] / (2 * omega[0]) == pytest.approx(0.04, rel=1e-12)
+    assert modal[2, 2] / (2 * omega[2]) == pytest.approx(0.04, rel=1e-12)
+    # Two-story check of the eigenvalues: m = 1, k = 1 chain gives w^2 = (3 -+ sqrt 5) / 2.
+    two = ShearBuilding([1.0, 1.0], [1.0, 1.0])
+    np.testing.assert_allclose(two.circular_frequencies**2, [(3 - 5**0.5) / 2, (3 + 5**0.5) / 2], rtol=1e-12)
+
+
+def test_modal_damping_gives_the_same_ratio_in_every_mode():
+    building = ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES, damping_ratio=0.03, damping_model="modal")
+    shapes, omega = building.mode_shapes, building.circular_frequencies
+    modal = shapes.T @ building.damping_matrix @ shapes
+    np.testing.assert_allclose(modal, np.diag(2 * 0.03 * omega), atol=1e-12 * modal.max())
+    assert building.damping_ratios == pytest.approx([0.03] * 10)
+    rayleigh = ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES, damping_ratio=0.05)
+    ratios = np.diag(shapes.T @ rayleigh.damping_matrix @ shapes) / (2 * omega)
+    np.testing.assert_allclose(rayleigh.damping_ratios, ratios, rtol=1e-12)
+    # 5 % in modes 1 and 2, then 6.8 % (mode 3) rising to 17.2 % (mode 10): too much for floor accelerations
+    assert ratios[:2] == pytest.approx([0.05, 0.05]) and ratios[2] == pytest.approx(0.068, abs=5e-4)
+    assert ratios[-1] == pytest.approx(0.172, abs=5e-4)
+
+
+# ---------------------------------------------------------------------------------------------- frequency domain
+def test_frequency_response_equals_the_one_story_closed_form():
+    mass, stiffness = 100.0, 4e4
+    wall = FDMKDamper(**README_WALL, area=2e4)
+    frame = ShearBuilding([mass], [stiffness], damping_ratio=0.02, walls={1: wall})
+    f = np.linspace(0.0, 40.0, 5000)  # more than one chunk of the batched solve
+    a0, a1 = frame.rayleigh_coefficients
+    omega = 2 * np.pi * f
+    wall_stiffness = fdmk_modulus(README_WALL, np.where(f > 0, f, 1.0)) * wall.area / wall.thickness
+    wall_stiffness[f == 0] = README_WALL["G1"] * wall.area / wall.thickness
+    expected = -mass / (stiffness + wall_stiffness - mass * omega**2 + 1j * omega * (a0 * mass + a1 * stiffness))
+    np.testing.assert_allclose(frame.frequency_response(f)[:, 0], expected, rtol=1e-12)
+
+
+def test_frequency_response_refuses_resonance_bad_shapes_overflow_and_negative_frequencies():
+    undamped = ShearBuilding([1.0], [(2 * np.pi) ** 2], damping_ratio=0.0)  # f_n = 1 Hz exactly
+    with pytest.raises(ValueError, match=r"no bounded steady response at f = 1.0 Hz"):
+        undamped.frequency_response([0.5, 1.0])
+    assert undamped.frequency_response(0.5)[0, 0] == pytest.approx(-1.0 / ((2 * np.pi) ** 2 * 0.75), rel=1e-12)
+    frame = ShearBuilding([100.0, 100.0], [4e4, 4e4])
+    with pytest.raises(ValueError, match=r"scalar or 1-dimensional, got shape \(1, 2\)"):
+        frame.frequency_response([[1.0, 2.0]])
+    with pytest.raises(ValueError, match=r"overflows at f = 1e\+200 Hz"):
+        frame.frequency_response([1.0, 1e200])
+    with pytest.raises(ValueError, match=r"frequency must be >= 0 Hz, got -1.0"):
+        frame.frequency_response(np.array([1.0, -1.0]))
+
+
+def test_stationary_response_validates_its_step_and_padding():
+    frame = ShearBuilding([100.0, 100.0], [4e4, 4e4])
+    ground = np.ones(16)
+    for dt, pad, match in [(0.0, 8, "dt must be > 0, got 0.0"), (-0.01, 8, "dt must be > 0, got -0.01"),
+                           (0.01, 0, "pad_factor must be a whole number >= 1, got 0"),
+                           (0.01, 1.5, "pad_factor must be a whole number >= 1, got 1.5"),
+                           (0.01, True, "pad_factor must be a whole number >= 1, got True"),
+                           (0.01, 10**12, r"needs 16,000,000,000,000 steps, whose arrays would take .* TiB")]:
+        with pytest.raises(ValueError, match=match):
+            frame.stationary_response(ground, dt, pad)
+    assert frame.stationary_response(ground, 0.01, np.int64(2)).shape == (16, 2)

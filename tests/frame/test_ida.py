@@ -1,0 +1,35 @@
+"""Incremental dynamic analysis (vdw_frames.frame.ida): what it needs of the building, and the fragility of its
+collapse intensities."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+from builders import TEN_STORY_MASSES, TEN_STORY_STIFFNESSES
+from shared_data import shared_record
+
+from vdw_frames import Bilinear, G, ShearBuilding, incremental_dynamic_analysis, read_at2
+from vdw_frames.frame.ida import IDAResult
+
+
+@pytest.mark.records
+def test_ida_refuses_a_building_without_story_heights():
+    building = ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES, hysteresis=[Bilinear(1e6)] * 10)
+    with pytest.raises(ValueError, match="needs story_heights"):
+        incremental_dynamic_analysis(building, [read_at2(shared_record("RIO270.AT2"))], 0.1 * G, 1.0 * G)
+
+
+def test_fragility_when_every_record_collapsed_and_the_mask_is_nomask():
+    """An IDAResult whose collapse intensities carry no mask (``np.ma.nomask``: every record collapsed,
+    built without an explicit mask) still fits its fragility; reading ``.mask[m]`` indexed a scalar."""
+    intensities = (np.array([1.0, 2.0]), np.array([1.0, 2.0, 3.0]), np.array([1.0]))
+    collapse = np.ma.masked_array([2.0, 3.0, 1.0])
+    assert collapse.mask is np.ma.nomask
+    result = IDAResult(("a", "b", "c"), 1.0, np.array([1.0, 2.0, 3.0]), intensities,
+                       tuple(np.zeros(x.size) for x in intensities),
+                       tuple(np.arange(x.size) == x.size - 1 for x in intensities), collapse, ())
+    fit = result.fragility()
+    masked = dataclasses.replace(result, collapse_intensity=np.ma.masked_array([2.0, 3.0, 1.0], mask=[False] * 3))
+    assert (fit.median, fit.dispersion) == (masked.fragility().median, masked.fragility().dispersion)

@@ -1,0 +1,210 @@
+"""The command line (vdw_frames.cli) end to end: what it prints against the package's own results, figures
+written, and every error as one plain line with exit status 2."""
+
+from __future__ import annotations
+
+import json
+import re
+import subprocess
+import sys
+import warnings
+
+import numpy as np
+import pytest
+from builders import README_WALL, three_story_spec, write_file
+from shared_data import EXAMPLE_BUILDING
+
+import vdw_frames as vdw
+from vdw_frames import cli, modal_analysis, paper, simulate
+from vdw_frames.config import building_from_dict, load_building
+from vdw_frames.design import damping_curve
+from vdw_frames.motion import G, default_record, default_record_path, read_at2
+
+
+# ---------------------------------------------------------------------------------------------- simulate
+def test_cli_simulate_with_a_json_building(tmp_path, capsys):
+    spec = {"masses": [300.0, 300.0], "stiffnesses": [2e5, 1.5e5], "story_heights": [3500.0, 3500.0],
+            "walls": [{"stories": [1], "per_story": 2,
+                       "parameters": {"G1": 0.0, "G2": 3.0, "eta1": 0.3, "eta2": 2.0, "r": 0.5}}]}
+    path = tmp_path / "two.json"
+    path.write_text(json.dumps(spec))
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "2 stories" in out and "2 FDMK walls" in out
+    assert (tmp_path / "wall_hysteresis.png").exists()
+    # The printed table is the package's own result for the same building and record.
+    expected = simulate(building_from_dict(spec), read_at2(default_record_path()))
+    row = next(line.split() for line in out.splitlines() if line.strip().startswith("1 "))
+    assert float(row[1]) == pytest.approx(expected.peak_drift[0], abs=0.006)
+    assert float(row[4]) == pytest.approx(expected.peak_story_wall_force[0] / 1e3, abs=0.06)
+
+
+def test_cli_simulate_prints_what_the_example_walls_followed_heated_and_failed(capsys):
+    path = EXAMPLE_BUILDING
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # at 0.7 g the walls leave their tested amplitudes
+        assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--scale", "0.7"]) == 0
+        expected = simulate(load_building(path), read_at2(default_record_path()).scaled_to_pga(0.7 * G))
+    out = capsys.readouterr().out
+    wall_row = r"\s+\d+ +\d+ +\d+ +[0-9.]+ +(no|strain)"
+    rows = [line.split(maxsplit=4) for line in out.splitlines() if re.match(wall_row, line)]
+    assert [int(row[1]) for row in rows] == list(range(1, 11))
+    np.testing.assert_allclose([float(row[2]) for row in rows], 100 * expected.wall_amplitude.max(axis=0), atol=0.5)
+    np.testing.assert_allclose([float(row[3]) for row in rows], expected.peak_temperature_rise, atol=0.05)
+    failed = [row[4].strip() != "no" for row in rows]
+    assert failed == list(expected.wall_failed) and any(failed)  # at twice the example's intensity, walls fail
+    for row, time, mode in zip(rows, expected.wall_failure_time, expected.wall_failure_mode, strict=True):
+        if time is not None:
+            assert row[4].strip() == f"{mode} at {time:.2f} s"
+    energy = expected.energy
+    assert f"walls dissipate {100 * energy.wall_heat[-1] / energy.input[-1]:.0f} % of the input energy as heat" in out
+
+
+def test_cli_prints_dashes_for_values_that_do_not_exist(tmp_path, capsys):
+    spec = {"masses": [300.0, 300.0], "stiffnesses": [2e5, 1.5e5],
+            "walls": [{"stories": [1], "parameters": README_WALL}]}
+    path = write_file(tmp_path, "no_heights.json", json.dumps(spec))
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path())]) == 0
+    rows = [line.split() for line in capsys.readouterr().out.splitlines() if re.match(r"\s+[12] ", line)]
+    expected = simulate(building_from_dict(spec), default_record())
+    assert rows[0][2] == "-" and rows[1][2] == "-" and "nan" not in " ".join(rows[0] + rows[1])
+    assert rows[1][4:] == ["-", "-"]  # story 2 has no wall
+    assert float(rows[1][1]) == pytest.approx(expected.peak_drift[1], abs=0.006)
+
+
+def test_cli_warnings_are_one_plain_line(tmp_path, capsys):
+    # A stiff one-story frame: its 300 % wall stays far below the strains it was identified for.
+    spec = {"masses": [300.0], "stiffnesses": [2e5], "walls": [{"parameters": "fitted-300"}]}
+    building = str(write_file(tmp_path, "stiff.json", json.dumps(spec)))
+    assert cli.main(["simulate", building, "--record", str(default_record_path())]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert err and all(line.startswith("warning: wall peak strain outside the range") for line in err)
+    assert not any("UserWarning" in line or ".py:" in line for line in err)
+
+
+def test_cli_reports_bad_input_as_an_error(tmp_path, capsys):
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({"masses": [1.0, 1.0], "stiffnesses": [1.0, 1.0],
+                               "walls": [{"stories": [3], "parameters": "fitted-300"}]}))
+    assert cli.main(["simulate", str(bad), "--record", str(default_record_path())]) == 2
+    assert "bad.json: wall story must be a story number in 1 ... 2, got 3" in capsys.readouterr().err
+
+
+def test_a_malformed_building_file_is_one_error_line(tmp_path, capsys):
+    spec = three_story_spec()
+    spec["walls"][0]["stories"] = [[1]]
+    path = write_file(tmp_path, "nested.json", json.dumps(spec))
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path())]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and error.startswith("vdw-frames: error: ")
+    assert "nested.json: walls stories must be story numbers in 1 ... 3, got [1] in [[1]]" in error
+
+
+def test_cli_reports_a_missing_record(tmp_path, capsys):
+    assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", str(tmp_path / "none.AT2")]) == 2
+    assert "none.AT2" in capsys.readouterr().err
+
+
+def test_cli_scale_is_checked_in_g(capsys):
+    assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", str(default_record_path()),
+                     "--scale", "-0.4"]) == 2
+    assert capsys.readouterr().err == "vdw-frames: error: --scale must be a PGA > 0 in g, got -0.4\n"
+
+
+def test_cli_checks_out_before_the_analysis(tmp_path, capsys, monkeypatch):
+    def no_analysis(*args, **kwargs):
+        raise AssertionError("the analysis ran before --out was checked")
+
+    monkeypatch.setattr(vdw.frame.simulation, "simulate", no_analysis)
+    blocker = write_file(tmp_path, "taken", "a file")
+    building = str(EXAMPLE_BUILDING)
+    assert cli.main(["simulate", building, "--record", str(default_record_path()), "--out", str(blocker)]) == 2
+    assert f"--out {blocker}: exists and is not a folder" in capsys.readouterr().err
+    assert cli.main(["sine-test", "--out", str(blocker / "sub")]) == 2
+    assert "cannot create the folder" in capsys.readouterr().err
+
+
+def test_cli_refuses_before_allocating(tmp_path, capsys):
+    building = str(EXAMPLE_BUILDING)
+    assert cli.main(["simulate", building, "--record", str(default_record_path()), "--dt", "1e-7"]) == 2
+    assert "needs 250,000,001 steps" in capsys.readouterr().err
+    assert cli.main(["sine-test", "--cycles", "100000000", "--out", str(tmp_path)]) == 2
+    assert "needs 20,000,000,001 steps, whose arrays would take 1.16 TiB" in capsys.readouterr().err
+
+
+# ---------------------------------------------------------------------------------------------- sine-test, help
+def test_cli_sine_test_prints_stiffness_and_writes_the_loop(tmp_path, capsys):
+    assert cli.main(["sine-test", "--strain", "300", "--frequency", "1.5", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    damper = paper.fitted(300)
+    expected = damper.storage_stiffness(1.5) / 1e3
+    line = next(row for row in out.splitlines() if "storage stiffness" in row)
+    assert float(line.split("=")[1].split()[0]) == pytest.approx(expected, rel=2e-3)
+    assert (tmp_path / "sine_test_loop.png").stat().st_size > 10_000
+
+
+@pytest.mark.parametrize("command", ["simulate", "sine-test", "paper-report"])
+def test_cli_help(command):
+    run = subprocess.run([sys.executable, "-m", "vdw_frames.cli", command, "--help"], capture_output=True, text=True)
+    assert run.returncode == 0 and "usage: vdw-frames" in run.stdout
+
+
+# ---------------------------------------------------------------------------------------------- design
+@pytest.mark.slow
+def test_design_command_on_the_example(tmp_path, capsys):
+    path = EXAMPLE_BUILDING
+    building = _example_at_the_range_centre()
+    expected = modal_analysis(building, [1, 2, 3, 4, 5])
+    curve = damping_curve(building, building.wall_list[0][1])
+    target = round(0.5 * (expected.damping_ratios[0] + curve.best_damping_ratio), 3)
+    assert cli.main(["design", str(path), "--target", str(target), "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    rows = [line.split() for line in out.splitlines() if re.match(r"\s+[1-5] ", line)][:5]
+    table = np.array(rows, dtype=float)
+    np.testing.assert_allclose(table[:, 1], expected.bare_periods, atol=5e-4)
+    np.testing.assert_allclose(table[:, 3], expected.periods, atol=5e-4)
+    np.testing.assert_allclose(table[:, 4], 100 * expected.damping_ratios, atol=5e-3)
+    np.testing.assert_allclose(table[:, 5], 100 * expected.energy_damping_ratios, atol=5e-3)
+    np.testing.assert_allclose(table[:, 6], 100 * expected.added_damping, atol=5e-3)
+    assert f"largest achievable: xi = {100 * curve.best_damping_ratio:.2f} %" in out
+    assert ("strain-dependent walls at 318 % (the centre, in logarithm, of their identified range, 225-450 %; "
+            "--strain to choose)") in out
+    assert f"target {100 * target:g} %:" in out and f"xi = {100 * target:.2f} %" in out
+    figure = tmp_path / "design_damping.png"
+    assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.slow
+def test_design_command_refuses_an_unreachable_target_after_the_table(tmp_path, capsys):
+    path = EXAMPLE_BUILDING
+    assert cli.main(["design", str(path), "--target", "0.5", "--out", str(tmp_path)]) == 2
+    captured = capsys.readouterr()
+    assert "largest achievable" in captured.out and (tmp_path / "design_damping.png").exists()
+    assert re.match(r"vdw-frames: error: target_damping 0\.5 is out of reach: the largest achievable mode-1 damping "
+                    r"ratio is 0\.\d{4}", captured.err)
+
+
+def test_design_command_without_walls(tmp_path, capsys):
+    path = tmp_path / "bare.json"
+    path.write_text('{"masses": [300, 300], "stiffnesses": [2e5, 1.5e5]}')
+    assert cli.main(["design", str(path), "--out", str(tmp_path)]) == 0
+    assert "no walls in the building file" in capsys.readouterr().out
+
+
+def test_design_command_takes_the_amplitude_of_strain_dependent_walls(tmp_path, capsys):
+    path = EXAMPLE_BUILDING
+    assert cli.main(["design", str(path), "--strain", "400", "--modes", "1", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    expected = modal_analysis(load_building(path).walls_at(4.0), 1)
+    assert "strain-dependent walls at 400 % (--strain; identified over 225-450 %)" in out
+    row = next(line.split() for line in out.splitlines() if re.match(r"\s+1 ", line))
+    assert float(row[4]) == pytest.approx(100 * expected.damping_ratios[0], abs=5e-3)
+    assert cli.main(["design", str(path), "--strain", "-1", "--out", str(tmp_path)]) == 2
+    assert "--strain must be a positive amplitude in %, got -1.0" in capsys.readouterr().err
+
+
+def _example_at_the_range_centre():
+    """The example frame with its walls at the centre, in logarithm, of their range (the design command's default)."""
+    building = load_building(EXAMPLE_BUILDING)
+    assert building.wall_list[0][1].strain_range == (2.25, 4.5)
+    return building.walls_at(np.sqrt(2.25 * 4.5))

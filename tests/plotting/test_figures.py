@@ -1,0 +1,39 @@
+"""Figures (vdw_frames.plotting): where they are written, what they hold."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+from builders import README_WALL, TABLE4
+
+from vdw_frames import FDMKDamper, sine_test
+from vdw_frames.plotting import plot_loops
+
+
+def test_figure_paths_get_a_suffix_a_file_name_in_a_folder_and_their_folders(tmp_path):
+    result = sine_test(FDMKDamper(**README_WALL), 10.0, 1.0, cycles=2)
+    path = plot_loops(result, tmp_path / "dir" / "loops")
+    assert path == tmp_path / "dir" / "loops.png" and path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    folder = tmp_path / "figures"
+    folder.mkdir()
+    path = plot_loops(result, folder)
+    assert path == folder / "loops.png" and path.is_file()
+    assert not (tmp_path / "figures.png").exists()
+    path = plot_loops(result, str(tmp_path / "new") + os.sep)
+    assert path == tmp_path / "new" / "loops.png" and path.is_file()
+    path = plot_loops(result, tmp_path / "loops.pdf")
+    assert path.read_bytes()[:5] == b"%PDF-"
+    (tmp_path / "file").write_text("x")
+    with pytest.raises(ValueError, match="cannot create the folder"):
+        plot_loops(result, tmp_path / "file" / "loops.png")
+
+
+def test_loop_figure_is_written(tmp_path):
+    damper = FDMKDamper(**TABLE4)
+    results = [sine_test(damper, 22.5, f) for f in (0.5, 1.5)]
+    path = plot_loops(results, tmp_path / "loops.png", title="Table 4")
+    assert path.stat().st_size > 10_000
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with pytest.raises(ValueError, match="labels"):
+        plot_loops(results, tmp_path / "x.png", labels=["one"])

@@ -1,0 +1,154 @@
+"""Building files (vdw_frames.config): what they may hold, one ValueError for anything malformed, encodings,
+and the strain-compatible settings of strain-dependent walls."""
+
+from __future__ import annotations
+
+import json
+import warnings
+
+import pytest
+from builders import README_WALL, three_story_spec, write_file
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from shared_data import shared_record
+
+from vdw_frames import FDMKDamper, ShearBuilding, cli, paper
+from vdw_frames.config import building_from_dict, load_analysis, load_building
+from vdw_frames.frame import StrainCompatibleOptions
+from vdw_frames.motion import default_record_path
+
+
+@pytest.mark.parametrize("data, match", [
+    ({"masses": 5, "stiffnesses": [1.0]}, "masses must be a list"),
+    ({"masses": [1.0], "stiffnesses": [1.0], "walls": 5}, "walls must be a list"),
+    ({"masses": [1.0], "stiffnesses": [1.0], "damping_modes": 5}, "damping_modes must be a list"),
+    ({"masses": [1.0, 1.0], "stiffnesses": [1.0, 1.0], "walls": [{"stories": [1, 1], "parameters": "fitted-300"}]},
+     "distinct story numbers"),
+    ({"masses": [1.0]}, "missing key 'stiffnesses'"),
+    ({"masses": [1.0], "stiffnesses": [1.0], "floors": 1}, "unknown building keys"),
+    ({"masses": [1.0], "stiffnesses": [1.0], "walls": [{"parameters": "fitted-999"}]}, "strain must be one of"),
+    ({"masses": [1.0], "stiffnesses": [1.0], "walls": [{"parameters": {"G1": 1.0}}]}, "walls parameters"),
+    ({"masses": [1.0], "stiffnesses": [1.0], "walls": [{"parameters": "fitted-300", "per_story": 0}]}, "per_story"),
+])
+def test_building_file_validation(data, match):
+    with pytest.raises(ValueError, match=match):
+        building_from_dict(data)
+
+
+def test_wall_stories_are_whole_numbers_given_once_each():
+    spec = three_story_spec()
+    spec["walls"] = [{"stories": [1, 1.0], "parameters": dict(README_WALL)}]
+    with pytest.raises(ValueError, match=r"distinct story numbers, got \[1, 1.0\]"):
+        building_from_dict(spec)
+    spec["walls"] = [{"stories": [1.0], "parameters": dict(README_WALL)}]
+    as_float = building_from_dict(spec)
+    spec["walls"] = [{"stories": [1], "parameters": dict(README_WALL)}]
+    assert as_float.wall_list == building_from_dict(spec).wall_list == [(1, FDMKDamper(**README_WALL))]
+    spec["walls"] = [{"stories": [1], "per_story": 10**18, "parameters": dict(README_WALL)}]
+    with pytest.raises(ValueError, match="per_story must be at most 1000, got 1000000000000000000"):
+        building_from_dict(spec)  # refused, not a list of 10^18 walls
+    for stories in ([1.5], [True], ["1"], [0], [4], {"1": 1}, 1):
+        spec["walls"] = [{"stories": stories, "parameters": dict(README_WALL)}]
+        with pytest.raises(ValueError, match="stor"):
+            building_from_dict(spec)
+
+
+json_values = st.recursive(st.none() | st.booleans() | st.floats() | st.integers() | st.text(max_size=5),
+                           lambda inner: st.lists(inner, max_size=3) | st.dictionaries(st.text(max_size=5), inner,
+                                                                                         max_size=3), max_leaves=8)
+
+
+def replace_somewhere(spec, path, value):
+    """``spec`` with the item at ``path`` (keys/indices, followed as far as they go) replaced by ``value``."""
+    node = spec
+    for step in path[:-1]:
+        items = list(node) if isinstance(node, dict) else range(len(node)) if isinstance(node, list) else []
+        if not items or not isinstance(node[items[step % len(items)]], (dict, list)):
+            break
+        node = node[items[step % len(items)]]
+    items = list(node) if isinstance(node, dict) else list(range(len(node)))
+    if items:
+        node[items[path[-1] % len(items)]] = value
+    return spec
+
+
+@settings(max_examples=300, deadline=None)
+@given(path=st.lists(st.integers(0, 10), min_size=1, max_size=4), value=json_values)
+def test_any_malformed_building_is_a_value_error(path, value):
+    spec = replace_somewhere(three_story_spec(), path, value)
+    try:
+        building = building_from_dict(spec)
+    except ValueError:
+        return
+    assert isinstance(building, ShearBuilding)
+
+
+@settings(max_examples=100, deadline=None)
+@given(text=st.one_of(json_values.map(json.dumps), st.text(max_size=40)), suffix=st.sampled_from([".json", ".toml"]))
+def test_any_building_file_text_is_a_value_error_naming_the_file_or_a_building(tmp_path_factory, text, suffix):
+    path = tmp_path_factory.mktemp("building") / f"b{suffix}"
+    path.write_text(text, encoding="utf-8")
+    try:
+        assert isinstance(load_building(path), ShearBuilding)
+    except ValueError as error:
+        assert str(error).startswith(str(path))
+
+
+def test_building_files_may_start_with_a_bom_and_must_be_utf8(tmp_path, capsys):
+    spec = json.dumps(three_story_spec())
+    assert load_building(write_file(tmp_path, "bom.json", b"\xef\xbb\xbf" + spec.encode())).stories == 3
+    toml = "\ufeffmasses = [300.0]\nstiffnesses = [2e5]\n"
+    assert load_building(write_file(tmp_path, "bom.toml", toml.encode("utf-8"))).stiffnesses == (2e5,)
+    latin = write_file(tmp_path, "latin1.toml",
+                       "# b\xe2timent\nmasses = [300.0]\nstiffnesses = [2e5]\n".encode("latin-1"))
+    assert cli.main(["simulate", str(latin), "--record", str(default_record_path())]) == 2
+    assert f"{latin}: not UTF-8 text (byte 0xe2 at position 3); save it as UTF-8" in capsys.readouterr().err
+
+
+# ---------------------------------------------------------------------------------------------- strain-dependent
+def strain_dependent_building_data(**extra):
+    data = {"masses": [600.0, 450.0], "stiffnesses": [3e5, 2e5], "story_heights": [4000.0, 3500.0],
+            "walls": [{"stories": "all", "parameters": "strain-dependent", "area": 0.5e6, "thickness": 10.0}]}
+    data.update(extra)
+    return data
+
+
+@pytest.mark.records
+def test_building_files_with_strain_dependent_walls(tmp_path, capsys):
+    path = tmp_path / "walls.toml"
+    path.write_text('masses = [600.0, 450.0]\nstiffnesses = [3e5, 2e5]\nstrain_compatible = true\n\n'
+                    '[[walls]]\nstories = "all"\nparameters = "strain-dependent"\narea = 0.5e6\n')
+    building, options = load_analysis(path)
+    assert options == {"strain_compatible": True}
+    assert [w for _, w in building.wall_list] == [paper.strain_dependent(area=0.5e6)] * 2
+    record = str(shared_record("elCentro.AT2"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        assert cli.main(["simulate", str(path), "--record", record, "--scale", "0.8"]) == 0
+    out = capsys.readouterr().out
+    assert "strain-compatible analysis converged in" in out and "story 1 " in out
+    # A table of settings, in JSON.
+    table = tmp_path / "walls.json"
+    table.write_text(json.dumps(strain_dependent_building_data(
+        strain_compatible={"effective_strain_ratio": 1.0, "max_iterations": 5})))
+    assert load_analysis(table)[1] == {"strain_compatible": StrainCompatibleOptions(effective_strain_ratio=1.0,
+                                                                                    max_iterations=5)}
+    # Strain-dependent walls without the key: the time-history analysis, the walls following their amplitude.
+    bare = tmp_path / "bare.json"
+    bare.write_text(json.dumps(strain_dependent_building_data()))
+    assert load_analysis(bare)[1] == {}
+    assert load_building(bare).strain_dependent
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        assert cli.main(["simulate", str(bare), "--record", record]) == 0
+    assert "strain-compatible" not in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("value, match", [
+    ("yes", "strain_compatible must be true, false or a table"),
+    ({"ratio": 0.5}, r"unknown strain_compatible keys \['ratio'\]"),
+    ({"effective_strain_ratio": 2.0}, r"effective_strain_ratio must lie in \(0, 1\]"),
+])
+def test_building_file_strain_compatible_validation(value, match):
+    with pytest.raises(ValueError, match=match):
+        building_from_dict(strain_dependent_building_data(strain_compatible=value))

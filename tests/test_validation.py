@@ -1,0 +1,102 @@
+"""One rule for numbers everywhere (vdw_frames._validation): numpy scalars accepted, bools and strings refused,
+messages that print plain numbers, and analyses too large for memory refused before anything is allocated."""
+
+from __future__ import annotations
+
+import re
+import tracemalloc
+
+import numpy as np
+import pytest
+from builders import README_WALL, readme_ten_story
+from shared_data import REPO
+
+import vdw_frames as vdw
+from vdw_frames import FDMKDamper, GroundMotion, ShearBuilding, paper, read_two_column, simulate, sine_test
+from vdw_frames.motion import default_record
+
+
+@pytest.mark.parametrize("kind", [int, float, np.int32, np.int64, np.float32, np.float64])
+def test_python_and_numpy_numbers_are_accepted_alike(kind):
+    damper = FDMKDamper(G1=kind(0), G2=kind(3), eta1=0.5, eta2=kind(2), r=0.5 if kind in (int, np.int32, np.int64)
+                        else kind(0.5), area=kind(100000), thickness=kind(10))
+    assert damper == FDMKDamper(G1=0.0, G2=3.0, eta1=0.5, eta2=2.0, r=0.5, area=1e5, thickness=10.0)
+    frame = ShearBuilding(np.array([300, 300], dtype=kind), [kind(200000)] * 2, damping_ratio=0.05,
+                          damping_modes=np.array([1, 2], dtype=np.int64 if kind in (float, np.float32, np.float64)
+                                                  else kind), walls={np.int64(1): damper})
+    assert frame.damping_modes == (1, 2) and frame.masses == (300.0, 300.0)
+    result = sine_test(damper, kind(10), kind(1), cycles=kind(3))
+    assert result.cycles == 3
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda: FDMKDamper(**dict(README_WALL, G1="1.0")), "G1 must be a real number, got '1.0'"),
+    (lambda: FDMKDamper(**dict(README_WALL, r=True)), "r must be a real number, got True"),
+    (lambda: FDMKDamper(**dict(README_WALL, area=np.bool_(True))), "area must be a real number, got True"),
+    (lambda: ShearBuilding([1.0, True], [1.0, 1.0]), "masses must be real numbers"),
+    (lambda: ShearBuilding(["1", "2"], [1.0, 1.0]), "masses must be real numbers"),
+    (lambda: ShearBuilding([1.0], [1.0], damping_ratio="0.05"), "damping_ratio must be a real number"),
+    (lambda: GroundMotion(np.array([True, False]), 0.01),
+     "acceleration must be real numbers, got an array of dtype bool"),
+    (lambda: sine_test(FDMKDamper(**README_WALL), 10.0, 1.0, cycles=True),
+     "cycles must be a whole number >= 1, got True"),
+    (lambda: read_two_column(REPO / "README.md", skip_rows=1.5), "skip_rows must be a whole number >= 0, got 1.5"),
+])
+def test_bools_and_strings_are_refused_as_numbers(call, match):
+    with pytest.raises(ValueError, match=match):
+        call()
+
+
+def test_messages_print_plain_numbers():
+    motion = GroundMotion([0.0, 1.0, 0.0], 0.02)
+    calls = [
+        lambda: vdw._validation.positive("dt", np.float64(-0.01)),
+        lambda: GroundMotion(np.array([1.0, np.nan]), 0.01),
+        lambda: GroundMotion([1.0, 2.0], np.float64(-0.01)),
+        lambda: FDMKDamper(**dict(README_WALL, G1=np.float64(-1.0))),
+        lambda: FDMKDamper(**dict(README_WALL, strain_range=(np.float64(3.0), np.float64(2.0)))),
+        lambda: ShearBuilding(np.array([1.0, -1.0]), [1.0, 1.0]),
+        lambda: ShearBuilding([1.0], [1.0], damping_ratio=np.float32(1.5)),
+        lambda: ShearBuilding([1.0, 1.0], [1.0, 1.0], damping_modes=np.array([1, 5])),
+        lambda: ShearBuilding([1.0], [1.0], walls={np.int64(4): FDMKDamper(**README_WALL)}),
+        lambda: ShearBuilding([1.0], [1.0]).frequency_response(np.array([-1.0])),
+        lambda: motion.spectrum(np.array([-1.0])),
+        lambda: motion.spectrum(np.float64(1e9)),
+        lambda: motion.resampled(np.float64(0.015)),
+        lambda: FDMKDamper(**README_WALL).complex_modulus(np.array([np.float64(-2.0)])),
+        lambda: vdw.identify(np.array([1.0, -2.0, 3.0]), [1.0, 1.0, 1.0], [1.0, 1.0, 1.0]),
+        lambda: sine_test(FDMKDamper(**README_WALL), np.float64(-1.0), 1.0),
+    ]
+    for call in calls:
+        with pytest.raises(ValueError) as error:
+            call()
+        assert "np." not in str(error.value) and "float64" not in str(error.value), str(error.value)
+        assert re.search(r"-?\d", str(error.value))  # the value itself is named
+
+
+def peak_allocation(call):
+    """(the ValueError's message or None, the peak traced allocation in bytes) of ``call()``."""
+    tracemalloc.start()
+    try:
+        call()
+    except ValueError as error:
+        message = str(error)
+    else:
+        message = None
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    return message, peak
+
+
+def test_analyses_too_large_for_memory_are_refused_before_allocating():
+    motion = default_record()
+    message, peak = peak_allocation(lambda: motion.resampled(2e-8))
+    assert "needs 1,250,000,001 steps, whose arrays would take 27.9 GiB (limit 2 GiB)" in message
+    assert peak < 20e6
+    building = readme_ten_story()
+    message, peak = peak_allocation(lambda: simulate(building, motion, dt=1e-7))
+    assert "simulate (dt = 1e-07 s, 10 floors, 6 walls) needs 250,000,001 steps" in message and peak < 20e6
+    message, peak = peak_allocation(lambda: sine_test(paper.fitted(300), 30.0, 1.0, cycles=100_000_000))
+    assert "sine_test(100,000,000 cycles of 200 steps) needs 20,000,000,001 steps" in message and peak < 20e6
+    message, _ = peak_allocation(lambda: vdw.motion.synthetic_ground_motion(duration=1e9))
+    assert "needs 100,000,000,001 steps" in message
