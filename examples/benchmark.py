@@ -498,7 +498,7 @@ def part_p695():
         print(f"\n(f) FEMA P695 assessment: skipped ({error})")
         return
     walled = load_building(ROOT / "examples" / "ten_story.toml")
-    buildings = {"bare frame": walled.without_dampers(), "with walls": walled}
+    buildings = {"bare frame": walled.without_walls(), "with walls": walled}
     cores = os.cpu_count() or 1
     print(f"\n(f) FEMA P695 collapse assessment of the example frame, far-field set ({len(records)} records), "
           f"SDC Dmax, {cores} worker processes")
@@ -526,8 +526,9 @@ def part_p695():
     analyses = sum(r.total_analyses for r in results.values())
     print(f"    both: {analyses} analyses in {total:.1f} s = {analyses / total:.1f} analyses/s, "
           f"{analyses / (2 * len(records)):.1f} analyses a record (target: the whole in <= 60 s: "
-          f"{'meets' if total <= 60.0 else 'misses'}; <= 12 a record: "
-          f"{'meets' if max(r.analyses.max() for r in results.values()) <= 12 else 'misses'})")
+          f"{'meets' if total <= 60.0 else 'misses'}; <= 12 a record on average: "
+          f"{'meets' if analyses / (2 * len(records)) <= 12 else 'misses'}, at most "
+          f"{max(r.analyses.max() for r in results.values())})")
     # Where the time goes, on one core: a fixed cost per simulate() call and a cost per step.
     long = max(records, key=lambda m: m.acceleration.size)
     print("    one core:       fixed cost per analysis   cost per step   model of the run (fixed share)")
