@@ -203,3 +203,52 @@ def test_opensees_frame_example_runs_and_its_prony_frame_follows_the_bridge(tmp_
     assert "Maxwell branches" in printed and "Damper - Exponential" in printed
     for name in ("drift_envelope.png", "wall_hysteresis.png"):
         assert (tmp_path / name).stat().st_size > 10_000
+
+
+@pytest.mark.slow
+@pytest.mark.records
+def test_the_example_walls_follow_their_sizing_rule_on_every_shared_record():
+    folder = shared_record("HWA002-N.AT2").parent
+    rule = runpy.run_path(str(REPO / "examples" / "wall_sizing.py"), run_name="wall_sizing")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # the rule's first passes take walls outside their range
+        sizing = rule["size_example_walls"](folder)
+    building = load_building(EXAMPLE_BUILDING)
+    # The building file holds the rule's walls, to the file's rounding.
+    assert sizing.converged and rule["rounded"](sizing) == {story: (wall.area, wall.thickness)
+                                                            for story, wall in building.wall_list}
+    # Re-run here with the file's walls: on every record of the suite, at the example's intensity, every
+    # wall's largest followed amplitude lies inside the identified 225-450 %.
+    suite = rule["example_suite"](folder)
+    assert len(suite) == 6
+    for motion in suite:
+        result = simulate(building, motion)
+        peak = result.wall_amplitude.max(axis=0)
+        assert np.all((2.25 <= peak) & (peak <= 4.5)), f"{motion.name}: {np.round(100 * peak)}"
+        assert not result.wall_failed.any()
+
+
+def test_heating_example_compares_isothermal_and_self_heating_walls(tmp_path, capsys):
+    heating = runpy.run_path(str(REPO / "examples" / "heating.py"), run_name="heating")
+    assert heating["main"](["--records", str(tmp_path / "none"), "--out", str(tmp_path)]) == 0
+    printed = capsys.readouterr().out
+    rows = {line[:24].strip(): line[24:].split() for line in printed.splitlines()
+            if line.startswith(("isothermal", "heating from"))}
+    # Independently: the file's walls heat from 21.2 degC; isothermal walls carry no thermal description.
+    building = load_building(EXAMPLE_BUILDING)
+    motion = read_at2(default_record_path())
+    cold = building.with_walls({story: tuple(dataclasses.replace(wall, thermal=None) for wall in walls)
+                                for story, walls in building.walls.items()})
+    for label, frame in (("isothermal 21.2 degC", cold), ("heating from 21.2 degC", building)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)
+            result = simulate(frame, motion)
+        assert float(rows[label][0]) == pytest.approx(100 * result.peak_drift_ratio.max(), abs=6e-4)
+        assert float(rows[label][1]) == pytest.approx(np.abs(result.wall_force).max() / 1e3, abs=0.6)
+    # Time-temperature superposition: the colder the walls, the more viscous; they heat more from a cold
+    # start and the frame drifts less.
+    drift = [float(rows[f"heating from {t} degC"][0]) for t in ("0", "21.2", "40")]
+    rise = [float(rows[f"heating from {t} degC"][2]) for t in ("0", "21.2", "40")]
+    assert drift == sorted(drift) and rise == sorted(rise, reverse=True)
+    assert all((tmp_path / name).stat().st_size > 10_000
+               for name in ("synthetic_kt_035g_wall_temperature.png", "synthetic_kt_035g_wall_loops.png"))
