@@ -94,6 +94,7 @@ def _simulate(args) -> int:
     print(f"{args.building}: {building.stories} stories, T1 = {building.periods[0]:.3f} s (bare frame), "
           f"{len(building.wall_list)} FDMK walls")
     print(f"record {motion.name}: PGA = {motion.pga / G:.3f} g, dt = {result.time[1]:g} s, {result.time.size} steps")
+    _print_wall_assumptions(building)
     print(f"{'story':>5s} {'drift mm':>9s} {'ratio %':>8s} {'floor acc g':>11s} {'walls kN':>10s} {'strain %':>9s}")
     ratio = result.peak_drift_ratio
     for k in range(building.stories):
@@ -125,6 +126,24 @@ def _simulate(args) -> int:
             paths.append(plotting.plot_wall_hysteresis(result, story, out / "wall_hysteresis.png"))
         print("figures: " + ", ".join(str(p) for p in paths))
     return 0
+
+
+def _print_wall_assumptions(building) -> None:
+    """The walls' constants from outside the paper -- how they heat and fail -- with their sources, once each."""
+    lines: dict[str, None] = {}  # ordered, each line once
+    for _, wall in building.wall_list:
+        thermal, limits = getattr(wall, "thermal", None), getattr(wall, "limits", None)
+        if thermal is not None:
+            lines[f"walls heat from {thermal.temperature:g} degC, rho c = {thermal.heat_capacity:g} J/(cm^3 K), "
+                  f"shift law {type(thermal.shift).__name__}: {thermal.shift.source or 'no source given'}"] = None
+        if limits is not None:
+            bounds = [f"{name} {value:g}{unit}" for name, value, unit in
+                      (("strain", None if limits.strain is None else 100 * limits.strain, " %"),
+                      ("stress", limits.stress, " MPa"),
+                       ("temperature", limits.temperature, " degC")) if value is not None]
+            lines[f"walls fail at {', '.join(bounds)}: {limits.source or 'no source given'}"] = None
+    for line in lines:
+        print(line)
 
 
 def _print_wall_states(result) -> None:

@@ -46,6 +46,10 @@ def test_cli_simulate_prints_what_the_example_walls_followed_heated_and_failed(c
         assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--scale", "0.7"]) == 0
         expected = simulate(load_building(path), read_at2(default_record_path()).scaled_to_pga(0.7 * G))
     out = capsys.readouterr().out
+    # The constants from outside the paper, with their sources, as the building file states them.
+    wall = load_building(path).wall_list[0][1]
+    assert f"walls heat from 21.2 degC, rho c = 1.8 J/(cm^3 K), shift law LogLinear: {wall.thermal.shift.source}" in out
+    assert f"walls fail at strain 850 %: {wall.limits.source}" in out
     wall_row = r"\s+\d+ +\d+ +\d+ +[0-9.]+ +(no|strain)"
     rows = [line.split(maxsplit=4) for line in out.splitlines() if re.match(wall_row, line)]
     assert [int(row[1]) for row in rows] == list(range(1, 11))
