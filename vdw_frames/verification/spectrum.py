@@ -30,6 +30,7 @@ returns mm/s^2 (g = 9806.65 mm/s^2).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -189,22 +190,22 @@ class Site:
         not available to damped structures, so none is applied."""
         ss_value = positive("S_S", ss)
         s1_value = positive("S_1", s1)
-        cls = site_class(site)
+        letter = site_class(site)
         if not isinstance(damping_system, (bool, np.bool_)):
             raise ValueError(f"damping_system must be True or False, got {show(damping_system)}")
         reason = None
         if damping_system and s1_value >= 0.6:
             reason = f"a structure with a damping system on a site with S_1 = {show(s1)} g >= 0.6"
-        elif cls in ("D", "E") and s1_value >= 0.2:
-            reason = f"Site Class {cls} with S_1 = {show(s1)} g >= 0.2"
-        elif cls == "E" and ss_value >= 1.0:
+        elif letter in ("D", "E") and s1_value >= 0.2:
+            reason = f"Site Class {letter} with S_1 = {show(s1)} g >= 0.2"
+        elif letter == "E" and ss_value >= 1.0:
             reason = f"Site Class E with S_S = {show(ss)} g >= 1.0"
         if reason is not None:
             raise ValueError(f"ASCE 7-16 Sec. 11.4.8 requires a ground motion hazard analysis (Sec. 21.2) for "
                              f"{reason}; the tabulated site coefficients may not be used: give S_MS and S_M1 from the "
                              "site-specific procedure (Sec. 21.4) instead of S_S, S_1 and the site class")
-        fa, fv = site_coefficients(ss_value, s1_value, cls)
-        return Site(fa * ss_value, fv * s1_value, tl, risk_category, ss_value, s1_value, cls, fa, fv)
+        fa, fv = site_coefficients(ss_value, s1_value, letter)
+        return Site(fa * ss_value, fv * s1_value, tl, risk_category, ss_value, s1_value, letter, fa, fv)
 
     @property
     def sds(self) -> float:
@@ -261,7 +262,9 @@ def site_from_values(values: dict) -> Site:
     direct, mapped = {"sms", "sm1"} & given, {"ss", "s1", "site_class"} & given
     if "tl" not in given:
         raise ValueError("the site needs tl (T_L, s: the long-period transition period of ASCE 7-16 Sec. 11.4.6)")
-    category = values.get("risk_category") if values.get("risk_category") is not None else "II"
+    category: Any = values.get("risk_category")  # checked by Site (I-IV or 1-4)
+    if category is None:
+        category = "II"
     if direct and mapped:
         raise ValueError(f"give the site either as sms and sm1 or as ss, s1 and site_class, not both "
                          f"(got {sorted(direct | mapped)})")
