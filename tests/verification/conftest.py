@@ -1,3 +1,14 @@
 """Fixtures of the verification tests: a three-story frame with r = 1 walls and 14 short synthetic records."""
 
-from verification_cases import building, records  # noqa: F401  (fixtures)
+import pytest
+from verification_cases import synthetic_records, three_story
+
+
+@pytest.fixture(scope="session")
+def building():
+    return three_story()
+
+
+@pytest.fixture(scope="session")
+def records():
+    return synthetic_records()

@@ -1,7 +1,6 @@
 """Small frames and short synthetic records shared by the verification tests (fixtures in conftest.py)."""
 
 import numpy as np
-import pytest
 
 from vdw_frames import FDMKDamper, ShearBuilding
 from vdw_frames.motion import synthetic_ground_motion
@@ -19,15 +18,9 @@ def three_story(walls: bool = True, heights: bool = True) -> ShearBuilding:
                          story_heights=(3500.0, 3200.0, 3200.0) if heights else None)
 
 
-@pytest.fixture(scope="session")
-def building():
-    return three_story()
-
-
-@pytest.fixture(scope="session")
-def records():
-    """14 short synthetic records of different seeds and ground frequencies (mm/s^2)."""
-    frequencies = np.linspace(1.5, 4.0, 14)
-    return [synthetic_ground_motion(duration=12.0, dt=0.01, pga=0.3 * 9806.65, seed=100 + i,
+def synthetic_records(count: int = 14, duration: float = 12.0):
+    """``count`` short synthetic records of different seeds and ground frequencies (mm/s^2)."""
+    frequencies = np.linspace(1.5, 4.0, count)
+    return [synthetic_ground_motion(duration=duration, dt=0.01, pga=0.3 * 9806.65, seed=100 + i,
                                     ground_frequency=float(f), strong_motion_end=7.0, name=f"synthetic {i}")
             for i, f in enumerate(frequencies)]
