@@ -29,7 +29,7 @@ def plot_suite_spectra(result, path, title=None) -> Path:
         axes.plot(suite.periods, spectrum / G, lw=0.5, color="0.55", label="scaled records" if k == 0 else None)
     axes.plot(periods, result.site.spectrum(periods), "k-", lw=1.6, label="MCE_R target (Sec. 11.4.7)")
     axes.plot(periods, 0.9 * result.site.spectrum(periods), "k--", lw=1.0, label="90 % of the target")
-    axes.plot(suite.periods, suite.mean_spectrum / G, "C3-", lw=1.8, label="suite mean (Sec. 16.4.1.2)")
+    axes.plot(suite.periods, suite.mean_spectrum / G, "C3-", lw=1.8, label="suite mean")
     axes.axvline(suite.range.first_period, color="C0", lw=0.8, ls=":", label=f"T_1 = {suite.range.first_period:.2f} s")
     axes.set_xscale("log")
     axes.set_yscale("log")
