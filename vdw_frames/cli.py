@@ -8,6 +8,7 @@ line ``warning: ...`` each.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 import os
 import sys
@@ -316,27 +317,37 @@ def _verify(args) -> int:
     """The ``verify`` command: ASCE 7-16 Chapters 16/18 verification of a building file on a site."""
     from . import plotting
     from ._files import write_text
-    from .config import load_analysis
+    from .config import load_verification
     from .verification import PropertyBounds, Site, verify
     from .verification import report as verification_report
 
-    building, _ = load_analysis(args.building)
+    building, file_site, file_bounds = load_verification(args.building)
     direct = [args.sms, args.sm1]
     mapped = [args.ss, args.s1, args.site_class]
-    if args.tl is None:
-        raise ValueError("give --tl (T_L, s: the long-period transition period, ASCE 7-16 Sec. 11.4.6)")
+    given = any(v is not None for v in direct + mapped + [args.tl])
     if any(v is not None for v in direct) and any(v is not None for v in mapped):
         raise ValueError("give the site either as --sms and --sm1 or as --ss, --s1 and --site-class, not both")
-    if all(v is not None for v in direct):
-        site = Site(args.sms, args.sm1, args.tl, args.risk_category)
+    if not given and file_site is not None:
+        site = file_site if args.risk_category is None else \
+            dataclasses.replace(file_site, risk_category=args.risk_category)
+    elif args.tl is None:
+        raise ValueError("give the site: --tl (T_L, s: the long-period transition period, ASCE 7-16 Sec. 11.4.6) "
+                         "with --sms and --sm1, or with --ss, --s1 and --site-class (or a [site] table in the "
+                         "building file)")
+    elif all(v is not None for v in direct):
+        site = Site(args.sms, args.sm1, args.tl, args.risk_category or "II")
     elif all(v is not None for v in mapped):
-        site = Site.from_mapped(args.ss, args.s1, args.site_class, args.tl, args.risk_category)
+        site = Site.from_mapped(args.ss, args.s1, args.site_class, args.tl, args.risk_category or "II")
     else:
-        raise ValueError("give the site as --sms and --sm1 (g), or as --ss, --s1 (g) and --site-class")
-    if args.bounds is None:
+        raise ValueError("give the site as --sms and --sm1 (g), or as --ss, --s1 (g) and --site-class, with --tl")
+    if args.bounds is not None:
+        bounds = PropertyBounds(args.bounds[0], args.bounds[1], "given on the command line")
+    elif file_bounds is not None:
+        bounds = file_bounds
+    else:
         raise ValueError("give --bounds LAMBDA_MIN LAMBDA_MAX: the walls' property modification factors (ASCE 7-16 "
-                         "Sec. 18.2.4.5), e.g. --bounds 0.8 1.2 from their tests and specification")
-    bounds = PropertyBounds(args.bounds[0], args.bounds[1], "given on the command line")
+                         "Sec. 18.2.4.5), e.g. --bounds 0.8 1.2 from their tests and specification (or bounds in "
+                         "the building file's [verification] table)")
     out = _output_folder(args.out)
     records = _verify_records(args.records)
     result = verify(building, site, records, bounds=bounds, count=args.count,
@@ -365,7 +376,8 @@ def _verify(args) -> int:
 def _add_verify_command(commands) -> None:
     verify = commands.add_parser("verify", help="ASCE 7-16 Ch. 16/18 design verification: suite scaled to the MCE_R "
                                                 "spectrum, bounds, acceptance, device test demands, report")
-    verify.add_argument("building", help="building file, .toml or .json, with story heights and walls")
+    verify.add_argument("building", help="building file, .toml or .json, with story heights and walls (and "
+                                         "optionally [site] and [verification] tables: vdw_frames.config)")
     site = verify.add_argument_group("site (ASCE 7-16 Sec. 11.4): --sms, --sm1 or --ss, --s1, --site-class; --tl")
     site.add_argument("--sms", type=float, help="S_MS, g")
     site.add_argument("--sm1", type=float, help="S_M1, g")
@@ -373,7 +385,7 @@ def _add_verify_command(commands) -> None:
     site.add_argument("--s1", type=float, help="mapped S_1, g")
     site.add_argument("--site-class", help="site class A-E (Tables 11.4-1, 11.4-2)")
     site.add_argument("--tl", type=float, help="T_L, s")
-    site.add_argument("--risk-category", default="II", help="risk category I-IV (default II)")
+    site.add_argument("--risk-category", help="risk category I-IV (default II, or the building file's)")
     verify.add_argument("--bounds", type=float, nargs=2, metavar=("LAMBDA_MIN", "LAMBDA_MAX"),
                         help="property modification factors of the walls (Sec. 18.2.4.5)")
     verify.add_argument("--records", default="far-field",

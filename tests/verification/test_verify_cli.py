@@ -89,3 +89,44 @@ def test_verify_command_errors_are_one_line(inputs, capsys, extra, words):
     code = main(args + extra)
     error = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(error) == 1 and error[0].startswith("vdw-frames: error:") and words in error[0]
+
+
+def test_site_and_bounds_from_the_building_file(inputs, capsys):
+    path = inputs / "with_site.toml"
+    path.write_text(BUILDING.replace("[[walls]]", """[site]
+ss = 1.0
+s1 = 0.15
+site_class = "D"
+tl = 8.0
+risk_category = "III"
+
+[verification]
+bounds = [0.85, 1.2]
+bounds_source = "manufacturer's data sheet (example)"
+
+[[walls]]""", 1))
+    out = inputs / "out_file"
+    code = main(["verify", str(path), "--records", str(inputs / "records"), "--out", str(out)])
+    printed = capsys.readouterr().out
+    assert code == 0, printed
+    # F_a = 1.1 at S_S = 1.0 and F_v = 2.3 at S_1 = 0.15 on Site Class D (Tables 11.4-1, 11.4-2)
+    assert "S_MS = 1.1 g, S_M1 = 0.345 g" in printed and "Risk Category III" in printed
+    report = (out / "report.md").read_text()
+    assert "lambda_min = 0.85, lambda_max = 1.2 (manufacturer's data sheet (example))" in report
+    assert "2 x 0.015 h_sx" in report
+    with open(out / "drifts.csv", newline="") as handle:
+        assert {row["lambda"] for row in csv.DictReader(handle)} == {"1.0", "1.2", "0.85"}
+
+
+@pytest.mark.parametrize("table, words", [
+    ("[verification]\nbounds = [0.8]\n", "bounds must be [lambda_min, lambda_max]"),
+    ("[verification]\nbounds = [0.8, 1.2]\nsource = 'x'\n", "unknown verification keys"),
+    ("[site]\nsms = 1.5\ntl = 8.0\n", "only ['sms']"),
+    ("[site]\nsms = 1.5\nsm1 = 0.9\n", "the site needs tl"),
+])
+def test_bad_verification_tables_name_the_key(inputs, capsys, table, words):
+    path = inputs / "bad_table.toml"
+    path.write_text(BUILDING.replace("[[walls]]", table + "\n[[walls]]", 1))
+    code = main(["verify", str(path), "--records", str(inputs / "records"), "--out", str(inputs / "bad2")])
+    error = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(error) == 1 and words in error[0] and "bad_table.toml" in error[0]
