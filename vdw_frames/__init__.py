@@ -51,7 +51,7 @@ __all__ = [
 
 _LAZY = {"paper": ("vdw_frames.paper", None), "identify": ("vdw_frames.paper", "identify"),
          "size_walls": ("vdw_frames.design", "size_walls")}
-_SUBPACKAGES = ("config", "design", "element", "frame", "interop", "motion", "paper", "plotting")
+_SUBPACKAGES = ("config", "design", "element", "frame", "interop", "motion", "paper", "plotting", "verification")
 
 
 def __getattr__(name: str) -> Any:

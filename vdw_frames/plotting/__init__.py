@@ -12,7 +12,8 @@ suffix (``.png``, ``.pdf``, ``.svg``, ...); a path without one gets ``.png`` add
 - :mod:`.ida`: :func:`plot_ida_curves`, :func:`plot_fragility`;
 - :mod:`.design`: :func:`plot_damping_curve`;
 - :mod:`.collapse`: FEMA P695 assessments -- :func:`plot_collapse_ida`, :func:`plot_pushover`,
-  :func:`plot_collapse_fragility`.
+  :func:`plot_collapse_fragility`;
+- :mod:`.verification`: ASCE 7-16 verifications -- :func:`plot_suite_spectra`, :func:`plot_story_drifts`.
 """
 
 from .collapse import plot_collapse_fragility, plot_collapse_ida, plot_pushover
@@ -26,9 +27,10 @@ from .response import (
                        plot_story_hysteresis,
                        plot_wall_hysteresis,
 )
+from .verification import plot_story_drifts, plot_suite_spectra
 from .walls import plot_wall_amplitude, plot_wall_loops, plot_wall_temperature
 
 __all__ = ["plot_collapse_fragility", "plot_collapse_ida", "plot_damping_curve", "plot_drift_envelope", "plot_energy",
            "plot_fragility", "plot_ida_curves", "plot_loops", "plot_pushover", "plot_roof_displacement",
-           "plot_story_hysteresis", "plot_wall_amplitude", "plot_wall_hysteresis", "plot_wall_loops",
-           "plot_wall_temperature"]
+           "plot_story_drifts", "plot_story_hysteresis", "plot_suite_spectra", "plot_wall_amplitude",
+           "plot_wall_hysteresis", "plot_wall_loops", "plot_wall_temperature"]

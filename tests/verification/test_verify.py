@@ -1,0 +1,233 @@
+"""ASCE 7-16 Sec. 16.4 acceptance on constructed cases and Sec. 18.6 device demands against the result histories
+(the velocity as the derivative of the deformation, computed here)."""
+
+import concurrent.futures
+import dataclasses
+
+import numpy as np
+import pytest
+from verification_cases import r1_wall, synthetic_records, three_story
+
+from vdw_frames import ShearBuilding, simulate
+from vdw_frames.element import ThermalProperties, WallLimits
+from vdw_frames.element.thermal import ISD110_LOSS_PEAK
+from vdw_frames.verification import Site
+from vdw_frames.verification.verify import (
+    PropertyBounds,
+    acceptance,
+    cycle_energies,
+    unacceptable_reasons,
+    verify,
+    wall_peaks,
+)
+
+SITE = Site(1.5, 0.9, 8.0)
+NAMES = [f"r{i}" for i in range(11)]
+
+
+def cases(drifts, reasons, risk="II"):
+    return acceptance(np.array(drifts), reasons, risk, records=NAMES)
+
+
+def test_one_collapse_among_eleven_is_allowed_for_risk_category_ii_only():
+    drifts = np.full((3, 11, 2), 0.01)
+    drifts[0, :, 1] = np.linspace(0.005, 0.025, 11)
+    reasons = [[""] * 11 for _ in range(3)]
+    reasons[0][4] = "collapse"
+    criteria, statistic, limit, allowed = cases(drifts, reasons)
+    assert allowed == 1 and limit == pytest.approx(0.04)
+    count = criteria[0]
+    assert count.passed and count.value == 1 and count.governing == "nominal: r4"
+    # the drift statistic leaves the unacceptable record out: max(mean, 1.2 median) of the other ten
+    acceptable = np.delete(drifts[0], 4, axis=0)
+    expected = np.maximum(acceptable.mean(axis=0), 1.2 * np.median(acceptable, axis=0))
+    np.testing.assert_allclose(statistic[0], expected, rtol=1e-14)
+    np.testing.assert_allclose(statistic[1], drifts[1].mean(axis=0), rtol=1e-14)
+    assert all(c.passed for c in criteria)
+    # Risk Category III allows none; a second collapse fails Risk Category II
+    assert not cases(drifts, reasons, "III")[0][0].passed
+    reasons[0][7] = "collapse"
+    criteria = cases(drifts, reasons)[0]
+    assert not criteria[0].passed and criteria[0].value == 2 and criteria[0].limit == 1
+    assert criteria[0].governing == "nominal: r4; r7" and criteria[2].passed
+    # nothing acceptable: the mean of all, said so
+    reasons[1] = ["collapse"] * 11
+    criteria, statistic, _, _ = cases(drifts, reasons)
+    np.testing.assert_allclose(statistic[1], drifts[1].mean(axis=0), rtol=1e-14)
+    assert "mean of all (none acceptable)" in criteria[3].text
+
+
+def test_a_mean_drift_exactly_at_the_limit_passes_and_just_above_fails():
+    drifts = np.full((3, 11, 3), 0.01)
+    drifts[2, :, 1] = 0.04  # mean exactly 2 x 0.020 in story 2 of the lower bound
+    reasons = [[""] * 11 for _ in range(3)]
+    criteria = cases(drifts, reasons)[0]
+    lower = criteria[5]
+    assert lower.passed and lower.value == pytest.approx(0.04, rel=1e-15) and lower.limit == 0.04
+    assert "lower, story 2" in lower.governing
+    drifts[2, 3, 1] = 0.04 + 11 * 1e-6  # mean 0.040001
+    criteria = cases(drifts, reasons)[0]
+    assert not criteria[5].passed and "story 2" in criteria[5].governing and "r3" in criteria[5].governing
+    assert criteria[1].passed and criteria[3].passed
+    # Risk Category IV: 2 x 0.010
+    drifts[:, :, :] = 0.02
+    assert cases(drifts, reasons, "IV")[0][1].passed
+    drifts[0, 0, 0] = 0.0201
+    assert not cases(drifts, reasons, "IV")[0][1].passed
+
+
+def test_non_convergence_collapse_and_strain_beyond_the_identified_range_are_unacceptable():
+    building = three_story()
+    motion = synthetic_records(1, 5.0)[0].scaled(3.0)
+    result = simulate(building, motion)
+    assert unacceptable_reasons(result) == []
+    assert unacceptable_reasons(dataclasses.replace(result, converged=False)) == ["non-convergence"]
+    peak = float(np.max(result.peak_drift_ratio))
+    assert "beyond the model's validity" in unacceptable_reasons(result, valid_drift_ratio=0.9 * peak)[0]
+    collapsed = simulate(building, motion, collapse_drift_ratio=0.5 * peak)
+    assert collapsed.collapsed and unacceptable_reasons(collapsed)[0].startswith("collapse")
+    narrow = building.with_walls({1: (dataclasses.replace(r1_wall(), strain_range=(0.5, 1.0)),), 2: (r1_wall(),)})
+    with pytest.warns(UserWarning, match="outside the range"):
+        reasons = unacceptable_reasons(simulate(narrow, motion))
+    assert len(reasons) == 1 and reasons[0].startswith("wall(s) 1 strained beyond their identified range (up to ")
+    assert reasons[0].endswith("against 100 % in wall 1)")
+
+
+def test_a_failed_wall_is_measured_up_to_its_failure():
+    building = three_story()
+    motion = synthetic_records(1, 5.0)[0].scaled(3.0)
+    free = simulate(building, motion)
+    limit = 0.6 * float(free.peak_wall_strain[0])
+    weak = dataclasses.replace(r1_wall(), limits=WallLimits(strain=limit))
+    failing = building.with_walls({**building.walls, 1: (weak,)})
+    result = simulate(failing, motion)
+    assert result.wall_failed.tolist() == [True, False, False]
+    step = int(round(result.wall_failure_time[0] / (result.time[1] - result.time[0])))
+    peaks = wall_peaks(result)
+    drift = result.drift[: step + 1, 0]
+    assert peaks["deformation"][0] == pytest.approx(np.abs(drift).max(), rel=1e-12)
+    assert limit * 10.0 <= peaks["deformation"][0] < np.abs(result.drift[:, 0]).max()
+    assert peaks["deformation"][1] == pytest.approx(np.abs(result.drift[:, 1]).max(), rel=1e-12)
+    assert unacceptable_reasons(result) == ["wall(s) 1 (strain) failed"]
+
+
+def own_cycle_energies(deformation, force):
+    """Work of each cycle between upward zero crossings, written as a plain loop."""
+    work, cycles, start = 0.0, [], None
+    for i in range(1, deformation.size):
+        work += 0.5 * (force[i] + force[i - 1]) * (deformation[i] - deformation[i - 1])
+        if deformation[i - 1] < 0 <= deformation[i]:
+            if start is not None:
+                cycles.append(work - start)
+            start = work
+    return (max(cycles) if cycles else work), work
+
+
+@pytest.fixture(scope="module")
+def verified():
+    records = synthetic_records(12, 5.0)
+    with concurrent.futures.ThreadPoolExecutor(2) as executor:
+        return verify(three_story(), SITE, records, bounds=(0.8, 1.25), executor=executor, progress=False), records
+
+
+def test_device_demands_equal_the_maxima_of_the_histories(verified):
+    result, _ = verified
+    assert [c[0] for c in result.cases] == ["nominal", "upper", "lower"]
+    for case, factor in result.cases:
+        c = [name for name, _ in result.cases].index(case)
+        # the bound's building written out: every wall's G1, G2, eta1, eta2 times lambda
+        building = ShearBuilding(masses=(100.0, 100.0, 80.0), stiffnesses=(1.2e5, 1.0e5, 0.8e5), damping_ratio=0.03,
+                                 walls={1: r1_wall(factor), 2: r1_wall(factor), 3: r1_wall(0.8 * factor)},
+                                 story_heights=(3500.0, 3200.0, 3200.0))
+        for r in (0, 7):
+            history = simulate(building, result.suite.motions[r].scaled(float(result.suite.factors[r])))
+            dt = history.time[1] - history.time[0]
+            drift = history.drift  # the walls span the stories: their deformation is the drift
+            velocity = np.gradient(drift, dt, axis=0)
+            np.testing.assert_allclose(result.wall_peaks["deformation"][c, r], np.abs(drift).max(axis=0), rtol=1e-9)
+            np.testing.assert_allclose(result.wall_peaks["velocity"][c, r], np.abs(velocity).max(axis=0), rtol=1e-9)
+            # and close to Newmark's own story velocities (a different derivative)
+            newmark = np.diff(np.column_stack([np.zeros(len(history.time)), history.velocity]), axis=1)
+            np.testing.assert_allclose(result.wall_peaks["velocity"][c, r], np.abs(newmark).max(axis=0), rtol=0.03)
+            np.testing.assert_allclose(result.wall_peaks["force"][c, r], np.abs(history.story_wall_force).max(axis=0),
+                                       rtol=1e-9)
+            np.testing.assert_allclose(result.wall_peaks["strain"][c, r], np.abs(drift).max(axis=0) / 10.0, rtol=1e-9)
+            for j in range(3):
+                largest, total = own_cycle_energies(drift[:, j], history.story_wall_force[:, j])
+                assert result.wall_peaks["cycle_energy"][c, r, j] == pytest.approx(largest, rel=1e-9)
+                assert result.wall_peaks["cumulative_energy"][c, r, j] == pytest.approx(total, rel=1e-9)
+                assert 0 < largest <= total
+            # the total work of the walls is the energy history's
+            assert result.wall_peaks["cumulative_energy"][c, r].sum() == pytest.approx(
+                history.energy.wall_work[-1], rel=1e-6)
+            np.testing.assert_allclose(result.peak_drift_ratio[c, r], history.peak_drift_ratio, rtol=1e-9)
+    for j, demand in enumerate(result.walls):
+        for name in ("deformation", "strain", "velocity", "force", "cycle_energy", "cumulative_energy"):
+            assert getattr(demand, name) == result.wall_peaks[name][:, :, j].max()
+        c, r = np.unravel_index(np.argmax(result.wall_peaks["deformation"][:, :, j]), (3, 11))
+        assert demand.governing == f"{result.cases[c][0]}, {result.suite.motions[r].name}"
+        assert demand.temperature_rise is None
+    assert result.walls[0].story == 1 and result.walls[2].story == 3
+    assert f"{result.walls[0].deformation:.1f} mm" in result.specification
+
+
+def test_the_mean_drift_is_that_of_the_suite(verified):
+    result, _ = verified
+    np.testing.assert_allclose(result.drift_statistic, result.peak_drift_ratio.mean(axis=1), rtol=1e-14)
+    assert result.passed and len(result.criteria) == 6
+
+
+def test_collapses_are_counted_end_to_end(verified):
+    result, _ = verified
+    suite = result.suite
+    limit = float(np.median(result.peak_drift_ratio[0].max(axis=1)))
+    with concurrent.futures.ThreadPoolExecutor(2) as executor:
+        again = verify(three_story(), SITE, list(suite.motions), bounds=(0.8, 1.25), collapse_drift_ratio=limit,
+                       executor=executor, progress=False)
+    expected = [simulate(three_story(), m.scaled(float(f)), collapse_drift_ratio=limit).collapsed
+                for m, f in zip(suite.motions, suite.factors, strict=True)]
+    assert 2 <= sum(expected) <= 9
+    assert again.collapsed[0].tolist() == expected
+    assert again.criteria[0].value == sum(expected) and not again.criteria[0].passed and not again.passed
+
+
+def test_walls_that_heat_report_their_temperature_rise(verified):
+    result, records = verified
+    thermal = ThermalProperties(ISD110_LOSS_PEAK, 1.8, 21.0)
+    building = three_story()
+    heated = building.with_walls({s: tuple(dataclasses.replace(w, thermal=thermal) for w in ws)
+                                  for s, ws in building.walls.items()})
+    with concurrent.futures.ThreadPoolExecutor(2) as executor:
+        hot = verify(heated, SITE, list(result.suite.motions), bounds=(0.8, 1.25), executor=executor, progress=False)
+    rises = []
+    for _, factor in hot.cases:
+        variant = heated.with_walls({s: tuple(w.scaled(factor) for w in ws) for s, ws in heated.walls.items()})
+        for m, f in zip(hot.suite.motions, hot.suite.factors, strict=True):
+            temperature = simulate(variant, m.scaled(float(f))).wall_temperature
+            rises.append(np.max(temperature - temperature[0], axis=0))
+    np.testing.assert_allclose([w.temperature_rise for w in hot.walls], np.max(rises, axis=0), rtol=1e-9)
+    assert all(w.temperature_rise > 0 for w in hot.walls) and "temperature rise" in hot.specification
+
+
+def test_cycle_energies_of_a_sine():
+    t = np.linspace(0, 3.0, 30001)
+    deformation, force = 2.0 * np.sin(2 * np.pi * t), 5.0 * np.cos(2 * np.pi * t) + 3.0 * np.sin(2 * np.pi * t)
+    largest, total = cycle_energies(deformation, force)
+    assert largest == pytest.approx(np.pi * 2.0 * 5.0, rel=1e-6)  # the loop area pi A F_loss
+    assert total == pytest.approx(3 * np.pi * 2.0 * 5.0, rel=1e-6)
+
+
+def test_bad_verifications_are_refused(verified):
+    _, records = verified
+    with pytest.raises(ValueError, match="bounds are required"):
+        verify(three_story(), SITE, records)
+    with pytest.raises(ValueError, match="lambda_min must be <= 1"):
+        verify(three_story(), SITE, records, bounds=(1.1, 1.2))
+    with pytest.raises(ValueError, match=r"lambda_max must be >= 1 \(the upper-bound properties\), got 0.9"):
+        PropertyBounds(0.8, 0.9)
+    with pytest.raises(ValueError, match="no story heights"):
+        verify(three_story(heights=False), SITE, records, bounds=(0.8, 1.2))
+    with pytest.raises(ValueError, match="no walls"):
+        verify(three_story(walls=False), SITE, records, bounds=(0.8, 1.2))
+    with pytest.raises(ValueError, match="10 records given"):
+        verify(three_story(), SITE, records[:10], bounds=(0.8, 1.2))

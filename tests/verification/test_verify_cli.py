@@ -1,0 +1,132 @@
+"""The ``vdw-frames verify`` command on a three-story building file and a folder of short synthetic records:
+the report, CSV files and figures it writes agree with :func:`verify` run here; bad input is one error line."""
+
+import concurrent.futures
+import csv
+
+import numpy as np
+import pytest
+from verification_cases import synthetic_records
+
+from vdw_frames.cli import main
+from vdw_frames.config import load_building
+from vdw_frames.motion import read_at2, write_at2
+from vdw_frames.verification import Site, verify
+
+BUILDING = """
+masses = [100.0, 100.0, 80.0]
+stiffnesses = [1.2e5, 1.0e5, 0.8e5]
+story_heights = [3500.0, 3200.0, 3200.0]
+damping_ratio = 0.03
+
+[[walls]]
+stories = [1, 2]
+area = 2.0e5
+thickness = 10.0
+parameters = {G1 = 0.5, G2 = 1.0, eta1 = 0.05, eta2 = 0.2, r = 1.0}
+
+[[walls]]
+stories = [3]
+area = 2.0e5
+thickness = 10.0
+parameters = {G1 = 0.4, G2 = 0.8, eta1 = 0.04, eta2 = 0.16, r = 1.0}
+"""
+
+
+@pytest.fixture(scope="module")
+def inputs(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("verify_cli")
+    (folder / "building.toml").write_text(BUILDING)
+    records = folder / "records"
+    records.mkdir()
+    for motion in synthetic_records(12, 5.0):
+        write_at2(motion, records / f"{motion.name.replace(' ', '_')}.AT2")
+    return folder
+
+
+def test_verify_command_writes_the_report(inputs, capsys):
+    out = inputs / "out"
+    code = main(["verify", str(inputs / "building.toml"), "--sms", "1.5", "--sm1", "0.9", "--tl", "8",
+                 "--bounds", "0.8", "1.25", "--records", str(inputs / "records"), "--out", str(out)])
+    printed = capsys.readouterr().out
+    assert code == 0, printed
+    assert "verification: PASS" in printed and "report:" in printed
+    for name in ("report.md", "suite.csv", "spectra.csv", "drifts.csv", "walls.csv", "suite_spectra.png",
+                 "story_drifts.png"):
+        assert (out / name).stat().st_size > 0, name
+    # the same verification run here
+    building = load_building(inputs / "building.toml")
+    records = [read_at2(p) for p in sorted((inputs / "records").glob("*.AT2"))]
+    with concurrent.futures.ThreadPoolExecutor(2) as executor:
+        expected = verify(building, Site(1.5, 0.9, 8.0), records, bounds=(0.8, 1.25), executor=executor,
+                          progress=False)
+    with open(out / "walls.csv", newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    assert [float(row["deformation_mm"]) for row in rows] == pytest.approx([w.deformation for w in expected.walls],
+                                                                          rel=1e-12)
+    with open(out / "drifts.csv", newline="") as handle:
+        drifts = np.array([float(row["peak_drift_ratio"]) for row in csv.DictReader(handle)])
+    np.testing.assert_allclose(drifts, expected.peak_drift_ratio.ravel(), rtol=1e-12)
+    with open(out / "spectra.csv", newline="") as handle:
+        ratio = np.array([float(row["mean_over_target"]) for row in csv.DictReader(handle)])
+    assert ratio.min() == pytest.approx(0.9, rel=1e-9)
+    report = (out / "report.md").read_text()
+    assert "**Result: PASS**" in report and "![" in report and "Prototype tests" in report
+    assert "mean story drift ratio (lower)" in report
+
+
+@pytest.mark.parametrize("extra, words", [
+    ([], "--bounds LAMBDA_MIN LAMBDA_MAX"),
+    (["--bounds", "1.1", "1.2"], "lambda_min must be <= 1"),
+    (["--bounds", "0.8", "1.2", "--sm1", "20"], "S_M1 = 20.0 g is larger than S_MS x T_L"),
+    (["--bounds", "0.8", "1.2", "--count", "10"], "count = 10"),
+    (["--bounds", "0.8", "1.2", "--records", "nowhere"], "--records nowhere"),
+])
+def test_verify_command_errors_are_one_line(inputs, capsys, extra, words):
+    args = ["verify", str(inputs / "building.toml"), "--sms", "1.5", "--sm1", "0.9", "--tl", "8",
+            "--records", str(inputs / "records"), "--out", str(inputs / "bad")]
+    # a later --sm1 or --records overrides the earlier one (argparse keeps the last)
+    code = main(args + extra)
+    error = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(error) == 1 and error[0].startswith("vdw-frames: error:") and words in error[0]
+
+
+def test_site_and_bounds_from_the_building_file(inputs, capsys):
+    path = inputs / "with_site.toml"
+    path.write_text(BUILDING.replace("[[walls]]", """[site]
+ss = 1.0
+s1 = 0.15
+site_class = "D"
+tl = 8.0
+risk_category = "III"
+
+[verification]
+bounds = [0.85, 1.2]
+bounds_source = "manufacturer's data sheet (example)"
+
+[[walls]]""", 1))
+    out = inputs / "out_file"
+    code = main(["verify", str(path), "--records", str(inputs / "records"), "--out", str(out)])
+    printed = capsys.readouterr().out
+    assert code == 0, printed
+    # F_a = 1.1 at S_S = 1.0 and F_v = 2.3 at S_1 = 0.15 on Site Class D (Tables 11.4-1, 11.4-2)
+    assert "S_MS = 1.1 g, S_M1 = 0.345 g" in printed and "Risk Category III" in printed
+    report = (out / "report.md").read_text()
+    assert "lambda_min = 0.85, lambda_max = 1.2 (manufacturer's data sheet (example))" in report
+    assert "2 x 0.015 h_sx" in report
+    with open(out / "drifts.csv", newline="") as handle:
+        assert {row["lambda"] for row in csv.DictReader(handle)} == {"1.0", "1.2", "0.85"}
+
+
+@pytest.mark.parametrize("table, words", [
+    ("[verification]\nbounds = [0.8]\n", "bounds must be [lambda_min, lambda_max]"),
+    ("[verification]\nbounds = [0.8, 1.2]\nsource = 'x'\n", "unknown verification keys"),
+    ("[site]\nsms = 1.5\ntl = 8.0\n", "only ['sms']"),
+    ("[site]\nsms = 1.5\nsm1 = 0.9\n", "the site needs tl"),
+])
+def test_bad_verification_tables_name_the_key(inputs, capsys, table, words):
+    path = inputs / "bad_table.toml"
+    path.write_text(BUILDING.replace("[[walls]]", table + "\n[[walls]]", 1))
+    code = main(["verify", str(path), "--records", str(inputs / "records"), "--out", str(inputs / "bad2")])
+    error = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(error) == 1 and words in error[0] and "bad_table.toml" in error[0]

@@ -1,0 +1,124 @@
+"""The report of a design verification: Markdown text and CSV tables of a
+:class:`~vdw_frames.verification.verify.VerificationResult` (the CLI writes them with the package's atomic writer
+and draws the figures with :mod:`vdw_frames.plotting.verification`).
+
+Units in the tables' headers: s, g, -, mm, mm/s, N, N mm, K.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+from collections.abc import Mapping
+
+import numpy as np
+
+from ..motion.record import G
+from .suite import MEAN_FRACTION
+from .verify import ALLOWABLE_DRIFT, DRIFT_FACTOR, VerificationResult
+
+
+def _csv(rows: list[list[object]]) -> str:
+    handle = io.StringIO(newline="")
+    csv.writer(handle).writerows(rows)
+    return handle.getvalue()
+
+
+def suite_csv(result: VerificationResult) -> str:
+    """One row per record: name, amplitude factor, shape misfit, PGA of the scaled record (g)."""
+    suite = result.suite
+    rows: list[list[object]] = [["record", "factor", "shape_misfit", "scaled_pga_g"]]
+    for motion, factor, misfit in zip(suite.motions, suite.factors, suite.misfits, strict=True):
+        rows.append([motion.name, repr(float(factor)), repr(float(misfit)), repr(float(factor) * motion.pga / G)])
+    return _csv(rows)
+
+
+def spectra_csv(result: VerificationResult) -> str:
+    """One row per period of the grid: target, suite mean (g) and their ratio."""
+    suite = result.suite
+    rows: list[list[object]] = [["period_s", "target_g", "mean_g", "mean_over_target"]]
+    for t, target, mean in zip(suite.periods, suite.target, suite.mean_spectrum, strict=True):
+        rows.append([repr(float(t)), repr(float(target / G)), repr(float(mean / G)), repr(float(mean / target))])
+    return _csv(rows)
+
+
+def drifts_csv(result: VerificationResult) -> str:
+    """One row per case, record and story: peak drift ratio, outcome and the reasons it is unacceptable."""
+    rows: list[list[object]] = [["case", "lambda", "record", "story", "peak_drift_ratio", "collapsed", "converged",
+                                 "unacceptable"]]
+    for c, (case, factor) in enumerate(result.cases):
+        for r, motion in enumerate(result.suite.motions):
+            for k, ratio in enumerate(result.peak_drift_ratio[c, r]):
+                rows.append([case, repr(factor), motion.name, k + 1, repr(float(ratio)), int(result.collapsed[c, r]),
+                             int(result.converged[c, r]), result.unacceptable[c][r]])
+    return _csv(rows)
+
+
+def walls_csv(result: VerificationResult) -> str:
+    """One row per wall: the test demands over the suite and the bounds (Sec. 18.6)."""
+    rows: list[list[object]] = [["wall", "story", "deformation_mm", "strain", "velocity_mm_s", "force_N",
+                                 "cycle_energy_Nmm", "cumulative_energy_Nmm", "temperature_rise_K", "governing"]]
+    for w in result.walls:
+        rows.append([w.wall + 1, w.story, repr(w.deformation), repr(w.strain), repr(w.velocity), repr(w.force),
+                     repr(w.cycle_energy), repr(w.cumulative_energy),
+                     "" if w.temperature_rise is None else repr(w.temperature_rise), w.governing])
+    return _csv(rows)
+
+
+def markdown(result: VerificationResult, figures: Mapping[str, str], title: str) -> str:
+    """The report: site, suite, bounds, each criterion with pass/fail, the drift table, the wall demands and the
+    prototype test specification; ``figures`` maps a caption to a file name relative to the report."""
+    site, suite = result.site, result.suite
+    category = site.risk_category
+    lines = [f"# {title}", "",
+             f"**Result: {'PASS' if result.passed else 'FAIL'}** "
+             f"({sum(c.passed for c in result.criteria)} of {len(result.criteria)} criteria pass)", "",
+             "ASCE 7-16 was not at hand: every clause below was read from secondary sources (transcriptions, "
+             "implementers' code, the committee chair's slides); Table 12.12-1 and the Chapter 18 provisions were "
+             "not read at all (see the package documentation, `vdw_frames.verification`).", "",
+             "## Site and target (Sec. 11.4)", "", f"- {site.describe()}", "",
+             "## Suite (Sec. 16.2)", "",
+             f"- {suite.range.describe()}",
+             f"- {len(suite.motions)} records chosen from {suite.candidates} by the smallest misfit of spectral shape; "
+             f"each scaled by its own best-fit factor times one common factor, the smallest for which the mean is "
+             f">= {100 * MEAN_FRACTION:.0f} % of the target at every one of {suite.periods.size} periods of the range "
+             f"(governing at T = {suite.governing_period:.3f} s; smallest ratio {suite.ratio.min():.4f})", "",
+             "| record | factor | misfit | scaled PGA (g) |", "|---|---|---|---|"]
+    for motion, factor, misfit in zip(suite.motions, suite.factors, suite.misfits, strict=True):
+        lines.append(f"| {motion.name} | {factor:.3f} | {misfit:.3f} | {factor * motion.pga / G:.3f} |")
+    lines += ["", "## Property bounds (Sec. 18.2.4.5)", "",
+              f"- lambda_min = {result.bounds.lower:g}, lambda_max = {result.bounds.upper:g} ({result.bounds.source}); "
+              "every wall's moduli and viscosities times lambda (`wall.scaled`)", "",
+              "## Acceptance (Sec. 16.4)", "",
+              f"- Drift limit {DRIFT_FACTOR:g} x {ALLOWABLE_DRIFT[category]:g} h_sx (Table 12.12-1, all other "
+              f"structures, Risk Category {category}) = {result.drift_limit:.4f}; "
+              f"{result.allowed_unacceptable} unacceptable response(s) allowed per suite", "",
+              "| criterion | clause | result | value | limit | governing |", "|---|---|---|---|---|---|"]
+    for criterion in result.criteria:
+        lines.append(f"| {criterion.name} | {criterion.clause} | {'pass' if criterion.passed else 'FAIL'} | "
+                     f"{criterion.value:.4g} | {criterion.limit:.4g} | {criterion.governing} |")
+    lines += ["", "| story | " + " | ".join(f"{case} mean drift (%)" for case, _ in result.cases) + " |",
+              "|---" * (len(result.cases) + 1) + "|"]
+    for k in range(result.drift_statistic.shape[1]):
+        lines.append(f"| {k + 1} | " + " | ".join(f"{100 * v:.3f}" for v in result.drift_statistic[:, k]) + " |")
+    lines += ["", "## Device test demands (Sec. 18.6)", "",
+              "| wall | story | deformation (mm) | strain (%) | velocity (mm/s) | force (kN) | energy/cycle (kN m) | "
+              "cumulative (kN m) | temperature rise (K) | governing |", "|---" * 10 + "|"]
+    for w in result.walls:
+        rise = "-" if w.temperature_rise is None else f"{w.temperature_rise:.1f}"
+        lines.append(f"| {w.wall + 1} | {w.story} | {w.deformation:.1f} | {100 * w.strain:.0f} | {w.velocity:.0f} | "
+                     f"{w.force / 1e3:.1f} | {w.cycle_energy / 1e6:.2f} | {w.cumulative_energy / 1e6:.2f} | {rise} | "
+                     f"{w.governing} |")
+    lines += ["", result.specification, ""]
+    if any(any(row) for row in result.unacceptable):
+        lines += ["## Unacceptable responses", ""]
+        for index, (case, _) in enumerate(result.cases):
+            for r, reason in enumerate(result.unacceptable[index]):
+                if reason:
+                    lines.append(f"- {case}, {suite.motions[r].name}: {reason}")
+        lines.append("")
+    for caption, name in figures.items():
+        lines += [f"![{caption}]({name})", "", f"*{caption}*", ""]
+    lines += ["Files: suite.csv, spectra.csv, drifts.csv, walls.csv.",
+              f"Largest single peak drift ratio: {100 * float(np.max(result.peak_drift_ratio)):.3f} %.", ""]
+    return "\n".join(lines)

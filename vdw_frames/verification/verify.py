@@ -1,0 +1,494 @@
+"""Design verification of a building with walls: ASCE 7-16 Chapter 16 analyses at the Chapter 18 property bounds.
+
+:func:`verify` selects and scales a suite to the site's MCE_R spectrum (:mod:`.suite`, Sec. 16.2), runs it at the
+nominal, upper- and lower-bound wall properties and judges the results:
+
+* **bounds** (Sec. 18.2.4.5, property modification factors; the clause's text was NOT read -- no copy was at
+  hand -- so how lambda_ae, lambda_test and lambda_spec combine is left to the user): the user states the
+  combined factors lambda_min <= 1 <= lambda_max (:class:`PropertyBounds`), applied to every wall as
+  ``wall.scaled(lambda)`` (moduli and viscosities times lambda: K*(f) scales, the loss factor does not).  Walls
+  with a thermal description (:class:`~vdw_frames.ThermalProperties`) also heat in every analysis; their
+  ambient temperature range is a further bound (run the verification at the range's ends with
+  ``wall.at_ambient(T)``, or give lambda factors that include it) -- not built in here.
+* **unacceptable responses** (Sec. 16.4.1.1): an analysis whose story drift ratio exceeded the collapse limit
+  (``collapse_drift_ratio``), that did not converge, whose drift ratio exceeded ``valid_drift_ratio`` (the
+  largest drift the story models are valid for, if given), in which a wall failed (its
+  :class:`~vdw_frames.element.limits.WallLimits`), or in which a wall's strain went beyond the upper end of the
+  amplitudes its parameters were identified for (``strain_range``: the wall model is not valid there).  Allowed
+  per bound: Risk Category I and II, not more than 1 of the suite (the ASCE 7-16 chair's slides, Hamburger 2014:
+  "For Risk Category II Structures not more than 1 motion can produce unacceptable response"); Risk Category III
+  and IV: none -- from recollection of the standard, NOT verified in any source read (the strict reading).
+* **mean story drift ratio** (Sec. 16.4.1.2, as transcribed for ASCE 7-22; believed the same for 7-16, not
+  verified): per story and bound, the mean over the suite of the peak drift ratio <= 2 x the allowable drift of
+  Table 12.12-1 (row "all other structures": 0.020, 0.020, 0.015, 0.010 h_sx for Risk Categories I, II, III,
+  IV; the table was NOT read from the standard: values as recalled and partly corroborated by secondary
+  sources), i.e. 0.040 for Risk Category II.  Where some response is unacceptable the statistic is taken
+  over the acceptable ones as max(mean, 1.2 x median) (the ASCE 7-22 transcription's rule; conservative).
+  Compared to a relative 1e-12, so that a mean exactly at the limit passes despite round-off.
+* **device test demands** (Sec. 18.6, prototype tests; its text was NOT read): per wall, over the suite and the
+  bounds: the largest deformation (mm, the wall's own: strain x thickness), strain (-), velocity (mm/s, the
+  central-difference derivative of the deformation history), force (N), energy of one cycle (N mm: the work
+  f d(delta) between successive upward zero crossings of the deformation) and cumulative energy (N mm: the work
+  over the record), and temperature rise (K, walls that heat); from them, the prototype test specification
+  written by :func:`prototype_test_specification` (this package's rule, stated there).
+
+Units: N, mm, s; drift ratios -, energies N mm, temperatures K.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import math
+import os
+import sys
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .. import _warnings
+from .._validation import positive, show
+from ..frame.building import ShearBuilding
+from ..frame.results import SimulationResult
+from ..frame.simulation import simulate
+from ..motion.record import GroundMotion
+from . import spectrum
+from .spectrum import Site
+from .suite import MIN_RECORDS, ScaledSuite, scaled_suite
+
+ALLOWABLE_DRIFT = {"I": 0.020, "II": 0.020, "III": 0.015, "IV": 0.010}
+"""ASCE 7-16 Table 12.12-1, "all other structures", Delta_a / h_sx by Risk Category (NOT read from the standard:
+recalled, partly corroborated by secondary sources)."""
+DRIFT_FACTOR = 2.0
+"""ASCE 7-16 Sec. 16.4.1.2: the mean drift limit is 2 x Table 12.12-1 (ASCE 7-22 wording, secondary)."""
+ALLOWED_UNACCEPTABLE = {"I": 1, "II": 1, "III": 0, "IV": 0}
+"""ASCE 7-16 Sec. 16.4.1.1: unacceptable responses allowed in a suite (I, II: Hamburger 2014; III, IV: recalled,
+not verified)."""
+MEDIAN_FACTOR = 1.2
+"""Where responses are unacceptable: the drift statistic is max(mean, 1.2 x median) of the acceptable ones
+(ASCE 7-22 wording as transcribed; not verified for ASCE 7-16)."""
+
+
+@dataclass(frozen=True)
+class PropertyBounds:
+    """Property modification factors of the walls (ASCE 7-16 Sec. 18.2.4.5: the clause was not read): the
+    combined ``lower`` (lambda_min, 0 < lambda_min <= 1) and ``upper`` (lambda_max >= 1) factors, applied as
+    ``wall.scaled(lambda)``; ``source``: where they come from (stated in the report)."""
+
+    lower: float
+    upper: float
+    source: str = "stated by the user"
+
+    def __post_init__(self) -> None:
+        lower, upper = positive("lambda_min", self.lower), positive("lambda_max", self.upper)
+        if lower > 1.0:
+            raise ValueError(f"lambda_min must be <= 1 (the lower-bound properties), got {show(self.lower)}")
+        if upper < 1.0:
+            raise ValueError(f"lambda_max must be >= 1 (the upper-bound properties), got {show(self.upper)}")
+        object.__setattr__(self, "lower", lower)
+        object.__setattr__(self, "upper", upper)
+
+    @property
+    def cases(self) -> tuple[tuple[str, float], ...]:
+        """(name, lambda) of the analyses: nominal, upper bound, lower bound."""
+        return (("nominal", 1.0), ("upper", self.upper), ("lower", self.lower))
+
+
+@dataclass(frozen=True)
+class WallDemand:
+    """The test demands on one wall over the suite and the bounds (Sec. 18.6; units in the names' docs).
+
+    ``story``; ``wall``: its index in ``building.wall_list``; ``deformation`` (mm), ``strain`` (-),
+    ``velocity`` (mm/s), ``force`` (N): largest magnitudes; ``cycle_energy`` (N mm): the largest work of one
+    cycle; ``cumulative_energy`` (N mm): the largest work over one record; ``temperature_rise`` (K; None when
+    the wall does not heat); ``governing``: "bound, record" of the largest deformation.
+    """
+
+    story: int
+    wall: int
+    deformation: float
+    strain: float
+    velocity: float
+    force: float
+    cycle_energy: float
+    cumulative_energy: float
+    temperature_rise: float | None
+    governing: str
+
+
+@dataclass(frozen=True)
+class Criterion:
+    """One acceptance criterion: ``name``, ``clause``, ``passed``, ``value`` and ``limit`` (its units in
+    ``text``), ``governing`` ("bound, record / story" that decides it) and a one-line ``text``."""
+
+    name: str
+    clause: str
+    passed: bool
+    value: float
+    limit: float
+    governing: str
+    text: str
+
+
+@dataclass(frozen=True)
+class VerificationResult:
+    """What :func:`verify` found (module docstring).
+
+    ``suite`` (:class:`~vdw_frames.verification.suite.ScaledSuite`); ``bounds``; ``cases``: (name, lambda) of
+    the analyses; ``peak_drift_ratio`` (-, (cases, records, stories)); ``collapsed``, ``converged`` (bool,
+    (cases, records)); ``unacceptable``: per case and record the reasons ("" when acceptable);
+    ``drift_statistic`` (-, (cases, stories)): the mean (or the statistic of Sec. 16.4.1.2 with unacceptable
+    responses); ``drift_limit`` (-); ``allowed_unacceptable``; ``criteria``; ``walls`` (:class:`WallDemand`
+    per wall); ``wall_peaks``: each analysis's :func:`wall_peaks`, name -> (cases, records, walls);
+    ``specification``: the prototype test specification text; ``first_period`` (s, with walls).
+    """
+
+    site: Site
+    suite: ScaledSuite
+    bounds: PropertyBounds
+    cases: tuple[tuple[str, float], ...]
+    peak_drift_ratio: np.ndarray
+    collapsed: np.ndarray
+    converged: np.ndarray
+    unacceptable: tuple[tuple[str, ...], ...]
+    drift_statistic: np.ndarray
+    drift_limit: float
+    allowed_unacceptable: int
+    criteria: tuple[Criterion, ...]
+    walls: tuple[WallDemand, ...]
+    wall_peaks: dict[str, np.ndarray]
+    specification: str
+    first_period: float
+
+    @property
+    def passed(self) -> bool:
+        """True when every criterion passed."""
+        return all(criterion.passed for criterion in self.criteria)
+
+
+# ----------------------------------------------------------------------------------------------- the demands
+def wall_histories(result: SimulationResult) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(deformation mm, velocity mm/s, force N) histories of every wall, (steps, walls): deformation = strain x
+    thickness (the wall's own), velocity its central-difference derivative (``numpy.gradient``)."""
+    thickness = np.array([wall.thickness for _, wall in result.building.wall_list], dtype=float)
+    deformation = result.wall_strain * thickness
+    dt = float(result.time[1] - result.time[0]) if result.time.size > 1 else 1.0
+    velocity = np.gradient(deformation, dt, axis=0) if deformation.shape[0] > 1 else np.zeros_like(deformation)
+    return deformation, velocity, result.wall_force
+
+
+def cycle_energies(deformation: np.ndarray, force: np.ndarray) -> tuple[float, float]:
+    """(largest work of one cycle, total work) of one wall (N mm): the trapezoidal work sum f d(delta) over the
+    history, and over each cycle between successive upward zero crossings of ``deformation`` (mm), the
+    crossing taken at the first sample >= 0 after one < 0.  Without a complete cycle, the largest is the total."""
+    work = np.concatenate([[0.0], np.cumsum(0.5 * (force[1:] + force[:-1]) * np.diff(deformation))])
+    crossings = np.nonzero((deformation[:-1] < 0.0) & (deformation[1:] >= 0.0))[0] + 1
+    total = float(work[-1])
+    if crossings.size < 2:
+        return total, total
+    return float(np.max(np.diff(work[crossings]))), total
+
+
+def unacceptable_reasons(result: SimulationResult, valid_drift_ratio: float | None = None) -> list[str]:
+    """Why one analysis's response is unacceptable in the sense of ASCE 7-16 Sec. 16.4.1.1 (module docstring):
+    collapse, non-convergence, a drift ratio (-) beyond ``valid_drift_ratio``, a failed wall, a wall strained
+    beyond the upper end of its identified range.  Empty when acceptable."""
+    walls = result.building.wall_list
+    peak_drift = result.peak_drift_ratio
+    reasons = []
+    if result.collapsed:
+        reasons.append(f"collapse (drift ratio beyond the collapse limit at {result.collapse_time:.3g} s)")
+    if not result.converged:
+        reasons.append("non-convergence")
+    if valid_drift_ratio is not None and peak_drift is not None and np.max(peak_drift) > valid_drift_ratio:
+        story = int(np.argmax(peak_drift)) + 1
+        reasons.append(f"drift ratio {np.max(peak_drift):.4g} in story {story} beyond the model's validity "
+                       f"({valid_drift_ratio:g})")
+    failed = result.wall_failed
+    if failed.any():
+        reasons.append("wall(s) " + ", ".join(f"{j + 1} ({result.wall_failure_mode[j]})"
+                                             for j in np.nonzero(failed)[0].tolist()) + " failed")
+    peak_strain = np.abs(result.wall_strain).max(axis=0, initial=0.0)
+    beyond = []
+    for j, (_, wall) in enumerate(walls):
+        identified = getattr(wall, "strain_range", None)
+        if identified is not None and not failed[j] and peak_strain[j] > identified[1]:
+            beyond.append((j, peak_strain[j], identified[1]))
+    if beyond:
+        worst = max(beyond, key=lambda item: item[1] / item[2])
+        reasons.append("wall(s) " + ", ".join(str(j + 1) for j, _, _ in beyond) + " strained beyond their identified "
+                       f"range (up to {100 * worst[1]:.0f} % against {100 * worst[2]:.0f} % in wall {worst[0] + 1})")
+    return reasons
+
+
+WALL_PEAKS = ("deformation", "strain", "velocity", "force", "cycle_energy", "cumulative_energy", "temperature_rise")
+"""The per-wall peaks of one analysis (:func:`wall_peaks`): mm, -, mm/s, N, N mm, N mm, K."""
+
+
+def wall_peaks(result: SimulationResult) -> dict[str, np.ndarray]:
+    """The device demands of one analysis, per wall in ``building.wall_list`` order (:data:`WALL_PEAKS`):
+    largest |deformation| (mm), |strain| (-), |velocity| (mm/s, :func:`wall_histories`), |force| (N), the
+    largest work of one cycle and the total work (N mm, :func:`cycle_energies`), the largest temperature rise
+    (K; NaN for walls that do not heat).  A wall that failed (its limits) is taken up to the step it failed at:
+    what follows is no longer the device's deformation."""
+    deformation, velocity, force = wall_histories(result)
+    walls = len(result.building.wall_list)
+    dt = float(result.time[1] - result.time[0]) if result.time.size > 1 else 1.0
+    ends = [deformation.shape[0] if t is None else min(int(round(t / dt)) + 1, deformation.shape[0])
+            for t in result.wall_failure_time]
+    strain = np.abs(result.wall_strain)
+    peaks: dict[str, list[float]] = {name: [] for name in WALL_PEAKS[:-1]}
+    for j, end in enumerate(ends):
+        rows = slice(0, max(end, 1))
+        largest, total = cycle_energies(deformation[rows, j], force[rows, j])
+        for name, value in (("deformation", np.abs(deformation[rows, j]).max(initial=0.0)),
+                            ("strain", strain[rows, j].max(initial=0.0)),
+                            ("velocity", np.abs(velocity[rows, j]).max(initial=0.0)),
+                            ("force", np.abs(force[rows, j]).max(initial=0.0)),
+                            ("cycle_energy", largest), ("cumulative_energy", total)):
+            peaks[name].append(float(value))
+    rise = result.peak_temperature_rise
+    return {**{name: np.array(values, dtype=float).reshape(walls) for name, values in peaks.items()},
+            "temperature_rise": np.full(walls, np.nan) if rise is None else np.asarray(rise, dtype=float)}
+
+
+def _summary(result: SimulationResult, valid_drift_ratio: float | None) -> dict[str, Any]:
+    """What verify keeps of one analysis: outcome, peak drift ratios, reasons it is unacceptable, wall peaks."""
+    peak_drift = result.peak_drift_ratio
+    assert peak_drift is not None  # verify refuses buildings without story heights
+    return {"collapsed": bool(result.collapsed), "converged": bool(result.converged),
+            "peak_drift_ratio": np.asarray(peak_drift, dtype=float),
+            "reasons": "; ".join(unacceptable_reasons(result, valid_drift_ratio)), **wall_peaks(result)}
+
+
+@dataclass(frozen=True)
+class _Task:
+    """One analysis of the verification: ``building`` (one bound's walls) under ``motion.scaled(factor)``."""
+
+    building: ShearBuilding
+    motion: GroundMotion
+    factor: float
+    collapse_drift_ratio: float
+    valid_drift_ratio: float | None
+
+    def run(self) -> dict[str, Any]:
+        with _warnings.collect() as caught:
+            result = simulate(self.building, self.motion.scaled(self.factor),
+                              collapse_drift_ratio=self.collapse_drift_ratio)
+        summary = _summary(result, self.valid_drift_ratio)
+        summary["warnings"] = [(w.category, w.message) for w in caught]
+        return summary
+
+
+def _run(task: _Task) -> dict[str, Any]:
+    return task.run()  # module level: executors pickle it by name
+
+
+# ----------------------------------------------------------------------------------------------- acceptance
+def acceptance(peak_drift_ratio: np.ndarray, unacceptable: Sequence[Sequence[str]], risk: str = "II", *,
+               cases: Sequence[str] = ("nominal", "upper", "lower"), records: Sequence[str] | None = None,
+               allowable_drift_ratio: float | None = None) -> tuple[tuple[Criterion, ...], np.ndarray, float, int]:
+    """The acceptance criteria of ASCE 7-16 Sec. 16.4.1.1 and 16.4.1.2 (module docstring) for peak story drift
+    ratios (-, (cases, records, stories)) and each analysis's reasons of unacceptable response ("" when
+    acceptable; (cases, records)).  ``risk``: Risk Category; ``allowable_drift_ratio``: Delta_a / h_sx of Table
+    12.12-1 if not the "all other structures" row.  Returns (criteria, drift statistic (cases, stories), drift
+    limit, unacceptable responses allowed): per case one criterion for the count and one for the drift."""
+    drifts = np.asarray(peak_drift_ratio, dtype=float)
+    if drifts.ndim != 3 or not np.isfinite(drifts).all() or (drifts < 0).any():
+        raise ValueError(f"peak_drift_ratio must be finite, >= 0 and shaped (cases, records, stories), got shape "
+                         f"{drifts.shape}")
+    category = spectrum.risk_category(risk)
+    n_cases, n_records, n_stories = drifts.shape
+    if len(unacceptable) != n_cases or any(len(row) != n_records for row in unacceptable) or len(cases) != n_cases:
+        raise ValueError(f"unacceptable and cases must match peak_drift_ratio's {n_cases} cases x {n_records} records")
+    names = list(records) if records is not None else [f"record {i + 1}" for i in range(n_records)]
+    allowable = ALLOWABLE_DRIFT[category] if allowable_drift_ratio is None else \
+        positive("allowable_drift_ratio", allowable_drift_ratio)
+    limit = DRIFT_FACTOR * allowable
+    allowed = ALLOWED_UNACCEPTABLE[category]
+    criteria = []
+    statistic = np.zeros((n_cases, n_stories))
+    for c, case in enumerate(cases):
+        bad = [r for r in range(n_records) if unacceptable[c][r]]
+        count_text = "; ".join(names[r] for r in bad) or "none"
+        criteria.append(Criterion(
+            name=f"unacceptable responses ({case})", clause="ASCE 7-16 Sec. 16.4.1.1", passed=len(bad) <= allowed,
+            value=float(len(bad)), limit=float(allowed), governing=f"{case}: {count_text}",
+            text=f"{len(bad)} of {n_records} unacceptable, {allowed} allowed for Risk Category {category} ({case}: "
+                 f"{count_text})"))
+        good = np.array([r for r in range(n_records) if r not in bad], dtype=int)
+        if good.size == 0:  # nothing acceptable to take a statistic of: the mean of all, stated in the text
+            statistic[c] = drifts[c].mean(axis=0)
+        elif bad:
+            statistic[c] = np.maximum(drifts[c, good].mean(axis=0), MEDIAN_FACTOR * np.median(drifts[c, good], axis=0))
+        else:
+            statistic[c] = drifts[c].mean(axis=0)
+        story = int(np.argmax(statistic[c]))
+        worst = float(statistic[c, story])
+        record = names[int(np.argmax(drifts[c, :, story]))]
+        how = "mean" if not bad else "mean of all (none acceptable)" if good.size == 0 else \
+            "max(mean, 1.2 median) of the acceptable"
+        criteria.append(Criterion(
+            name=f"mean story drift ratio ({case})", clause="ASCE 7-16 Sec. 16.4.1.2, Table 12.12-1",
+            passed=bool(worst <= limit * (1 + 1e-12)), value=worst, limit=limit,
+            governing=f"{case}, story {story + 1}, largest single record {record}",
+            text=f"{how} {worst:.4f} in story {story + 1} vs {DRIFT_FACTOR:g} x {allowable:g} = {limit:.4f} "
+                 f"({case}; largest single record there: {record})"))
+    return tuple(criteria), statistic, limit, allowed
+
+
+# ----------------------------------------------------------------------------------------------- test spec
+def prototype_test_specification(walls: Sequence[WallDemand], frequency: float) -> str:
+    """The prototype test specification (ASCE 7-16 Sec. 18.6; the clause's sequence and tolerances were NOT
+    read, so this is this package's rule, stated in the text): per wall, sinusoidal cycles at ``frequency``
+    (Hz, 1 / T_1 with the walls) at the largest deformation; the number of cycles the energy-equivalent one,
+    ceil(cumulative / largest cycle energy), but not fewer than 5; where the largest velocity exceeds the sine's
+    2 pi f A, a second frequency v_max / (2 pi A) that reaches it; the temperature rise to be reached or
+    accounted for where the walls heat."""
+    frequency = positive("frequency", frequency)
+    lines = [f"Prototype tests (ASCE 7-16 Sec. 18.6 as this package reads it; the clause's own sequence was not "
+             f"available): sinusoidal cycles at f1 = {frequency:.3f} Hz (1/T1 with the walls) unless stated."]
+    for demand in walls:
+        if demand.deformation <= 0:
+            lines.append(f"- wall {demand.wall + 1} (story {demand.story}): no deformation")
+            continue
+        cycles = 5 if demand.cycle_energy <= 0 else max(5, math.ceil(demand.cumulative_energy / demand.cycle_energy))
+        sine_velocity = 2 * math.pi * frequency * demand.deformation
+        text = (f"- wall {demand.wall + 1} (story {demand.story}): {cycles} cycles of +/- {demand.deformation:.1f} mm "
+                f"(strain {100 * demand.strain:.0f} %) at {frequency:.3f} Hz, force up to {demand.force / 1e3:.1f} kN")
+        if demand.velocity > sine_velocity:
+            text += (f"; and cycles at {demand.velocity / (2 * math.pi * demand.deformation):.3f} Hz to reach the "
+                     f"velocity {demand.velocity:.0f} mm/s")
+        if demand.temperature_rise is not None and np.isfinite(demand.temperature_rise):
+            text += f"; temperature rise {demand.temperature_rise:.1f} K to be reached or accounted for"
+        lines.append(text)
+    return "\n".join(lines)
+
+
+# ----------------------------------------------------------------------------------------------- verify
+def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] | None = None, *,
+           bounds: PropertyBounds | tuple[float, float] | None = None, risk_category: str | None = None,
+           count: int = MIN_RECORDS, collapse_drift_ratio: float = 0.10, valid_drift_ratio: float | None = None,
+           allowable_drift_ratio: float | None = None, executor: concurrent.futures.Executor | None = None,
+           progress: bool = True) -> VerificationResult:
+    """Verify ``building`` (with story heights) on ``site`` as ASCE 7-16 Chapters 16 and 18 ask (module
+    docstring: each clause, and what was read from secondary sources only).
+
+    ``records``: GroundMotion objects (mm/s^2) to select and scale ``count`` (>= 11) from (:func:`scaled_suite`);
+    None: the FEMA P695 far-field components (needs the ``[p695]`` extra).  ``bounds``: the property
+    modification factors (:class:`PropertyBounds` or (lambda_min, lambda_max)) -- required: the standard's
+    values depend on the device's tests.  ``risk_category``: overrides ``site.risk_category``.
+    ``collapse_drift_ratio`` (-): an analysis stops as collapsed beyond it; ``valid_drift_ratio`` (-): the
+    largest drift ratio the story models are valid for (None: not checked).  ``allowable_drift_ratio``: Table
+    12.12-1's Delta_a / h_sx if not the "all other structures" row.  ``executor``: any
+    ``concurrent.futures.Executor`` (default a process pool over all cores); ``progress``: a progress bar on
+    standard error when it is a terminal.  Every analysis is :func:`vdw_frames.simulate` of the bound's
+    building (walls ``scaled(lambda)``) under the scaled record; the package's warnings of each analysis are
+    re-issued once, naming the case and record.  Returns a :class:`VerificationResult`.
+    """
+    if not isinstance(building, ShearBuilding):
+        raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
+    if building.story_heights is None:
+        raise ValueError("the building has no story heights: ASCE 7-16 Sec. 16.4 checks story drift ratios; give "
+                         "story_heights (mm)")
+    if not isinstance(site, Site):
+        raise ValueError(f"site must be a Site, got {type(site).__name__}")
+    if bounds is None:
+        raise ValueError("bounds are required: ASCE 7-16 Sec. 18.2.4.5 asks for the analyses at upper- and "
+                         "lower-bound device properties; give bounds=(lambda_min, lambda_max) from the walls' tests "
+                         "and specification")
+    if not isinstance(bounds, PropertyBounds):
+        if not isinstance(bounds, (tuple, list)) or len(bounds) != 2:
+            raise ValueError(f"bounds must be PropertyBounds or (lambda_min, lambda_max), got {show(bounds)}")
+        bounds = PropertyBounds(*bounds)
+    if not building.walls:
+        raise ValueError("the building has no walls: there are no device properties to bound")
+    category = site.risk_category if risk_category is None else spectrum.risk_category(risk_category)
+    collapse = positive("collapse_drift_ratio", collapse_drift_ratio)
+    valid = None if valid_drift_ratio is None else positive("valid_drift_ratio", valid_drift_ratio)
+    if records is None:
+        from ..motion.p695 import fema_p695_records
+
+        records = fema_p695_records("far-field")
+    suite = scaled_suite(building, site, records, count)
+    if executor is not None and not callable(getattr(executor, "submit", None)):
+        raise ValueError(f"executor must be a concurrent.futures.Executor (or None), got {show(executor)}")
+
+    cases = bounds.cases
+    variants = [building.with_walls({story: tuple(wall.scaled(factor) for wall in walls)
+                                     for story, walls in building.walls.items()}) for _, factor in cases]
+    tasks = {(c, r): _Task(variant, motion, float(f), collapse, valid)
+             for c, variant in enumerate(variants)
+             for r, (motion, f) in enumerate(zip(suite.motions, suite.factors, strict=True))}
+    summaries = _run_all(tasks, executor, progress, cases, suite.motions)
+
+    n_cases, n_records = len(cases), len(suite.motions)
+    drifts = np.array([[summaries[(c, r)]["peak_drift_ratio"] for r in range(n_records)] for c in range(n_cases)])
+    unacceptable = tuple(tuple(summaries[(c, r)]["reasons"] for r in range(n_records)) for c in range(n_cases))
+    names = [motion.name or f"record {r + 1}" for r, motion in enumerate(suite.motions)]
+    criteria, statistic, limit, allowed = acceptance(
+        drifts, unacceptable, category, cases=[c[0] for c in cases],
+        records=names, allowable_drift_ratio=allowable_drift_ratio)
+    peaks = {name: np.array([[summaries[(c, r)][name] for r in range(n_records)] for c in range(n_cases)])
+             for name in WALL_PEAKS}
+    walls = _wall_demands(building, peaks, cases, names)
+    first = suite.range.first_period
+    return VerificationResult(
+        site=site, suite=suite, bounds=bounds, cases=cases, peak_drift_ratio=drifts,
+        collapsed=np.array([[summaries[(c, r)]["collapsed"] for r in range(n_records)] for c in range(n_cases)]),
+        converged=np.array([[summaries[(c, r)]["converged"] for r in range(n_records)] for c in range(n_cases)]),
+        unacceptable=unacceptable, drift_statistic=statistic, drift_limit=limit, allowed_unacceptable=allowed,
+        criteria=criteria, walls=walls, wall_peaks=peaks,
+        specification=prototype_test_specification(walls, 1.0 / first), first_period=first)
+
+
+def _wall_demands(building: ShearBuilding, peaks: dict[str, np.ndarray], cases: Sequence[tuple[str, float]],
+                  names: Sequence[str]) -> tuple[WallDemand, ...]:
+    demands = []
+    for j, (story, _) in enumerate(building.wall_list):
+        c, r = np.unravel_index(int(np.argmax(peaks["deformation"][:, :, j])), peaks["deformation"].shape[:2])
+        rise = peaks["temperature_rise"][:, :, j]
+        demands.append(WallDemand(
+            story=story, wall=j, **{name: float(peaks[name][:, :, j].max()) for name in WALL_PEAKS[:-1]},
+            temperature_rise=float(np.nanmax(rise)) if np.isfinite(rise).any() else None,
+            governing=f"{cases[int(c)][0]}, {names[int(r)]}"))
+    return tuple(demands)
+
+
+def _run_all(tasks: dict[tuple[int, int], _Task], executor: concurrent.futures.Executor | None, progress: bool,
+             cases: Sequence[tuple[str, float]], motions: Sequence[GroundMotion]) -> dict[tuple[int, int], dict]:
+    own = executor is None
+    pool = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1) if executor is None else executor
+    futures: dict[concurrent.futures.Future, tuple[int, int]] = {}
+    summaries = {}
+    show_bar = progress and sys.stderr.isatty()
+    try:
+        futures = {pool.submit(_run, task): key for key, task in tasks.items()}
+        for done, future in enumerate(concurrent.futures.as_completed(futures), 1):
+            c, r = futures[future]
+            try:
+                summaries[(c, r)] = future.result()
+            except ValueError as error:
+                raise ValueError(f"verify: the analysis of {motions[r].name or r} ({cases[c][0]}) failed: {error}") \
+                    from error
+            if show_bar:
+                filled = 30 * done // len(futures)
+                sys.stderr.write(f"\r[{'#' * filled}{'.' * (30 - filled)}] {done}/{len(futures)} analyses")
+                sys.stderr.write("\n" if done == len(futures) else "")
+                sys.stderr.flush()
+    except BaseException:
+        for future in futures:
+            future.cancel()
+        raise
+    finally:
+        if own:
+            pool.shutdown(cancel_futures=True)
+    reported = set()
+    for (c, r), summary in sorted(summaries.items()):
+        for category, message in summary["warnings"]:
+            text = f"{motions[r].name or r} ({cases[c][0]}): {message}"
+            if text not in reported:
+                reported.add(text)
+                _warnings.warn(text, category, stacklevel=3)
+    return summaries
