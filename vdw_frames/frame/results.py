@@ -5,8 +5,11 @@ Units: N, mm, s; energies N*mm.
 
 from __future__ import annotations
 
+import dataclasses
+import os
 from dataclasses import dataclass, field
 from functools import cached_property
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -14,6 +17,7 @@ import numpy as np
 from .. import _warnings
 from .._validation import finite_array, positive, require_finite, show, whole_number
 from ..element.kernel import FAILURE_MODES
+from .archive import read_archive, write_archive
 from .building import ShearBuilding
 
 if TYPE_CHECKING:
@@ -22,6 +26,7 @@ if TYPE_CHECKING:
 # Self-check: Newmark's average acceleration with trapezoidal work increments balances energy to the Newton
 # tolerance (1e-13 ... 1e-9 of the input in the tests); a larger gap means the wrong equations were solved.
 ENERGY_BALANCE_TOLERANCE = 1e-4
+_ARCHIVE = "vdw_frames.SimulationResult/1"  # the format save writes and load reads
 
 
 @dataclass(frozen=True)
@@ -217,6 +222,36 @@ class SimulationResult:
         return FrameState(step=self.first_step + index, dt=dt, displacement=self.displacement[index],
                           velocity=self.velocity[index], acceleration=self.acceleration[index],
                           drift=np.concatenate([prefix, self.drift[:index + 1]]))
+
+    def save(self, path: str | os.PathLike[str]) -> Path:
+        """Write this result to ``path``, a ``.npz`` file: every history (numpy arrays, in their units
+        above), the outcome and the building analysed, walls and story models included, so that
+        :meth:`load` gives back a result equal in every history and property.  The write is atomic (an
+        existing file stays whole until the new one is complete).  Returns the path."""
+        arrays: dict[str, np.ndarray] = {}
+        metadata: dict[str, object] = {}
+        for item in dataclasses.fields(self):
+            value = getattr(self, item.name)
+            if isinstance(value, np.ndarray):
+                arrays[f"result.{item.name}"] = value
+            elif isinstance(value, EnergyHistory):
+                arrays.update({f"energy.{part.name}": getattr(value, part.name) for part in dataclasses.fields(value)
+                               if getattr(value, part.name) is not None})
+            else:
+                metadata[item.name] = value
+        return write_archive(path, arrays, metadata, _ARCHIVE, classes=(FrameState,))
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> SimulationResult:
+        """The result :meth:`save` wrote to ``path``; a file that is not one is refused (ValueError)."""
+        arrays, metadata = read_archive(path, _ARCHIVE, classes=(FrameState,))
+        energy = {name.removeprefix("energy."): value for name, value in arrays.items() if name.startswith("energy.")}
+        histories = {name.removeprefix("result."): value for name, value in arrays.items()
+                     if name.startswith("result.")}
+        try:
+            return cls(energy=EnergyHistory(**energy), **histories, **metadata)
+        except TypeError as error:
+            raise ValueError(f"{path}: a saved result with missing or unknown entries ({error})") from None
 
     @cached_property
     def wall_amplitude(self) -> np.ndarray | None:
