@@ -10,7 +10,7 @@ import os
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -246,10 +246,10 @@ class SimulationResult:
         """The result :meth:`save` wrote to ``path``; a file that is not one is refused (ValueError)."""
         arrays, metadata = read_archive(path, _ARCHIVE, classes=(FrameState,))
         energy = {name.removeprefix("energy."): value for name, value in arrays.items() if name.startswith("energy.")}
-        histories = {name.removeprefix("result."): value for name, value in arrays.items()
-                     if name.startswith("result.")}
+        arguments: dict[str, Any] = {name.removeprefix("result."): value for name, value in arrays.items()
+                                     if name.startswith("result.")}
         try:
-            return cls(energy=EnergyHistory(**energy), **histories, **metadata)
+            return cls(energy=EnergyHistory(**energy), **arguments, **metadata)
         except TypeError as error:
             raise ValueError(f"{path}: a saved result with missing or unknown entries ({error})") from None
 
