@@ -16,6 +16,8 @@ import warnings
 from collections.abc import Sequence
 from pathlib import Path
 
+import numpy as np
+
 
 def _add_damper_options(parser: argparse.ArgumentParser) -> None:
     group = parser.add_argument_group("damper (default: the recommended set for --strain)")
@@ -37,8 +39,16 @@ def _damper_from(args):
     return FDMKDamper(**values, area=args.area, thickness=args.thickness)
 
 
+def _command(commands, name: str, **options) -> argparse.ArgumentParser:
+    """A sub-command's parser; abbreviated flags are refused, as by the main parser."""
+    parser: argparse.ArgumentParser = commands.add_parser(name, allow_abbrev=False, **options)
+    return parser
+
+
 def _output_folder(out) -> Path:
     """The --out folder, created and checked before any analysis runs."""
+    if not str(out).strip():
+        raise ValueError("--out must name a folder, got ''")
     folder = Path(out)
     if folder.exists() and not folder.is_dir():
         raise ValueError(f"--out {out}: exists and is not a folder")
@@ -77,34 +87,37 @@ def _sine_test(args) -> int:
 
 
 def _simulate(args) -> int:
-    import numpy as np
-
     from . import plotting
     from .config import load_analysis
     from .frame.simulation import simulate
     from .motion import G, read_at2
 
-    if args.scale is not None and not (math.isfinite(args.scale) and args.scale > 0.0):
-        raise ValueError(f"--scale must be a PGA > 0 in g, got {args.scale:g}")
-    out = _output_folder(args.out) if args.out else None
+    if args.pga is not None and not (math.isfinite(args.pga) and args.pga > 0.0):
+        raise ValueError(f"--pga must be a PGA > 0 in g, got {args.pga:g}")
+    if args.factor is not None and not (math.isfinite(args.factor) and args.factor > 0.0):
+        raise ValueError(f"--factor must be a scale factor > 0, got {args.factor:g}")
+    out = _output_folder(args.out) if args.out is not None else None
+    save = _output_folder(args.save) if args.save is not None else None
     building, options = load_analysis(args.building)
     motion = read_at2(args.record)
-    if args.scale is not None:
-        motion = motion.scaled_to_pga(args.scale * G)
+    try:
+        if args.pga is not None:
+            motion = motion.scaled_to_pga(args.pga * G)
+        elif args.factor is not None:
+            motion = motion.scaled(args.factor)
+    except ValueError as error:
+        flag = f"--pga {args.pga:g}" if args.pga is not None else f"--factor {args.factor:g}"
+        raise ValueError(f"{flag}: {error}") from None
+    scaling = (f", scaled to PGA {args.pga:g} g" if args.pga is not None else
+               f", x {args.factor:g}" if args.factor is not None else "")
     result = simulate(building, motion, dt=args.dt, **options)
+    dt = args.dt if args.dt is not None else motion.dt
     print(f"{args.building}: {building.stories} stories, T1 = {building.periods[0]:.3f} s (bare frame), "
           f"{len(building.wall_list)} FDMK walls")
-    print(f"record {motion.name}: PGA = {motion.pga / G:.3f} g, dt = {result.time[1]:g} s, {result.time.size} steps")
+    print(f"record {motion.name}{scaling}: PGA = {motion.pga / G:.3f} g, dt = {dt:g} s, {result.time.size} of "
+          f"{_steps(motion, dt)} steps analysed")
     _print_wall_assumptions(building)
-    print(f"{'story':>5s} {'drift mm':>9s} {'ratio %':>8s} {'floor acc g':>11s} {'walls kN':>10s} {'strain %':>9s}")
-    ratio = result.peak_drift_ratio
-    for k in range(building.stories):
-        walled = k + 1 in building.walls  # '-' where a value does not exist (no heights, no walls)
-        print(f"{k + 1:5d} {result.peak_drift[k]:9.2f} "
-              f"{f'{100 * ratio[k]:8.3f}' if ratio is not None else '-':>8s} "
-              f"{result.peak_absolute_acceleration[k] / G:11.3f} "
-              f"{f'{result.peak_story_wall_force[k] / 1e3:10.1f}' if walled else '-':>10s} "
-              f"{f'{100 * np.abs(result.story_wall_strain[:, k]).max():9.1f}' if walled else '-':>9s}")
+    _print_story_table(result)
     if result.strain_iterations is not None:
         state = "converged" if result.strain_converged else "did NOT converge"
         assert result.wall_effective_strain is not None  # a strain-compatible result carries both
@@ -115,18 +128,87 @@ def _simulate(args) -> int:
     _print_wall_states(result)
     energy = result.energy
     heat = energy.wall_heat if energy.wall_heat is not None else energy.wall_work
-    share = heat[-1] / energy.input[-1] if energy.input[-1] > 0 else 0.0
-    print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; walls dissipate "
-          f"{100 * share:.0f} % of the input energy as heat")
+    if building.wall_list:
+        share = heat[-1] / energy.input[-1] if energy.input[-1] > 0 else 0.0
+        print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; walls dissipate "
+              f"{100 * share:.0f} % of the input energy as heat")
+    else:
+        print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; no walls")
+    print(_outcome(result))
+    if save is not None:
+        summary = _write_summary(result, save / "summary.csv")
+        histories = result.save(save / "result.npz")
+        print(f"saved: {summary} (per-story peaks), {histories} (every history; SimulationResult.load)")
     if out is not None:
-        paths = [plotting.plot_drift_envelope({"response": result}, out / "drift_envelope.png"),
-                 plotting.plot_roof_displacement({"response": result}, out / "roof_displacement.png"),
-                 plotting.plot_energy(result, out / "energy.png")]
+        title = f"{Path(args.building).name}, {motion.name}{scaling}"
+        paths = [plotting.plot_drift_envelope({"response": result}, out / "drift_envelope.png", title=title),
+                 plotting.plot_roof_displacement({"response": result}, out / "roof_displacement.png", title=title),
+                 plotting.plot_energy(result, out / "energy.png", title=title)]
         if building.wall_list:
             story = int(np.argmax(result.peak_story_wall_force)) + 1
-            paths.append(plotting.plot_wall_hysteresis(result, story, out / "wall_hysteresis.png"))
+            paths.append(plotting.plot_wall_hysteresis(result, story, out / "wall_hysteresis.png",
+                                                       title=f"{title}: story {story} walls"))
         print("figures: " + ", ".join(str(p) for p in paths))
     return 0
+
+
+def _steps(motion, dt: float) -> int:
+    """The steps an analysis of ``motion`` at ``dt`` takes (the record's duration, rest included)."""
+    return int(round(motion.duration / dt)) + 1
+
+
+def _outcome(result) -> str:
+    """How the analysis ended, in one line: it ran to the end, the building collapsed, or a step failed."""
+    end = float(result.time[-1])
+    if result.collapsed:
+        ratio = result.peak_drift_ratio
+        story = int(np.argmax(ratio)) + 1 if ratio is not None else None
+        where = f" (story {story} drift ratio {100 * ratio[story - 1]:.2f} %)" if story is not None else ""
+        return f"outcome: COLLAPSED at t = {result.collapse_time:.3f} s{where}; the histories end there"
+    if not result.converged:
+        return f"outcome: did NOT converge after t = {end:.3f} s (converged: no); the histories end there"
+    return f"outcome: ran to t = {end:.3f} s, converged, no collapse"
+
+
+def _print_story_table(result) -> None:
+    """Per story: peak drift and drift ratio, residual drift, peak ductility, floor acceleration, walls."""
+    from .motion import G
+
+    building = result.building
+    ratio, ductility = result.peak_drift_ratio, result.peak_ductility
+    print(f"{'story':>5s} {'drift mm':>9s} {'ratio %':>8s} {'resid. mm':>9s} {'ductility':>9s} "
+          f"{'floor acc g':>11s} {'walls kN':>10s} {'strain %':>9s}")
+    for k in range(building.stories):
+        walled = k + 1 in building.walls  # '-' where a value does not exist (no heights, linear story, no walls)
+        print(f"{k + 1:5d} {result.peak_drift[k]:9.2f} "
+              f"{f'{100 * ratio[k]:8.3f}' if ratio is not None else '-':>8s} "
+              f"{result.residual_drift[k]:9.2f} "
+              f"{f'{ductility[k]:9.2f}' if not np.ma.is_masked(ductility[k]) else '-':>9s} "
+              f"{result.peak_absolute_acceleration[k] / G:11.3f} "
+              f"{f'{result.peak_story_wall_force[k] / 1e3:10.1f}' if walled else '-':>10s} "
+              f"{f'{100 * np.abs(result.story_wall_strain[:, k]).max():9.1f}' if walled else '-':>9s}")
+    print("ductility: peak drift / yield drift of the story model ('-': a linear story); resid.: drift at the "
+          "last step")
+
+
+def _write_summary(result, path: Path) -> Path:
+    """The story table as CSV (units in the header); '' where a value does not exist."""
+    from ._files import write_text
+
+    ratio, ductility = result.peak_drift_ratio, result.peak_ductility
+    rows = ["story,peak_drift_mm,peak_drift_ratio,residual_drift_mm,peak_ductility,peak_floor_acceleration_mm_s2,"
+            "peak_story_wall_force_N,peak_story_wall_strain"]
+    for k in range(result.building.stories):
+        walled = k + 1 in result.building.walls
+        rows.append(",".join([
+            str(k + 1), repr(float(result.peak_drift[k])),
+            repr(float(ratio[k])) if ratio is not None else "",
+            repr(float(result.residual_drift[k])),
+            repr(float(ductility[k])) if not np.ma.is_masked(ductility[k]) else "",
+            repr(float(result.peak_absolute_acceleration[k])),
+            repr(float(result.peak_story_wall_force[k])) if walled else "",
+            repr(float(np.abs(result.story_wall_strain[:, k]).max())) if walled else ""]))
+    return write_text(path, "\n".join(rows) + "\n", "summary")
 
 
 def _print_wall_assumptions(building) -> None:
@@ -172,12 +254,21 @@ def _design(args) -> int:
     from .frame.modal import modal_analysis
     from .plotting import plot_damping_curve
 
+    # Every argument checked before any work (a modal search of a large building takes seconds).
     if args.modes < 1:
         raise ValueError(f"--modes must be >= 1, got {args.modes}")
+    if args.mode < 1:
+        raise ValueError(f"--mode must be >= 1, got {args.mode}")
+    if args.target is not None and not 0.0 < args.target < 1.0:
+        percent = 1.0 <= args.target < 100.0
+        hint = f" (a percentage? {args.target:g} % is --target {args.target / 100:g})" if percent else ""
+        raise ValueError(f"--target must be a damping ratio in (0, 1), e.g. 0.15, got {args.target:g}{hint}")
+    if args.strain is not None and not (math.isfinite(args.strain) and args.strain > 0.0):
+        raise ValueError(f"--strain must be a positive amplitude in %, got {args.strain}")
     out = _output_folder(args.out)
     building = load_building(args.building)
-    if args.strain is not None and not args.strain > 0.0:
-        raise ValueError(f"--strain must be a positive amplitude in %, got {args.strain}")
+    if args.target is not None and not building.wall_list:
+        raise ValueError(f"--target {args.target:g}: {args.building} has no walls to size; add a [[walls]] group")
     if building.strain_dependent:
         # A modal analysis needs one amplitude: the engineer's, or the centre (in logarithm) of the range
         # where each wall's parameters were identified, which the layer-sizing rule aims the amplitudes at.
@@ -285,7 +376,7 @@ def _collapse(args) -> int:
 
 
 def _add_collapse_command(commands) -> None:
-    collapse = commands.add_parser("collapse", help="FEMA P695 collapse assessment on a P695 record set (needs the "
+    collapse = _command(commands, "collapse", help="FEMA P695 collapse assessment on a P695 record set (needs the "
                                                     "[p695] extra): Ŝ_CT, CMR, SSF, ACMR, pass/fail, report")
     collapse.add_argument("building",
                           help="building file, .toml or .json, with story heights (format: vdw_frames.config)")
@@ -393,7 +484,7 @@ def _verify(args) -> int:
 
 
 def _add_verify_command(commands) -> None:
-    verify = commands.add_parser("verify", help="ASCE 7-16 Ch. 16/18 design verification: suite scaled to the MCE_R "
+    verify = _command(commands, "verify", help="ASCE 7-16 Ch. 16/18 design verification: suite scaled to the MCE_R "
                                                 "spectrum, bounds, acceptance, device test demands, report")
     verify.add_argument("building", help="building file, .toml or .json, with story heights and walls (and "
                                          "optionally [site] and [verification] tables: vdw_frames.config)")
@@ -428,7 +519,7 @@ def _paper_report(args) -> int:
 
 
 def _add_design_command(commands) -> None:
-    design = commands.add_parser("design", help="what the walls add (complex modes, with and without walls) and "
+    design = _command(commands, "design", help="what the walls add (complex modes, with and without walls) and "
                                                 "how large they must be for a target damping ratio")
     design.add_argument("building", help="building file, .toml or .json, with walls (format: vdw_frames.config)")
     design.add_argument("--target", type=float, help="target total damping ratio of the mode, e.g. 0.15")
@@ -439,35 +530,40 @@ def _add_design_command(commands) -> None:
     design.add_argument("--strain", type=float,
                         help="amplitude, %%, at which strain-dependent walls are analysed (default: the centre, in "
                              "logarithm, of their identified range)")
-    design.add_argument("--out", default="out", help="folder for the figure (default ./out)")
+    design.add_argument("--out", default="design", help="folder for the figure (default ./design)")
     design.set_defaults(run=_design)
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="vdw-frames", description=__doc__)
+    # allow_abbrev=False everywhere: an abbreviation (--scal) must not silently become another flag.
+    parser = argparse.ArgumentParser(prog="vdw-frames", description=__doc__, allow_abbrev=False)
     commands = parser.add_subparsers(dest="command", required=True)
 
-    sine = commands.add_parser("sine-test", help="sinusoidal test of one FDMK damper: K', K'', loop area, loop PNG")
+    sine = _command(commands, "sine-test", help="sinusoidal test of one FDMK damper: K', K'', loop area, loop PNG")
     _add_damper_options(sine)
     sine.add_argument("--amplitude", type=float, help="displacement amplitude, mm (default strain x thickness)")
     sine.add_argument("--frequency", type=float, default=1.0, help="Hz (default 1)")
     sine.add_argument("--cycles", type=int, default=5, help="cycles from rest (default 5)")
-    sine.add_argument("--out", default="out", help="folder for the figure (default ./out)")
+    sine.add_argument("--out", default="sine_test", help="folder for the figure (default ./sine_test)")
     sine.set_defaults(run=_sine_test)
 
-    run = commands.add_parser("simulate", help="seismic time-history analysis of a shear building (TOML/JSON file)")
+    run = _command(commands, "simulate", help="seismic time-history analysis of a shear building (TOML/JSON file)")
     run.add_argument("building", help="building file, .toml or .json (format: vdw_frames.config)")
     run.add_argument("--record", required=True, help="PEER AT2 ground-motion record (units of g)")
-    run.add_argument("--scale", type=float, help="scale the record to this PGA, g")
+    scale = run.add_mutually_exclusive_group()
+    scale.add_argument("--pga", type=float, help="scale the record to this peak ground acceleration, g")
+    scale.add_argument("--factor", type=float, help="multiply the record by this factor")
     run.add_argument("--dt", type=float, help="time step, s (default: the record's; must divide it)")
     run.add_argument("--out", help="folder for figures (default: none)")
+    run.add_argument("--save", metavar="DIR", help="write summary.csv (per-story peaks) and result.npz (every "
+                                                   "history, read with SimulationResult.load) into DIR")
     run.set_defaults(run=_simulate)
 
     _add_design_command(commands)
     _add_collapse_command(commands)
     _add_verify_command(commands)
 
-    report = commands.add_parser("paper-report", help="reproduce the paper's tables and figures into DIR/report.md")
+    report = _command(commands, "paper-report", help="reproduce the paper's tables and figures into DIR/report.md")
     report.add_argument("--out", default="paper_report", help="output folder (default ./paper_report)")
     report.set_defaults(run=_paper_report)
     return parser

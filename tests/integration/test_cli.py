@@ -36,14 +36,16 @@ def test_cli_simulate_with_a_json_building(tmp_path, capsys):
     expected = simulate(building_from_dict(spec), read_at2(default_record_path()))
     row = next(line.split() for line in out.splitlines() if line.strip().startswith("1 "))
     assert float(row[1]) == pytest.approx(expected.peak_drift[0], abs=0.006)
-    assert float(row[4]) == pytest.approx(expected.peak_story_wall_force[0] / 1e3, abs=0.06)
+    assert float(row[3]) == pytest.approx(expected.residual_drift[0], abs=0.006)
+    assert row[4] == "-"  # a linear story has no ductility
+    assert float(row[6]) == pytest.approx(expected.peak_story_wall_force[0] / 1e3, abs=0.06)
 
 
 def test_cli_simulate_prints_what_the_example_walls_followed_heated_and_failed(capsys):
     path = EXAMPLE_BUILDING
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)  # at 0.7 g the walls leave their tested amplitudes
-        assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--scale", "0.7"]) == 0
+        assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--pga", "0.7"]) == 0
         expected = simulate(load_building(path), read_at2(default_record_path()).scaled_to_pga(0.7 * G))
     out = capsys.readouterr().out
     # The constants from outside the paper, with their sources, as the building file states them.
@@ -72,7 +74,8 @@ def test_cli_prints_dashes_for_values_that_do_not_exist(tmp_path, capsys):
     rows = [line.split() for line in capsys.readouterr().out.splitlines() if re.match(r"\s+[12] ", line)]
     expected = simulate(building_from_dict(spec), default_record())
     assert rows[0][2] == "-" and rows[1][2] == "-" and "nan" not in " ".join(rows[0] + rows[1])
-    assert rows[1][4:] == ["-", "-"]  # story 2 has no wall
+    assert rows[1][6:] == ["-", "-"]  # story 2 has no wall
+    assert rows[0][4] == rows[1][4] == "-"  # linear stories: no ductility
     assert float(rows[1][1]) == pytest.approx(expected.peak_drift[1], abs=0.006)
 
 
@@ -109,10 +112,126 @@ def test_cli_reports_a_missing_record(tmp_path, capsys):
     assert "none.AT2" in capsys.readouterr().err
 
 
-def test_cli_scale_is_checked_in_g(capsys):
-    assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", str(default_record_path()),
-                     "--scale", "-0.4"]) == 2
-    assert capsys.readouterr().err == "vdw-frames: error: --scale must be a PGA > 0 in g, got -0.4\n"
+def test_cli_pga_is_checked_in_g_and_factor_as_a_factor(capsys):
+    record = str(default_record_path())
+    assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", record, "--pga", "-0.4"]) == 2
+    assert capsys.readouterr().err == "vdw-frames: error: --pga must be a PGA > 0 in g, got -0.4\n"
+    assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", record, "--factor", "0"]) == 2
+    assert capsys.readouterr().err == "vdw-frames: error: --factor must be a scale factor > 0, got 0\n"
+    # A factor that overflows the record is named as the user typed it.
+    assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", record, "--factor", "1e306"]) == 2
+    error = capsys.readouterr().err
+    assert error.startswith("vdw-frames: error: --factor 1e+306: ") and error.count("\n") == 1
+
+
+def test_cli_factor_multiplies_the_record_and_pga_scales_it_to_a_peak(tmp_path, capsys):
+    spec = {"masses": [300.0, 250.0], "stiffnesses": [2e5, 1.5e5], "story_heights": [3500.0, 3500.0]}
+    path = write_file(tmp_path, "bare.json", json.dumps(spec))
+    record = default_record()
+    for flag, value, motion in (("--factor", "1.7", record.scaled(1.7)),
+                                ("--pga", "0.5", record.scaled_to_pga(0.5 * G))):
+        assert cli.main(["simulate", str(path), "--record", str(default_record_path()), flag, value]) == 0
+        out = capsys.readouterr().out
+        assert f"PGA = {motion.pga / G:.3f} g" in out
+        row = next(line.split() for line in out.splitlines() if line.strip().startswith("1 "))
+        assert float(row[1]) == pytest.approx(simulate(building_from_dict(spec), motion).peak_drift[0], abs=0.006)
+    with pytest.raises(SystemExit) as exit_:  # one or the other
+        cli.main(["simulate", str(path), "--record", str(default_record_path()), "--pga", "0.5", "--factor", "2"])
+    assert exit_.value.code == 2
+
+
+def test_cli_refuses_abbreviated_flags(capsys):
+    """--scal must not silently become another flag (argparse's allow_abbrev)."""
+    for argv in (["simulate", str(EXAMPLE_BUILDING), "--record", str(default_record_path()), "--fac", "2"],
+                 ["sine-test", "--freq", "2"], ["design", str(EXAMPLE_BUILDING), "--targ", "0.2"]):
+        with pytest.raises(SystemExit) as exit_:
+            cli.main(argv)
+        assert exit_.value.code == 2
+        assert "unrecognized arguments" in capsys.readouterr().err
+
+
+def test_cli_refuses_an_empty_out(capsys):
+    assert cli.main(["sine-test", "--out", ""]) == 2
+    assert capsys.readouterr().err == "vdw-frames: error: --out must name a folder, got ''\n"
+
+
+def _yielding_spec(walls: bool) -> dict:
+    """A 3-story frame yielding at 5 % of its weight, with P-Delta, with or without one wall a story."""
+    spec = {"masses": [300.0, 300.0, 250.0], "stiffnesses": [2e5, 1.8e5, 1.5e5], "story_heights": [3500.0] * 3,
+            "gravity_loads": [8.3e6, 5.4e6, 2.5e6],
+            "hysteresis": {"model": "bilinear", "yield_forces": [4.2e5, 3.2e5, 1.9e5], "hardening": 0.0}}
+    if walls:
+        spec["walls"] = [{"stories": "all", "parameters": README_WALL, "area": 2e5, "thickness": 8.0}]
+    return spec
+
+
+def test_cli_says_when_and_where_the_building_collapsed(tmp_path, capsys):
+    path = write_file(tmp_path, "bare.json", json.dumps(_yielding_spec(walls=False)))
+    motion = default_record().scaled_to_pga(1.5 * G)
+    expected = simulate(building_from_dict(_yielding_spec(walls=False)), motion)
+    assert expected.collapsed  # the case: a bare frame at 1.5 g
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--pga", "1.5"]) == 0
+    out = capsys.readouterr().out
+    story = int(np.argmax(expected.peak_drift_ratio)) + 1
+    assert (f"outcome: COLLAPSED at t = {expected.collapse_time:.3f} s (story {story} drift ratio "
+            f"{100 * expected.peak_drift_ratio[story - 1]:.2f} %)") in out
+    assert f"{expected.time.size} of {motion.time.size} steps analysed" in out
+    assert "no walls" in out and "dissipate" not in out  # no "walls dissipate -0 %" for a bare frame
+
+
+def test_cli_prints_residual_drift_and_ductility_per_story(tmp_path, capsys):
+    spec = _yielding_spec(walls=True)
+    path = write_file(tmp_path, "walls.json", json.dumps(spec))
+    expected = simulate(building_from_dict(spec), default_record().scaled_to_pga(0.6 * G))
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--pga", "0.6"]) == 0
+    out = capsys.readouterr().out
+    rows = [line.split() for line in out.splitlines() if re.match(r"\s+[123] +\d", line)][:3]
+    assert expected.peak_ductility.max() > 1.0  # the stories yield
+    np.testing.assert_allclose([float(row[3]) for row in rows], expected.residual_drift, atol=0.006)
+    np.testing.assert_allclose([float(row[4]) for row in rows], expected.peak_ductility, atol=0.006)
+    assert f"outcome: ran to t = {expected.time[-1]:.3f} s, converged, no collapse" in out
+
+
+def test_cli_save_writes_the_story_summary_and_every_history(tmp_path, capsys):
+    spec = _yielding_spec(walls=True)
+    path = write_file(tmp_path, "walls.json", json.dumps(spec))
+    saved = tmp_path / "saved"
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--pga", "0.6",
+                     "--save", str(saved)]) == 0
+    expected = simulate(building_from_dict(spec), default_record().scaled_to_pga(0.6 * G))
+    table = np.genfromtxt(saved / "summary.csv", delimiter=",", names=True)
+    np.testing.assert_array_equal(table["story"], [1, 2, 3])
+    np.testing.assert_allclose(table["peak_drift_mm"], expected.peak_drift, rtol=1e-12)
+    np.testing.assert_allclose(table["residual_drift_mm"], expected.residual_drift, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(table["peak_ductility"], expected.peak_ductility, rtol=1e-12)
+    np.testing.assert_allclose(table["peak_story_wall_force_N"], expected.peak_story_wall_force, rtol=1e-12)
+    loaded = vdw.frame.SimulationResult.load(saved / "result.npz")
+    np.testing.assert_allclose(loaded.drift, expected.drift, rtol=1e-12, atol=1e-12)
+    assert "saved: " in capsys.readouterr().out
+
+
+def test_cli_a_run_that_stops_within_its_first_steps_is_reported_not_a_traceback(tmp_path, capsys):
+    path = write_file(tmp_path, "bare.json", json.dumps(_yielding_spec(walls=False)))
+    expected = simulate(building_from_dict(_yielding_spec(walls=False)), default_record().scaled(1e7))
+    assert expected.time.size < 10
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--factor", "1e7"]) == 0
+    out = capsys.readouterr().out
+    assert f"outcome: COLLAPSED at t = {expected.collapse_time:.3f} s" in out
+    assert f"{expected.time.size} of 2501 steps analysed" in out
+
+
+def test_cli_figures_are_titled_with_building_record_and_scale(tmp_path, capsys, monkeypatch):
+    titles = []
+    import matplotlib.axes
+
+    original = matplotlib.axes.Axes.set_title
+    monkeypatch.setattr(matplotlib.axes.Axes, "set_title",
+                        lambda self, label, *a, **k: titles.append(label) or original(self, label, *a, **k))
+    path = write_file(tmp_path, "walls.json", json.dumps(_yielding_spec(walls=True)))
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--pga", "0.6",
+                     "--out", str(tmp_path / "figures")]) == 0
+    name = default_record().name
+    assert len(titles) == 4 and all(title.startswith(f"walls.json, {name}, scaled to PGA 0.6 g") for title in titles)
 
 
 def test_cli_checks_out_before_the_analysis(tmp_path, capsys, monkeypatch):
@@ -193,6 +312,26 @@ def test_design_command_without_walls(tmp_path, capsys):
     path.write_text('{"masses": [300, 300], "stiffnesses": [2e5, 1.5e5]}')
     assert cli.main(["design", str(path), "--out", str(tmp_path)]) == 0
     assert "no walls in the building file" in capsys.readouterr().out
+    # A target for walls that do not exist is an error, not a table and exit 0.
+    assert cli.main(["design", str(path), "--target", "0.1", "--out", str(tmp_path)]) == 2
+    assert capsys.readouterr().err == f"vdw-frames: error: --target 0.1: {path} has no walls to size; add a " \
+                                      "[[walls]] group\n"
+
+
+@pytest.mark.parametrize(("argv", "message"), [
+    (["--target", "10"], "--target must be a damping ratio in (0, 1), e.g. 0.15, got 10 (a percentage? 10 % is "
+                         "--target 0.1)"),
+    (["--target", "0"], "--target must be a damping ratio in (0, 1), e.g. 0.15, got 0"),
+    (["--mode", "0"], "--mode must be >= 1, got 0"),
+    (["--strain", "nan"], "--strain must be a positive amplitude in %, got nan"),
+])
+def test_design_command_checks_its_arguments_before_any_work(tmp_path, capsys, monkeypatch, argv, message):
+    def no_work(*args, **kwargs):
+        raise AssertionError("the building was read before the arguments were checked")
+
+    monkeypatch.setattr(vdw.config, "load_building", no_work)
+    assert cli.main(["design", str(EXAMPLE_BUILDING), *argv, "--out", str(tmp_path)]) == 2
+    assert capsys.readouterr().err == f"vdw-frames: error: {message}\n"
 
 
 def test_design_command_takes_the_amplitude_of_strain_dependent_walls(tmp_path, capsys):

@@ -38,6 +38,9 @@ def plot_ida_curves(results: Mapping[str, IDAResult], path: str | os.PathLike[st
                 y0 = sa[last] if last is not None else 0.0
                 axes.plot([x0, 10.0 * max(1.0, x0 / 10.0)], [y0, sa[collapsed][0]], style, lw=0.8, color=f"C{m}")
                 axes.plot([10.0 * max(1.0, x0 / 10.0)], [sa[collapsed][0]], "x", ms=7, mew=2, color=f"C{m}")
+    if any(collapsed.any() for result in results.values() for collapsed in result.collapsed):
+        # One legend entry for the marks drawn at the cut-off (not a drift the frame reached).
+        axes.plot([], [], "x", ms=7, mew=2, color="0.3", label="collapse (drawn at the 10 % cut-off)")
     axes.set_xlabel("largest story drift ratio (%)")
     axes.set_ylabel("Sa(T1, 5 %) (g)")
     axes.set_xlim(0.0, 11.0)

@@ -18,10 +18,11 @@ if TYPE_CHECKING:
     from ..frame.results import SimulationResult
 
 
-def plot_drift_envelope(results: Mapping[str, SimulationResult], path: str | os.PathLike[str]) -> Path:
+def plot_drift_envelope(results: Mapping[str, SimulationResult], path: str | os.PathLike[str],
+                        title: str | None = None) -> Path:
     """Peak interstory drift ratio (or drift in mm without story heights) per story, one line per result.
 
-    ``results`` maps a label to a :class:`~vdw_frames.frame.simulation.SimulationResult`.
+    ``results`` maps a label to a :class:`~vdw_frames.frame.results.SimulationResult`.
     """
     path = figure_path(path, "drift_envelope.png")
     plt = pyplot()
@@ -38,10 +39,13 @@ def plot_drift_envelope(results: Mapping[str, SimulationResult], path: str | os.
     axes.set_xlim(left=0.0)
     axes.grid(True, alpha=0.3)
     axes.legend(fontsize="small")
+    if title:
+        axes.set_title(title, fontsize="medium")
     return save(figure, path)
 
 
-def plot_roof_displacement(results: Mapping[str, SimulationResult], path: str | os.PathLike[str]) -> Path:
+def plot_roof_displacement(results: Mapping[str, SimulationResult], path: str | os.PathLike[str],
+                           title: str | None = None) -> Path:
     """Roof displacement relative to the ground (mm) against time (s), one line per result."""
     path = figure_path(path, "roof_displacement.png")
     plt = pyplot()
@@ -52,6 +56,8 @@ def plot_roof_displacement(results: Mapping[str, SimulationResult], path: str | 
     axes.set_ylabel("roof displacement (mm)")
     axes.grid(True, alpha=0.3)
     axes.legend(fontsize="small")
+    if title:
+        axes.set_title(title, fontsize="medium")
     return save(figure, path)
 
 
@@ -95,7 +101,7 @@ def plot_energy(result: SimulationResult, path: str | os.PathLike[str], title: s
     path = figure_path(path, "energy.png")
     plt = pyplot()
     energy = result.energy
-    figure, axes = plt.subplots(figsize=(8.0, 4.0))
+    figure, axes = plt.subplots(figsize=(9.5, 4.0))
     parts = [("walls", energy.wall_work), ("inherent damping", energy.inherent_damping),
              ("story yielding", energy.hysteretic), ("frame strain", energy.frame_strain),
              ("kinetic", energy.kinetic)]
@@ -107,7 +113,8 @@ def plot_energy(result: SimulationResult, path: str | os.PathLike[str], title: s
     axes.set_xlabel("time (s)")
     axes.set_ylabel("energy (kN m)")
     axes.grid(True, alpha=0.3)
-    axes.legend(fontsize="small", loc="upper left")
+    # Beside the axes: inside, the legend covered the histories (they rise from the upper left corner).
+    axes.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     if title:
-        axes.set_title(title)
+        axes.set_title(title, fontsize="medium")
     return save(figure, path)
