@@ -31,6 +31,7 @@ import numpy as np
 
 import vdw_frames as vdw
 from vdw_frames import plotting
+from vdw_frames.cli import plain_warnings
 from vdw_frames.config import load_building
 from vdw_frames.motion import G, GroundMotion, default_record, read_at2
 
@@ -130,4 +131,5 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    with plain_warnings():  # one line "warning: ...", as the vdw-frames command prints them
+        sys.exit(main())

@@ -42,6 +42,7 @@ from pathlib import Path
 import numpy as np
 
 import vdw_frames as vdw
+from vdw_frames.cli import plain_warnings
 from vdw_frames.config import load_building
 from vdw_frames.motion import G, default_record, read_at2
 from vdw_frames.plotting import plot_fragility, plot_ida_curves
@@ -52,7 +53,7 @@ SHARED_RECORDS = Path(__file__).resolve().parents[1].parent / "shared" / "ground
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], allow_abbrev=False)
-    parser.add_argument("--out", type=Path, default=Path("out"), help="output folder (default ./out)")
+    parser.add_argument("--out", type=Path, default=Path("ida"), help="output folder (default ./ida)")
     parser.add_argument("--records", type=Path, help="folder of AT2 records (default ../shared/ground_motions)")
     parser.add_argument("--step", type=float, default=0.1, help="Sa(T1) step, g (default 0.1)")
     parser.add_argument("--cap", type=float, default=4.0, help="highest Sa(T1), g (default 4.0)")
@@ -67,8 +68,14 @@ def main(argv=None) -> int:
 def run(args) -> int:
     if not (args.step > 0.0 and args.cap >= args.step):
         raise ValueError(f"--step must be > 0 and --cap >= --step, got --step {args.step:g}, --cap {args.cap:g}")
+    if args.records is not None and not args.records.is_dir():
+        raise ValueError(f"--records {args.records}: not a folder")
     folder = args.records or (SHARED_RECORDS if SHARED_RECORDS.is_dir() else None)
     motions = [read_at2(path) for path in sorted(folder.glob("*.[aA][tT]2"))] if folder else []
+    if args.records is not None and not motions:
+        raise ValueError(f"--records {args.records}: no .AT2 records in the folder")
+    if folder is None:
+        print(f"(no records at {SHARED_RECORDS}: the shipped synthetic record only, no fragility fit)")
     motions.append(default_record())
     walled = load_building(BUILDING_FILE)
     ideal = walled.with_walls({story: tuple(dataclasses.replace(wall.at(3.0), thermal=None, limits=None)
@@ -172,4 +179,5 @@ def _write_csv(result, path):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    with plain_warnings():  # one line "warning: ...", as the vdw-frames command prints them
+        sys.exit(main())

@@ -18,7 +18,7 @@ parameters for 300 % strain (r = 0.59; 0.08 m^2 of shear area, 10 mm layers) on 
 200 kN/mm in series (connection and beam flexibility; ``SupportedDamper``).  They are added after the
 gravity analysis, so that they carry no gravity force.
 
-    python examples/opensees_frame.py [--record PATH.AT2] [--scale PGA_g] [--duration S] [--out DIR]
+    python examples/opensees_frame.py [--record PATH.AT2] [--pga PGA_g | --factor F] [--duration S] [--out DIR]
 
 Without --record it runs El Centro 1940 (N-S) from ../shared/ground_motions next to the repository,
 or the synthetic record shipped with the package when that folder is absent.  Prints peak drift
@@ -38,6 +38,7 @@ import numpy as np
 
 import vdw_frames as vdw
 from vdw_frames import motion as ground_motion
+from vdw_frames.cli import plain_warnings
 from vdw_frames.interop.opensees import WallBridge, opensees_module, prony_material
 from vdw_frames.paper import fitted
 
@@ -221,12 +222,25 @@ def run(ops, motion, dt, walls=None):
     return result
 
 
-def load_motion(record, scale, duration):
+def load_motion(record, pga=None, duration=None, factor=None):
+    """The record (El Centro from the shared folder, else the shipped one), scaled to ``pga`` (g) or by
+    ``factor``, cut to ``duration`` (s); errors name the flag as typed, in g."""
     if record is None and (SHARED / DEFAULT_RECORD).is_file():
         record = SHARED / DEFAULT_RECORD
+    if pga is not None and not (np.isfinite(pga) and pga > 0.0):
+        raise ValueError(f"--pga must be a PGA > 0 in g, got {pga:g}")
+    if factor is not None and not (np.isfinite(factor) and factor > 0.0):
+        raise ValueError(f"--factor must be a scale factor > 0, got {factor:g}")
+    if duration is not None and not (np.isfinite(duration) and duration > 0.0):
+        raise ValueError(f"--duration must be > 0 s, got {duration:g}")
     motion = ground_motion.read_at2(record) if record is not None else ground_motion.default_record()
-    if scale is not None:
-        motion = motion.scaled_to_pga(scale * ground_motion.G)
+    try:
+        if pga is not None:
+            motion = motion.scaled_to_pga(pga * ground_motion.G)
+        elif factor is not None:
+            motion = motion.scaled(factor)
+    except ValueError as error:
+        raise ValueError(f"--pga {pga:g}: {error}" if pga is not None else f"--factor {factor:g}: {error}") from None
     if duration is not None:
         points = min(motion.acceleration.size, int(round(duration / motion.dt)) + 1)
         motion = ground_motion.GroundMotion(motion.acceleration[:points], motion.dt, motion.name)
@@ -275,19 +289,27 @@ def plot(results, out: Path) -> list[Path]:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], allow_abbrev=False)
     parser.add_argument("--record", type=Path, help=f"PEER AT2 record (default: ../shared/ground_motions/"
                                                     f"{DEFAULT_RECORD}, else the shipped synthetic record)")
-    parser.add_argument("--scale", type=float, help="scale the record to this PGA, in g")
+    scale = parser.add_mutually_exclusive_group()
+    scale.add_argument("--pga", type=float, help="scale the record to this PGA, in g")
+    scale.add_argument("--factor", type=float, help="multiply the record by this factor")
     parser.add_argument("--duration", type=float, help="use only the first DURATION seconds of the record")
-    parser.add_argument("--out", type=Path, default=Path("out"), help="folder for the figures (default ./out)")
+    parser.add_argument("--out", type=Path, default=Path("opensees_frame"),
+                        help="folder for the figures (default ./opensees_frame)")
     args = parser.parse_args(argv)
-    try:
+    try:  # one error line, as the vdw-frames command gives
+        motion = load_motion(args.record, args.pga, args.duration, args.factor)
         ops = opensees_module()
-    except ImportError as error:
-        print(f"opensees_frame.py: {error}", file=sys.stderr)
+        return run_frames(ops, motion, args.out)
+    except (ValueError, OSError, ImportError) as error:
+        print(f"opensees_frame.py: error: {error}", file=sys.stderr)
         return 2
-    motion = load_motion(args.record, args.scale, args.duration)
+
+
+def run_frames(ops, motion, out: Path) -> int:
+    """The bare frame, the bridged walls and the Prony walls under ``motion``; prints and plots."""
     dt = motion.dt / 2
     print(f"record {motion.name}: {motion.acceleration.size} points, dt = {motion.dt:g} s, "
           f"PGA = {motion.pga / ground_motion.G:.3f} g; analysis step {dt:g} s")
@@ -348,10 +370,11 @@ def main(argv=None) -> int:
               "depend on the strain amplitude; see vdw_frames.paper.strain_dependent)")
     if bridge["fallback_steps"]:
         print(f"(the bridge retried {bridge['fallback_steps']} steps with a fallback algorithm)")
-    for path in plot(results, args.out):
+    for path in plot(results, out):
         print(f"wrote {path}")
     return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    with plain_warnings():  # one line "warning: ...", as the vdw-frames command prints them
+        sys.exit(main())

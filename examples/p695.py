@@ -33,6 +33,7 @@ from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 from vdw_frames.assessment import CollapseCriterion, collapse_assessment, write_collapse_report
+from vdw_frames.cli import plain_warnings
 from vdw_frames.config import load_building
 from vdw_frames.motion import G, fema_p695_records
 
@@ -41,7 +42,7 @@ BUILDING_FILE = Path(__file__).with_name("ten_story.toml")
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], allow_abbrev=False)
-    parser.add_argument("--out", type=Path, default=Path("out"), help="report folder (default ./out)")
+    parser.add_argument("--out", type=Path, default=Path("p695"), help="report folder (default ./p695)")
     parser.add_argument("--sdc", default="Dmax", help="seismic design category (default Dmax)")
     parser.add_argument("--set", default="far-field", help="FEMA P695 record set (default far-field)")
     args = parser.parse_args(argv)
@@ -96,4 +97,5 @@ def run(args) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    with plain_warnings():  # one line "warning: ...", as the vdw-frames command prints them
+        sys.exit(main())

@@ -40,6 +40,7 @@ import numpy as np
 
 import vdw_frames as vdw
 from vdw_frames import plotting
+from vdw_frames.cli import plain_warnings
 from vdw_frames.config import load_building
 from vdw_frames.motion import G, default_record, read_at2
 
@@ -228,4 +229,5 @@ def _residual(result) -> float:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    with plain_warnings():  # one line "warning: ...", as the vdw-frames command prints them
+        sys.exit(main())

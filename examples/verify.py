@@ -34,6 +34,7 @@ from pathlib import Path
 
 from vdw_frames import plotting
 from vdw_frames._files import write_text
+from vdw_frames.cli import plain_warnings
 from vdw_frames.config import load_building
 from vdw_frames.motion import fema_p695_records
 from vdw_frames.verification import PropertyBounds, Site, report, verify
@@ -75,4 +76,5 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    with plain_warnings():  # one line "warning: ...", as the vdw-frames command prints them
+        sys.exit(main())

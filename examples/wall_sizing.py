@@ -45,6 +45,7 @@ from pathlib import Path
 import numpy as np
 
 import vdw_frames as vdw
+from vdw_frames.cli import plain_warnings
 from vdw_frames.config import load_building
 from vdw_frames.design import LayerSizing, size_layers
 from vdw_frames.frame.modal import modal_analysis
@@ -139,4 +140,5 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    with plain_warnings():  # one line "warning: ...", as the vdw-frames command prints them
+        sys.exit(main())

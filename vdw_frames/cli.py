@@ -13,7 +13,8 @@ import math
 import os
 import sys
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -573,12 +574,19 @@ def _print_warning(message, category, filename, lineno, file=None, line=None) ->
     print("warning: " + " ".join(str(message).split()), file=sys.stderr)
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    args = build_parser().parse_args(argv)
-    # The command's own warnings as plain lines; catch_warnings restores the display afterwards (a
-    # command runs in one thread).
+@contextmanager
+def plain_warnings() -> Iterator[None]:
+    """Within the block, warnings print as one line ``warning: ...`` on standard error (no category, file
+    or source line), as the ``vdw-frames`` commands print them; the examples use it too.  The display is
+    restored afterwards (use it in one thread: it sets ``warnings.showwarning``)."""
     with warnings.catch_warnings():
         warnings.showwarning = _print_warning
+        yield
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    with plain_warnings():
         try:
             return args.run(args)
         except (ValueError, OSError) as error:

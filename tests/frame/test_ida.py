@@ -33,3 +33,26 @@ def test_fragility_when_every_record_collapsed_and_the_mask_is_nomask():
     fit = result.fragility()
     masked = dataclasses.replace(result, collapse_intensity=np.ma.masked_array([2.0, 3.0, 1.0], mask=[False] * 3))
     assert (fit.median, fit.dispersion) == (masked.fragility().median, masked.fragility().dispersion)
+
+
+def _ida_result(levels_per_record: list[int], collapsed_at: list[float | None]) -> IDAResult:
+    """An IDAResult of records stepped 1, 2, ... g; a record collapses at ``collapsed_at`` or stands (None)."""
+    intensities = tuple(G * np.arange(1.0, n + 1.0) for n in levels_per_record)
+    collapse = np.ma.masked_invalid([np.nan if c is None else c * G for c in collapsed_at])
+    names = tuple(f"record {m}" for m in range(len(levels_per_record)))
+    return IDAResult(names, 1.0, G * np.arange(1.0, max(levels_per_record) + 1.0), intensities,
+                     tuple(np.zeros(x.size) for x in intensities),
+                     tuple(np.isclose(x, c * G) if c is not None else np.zeros(x.size, bool)
+                           for x, c in zip(intensities, collapsed_at, strict=True)), collapse, ())
+
+
+def test_a_fragility_of_one_record_asks_for_records_not_a_higher_cap():
+    """One record gives one intensity at most: raising the cap cannot make two collapses."""
+    with pytest.raises(ValueError, match=r"got 1 \(run at least two records, got 1\)$"):
+        _ida_result([3], [3.0]).fragility()
+
+
+def test_a_fragility_with_records_standing_at_the_cap_names_them_and_the_cap_in_g():
+    with pytest.raises(ValueError, match=r"got 1 \(2 of 3 records still stand at the cap, Sa\(T1\) = 4 g: raise "
+                                         r"the cap\)$"):
+        _ida_result([2, 4, 4], [2.0, None, None]).fragility()

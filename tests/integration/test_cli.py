@@ -12,7 +12,7 @@ import warnings
 import numpy as np
 import pytest
 from builders import README_WALL, three_story_spec, write_file
-from shared_data import EXAMPLE_BUILDING
+from shared_data import EXAMPLE_BUILDING, REPO
 
 import vdw_frames as vdw
 from vdw_frames import cli, modal_analysis, paper, simulate
@@ -351,3 +351,19 @@ def _example_at_the_range_centre():
     building = load_building(EXAMPLE_BUILDING)
     assert building.wall_list[0][1].strain_range == (2.25, 4.5)
     return building.walls_at(np.sqrt(2.25 * 4.5))
+
+
+def test_plain_warnings_print_one_line_without_the_source(capsys):
+    """The format of the command's warnings, which the examples use as well."""
+    with cli.plain_warnings():
+        warnings.warn("wall peak strain\n   outside the range", UserWarning, stacklevel=1)
+    assert capsys.readouterr().err == "warning: wall peak strain outside the range\n"
+    with pytest.warns(UserWarning):  # the display is restored afterwards
+        warnings.warn("after", UserWarning, stacklevel=1)
+
+
+# The benchmark is left out: it silences the package's warnings (it times, it does not report).
+@pytest.mark.parametrize("example", sorted(path for path in (REPO / "examples").glob("*.py")
+                                           if path.name != "benchmark.py"), ids=lambda path: path.name)
+def test_every_example_script_prints_warnings_as_the_command_does(example):
+    assert 'with plain_warnings():' in example.read_text().split('if __name__ == "__main__":')[1]

@@ -252,3 +252,23 @@ def test_heating_example_compares_isothermal_and_self_heating_walls(tmp_path, ca
     assert drift == sorted(drift) and rise == sorted(rise, reverse=True)
     assert all((tmp_path / name).stat().st_size > 10_000
                for name in ("synthetic_kt_035g_wall_temperature.png", "synthetic_kt_035g_wall_loops.png"))
+
+
+def test_ida_example_refuses_a_records_folder_that_is_missing_or_empty(tmp_path, capsys):
+    """Not a silent run of the one synthetic record."""
+    ida = runpy.run_path(str(REPO / "examples" / "ida.py"), run_name="ida")
+    assert ida["main"](["--out", str(tmp_path), "--records", str(tmp_path / "nonexistent")]) == 2
+    assert capsys.readouterr().err == f"ida.py: error: --records {tmp_path / 'nonexistent'}: not a folder\n"
+    assert ida["main"](["--out", str(tmp_path), "--records", str(tmp_path)]) == 2
+    assert capsys.readouterr().err == f"ida.py: error: --records {tmp_path}: no .AT2 records in the folder\n"
+
+
+def test_opensees_frame_example_reports_bad_input_in_one_line_in_g(tmp_path, capsys):
+    example = runpy.run_path(str(REPO / "examples" / "opensees_frame.py"), run_name="example")
+    assert example["main"](["--record", str(tmp_path / "missing.AT2"), "--out", str(tmp_path)]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and error.startswith("opensees_frame.py: error: ") and "missing.AT2" in error
+    assert example["main"](["--pga", "-0.4", "--out", str(tmp_path)]) == 2
+    assert capsys.readouterr().err == "opensees_frame.py: error: --pga must be a PGA > 0 in g, got -0.4\n"
+    assert example["main"](["--factor", "1e306", "--out", str(tmp_path)]) == 2
+    assert capsys.readouterr().err.startswith("opensees_frame.py: error: --factor 1e+306: factor = ")

@@ -99,8 +99,13 @@ class IDAResult:
                              if np.ma.getmaskarray(observed)[m]])
         if collapsed.size < 2:
             what = "collapses" if limit_state == "collapse" else "wall failures"
-            raise ValueError(f"a fragility needs at least two {what}, got {collapsed.size} "
-                             f"(raise the cap above {self.levels[-1] / G:.4g} g = {self.levels[-1]:.6g} mm/s^2)")
+            records = len(self.motion_names)
+            if records < 2:  # no cap helps: one record gives one intensity at most
+                advice = f"run at least two records, got {records}"
+            else:
+                advice = (f"{standing.size} of {records} records still stand at the cap, Sa(T1) = "
+                          f"{self.levels[-1] / G:.4g} g: raise the cap")
+            raise ValueError(f"a fragility needs at least two {what}, got {collapsed.size} ({advice})")
         data = stats.CensoredData(uncensored=collapsed, right=standing) if standing.size else collapsed
         shape, _, scale = stats.lognorm.fit(data, floc=0.0)
         return Fragility(float(scale), float(shape))
