@@ -415,6 +415,26 @@ def test_vdw_frames_opensees_imports_openseespy_lazily_and_says_how_to_install_i
     assert opensees_module(None) is opensees_frame.opensees()
 
 
+def test_openseespy_without_its_blas_libraries_is_an_import_error_with_the_fix():
+    """OpenSeesPy raises RuntimeError ('Failed to import openseespy on Linux.') when libblas.so.3 is
+    missing: it must reach the user as the ImportError naming the packages, not as a traceback."""
+    program = (
+        "import sys, types\n"
+        "class Finder:\n"
+        "    def find_spec(self, name, path=None, target=None):\n"
+        "        if name.startswith('openseespy'):\n"
+        "            raise RuntimeError('Failed to import openseespy on Linux.')\n"
+        "sys.meta_path.insert(0, Finder())\n"
+        "import vdw_frames.interop.opensees as bridge\n"
+        "try:\n"
+        "    bridge.opensees_module()\n"
+        "except ImportError as error:\n"
+        "    print(error)\n")
+    completed = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True, check=True)
+    assert "Failed to import openseespy on Linux." in completed.stdout
+    assert "libblas3 and liblapack3" in completed.stdout
+
+
 @pytest.mark.records
 def test_the_memory_serves_the_steps_it_was_built_for(ops, record):
     # The exact memory grows (bridge.analyze(1) at a time: 1, 2, 4, ... steps); the fast one is built for
