@@ -310,6 +310,11 @@ def main(argv=None) -> int:
 
 def run_frames(ops, motion, out: Path) -> int:
     """The bare frame, the bridged walls and the Prony walls under ``motion``; prints and plots."""
+    out.mkdir(parents=True, exist_ok=True)
+    # OpenSees's own messages (the Maxwell material's banner, "Process 0 Terminating" at exit, its warnings)
+    # go to a log beside the figures instead of between the tables.
+    ops.logFile(str(out / "opensees.log"), "-noEcho")
+    print(f"OpenSees's own messages: {out / 'opensees.log'}")
     dt = motion.dt / 2
     print(f"record {motion.name}: {motion.acceleration.size} points, dt = {motion.dt:g} s, "
           f"PGA = {motion.pga / ground_motion.G:.3f} g; analysis step {dt:g} s")
