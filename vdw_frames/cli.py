@@ -459,6 +459,8 @@ def _verify(args) -> int:
         raise ValueError("give --bounds LAMBDA_MIN LAMBDA_MAX: the walls' property modification factors (ASCE 7-16 "
                          "Sec. 18.2.4.5), e.g. --bounds 0.8 1.2 from their tests and specification (or bounds in "
                          "the building file's [verification] table)")
+    if args.ambient is not None:
+        bounds = dataclasses.replace(bounds, ambient=tuple(args.ambient))
     out = _output_folder(args.out)
     records = _verify_records(args.records)
     result = verify(building, site, records, bounds=bounds, count=args.count,
@@ -477,6 +479,12 @@ def _verify(args) -> int:
     path = write_text(out / "report.md", verification_report.markdown(result, figures, title), "report")
     print(site.describe())
     print(result.suite.range.describe())
+    frequency = 1.0 / result.first_period
+    for c, (case, factor) in enumerate(result.cases[1:], 1):
+        storage, loss = result.stiffness_factors[c, :, 0], result.stiffness_factors[c, :, 1]
+        at = result.bounds.temperature(case)
+        print(f"{case} bound: lambda {factor:g}{f', from {at:g} degC' if at is not None else ''}: K' x "
+              f"{storage.min():.3f}-{storage.max():.3f}, K'' x {loss.min():.3f}-{loss.max():.3f} at {frequency:.3f} Hz")
     for criterion in result.criteria:
         print(f"{'pass' if criterion.passed else 'FAIL'}: {criterion.name}: {criterion.text}")
     print(f"verification: {'PASS' if result.passed else 'FAIL'}")
@@ -499,6 +507,9 @@ def _add_verify_command(commands) -> None:
     site.add_argument("--risk-category", help="risk category I-IV (default II, or the building file's)")
     verify.add_argument("--bounds", type=float, nargs=2, metavar=("LAMBDA_MIN", "LAMBDA_MAX"),
                         help="property modification factors of the walls (Sec. 18.2.4.5)")
+    verify.add_argument("--ambient", type=float, nargs=2, metavar=("COLDEST", "HOTTEST"),
+                        help="the walls' service temperatures, degC: the upper-bound walls start at the coldest, the "
+                             "lower-bound ones at the hottest (walls with a thermal description)")
     verify.add_argument("--records", default="far-field",
                         help="FEMA P695 set (far-field, near-field, ...; needs the [p695] extra) or a folder of .AT2 "
                              "files (default far-field)")

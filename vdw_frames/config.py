@@ -20,6 +20,7 @@ Keys (units N-mm-s-tonne)::
     [verification]                      # optional, for ``vdw-frames verify``
     bounds = [0.8, 1.2]                 # the walls' lambda_min, lambda_max (ASCE 7-16 Sec. 18.2.4.5)
     bounds_source = "..."               # where they come from (optional)
+    ambient = [0.0, 40.0]               # degC, the walls' service temperatures (optional; walls with thermal)
 
     [hysteresis]                        # optional: yielding stories (default: all linear)
     model = "bilinear"                  # "bilinear" (Steel01-like) or "bouc-wen"
@@ -108,7 +109,7 @@ from .verification.verify import PropertyBounds
 
 _BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "damping_model",
                   "gravity_loads", "hysteresis", "walls", "strain_compatible", "site", "verification"}
-_VERIFICATION_KEYS = {"bounds", "bounds_source"}
+_VERIFICATION_KEYS = {"ambient", "bounds", "bounds_source"}
 _HYSTERESIS_KEYS = {"bilinear": {"model", "yield_forces", "hardening"},
                     "bouc-wen": {"model", "yield_forces", "hardening", "exponent", "beta", "gamma"}}
 _STRAIN_COMPATIBLE_KEYS = {"effective_strain_ratio", "initial_strain", "tolerance", "max_iterations"}
@@ -146,8 +147,9 @@ def load_verification(path: str | os.PathLike[str]) -> tuple[ShearBuilding, Site
     """(building, site, property bounds) from a building file for ``vdw-frames verify``: its ``[site]`` table
     (keys of :func:`vdw_frames.verification.spectrum.site_from_values`: ``sms``, ``sm1`` or ``ss``, ``s1``,
     ``site_class``; ``tl``; ``risk_category``) and its ``[verification]`` table (``bounds = [lambda_min,
-    lambda_max]``, the walls' property modification factors of ASCE 7-16 Sec. 18.2.4.5, and ``bounds_source``,
-    where they come from); None for a table the file does not have."""
+    lambda_max]``, the walls' property modification factors of ASCE 7-16 Sec. 18.2.4.5, ``bounds_source``,
+    where they come from, and optionally ``ambient = [coldest, hottest]``, degC, the walls' service temperatures:
+    :class:`~vdw_frames.verification.PropertyBounds`); None for a table the file does not have."""
     path, data = _read_data(path)
     try:
         building = building_from_dict(data)
@@ -161,7 +163,10 @@ def load_verification(path: str | os.PathLike[str]) -> tuple[ShearBuilding, Site
             source = table.get("bounds_source", "stated in the building file")
             if not isinstance(source, str):
                 raise ValueError(f"verification bounds_source must be text, got {show(source)}")
-            bounds = PropertyBounds(values[0], values[1], source)
+            ambient = table.get("ambient")
+            if ambient is not None and (not isinstance(ambient, list) or len(ambient) != 2):
+                raise ValueError(f"verification ambient must be [coldest, hottest] in degC, got {show(ambient)}")
+            bounds = PropertyBounds(values[0], values[1], source, None if ambient is None else tuple(ambient))
         return building, site, bounds
     except ValueError as error:
         raise ValueError(f"{path}: {error}") from None

@@ -16,6 +16,7 @@ from vdw_frames.verification.verify import (
     PropertyBounds,
     acceptance,
     cycle_energies,
+    stiffness_factors,
     unacceptable_reasons,
     verify,
     wall_peaks,
@@ -231,3 +232,76 @@ def test_bad_verifications_are_refused(verified):
         verify(three_story(walls=False), SITE, records, bounds=(0.8, 1.2))
     with pytest.raises(ValueError, match="10 records given"):
         verify(three_story(), SITE, records[:10], bounds=(0.8, 1.2))
+
+
+# ---------------------------------------------------------------------------------------------- ambient bounds
+HEAT = ThermalProperties(ISD110_LOSS_PEAK, 1.8, 21.2)
+
+
+def _heated(temperature: float = 21.2, factor: float = 1.0) -> ShearBuilding:
+    """three_story() with walls that heat, starting at ``temperature`` (degC), moduli and viscosities x ``factor``:
+    written out here, not through PropertyBounds or at_ambient."""
+    thermal = ThermalProperties(ISD110_LOSS_PEAK, 1.8, temperature)
+    walls = {1: r1_wall(factor), 2: r1_wall(factor), 3: r1_wall(0.8 * factor)}
+    return ShearBuilding(masses=(100.0, 100.0, 80.0), stiffnesses=(1.2e5, 1.0e5, 0.8e5), damping_ratio=0.03,
+                         walls={s: dataclasses.replace(w, thermal=thermal) for s, w in walls.items()},
+                         story_heights=(3500.0, 3200.0, 3200.0))
+
+
+def test_ambient_bounds_start_the_upper_walls_cold_and_the_lower_walls_hot():
+    bounds = PropertyBounds(0.8, 1.25, ambient=(0.0, 40.0))
+    building = _heated()
+    assert bounds.building(building, "nominal").wall_list == building.wall_list
+    for case, expected in (("upper", _heated(0.0, 1.25)), ("lower", _heated(40.0, 0.8))):
+        for (_, wall), (_, own) in zip(bounds.building(building, case).wall_list, expected.wall_list, strict=True):
+            assert wall.thermal == own.thermal
+            np.testing.assert_allclose([wall.G1, wall.G2, wall.eta1, wall.eta2], [own.G1, own.G2, own.eta1, own.eta2],
+                                       rtol=1e-15)
+
+
+def test_ambient_bounds_change_k_storage_and_k_loss_by_different_factors():
+    """Against the closed form of eqs. (3)-(5) at eta x a_T^r, a_T = 10^(-(T - 21.2) / 19.45) written here."""
+    from reference import wall_stiffness
+
+    building, frequency = _heated(), 0.9
+    bounds = PropertyBounds(0.8, 1.25, ambient=(0.0, 40.0))
+    factors = stiffness_factors(building, bounds, frequency)
+    degrees_per_decade = (65.6 - 26.7) / 2.0
+    for c, (temperature, factor) in enumerate(((21.2, 1.0), (0.0, 1.25), (40.0, 0.8))):
+        for j, (_, wall) in enumerate(building.wall_list):
+            params = {name: getattr(wall, name) for name in ("G1", "G2", "eta1", "eta2", "r")}
+            shift = 10.0 ** (-(temperature - 21.2) / degrees_per_decade * wall.r)
+            bounded = dict(params, G1=factor * params["G1"], G2=factor * params["G2"],
+                           eta1=factor * shift * params["eta1"], eta2=factor * shift * params["eta2"])
+            nominal = wall_stiffness(params, wall.area, wall.thickness, 2 * np.pi * frequency)
+            stiffness = wall_stiffness(bounded, wall.area, wall.thickness, 2 * np.pi * frequency)
+            np.testing.assert_allclose(factors[c, j], [stiffness.real / nominal.real, stiffness.imag / nominal.imag],
+                                       rtol=1e-10)
+    assert factors[1, 0, 0] > 1.25 and factors[2, 0, 0] < 0.8  # cold stiffens, heat softens, beyond lambda
+    assert abs(factors[1, 0, 0] - factors[1, 0, 1]) > 0.01  # and K'' by another factor than K'
+    # Without an ambient range both are lambda.
+    plain = stiffness_factors(building, PropertyBounds(0.8, 1.25), frequency)
+    np.testing.assert_allclose(plain[:, :, 0], [[1.0] * 3, [1.25] * 3, [0.8] * 3], rtol=1e-12)
+    np.testing.assert_allclose(plain[:, :, 1], plain[:, :, 0], rtol=1e-12)
+
+
+def test_verify_runs_the_bounds_at_their_ambient_temperatures(verified):
+    result, _ = verified
+    motions = list(result.suite.motions)
+    with concurrent.futures.ThreadPoolExecutor(2) as executor:
+        hot = verify(_heated(), SITE, motions, bounds=PropertyBounds(0.8, 1.25, ambient=(0.0, 40.0)),
+                     executor=executor, progress=False)
+    for c, (temperature, factor) in enumerate(((21.2, 1.0), (0.0, 1.25), (40.0, 0.8))):
+        for r in (0, 5):
+            expected = simulate(_heated(temperature, factor), hot.suite.motions[r].scaled(float(hot.suite.factors[r])))
+            np.testing.assert_allclose(hot.peak_drift_ratio[c, r], expected.peak_drift_ratio, rtol=1e-9)
+    assert hot.stiffness_factors.shape == (3, 3, 2)
+
+
+def test_ambient_bounds_are_checked():
+    with pytest.raises(ValueError, match=r"ambient must be \(coldest, hottest\) in degC, coldest first, got \(40"):
+        PropertyBounds(0.8, 1.2, ambient=(40.0, 0.0))
+    with pytest.raises(ValueError, match="ambient temperature must be finite"):
+        PropertyBounds(0.8, 1.2, ambient=(0.0, float("nan")))
+    with pytest.raises(ValueError, match="need walls with a thermal description"):
+        PropertyBounds(0.8, 1.2, ambient=(0.0, 40.0)).building(three_story(), "upper")

@@ -121,6 +121,7 @@ bounds_source = "manufacturer's data sheet (example)"
 @pytest.mark.parametrize("table, words", [
     ("[verification]\nbounds = [0.8]\n", "bounds must be [lambda_min, lambda_max]"),
     ("[verification]\nbounds = [0.8, 1.2]\nsource = 'x'\n", "unknown verification keys"),
+    ("[verification]\nbounds = [0.8, 1.2]\nambient = [40.0]\n", "ambient must be [coldest, hottest] in degC"),
     ("[site]\nsms = 1.5\ntl = 8.0\n", "only ['sms']"),
     ("[site]\nsms = 1.5\nsm1 = 0.9\n", "the site needs tl"),
 ])
@@ -130,3 +131,47 @@ def test_bad_verification_tables_name_the_key(inputs, capsys, table, words):
     code = main(["verify", str(path), "--records", str(inputs / "records"), "--out", str(inputs / "bad2")])
     error = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(error) == 1 and words in error[0] and "bad_table.toml" in error[0]
+
+
+HEATED = BUILDING.replace("r = 1.0}\n", 'r = 1.0}\nthermal = {shift = "isd110-loss-peak", heat_capacity = 1.8, '
+                                          'temperature = 21.2}\n')
+
+
+def test_ambient_bounds_from_the_file_and_the_command_line(inputs, capsys):
+    from vdw_frames.verification import PropertyBounds
+
+    path = inputs / "heated.toml"
+    path.write_text(HEATED.replace("[[walls]]", "[verification]\nbounds = [0.8, 1.25]\nambient = [0.0, 40.0]\n\n"
+                                   "[[walls]]", 1))
+    out = inputs / "out_heated"
+    code = main(["verify", str(path), "--sms", "1.5", "--sm1", "0.9", "--tl", "8", "--records",
+                 str(inputs / "records"), "--out", str(out)])
+    printed = capsys.readouterr().out
+    assert code == 0, printed
+    building = load_building(path)
+    records = [read_at2(p) for p in sorted((inputs / "records").glob("*.AT2"))]
+    with concurrent.futures.ThreadPoolExecutor(2) as executor:
+        expected = verify(building, Site(1.5, 0.9, 8.0), records, executor=executor, progress=False,
+                          bounds=PropertyBounds(0.8, 1.25, ambient=(0.0, 40.0)))
+    frequency = 1.0 / expected.first_period
+    for c, case, at in ((1, "upper", 0.0), (2, "lower", 40.0)):
+        storage, loss = expected.stiffness_factors[c, :, 0], expected.stiffness_factors[c, :, 1]
+        assert (f"{case} bound: lambda {expected.cases[c][1]:g}, from {at:g} degC: K' x {storage.min():.3f}-"
+                f"{storage.max():.3f}, K'' x {loss.min():.3f}-{loss.max():.3f} at {frequency:.3f} Hz") in printed
+    with open(out / "drifts.csv", newline="") as handle:
+        drifts = np.array([float(row["peak_drift_ratio"]) for row in csv.DictReader(handle)])
+    np.testing.assert_allclose(drifts, expected.peak_drift_ratio.ravel(), rtol=1e-12)
+    assert "the upper-bound walls start at 0 degC, the lower-bound ones at 40 degC" in (out / "report.md").read_text()
+    # --ambient overrides the file's range.
+    code = main(["verify", str(path), "--sms", "1.5", "--sm1", "0.9", "--tl", "8", "--ambient", "10", "30",
+                 "--records", str(inputs / "records"), "--out", str(inputs / "out_heated_cli")])
+    printed = capsys.readouterr().out
+    assert code == 0 and "upper bound: lambda 1.25, from 10 degC" in printed and "from 30 degC" in printed
+
+
+def test_ambient_bounds_need_walls_that_heat(inputs, capsys):
+    code = main(["verify", str(inputs / "building.toml"), "--sms", "1.5", "--sm1", "0.9", "--tl", "8", "--bounds",
+                 "0.8", "1.2", "--ambient", "0", "40", "--records", str(inputs / "records"), "--out",
+                 str(inputs / "bad3")])
+    error = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(error) == 1 and "need walls with a thermal description" in error[0]

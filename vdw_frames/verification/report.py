@@ -88,7 +88,19 @@ def markdown(result: VerificationResult, figures: Mapping[str, str], title: str)
         lines.append(f"| {motion.name} | {factor:.3f} | {misfit:.3f} | {factor * motion.pga / G:.3f} |")
     lines += ["", "## Property bounds (Sec. 18.2.4.5)", "",
               f"- lambda_min = {result.bounds.lower:g}, lambda_max = {result.bounds.upper:g} ({result.bounds.source}); "
-              "every wall's moduli and viscosities times lambda (`wall.scaled`)", "",
+              "every wall's moduli and viscosities times lambda (`wall.scaled`)"]
+    if result.bounds.ambient is not None:
+        cold, hot = result.bounds.ambient
+        lines.append(f"- ambient {cold:g} to {hot:g} degC: the upper-bound walls start at {cold:g} degC, the "
+                     f"lower-bound ones at {hot:g} degC (and heat from there); a temperature changes K' and K'' by "
+                     "different factors")
+    frequency = 1.0 / result.first_period
+    lines += ["", f"| case | lambda | K' factor at {frequency:.3f} Hz | K'' factor at {frequency:.3f} Hz |",
+              "|---|---|---|---|"]
+    for c, (case, factor) in enumerate(result.cases):
+        storage, loss = result.stiffness_factors[c, :, 0], result.stiffness_factors[c, :, 1]
+        lines.append(f"| {case} | {factor:g} | {_span(storage)} | {_span(loss)} |")
+    lines += ["",
               "## Acceptance (Sec. 16.4)", "",
               f"- Drift limit {DRIFT_FACTOR:g} x {ALLOWABLE_DRIFT[category]:g} h_sx (Table 12.12-1, all other "
               f"structures, Risk Category {category}) = {result.drift_limit:.4f}; "
@@ -122,3 +134,9 @@ def markdown(result: VerificationResult, figures: Mapping[str, str], title: str)
     lines += ["Files: suite.csv, spectra.csv, drifts.csv, walls.csv.",
               f"Largest single peak drift ratio: {100 * float(np.max(result.peak_drift_ratio)):.3f} %.", ""]
     return "\n".join(lines)
+
+
+def _span(values) -> str:
+    """'a' or 'a-b': the range of the walls' factors."""
+    low, high = float(min(values)), float(max(values))
+    return f"{low:.3f}" if abs(high - low) < 5e-4 else f"{low:.3f}-{high:.3f}"

@@ -7,9 +7,10 @@ nominal, upper- and lower-bound wall properties and judges the results:
   hand -- so how lambda_ae, lambda_test and lambda_spec combine is left to the user): the user states the
   combined factors lambda_min <= 1 <= lambda_max (:class:`PropertyBounds`), applied to every wall as
   ``wall.scaled(lambda)`` (moduli and viscosities times lambda: K*(f) scales, the loss factor does not).  Walls
-  with a thermal description (:class:`~vdw_frames.ThermalProperties`) also heat in every analysis; their
-  ambient temperature range is a further bound (run the verification at the range's ends with
-  ``wall.at_ambient(T)``, or give lambda factors that include it) -- not built in here.
+  with a thermal description (:class:`~vdw_frames.ThermalProperties`) also heat in every analysis, and an
+  ambient temperature range (``PropertyBounds(ambient=(coldest, hottest))``) starts the upper-bound walls at
+  the coldest temperature and the lower-bound ones at the hottest, besides lambda: K' and K'' then change by
+  different factors, reported at the first mode (:func:`stiffness_factors`).
 * **unacceptable responses** (Sec. 16.4.1.1): an analysis whose story drift ratio exceeded the collapse limit
   (``collapse_drift_ratio``), that did not converge, whose drift ratio exceeded ``valid_drift_ratio`` (the
   largest drift the story models are valid for, if given), in which a wall failed (its
@@ -48,7 +49,7 @@ from typing import Any
 import numpy as np
 
 from .. import _warnings
-from .._validation import positive, show
+from .._validation import finite_scalar, positive, show
 from ..frame.building import ShearBuilding
 from ..frame.results import SimulationResult
 from ..frame.simulation import simulate
@@ -74,11 +75,22 @@ MEDIAN_FACTOR = 1.2
 class PropertyBounds:
     """Property modification factors of the walls (ASCE 7-16 Sec. 18.2.4.5: the clause was not read): the
     combined ``lower`` (lambda_min, 0 < lambda_min <= 1) and ``upper`` (lambda_max >= 1) factors, applied as
-    ``wall.scaled(lambda)``; ``source``: where they come from (stated in the report)."""
+    ``wall.scaled(lambda)``; ``source``: where they come from (stated in the report).
+
+    ``ambient`` (degC, (coldest, hottest)), optional: the range of temperatures the walls serve in.  Then the
+    upper-bound analyses start the walls at the coldest temperature and the lower-bound ones at the hottest
+    (``wall.at_ambient(T)``, heating from there), each also times its lambda; the nominal analyses keep the
+    walls' own temperature.  A temperature is not one factor: it changes K' and K'' by different factors
+    (time-temperature superposition shifts the frequency), so the report states both at the first mode
+    (:attr:`VerificationResult.stiffness_factors`).  An FDMK wall's K' and K'' rise with frequency, so a
+    colder wall (a higher reduced frequency) is the stiffer, more damped one -- the upper bound.  Every wall
+    needs a thermal description then.
+    """
 
     lower: float
     upper: float
     source: str = "stated by the user"
+    ambient: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         lower, upper = positive("lambda_min", self.lower), positive("lambda_max", self.upper)
@@ -88,11 +100,63 @@ class PropertyBounds:
             raise ValueError(f"lambda_max must be >= 1 (the upper-bound properties), got {show(self.upper)}")
         object.__setattr__(self, "lower", lower)
         object.__setattr__(self, "upper", upper)
+        if self.ambient is not None:
+            values = self.ambient
+            if not isinstance(values, (tuple, list)) or len(values) != 2:
+                raise ValueError(f"ambient must be (coldest, hottest) in degC, got {show(values)}")
+            cold, hot = (finite_scalar("ambient temperature", value) for value in values)
+            if not cold <= hot:
+                raise ValueError(f"ambient must be (coldest, hottest) in degC, coldest first, got {show(values)}")
+            object.__setattr__(self, "ambient", (cold, hot))
 
     @property
     def cases(self) -> tuple[tuple[str, float], ...]:
         """(name, lambda) of the analyses: nominal, upper bound, lower bound."""
         return (("nominal", 1.0), ("upper", self.upper), ("lower", self.lower))
+
+    def temperature(self, case: str) -> float | None:
+        """The ambient temperature (degC) the walls start from in ``case``; None: their own."""
+        if self.ambient is None or case == "nominal":
+            return None
+        return self.ambient[0] if case == "upper" else self.ambient[1]
+
+    def wall(self, wall: Any, case: str) -> Any:
+        """``wall`` as analysed in ``case`` ("nominal", "upper", "lower"): at the case's ambient temperature, if
+        any, then times its lambda."""
+        factor = dict(self.cases)[case]
+        temperature = self.temperature(case)
+        if temperature is not None:
+            if getattr(wall, "thermal", None) is None:
+                raise ValueError(f"ambient bounds {self.ambient} degC need walls with a thermal description "
+                                 "(thermal=ThermalProperties(...)); a wall has none")
+            wall = wall.at_ambient(temperature)
+        return wall.scaled(factor) if factor != 1.0 else wall
+
+    def building(self, building: ShearBuilding, case: str) -> ShearBuilding:
+        """``building`` with every wall as analysed in ``case`` (:meth:`wall`)."""
+        return building.with_walls({story: tuple(self.wall(wall, case) for wall in walls)
+                                    for story, walls in building.walls.items()})
+
+
+def stiffness_factors(building: ShearBuilding, bounds: PropertyBounds, frequency: float) -> np.ndarray:
+    """(cases, walls, 2): K'(f) and K''(f) of every wall in each case of ``bounds`` over the nominal wall's, at
+    ``frequency`` (Hz), each wall isothermal at the temperature it starts from (amplitude-dependent walls at
+    the centre, in logarithm, of their identified range).  With lambda only both columns are lambda."""
+    factors = np.empty((len(bounds.cases), len(building.wall_list), 2))
+    for c, (case, _) in enumerate(bounds.cases):
+        for j, (_, wall) in enumerate(building.wall_list):
+            nominal, bounded = _isothermal(wall), _isothermal(bounds.wall(wall, case))
+            factors[c, j] = (bounded.storage_stiffness(frequency) / nominal.storage_stiffness(frequency),
+                             bounded.loss_stiffness(frequency) / nominal.loss_stiffness(frequency))
+    return factors
+
+
+def _isothermal(wall: Any) -> Any:
+    """The wall at its starting temperature and, for an amplitude-dependent wall, at its range's centre."""
+    if hasattr(wall, "centre_strain"):
+        wall = wall.at(wall.centre_strain)
+    thermal = getattr(wall, "thermal", None)
+    return wall.at_temperature(thermal.temperature) if thermal is not None else wall
 
 
 @dataclass(frozen=True)
@@ -141,7 +205,9 @@ class VerificationResult:
     ``drift_statistic`` (-, (cases, stories)): the mean (or the statistic of Sec. 16.4.1.2 with unacceptable
     responses); ``drift_limit`` (-); ``allowed_unacceptable``; ``criteria``; ``walls`` (:class:`WallDemand`
     per wall); ``wall_peaks``: each analysis's :func:`wall_peaks`, name -> (cases, records, walls);
-    ``specification``: the prototype test specification text; ``first_period`` (s, with walls).
+    ``specification``: the prototype test specification text; ``first_period`` (s, with walls);
+    ``stiffness_factors`` (-, (cases, walls, 2)): each case's K' and K'' of every wall over the nominal, at
+    1 / ``first_period`` (:func:`stiffness_factors`; they differ where an ambient range is bounded).
     """
 
     site: Site
@@ -160,6 +226,7 @@ class VerificationResult:
     wall_peaks: dict[str, np.ndarray]
     specification: str
     first_period: float
+    stiffness_factors: np.ndarray
 
     @property
     def passed(self) -> bool:
@@ -384,8 +451,9 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
     12.12-1's Delta_a / h_sx if not the "all other structures" row.  ``executor``: any
     ``concurrent.futures.Executor`` (default a process pool over all cores); ``progress``: a progress bar on
     standard error when it is a terminal.  Every analysis is :func:`vdw_frames.simulate` of the bound's
-    building (walls ``scaled(lambda)``) under the scaled record; the package's warnings of each analysis are
-    re-issued once, naming the case and record.  Returns a :class:`VerificationResult`.
+    building (:meth:`PropertyBounds.building`: walls at the bound's ambient temperature, if any, times lambda)
+    under the scaled record; the package's warnings of each analysis are re-issued once, naming the case and
+    record.  Returns a :class:`VerificationResult`.
     """
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
@@ -416,8 +484,7 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
         raise ValueError(f"executor must be a concurrent.futures.Executor (or None), got {show(executor)}")
 
     cases = bounds.cases
-    variants = [building.with_walls({story: tuple(wall.scaled(factor) for wall in walls)
-                                     for story, walls in building.walls.items()}) for _, factor in cases]
+    variants = [bounds.building(building, case) for case, _ in cases]
     tasks = {(c, r): _Task(variant, motion, float(f), collapse, valid)
              for c, variant in enumerate(variants)
              for r, (motion, f) in enumerate(zip(suite.motions, suite.factors, strict=True))}
@@ -434,13 +501,15 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
              for name in WALL_PEAKS}
     walls = _wall_demands(building, peaks, cases, names)
     first = suite.range.first_period
+    factors = stiffness_factors(building, bounds, 1.0 / first)
     return VerificationResult(
         site=site, suite=suite, bounds=bounds, cases=cases, peak_drift_ratio=drifts,
         collapsed=np.array([[summaries[(c, r)]["collapsed"] for r in range(n_records)] for c in range(n_cases)]),
         converged=np.array([[summaries[(c, r)]["converged"] for r in range(n_records)] for c in range(n_cases)]),
         unacceptable=unacceptable, drift_statistic=statistic, drift_limit=limit, allowed_unacceptable=allowed,
         criteria=criteria, walls=walls, wall_peaks=peaks,
-        specification=prototype_test_specification(walls, 1.0 / first), first_period=first)
+        specification=prototype_test_specification(walls, 1.0 / first), first_period=first,
+        stiffness_factors=factors)
 
 
 def _wall_demands(building: ShearBuilding, peaks: dict[str, np.ndarray], cases: Sequence[tuple[str, float]],
