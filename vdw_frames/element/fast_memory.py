@@ -63,7 +63,7 @@ float64 recurrence of the exact trapezoidal weights has errors of the same kind 
 r = 0.99).  Below ~eps * max_steps * (slow residues) the error is rounding noise; smaller tolerances
 are raised to 4x that floor.
 
-Measured at the defaults (tests/test_fast_memory.py), 1e5 steps, dt-independent (the weights all scale
+Measured at the defaults (tests/element/test_fast_memory.py), 1e5 steps, dt-independent (the weights all scale
 with dt^-r): filtered l1 error <= 7e-11 |w_0| against extended-precision weights (<= 3e-10 against the
 float64 recurrence), plain l1 <= 6.1e-11 for BDF2 / Grunwald, <= 3.5e-11 for the damped method (its
 alternating ratios near -rho decay geometrically: plain l1 measure) and <= 3.3e-7 (Nyquist) for the

@@ -24,7 +24,7 @@ Methods
     (1 - zeta)^r P^r Q^-r (P = a0 + a1 zeta, Q = b0 + b1 zeta), by Miller's recurrence (stable: the
     singularities 1, -a0/a1 = 7 and -1/rho = -2 lie on or outside the unit circle; l1 deviation from the
     same recurrence in extended precision <= 2e-14 |w_0| over 1e5 weights); at r = 1 they are
-    7/4, -23/8, 27/4 (-1/2)^j.  Measured (tests/test_damped_two_step.py), force error on a tapered 1 Hz
+    7/4, -23/8, 27/4 (-1/2)^j.  Measured (tests/element/test_damped_two_step.py), force error on a tapered 1 Hz
     sine at omega dt = 0.2, this method / BDF2: Table-4 damper 0.11 % / 0.22 % (r = 0.6), 0.25 % / 0.51 %
     (r = 1); pure Abel dashpot (G1 = G2 = eta2 = 0) 0.21 / 0.42 % (r = 0.3), 0.44 / 0.87 % (r = 0.6),
     0.69 / 1.36 % (r = 0.9), 0.77 / 1.54 % (r = 1): within 1 % for every r, which BDF2 is not.  On a

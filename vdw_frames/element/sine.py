@@ -7,7 +7,7 @@ cycle differs from the steady value pi K'' U^2 by up to 10 % (n = 1; 15 % for th
 set at 0.5 Hz), 1.1 % (n = 2), 0.2 % (n = 3) and 0.07 % from n = 5 on; what remains after ten cycles
 (<= 0.05 %, worst for a classical Maxwell branch at 10 Hz, whose loss modulus is small) is the
 discretisation, not the transient.  The default ``cycles=5`` therefore gives the steady loop to 0.1 %;
-``tests/test_sine.py::test_last_loop_is_steady`` asserts this bound.
+``tests/element/test_sine.py::test_last_loop_is_steady`` asserts this bound.
 """
 
 from __future__ import annotations

@@ -39,7 +39,7 @@ Method
    ||M^-1 (T(s) - s^2 M)|| <= |s|^2 / 2 (k(s) grows no faster than |s|, so T(s) / s^2 -> M and no root
    lies further out).  Roots with damping ratios above cos(0.05) = 0.9988 (angles beyond pi - 0.05)
    are practically overdamped and are not reported; with heavy walls a building can have fewer
-   oscillatory modes than floors (tests/test_modal.py has one), and fractional walls can add a heavily
+   oscillatory modes than floors (tests/frame/test_modal.py has one), and fractional walls can add a heavily
    damped one.  Modes are ordered by |s|; the count over the whole sector guarantees that mode j is
    the j-th.
 
@@ -56,7 +56,7 @@ omega^2 phi^T M phi / 2, the mode's maximum strain energy including the walls' s
 phi^T C phi / (2 omega phi^T M phi), the same energy ratio for the inherent dashpots (the frame's ratio
 exactly for a bare frame with Rayleigh or modal damping).
 It is first-order perturbation theory: exact as the damping goes to zero and for classical viscous
-damping (tests/test_modal.py), and it differs from the complex-mode value (measured):
+damping (tests/frame/test_modal.py), and it differs from the complex-mode value (measured):
 
 (a) through the walls' frequency dependence: the damped pole sits at complex s, where k(s) is not
     k(i omega).  On examples/ten_story.toml, mode 1: 8.52 % complex, 8.34 % energy; Kelvin walls with

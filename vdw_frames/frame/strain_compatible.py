@@ -44,7 +44,7 @@ the project's test set, scaled to PGA 0.4 g and 0.8 g, on the 10-story example f
 strain-dependent walls in its six lower stories (strain-compatible runs), gamma_E / gamma_peak is
 0.39-0.72 over records and walls, median 0.62, when the frame stays elastic, and 0.20-0.71, median
 0.53, when its stories yield (one large excursion, smaller cycles after it)
-(``tests/test_strain_dependent.py`` re-measures both bands and checks that the default lies in
+(``tests/paper/test_strain_dependence.py`` re-measures both bands and checks that the default lies in
 them).  0.65 is close to those medians, and it is the ratio
 equivalent-linear site response uses for the same reason (Idriss & Sun 1992: (M - 1) / 10, 0.65 for
 magnitude 7.5).  The peak itself (ratio 1, ``effective_strain_ratio

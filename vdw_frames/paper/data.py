@@ -43,7 +43,7 @@ Fit quality (``FIT_QUALITY``; relative SSE, max |relative error| in G' and G'' o
     300 %:  SSE 0.3213, G' 29.6 %,  G'' 15.7 %   (G1 = 0 on its bound)
     450 %:  SSE 0.1579, G' 27.0 %,  G''  6.0 %
 
-``tests/test_paper.py`` re-runs the identification and checks that it reproduces the stored numbers.
+``tests/paper/test_data.py`` re-runs the identification and checks that it reproduces the stored numbers.
 
 Cautions (numbers in the report, ``vdw-frames paper-report``):
 

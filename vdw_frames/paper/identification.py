@@ -28,7 +28,7 @@ done on a fixed grid (r on [R_MIN, 1], lambda over LOG_LAMBDA_SPAN decades eithe
 geometric-mean frequency), so every basin of the surface is sampled; the best grid points that are
 local minima of the grid are then polished with ``scipy.optimize.least_squares`` (trust-region
 reflective, bounds) in all free parameters.  Nothing is random: the result is a deterministic
-function of the data, and it does not depend on the grid (``tests/test_identify.py`` checks several
+function of the data, and it does not depend on the grid (``tests/paper/test_identification.py`` checks several
 grids and a much denser independent search).
 
 The ends of the lambda range are not lost optima: lambda -> infinity turns the Maxwell branch into

@@ -180,7 +180,7 @@ per-strain optima (`fitted`) interpolated linearly in log(strain) (the naive fam
 {_md(["strain", "best objective", "model / best", "interpolated optima / best"], ratio_rows)}
 At the tested strains the model is within {100 * (max(q['ratio'] for q in quality.values()) - 1):.1f} % of each
 strain's own best fit (required: 10 %). Every parameter stays a valid FDMK value between the nodes, so G' and G'' are
-non-negative at every frequency and strain (passivity; `tests/test_strain_dependent.py` checks a dense grid).
+non-negative at every frequency and strain (passivity; `tests/paper/test_strain_dependence.py` checks a dense grid).
 
 **The 225 % table cannot be followed.** Its G' falls from 2.65 to 0.96 MPa between 0.5 and 10 Hz (section 4.5:
 no FDMK parameters give a falling G'), and the interpolated targets up to 300 % inherit part of that fall. At 225 %
@@ -296,7 +296,7 @@ def _section_table5(candidates, errata_numbers) -> str:
              "experimental areas, which are themselves nonlinear (Z-shaped) loops.\n")
     sse_check = [c for c in candidates if c.method.startswith("time-domain")]
     text += (f"\nThe time-domain areas above come from {len(sse_check) * len(TABLE5)} sine tests of the "
-             "element; `tests/test_report.py` checks them against pi K'' U^2 of the same parameters (1 %).\n")
+             "element; `tests/paper/test_report.py` checks them against pi K'' U^2 of the same parameters (1 %).\n")
     return text
 
 

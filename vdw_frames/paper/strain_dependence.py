@@ -11,7 +11,7 @@ G2 = 1.35 / 2.63 / 1.21 MPa.  The data determine the moduli much better than the
 any r in 0.1-0.6 fits within 1.3 %), so the optima sit wherever the flat objective happens to be
 lowest, and interpolating them mixes unrelated points of nearly equivalent basins.  Measured against
 the tables interpolated between the tested strains (below), interpolating the per-strain optima is up
-to 16 % worse than the best FDMK fit at 252 % strain (``tests/test_strain_dependent.py`` shows it).
+to 16 % worse than the best FDMK fit at 252 % strain (``tests/paper/test_strain_dependence.py`` shows it).
 The per-strain optimum at each intermediate strain is no better a family: it jumps between basins
 (r = 1.0 at 253 %, 0.71 at 283 %, 0.28 at 425 %, then 0.46 at 450 %).
 
