@@ -116,6 +116,56 @@ def _read_docstring(app, what, name, obj, options, lines: list[str]) -> None:
             block_indent = indent
 
 
+def _python_object(name: str) -> object:
+    """The package's object that a dotted name means (module, class, function, method), or None."""
+    import importlib
+
+    parts = name.split(".")
+    for split in range(len(parts), 0, -1):
+        try:
+            value: object = importlib.import_module(".".join(parts[:split]))
+        except ImportError:
+            continue
+        try:
+            for part in parts[split:]:
+                value = getattr(value, part)
+        except AttributeError:
+            return None
+        return value
+    return None
+
+
+_DOCUMENTED: dict[int, tuple[object, str, str, str]] = {}
+
+
+def _same_object(app, env, node, contnode):
+    """missing-reference: a docstring's reference to a name by another of its paths (``vdw_frames.frame.
+    simulation.simulate``, ``simulate`` inside that module, ``~vdw_frames.element.damper.FDMKDamper``) links to
+    where that same object is documented (``vdw_frames.simulate``).  Nothing else changes: names the pages
+    do not document stay plain text."""
+    from sphinx.util.nodes import make_refnode
+
+    if node.get("refdomain") != "py" or not str(node.get("reftarget", "")):
+        return None
+    domain = env.get_domain("py")
+    if not _DOCUMENTED:
+        for documented, entry in domain.objects.items():
+            if entry.objtype in ("class", "function", "method", "property", "module", "exception"):
+                value = _python_object(documented)
+                if value is not None:
+                    _DOCUMENTED.setdefault(id(value), (value, entry.docname, entry.node_id, documented))
+    target = str(node["reftarget"]).lstrip(".~")
+    context = [node.get("py:module"), node.get("py:class") and f"{node.get('py:module')}.{node.get('py:class')}"]
+    for name in [target] + [f"{prefix}.{target}" for prefix in context if prefix]:
+        if not name.startswith("vdw_frames"):
+            continue
+        value = _python_object(name)
+        found = _DOCUMENTED.get(id(value)) if value is not None else None
+        if found is not None and found[0] is value:
+            return make_refnode(app.builder, node["refdoc"], found[1], found[2], contnode, found[3])
+    return None
+
+
 def _command_help() -> list[tuple[str, str]]:
     """The help of ``vdw-frames`` and of each of its commands, from the parser itself (never stale)."""
     import argparse
@@ -148,4 +198,5 @@ def setup(app):
 
     app.add_directive("vdw-frames-help", CommandHelp)
     app.connect("autodoc-process-docstring", _read_docstring)
+    app.connect("missing-reference", _same_object)
     return {"parallel_read_safe": True}

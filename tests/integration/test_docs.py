@@ -62,6 +62,14 @@ def test_the_api_documents_simulate_and_the_wall_at_the_top_level(site):
     assert "Integrate" in toplevel  # simulate's docstring, not only its name
 
 
+def test_references_by_another_path_link_to_where_the_object_is_documented(site):
+    # vdw_frames.frame's docstring says :func:`simulate` (vdw_frames.frame.simulate), documented as
+    # vdw_frames.simulate; vdw_frames.element's says :class:`FDMKDamper`, documented at the top level.
+    out, _ = site
+    assert 'href="toplevel.html#vdw_frames.simulate"' in (out / "api" / "frame.html").read_text(encoding="utf-8")
+    assert 'href="toplevel.html#vdw_frames.FDMKDamper"' in (out / "api" / "element.html").read_text(encoding="utf-8")
+
+
 def test_every_public_name_and_module_has_its_entry(site):
     # A name added to an __all__ (or a module added to a sub-package) without its place in docs/api fails here.
     documented = anchors(site[0])
