@@ -121,7 +121,7 @@ class CollapseCriterion:
             "collapse modes"
 
     def collapsed(self, result, label: str) -> bool:
-        """Whether the :class:`~vdw_frames.SimulationResult` ``result`` is a collapse."""
+        """Whether the :class:`~vdw_frames.frame.SimulationResult` ``result`` is a collapse."""
         if not result.converged and not self.non_convergence:
             raise ValueError(f"{label} stopped converging, which this criterion does not count as collapse "
                              "(non_convergence=False)")

@@ -13,28 +13,36 @@ grows only like log(max_steps) (see the table below).
 Where the modes come from
 -------------------------
 The weights are the Taylor coefficients of W(zeta) = delta(zeta)^r, analytic in the unit disc.  Deforming
-w_j = (1 / 2 pi i) \\oint W(zeta) zeta^(-j-1) dzeta onto the branch cuts of W (real axis, |zeta| >= 1) and
+``w_j = (1 / 2 pi i) \\oint W(zeta) zeta^(-j-1) dzeta`` onto the branch cuts of W (real axis, |zeta| >= 1) and
 writing rho = 1/|zeta| = exp(-u) gives, with s = sin(pi r),
 
-* trapezoidal, W = 2^r (1 - zeta)^r (1 + zeta)^(-r), for j >= 1:
+* trapezoidal, W = 2^r (1 - zeta)^r (1 + zeta)^(-r), for j >= 1::
+
       w_j = -(2^r s / pi) \\int_0^oo e^{-j u} tanh(u/2)^r du
             + (-1)^j (2^r s / pi) \\int_0^oo e^{-j u} coth(u/2)^r du;
+
   the second (alternating) term is the (-1)^j j^(r-1) tail; at r = 1 it is the pole at zeta = -1,
   w_j = 4 (-1)^j exactly (one mode at rho = -1).
-* Grunwald-Letnikov, W = (1 - zeta)^r, for j >= 1:
+* Grunwald-Letnikov, W = (1 - zeta)^r, for j >= 1::
+
       w_j = -(s / pi) \\int_0^oo e^{-j u} (e^u - 1)^r du.
-* BDF2, W = 2^-r (1 - zeta)^r (3 - zeta)^r, for j >= 3 (W grows like |zeta|^(2r)):
+
+* BDF2, W = 2^-r (1 - zeta)^r (3 - zeta)^r, for j >= 3 (W grows like |zeta|^(2r))::
+
       w_j = -(2^-r / pi) [ s \\int_0^ln3 e^{-j u} ((e^u - 1)(3 - e^u))^r du
                            + sin(2 pi r) \\int_ln3^oo e^{-j u} ((e^u - 1)(e^u - 3))^r du ].
+
   (The cut runs to infinity, not only over (1, 3): going once round both branch points multiplies
   W by exp(4 pi i r).)  At r = 1 every term vanishes: the tail is exactly zero.
 
 * damped two-step (rho_infinity = rho in (0, 1)), W = (1 - zeta)^r P^r Q^-r, P = a0 + a1 zeta,
   Q = b0 + b1 zeta (see :class:`vdw_frames.element.fractional.DampedTwoStep`), for j >= 1 (W grows like |zeta|^r),
-  with z_a = -a0/a1 (= 7 at rho = 1/2) and ln(1/rho) the start of the alternating cut (zeta < -1/rho):
+  with z_a = -a0/a1 (= 7 at rho = 1/2) and ln(1/rho) the start of the alternating cut (zeta < -1/rho)::
+
       w_j = -(1 / pi) [ s \\int_0^ln(z_a) e^{-j u} ((e^u - 1)(a0 + a1 e^u) / (b0 + b1 e^u))^r du
                         + sin(2 pi r) \\int_ln(z_a)^oo e^{-j u} ((e^u - 1)(-a1 e^u - a0) / (b0 + b1 e^u))^r du ]
             + (-1)^j (s / pi) \\int_ln(1/rho)^oo e^{-j u} ((1 + e^u)(a0 - a1 e^u) / (b1 e^u - b0))^r du.
+
   The last density is ~ (u - ln(1/rho))^-r at its start (offsets passed separately: u itself cannot
   resolve them below 1e-16), its left tail summed in closed form as for the trapezoidal rule; at r = 1
   it is the pole of W at -1/rho, exactly one mode of ratio -rho.  rho = 0 is BDF2 (no alternating cut).

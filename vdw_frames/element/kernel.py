@@ -8,16 +8,19 @@ Memory of a bank (one row per wall, each wall's values contiguous):
 
 ``window_weights`` (W, L)     the convolution weights w_L, ..., w_1 of D^r in that (reversed) order,
                               scaled by dt^-r (s^-r); w_0 is passed separately, ``w0`` (W,)
+
 ``window``         (W, 2, 2L) the last L committed values of the two channels that carry memory, [:, 0] the
                               strain, [:, 1] the Maxwell-branch stress (MPa); each value is written twice,
                               at slot n mod L and n mod L + L, so that the last L values always lie
                               contiguous, oldest first, at [n mod L, n mod L + L)
+
 ``mode_weight`` (W, K), ``mode_ratio`` (W, K), ``mode_state`` (W, 2, K)
                               an optional exponential (geometric) representation of the weights beyond the
                               window, w_j ~= sum_k c_k rho_k^j for j > L, with mode_weight = c_k rho_k^(L+1);
                               a wall with fewer modes is padded with inert zero modes.  K = 0 and L >= the
                               number of steps gives the exact full-history convolution;
                               :mod:`vdw_frames.element.fast_memory` builds L = 16 and K = 24-68 modes.
+
 ``history``        (2, W)     the history sums of the coming step
 
 The history at step n (``count`` = n committed steps) of channel c is

@@ -1,6 +1,6 @@
 """A Prony series (generalized Maxwell model) fitted to a wall's complex stiffness over a frequency band.
 
-For programs that cannot host the exact wall (OpenSees without :mod:`vdw_frames.opensees`, SAP2000,
+For programs that cannot host the exact wall (OpenSees without :mod:`vdw_frames.interop.opensees`, SAP2000,
 ETABS): an equilibrium spring k_0 in parallel with n Maxwell branches, branch i a linear spring k_i in
 series with a linear dashpot c_i (relaxation time tau_i = c_i / k_i), whose complex stiffness is
 
@@ -28,7 +28,7 @@ proof that fewer cannot).
 
 Short relaxation times: a branch with tau << 1 / omega_max acts as a dashpot in the band (how a classical
 r = 1 Kelvin dashpot is represented); time-stepping programs must resolve it (OpenSees's ``Maxwell``
-needs dt well below tau; see :func:`vdw_frames.opensees.prony_material`).
+needs dt well below tau; see :func:`vdw_frames.interop.opensees.prony_material`).
 
 Units: stiffness N/mm, damping coefficient N*s/mm, relaxation time s, frequency Hz.
 """

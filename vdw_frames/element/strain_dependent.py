@@ -82,6 +82,8 @@ class StrainDependentDamper:
     thickness : float
         Thickness of one viscoelastic layer, mm; strain = displacement / thickness.
 
+    Notes
+    -----
     Every parameter is piecewise linear in log(strain) between the nodes.
     :meth:`constant` makes a wall whose parameters do not vary.
     """

@@ -110,7 +110,7 @@ class BatchResult:
     peak_base_shear N, peak_story_wall_force N (total per story), residual_drift mm (the drift at the last
     step, per story; for a collapsed or non-converged run, the drift where it stopped).  ``collapsed`` and
     ``converged`` (motions, scales) are each analysis's outcome
-    (:class:`~vdw_frames.SimulationResult`): a collapsed or non-converged run is recorded, its peaks
+    (:class:`~vdw_frames.frame.SimulationResult`): a collapsed or non-converged run is recorded, its peaks
     being those reached before it stopped.  With ``run_batch(..., property_factors=...)`` the peaks are
     the envelope over the factors (residual drifts: the largest in magnitude; collapsed: any;
     converged: all): ``property_factors`` lists them and ``governing_factor`` maps each peak's name to

@@ -69,6 +69,8 @@ class ShearBuilding:
         C = M Phi diag(2 zeta omega) Phi^T M (mass-normalised Phi).  Rayleigh on modes 1 and 2 over-damps
         the higher modes (7-17 % in modes 3-10 of the 10-story example), which lowers floor accelerations.
 
+    Notes
+    -----
     ``masses``, ``stiffnesses`` and the periods and modes are those of the bare elastic frame (no walls,
     no P-Delta).
     """

@@ -2,7 +2,7 @@
 
 A story model maps the story drift d (mm) to the force in the story's frame spring (N).  Its initial
 stiffness k0 (N/mm) is the story's entry in :attr:`ShearBuilding.stiffnesses`; the model adds the
-strength.  Like :class:`~vdw_frames.WallState` (and OpenSees's ``UniaxialMaterial``), a
+strength.  Like :class:`~vdw_frames.element.WallState` (and OpenSees's ``UniaxialMaterial``), a
 :class:`StoryState` gives the force and tangent for a trial drift without touching its state
 (``trial``), accepts the last trial (``commit``) or discards it (``revert_to_last_commit``), so that an
 iterating (Newton) integrator can drive it.  :func:`story_trial` is the one compiled implementation;

@@ -49,7 +49,7 @@ def simulate(building: ShearBuilding, ground_motion: GroundMotion, dt: float | N
     Walls may carry a thermal description (they heat, :mod:`vdw_frames.element.thermal`) and limits (they
     fail, :mod:`vdw_frames.element.limits`); :class:`~vdw_frames.StrainDependentDamper` walls with one
     common r follow their own strain amplitude step by step (:func:`vdw_frames.element.kernel.track_amplitude`).
-    ``strain_compatible``: ``True`` (or a :class:`~vdw_frames.StrainCompatibleOptions`) runs the
+    ``strain_compatible``: ``True`` (or a :class:`~vdw_frames.frame.StrainCompatibleOptions`) runs the
     equivalent-linear iteration of :mod:`vdw_frames.frame.strain_compatible` instead, for buildings with
     strain-dependent walls; its result is the response of the equivalent-linear building
     (``result.building``).

@@ -15,7 +15,7 @@ freedom, whose material is ``InitStressMaterial(Elastic(K_t), sig0)``, and per s
    element's force is K_t d + H_n for any trial deformation d, and its tangent K_t is exact: Newton
    converges as it would without walls;
 2. after a successful step: the two nodes' displacements give d_{n+1}; all walls commit in one compiled
-   call (:meth:`vdw_frames.WallBank.commit`), which also evaluates every wall's next H.
+   call (:meth:`vdw_frames.element.WallBank.commit`), which also evaluates every wall's next H.
 
 The result equals :func:`vdw_frames.simulate` on a shear building to the solver's tolerance (the tests:
 1e-9 relative in peak drifts, linear and Steel01 stories).
@@ -97,7 +97,7 @@ def opensees_module(ops: Any = None) -> Any:
         try:
             import openseespy.opensees as opensees
         except (ImportError, RuntimeError) as error:  # RuntimeError: OpenSeesPy without its BLAS/LAPACK libraries
-            raise ImportError(f"vdw_frames.opensees needs OpenSeesPy ({error}): pip install 'vdw-frames[opensees]' "
+            raise ImportError(f"vdw_frames.interop.opensees needs OpenSeesPy ({error}): pip install 'vdw-frames[opensees]' "
                               "(on Debian/Ubuntu it also needs the libblas3 and liblapack3 packages)") from error
         ops = opensees
     missing = [name for name in _COMMANDS if not callable(getattr(ops, name, None))]

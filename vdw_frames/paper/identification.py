@@ -82,8 +82,10 @@ class IdentificationResult:
         Approximate standard errors, sqrt(diag(s^2 (J^T J)^-1)) with s^2 = sse / (2n - p), J the
         Jacobian of the residuals with respect to the p free parameters off their bounds.  ``None``
         for a parameter that is fixed, on a bound, or where J^T J is singular or 2n <= p.
-    residual, fixed : the objective and pinned parameters used.
-    frequency, storage_modulus, loss_modulus : the data (Hz, MPa, MPa).
+    residual, fixed
+        The objective and pinned parameters used.
+    frequency, storage_modulus, loss_modulus
+        The data (Hz, MPa, MPa).
     """
 
     params: dict[str, float]
