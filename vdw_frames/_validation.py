@@ -20,7 +20,8 @@ needs about 0.2 GiB."""
 
 SIMULATION_STEP_RANGE = (1e-9, 1e3)
 """Time steps (s) :func:`vdw_frames.simulate` accepts: far beyond any seismic analysis either way, and
-inside the range where Newmark's coefficients 4/dt^2 and 2/dt are ordinary floats."""
+inside the range where Newmark's coefficients 4/dt^2 and 2/dt are ordinary floats.  The walls' time
+stepping (:func:`time_step`) accepts the same range: dt^-r and 1/dt stay ordinary floats in it."""
 
 
 def show(value: object) -> str:
@@ -122,6 +123,8 @@ def finite_array(name: str, values: ArrayLike, ndim: int | None = 1) -> np.ndarr
     if ndim is not None and array.ndim != ndim:
         raise ValueError(f"{name} must be {ndim}-dimensional, got shape {array.shape}")
     bad = ~np.isfinite(array)
+    if bad.any() and array.ndim == 0:
+        raise ValueError(f"{name} must be finite, got {show(array)}")
     if bad.any():
         index = tuple(int(i) for i in np.argwhere(bad)[0])
         index_text = index[0] if len(index) == 1 else index
@@ -188,6 +191,16 @@ def require_finite(name: str, values: ArrayLike) -> None:
     """Refuse an overflowed result (inf or NaN) instead of handing it to the user."""
     if not np.all(np.isfinite(values)):
         raise ValueError(f"{name} overflowed (inf or NaN): the inputs or parameters are too large")
+
+
+def time_step(value: object, name: str = "dt") -> float:
+    """A time step in s: finite, > 0 and within :data:`SIMULATION_STEP_RANGE` (1e-9 ... 1e3 s)."""
+    dt = positive(name, value)
+    low, high = SIMULATION_STEP_RANGE
+    if not low <= dt <= high:
+        raise ValueError(f"{name} = {show(value)} s is outside the range of time steps accepted "
+                         f"({low:g} ... {high:g} s)")
+    return dt
 
 
 def positive_frequencies(name: str, values: ArrayLike) -> np.ndarray:

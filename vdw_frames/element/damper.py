@@ -345,14 +345,15 @@ class WallState:
     def trial(self, displacement: float) -> tuple[float, float]:
         """(force in N, tangent in N/mm) at the next step for ``displacement`` (mm); memory untouched."""
         displacement = finite_array("displacement", [displacement])[0]
+        force = float(self._bank.trial_forces([displacement], name="displacement")[0])
         self._trial = displacement
-        return float(self._bank.trial_forces([displacement])[0]), float(self._bank.tangent[0])
+        return force, float(self._bank.tangent[0])
 
     def commit(self) -> None:
         """Accept the last trial and advance the memory one step."""
         if self._trial is None:
             raise ValueError("commit() needs a trial() first")
-        force, _ = self._bank.commit([self._trial])
+        force, _ = self._bank.commit([self._trial], name="displacement")
         self.committed_displacement, self.committed_force = self._trial, float(force[0])
         self._trial = None
 
