@@ -162,6 +162,16 @@ def scaled_value(name: str, value: float, factor: float, factor_name: str = "fac
     return product
 
 
+def wall_geometry(area: object, thickness: object) -> tuple[float, float]:
+    """A wall's (area mm^2, layer thickness mm): both finite and > 0, and area / thickness (the stiffness
+    per MPa, mm) a finite number, else a ValueError naming them."""
+    area_value, thickness_value = positive("area", area), positive("thickness", thickness)
+    if not math.isfinite(area_value / thickness_value):
+        raise ValueError(f"area / thickness = {show(area)} mm^2 / {show(thickness)} mm overflows (inf): the wall's "
+                         "stiffness per MPa is beyond any float; use a thicker layer or a smaller area")
+    return area_value, thickness_value
+
+
 def fractional_order(value: object, name: str = "r") -> float:
     """A fractional order r in (0, 1] (r = 1: classical dashpots)."""
     r = finite_scalar(name, value)
@@ -211,17 +221,20 @@ def positive_frequencies(name: str, values: ArrayLike) -> np.ndarray:
     return array
 
 
-def check_memory(what: str, steps: int, bytes_per_step: float, hint: str = "") -> None:
+def check_memory(what: str, steps: float, bytes_per_step: float, hint: str = "") -> None:
     """Refuse, before allocating, ``steps`` steps of ``bytes_per_step`` bytes beyond
     :data:`MEMORY_LIMIT_BYTES`; the message gives the step count and the memory it would take."""
     needed = float(steps) * float(bytes_per_step)
     if needed > MEMORY_LIMIT_BYTES:
         advice = f"; {hint}" if hint else ""
-        raise ValueError(f"{what} needs {steps:,.0f} steps, whose arrays would take {_size(needed)} "
+        count = f"{steps:,.0f}" if steps < 1e15 else f"{float(steps):.3g}" if math.isfinite(steps) else "over 1e308"
+        raise ValueError(f"{what} needs {count} steps, whose arrays would take {_size(needed)} "
                          f"(limit {_size(MEMORY_LIMIT_BYTES)}){advice}")
 
 
 def _size(count: float) -> str:
+    if not math.isfinite(count):
+        return "over 1e308 TiB"
     for unit, scale in (("TiB", 1024.0**4), ("GiB", 1024.0**3), ("MiB", 1024.0**2)):
         if count >= scale:
             return f"{count / scale:.3g} {unit}"
