@@ -36,6 +36,7 @@ from .integrator import (
     integrate,
     replay,
 )
+from .pushover import static_wall_stiffness
 from .results import FrameState, SimulationResult, energy_history
 
 if TYPE_CHECKING:
@@ -59,6 +60,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         wall_order(wall)
     if not isinstance(ground_motion, GroundMotion):
         raise ValueError(f"ground_motion must be a GroundMotion (see read_at2), got {type(ground_motion).__name__}")
+    _require_stable(building)
     method = get_method(method)
     memory_strategy(memory)
     newton = NewtonRaphson() if newton is None else newton
@@ -73,14 +75,20 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
                          f"({SIMULATION_STEP_RANGE[0]:g} ... {SIMULATION_STEP_RANGE[1]:g} s)")
     substeps = ground_motion.substeps(dt)  # the one check of the step against the record
     dt = ground_motion.dt / substeps
-    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0
-    steps, floors = (ground_motion.acceleration.size - 1) * substeps + 1 + rest, building.stories
-    start = 0 if initial_state is None else _check_state(initial_state, dt, steps, floors)
-    walls = cast("list[tuple[int, Wall]]", building.wall_list)  # fixed walls only (checked above)
+    floors, walls = building.stories, cast("list[tuple[int, Wall]]", building.wall_list)  # fixed walls only
     # Response and result histories (about 14 per floor), each wall's force, strain and exact memory,
     # energies: float64 a step.
-    check_memory(f"simulate (dt = {dt!r} s, {floors} floors, {len(walls)} walls)", steps,
-                 8 * (14 * floors + 6 * len(walls) + 12), "use a larger dt")
+    step_bytes = 8 * (14 * floors + 6 * len(walls) + 12)
+    record_steps = (ground_motion.acceleration.size - 1) * substeps + 1
+    if free_vibration > 0.0:  # named first: its steps may not even be a number (1e308 s / dt = inf)
+        check_memory(f"simulate with free_vibration = {show(free_vibration)} s (dt = {dt!r} s, {floors} floors, "
+                     f"{len(walls)} walls)", record_steps + free_vibration / dt, step_bytes,
+                     "use a shorter free_vibration")
+    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0
+    steps = record_steps + rest
+    start = 0 if initial_state is None else _check_state(initial_state, dt, steps, floors)
+    check_memory(f"simulate (dt = {dt!r} s, {floors} floors, {len(walls)} walls)", steps, step_bytes,
+                 "use a larger dt")
     ground = ground_motion.interpolated(substeps)
     if rest:
         ground = np.concatenate([ground, np.zeros(rest)])
@@ -157,6 +165,22 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         group_failure=failure, group_amplitude=out.group_amplitude[keep],
         group_outside_range=np.stack([bank.state(kernel.BELOW_RANGE), bank.state(kernel.ABOVE_RANGE)], axis=1) * dt,
         initial_state=initial_state)
+
+
+def _require_stable(building: ShearBuilding) -> None:
+    """Refuse a building unstable at rest under its gravity loads: a story whose P/h reaches its initial
+    stiffness plus its walls' static stiffness (the shear building's K + K_G is then not positive
+    definite, and the response grows without bound whatever the record)."""
+    if building.gravity_loads is None:
+        return
+    geometric = np.asarray(building.geometric_stiffness)
+    static = np.asarray(building.stiffnesses) + static_wall_stiffness(building) + geometric
+    if (static <= 0.0).any():
+        story = int(np.argmax(static <= 0.0))
+        raise ValueError(f"the building is unstable under its gravity loads: story {story + 1}'s P/h = "
+                         f"{-geometric[story]:.6g} N/mm reaches its stiffness {static[story] - geometric[story]:.6g} "
+                         "N/mm (initial story stiffness plus its walls' static stiffness); lower gravity_loads "
+                         "or stiffen the story")
 
 
 def _check_state(state: FrameState, dt: float, steps: int, floors: int) -> int:
