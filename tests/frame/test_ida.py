@@ -8,10 +8,11 @@ import dataclasses
 import numpy as np
 import pytest
 from builders import TEN_STORY_MASSES, TEN_STORY_STIFFNESSES
+from scipy import stats
 from shared_data import shared_record
 
 from vdw_frames import Bilinear, G, ShearBuilding, incremental_dynamic_analysis, read_at2
-from vdw_frames.frame.ida import IDAResult
+from vdw_frames.frame.ida import Fragility, IDAResult
 
 
 @pytest.mark.records
@@ -33,3 +34,18 @@ def test_fragility_when_every_record_collapsed_and_the_mask_is_nomask():
     fit = result.fragility()
     masked = dataclasses.replace(result, collapse_intensity=np.ma.masked_array([2.0, 3.0, 1.0], mask=[False] * 3))
     assert (fit.median, fit.dispersion) == (masked.fragility().median, masked.fragility().dispersion)
+
+
+def test_fragility_refuses_parameters_and_intensities_that_would_give_nan():
+    for median, dispersion, match in ((0.0, 0.4, "median must be > 0"), (-1.0, 0.4, "median must be > 0"),
+                                      (1.0, 0.0, "dispersion must be > 0"), (np.nan, 0.4, "median must be finite")):
+        with pytest.raises(ValueError, match=match):
+            Fragility(median, dispersion)
+    fragility = Fragility(4000.0, 0.4)
+    with pytest.raises(ValueError, match=r"intensity must be >= 0 mm/s\^2, got -1.0"):
+        fragility.probability([1000.0, -1.0])
+    with pytest.raises(ValueError, match="intensity must be finite, got nan"):
+        fragility.probability(np.nan)
+    # Zero intensity: no collapse; elsewhere the lognormal CDF written out here.
+    probability = fragility.probability([0.0, 2000.0, 4000.0])
+    np.testing.assert_allclose(probability, [0.0, stats.norm.cdf(np.log(0.5) / 0.4), 0.5], rtol=1e-14)
