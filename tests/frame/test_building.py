@@ -114,3 +114,19 @@ def test_stationary_response_validates_its_step_and_padding():
         with pytest.raises(ValueError, match=match):
             frame.stationary_response(ground, dt, pad)
     assert frame.stationary_response(ground, 0.01, np.int64(2)).shape == (16, 2)
+
+
+class StoryNumber(int):
+    """A story number equal to its int but hashed apart from it, so that a dict keeps both keys (Python
+    merges 1, 1.0 and np.int64(1) into one key before the building sees them)."""
+
+    def __hash__(self) -> int:
+        return hash(("story", int(self)))
+
+
+def test_a_story_given_twice_after_normalisation_is_refused():
+    wall = FDMKDamper(**README_WALL)
+    with pytest.raises(ValueError, match=r"walls has story 1 twice \(keys \[1, 1\]\); give each story once"):
+        ShearBuilding([1.0, 1.0], [1.0, 1.0], walls={1: wall, StoryNumber(1): wall})
+    with pytest.raises(ValueError, match=r"hysteresis has story 2 twice"):
+        ShearBuilding([1.0, 1.0], [1.0, 1.0], hysteresis={2: Bilinear(1.0), StoryNumber(2): Bilinear(2.0)})

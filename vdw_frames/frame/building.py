@@ -167,9 +167,14 @@ class ShearBuilding:
         models: list[Bilinear | BoucWen | None]
         if isinstance(hysteresis, dict):
             models = [None] * stories
+            given: set[int] = set()
             for story, model in hysteresis.items():
                 if isinstance(story, bool) or not isinstance(story, (int, np.integer)) or not 1 <= story <= stories:
                     raise ValueError(f"hysteresis story must be a story number in 1 ... {stories}, got {story!r}")
+                if int(story) in given:
+                    raise ValueError(f"hysteresis has story {int(story)} twice (keys {show(list(hysteresis))}); "
+                                     "give each story once")
+                given.add(int(story))
                 models[int(story) - 1] = model
         elif isinstance(hysteresis, (list, tuple)):
             if len(hysteresis) != stories:
