@@ -130,3 +130,10 @@ def test_a_story_given_twice_after_normalisation_is_refused():
         ShearBuilding([1.0, 1.0], [1.0, 1.0], walls={1: wall, StoryNumber(1): wall})
     with pytest.raises(ValueError, match=r"hysteresis has story 2 twice"):
         ShearBuilding([1.0, 1.0], [1.0, 1.0], hysteresis={2: Bilinear(1.0), StoryNumber(2): Bilinear(2.0)})
+
+
+def test_stiffnesses_whose_sum_overflows_are_refused_naming_the_stories():
+    # Before: scipy's "array must not contain infs or NaNs" from the first eigen-analysis.
+    with pytest.raises(ValueError, match=r"stiffnesses of stories 2 and 3 \(1e\+308 and 1e\+308 N/mm\) overflow"):
+        ShearBuilding([1.0] * 3, [1.0, 1e308, 1e308])
+    assert ShearBuilding([1.0] * 2, [1e308, 1.0]).stiffness_matrix[0, 0] == 1e308  # its sum is finite

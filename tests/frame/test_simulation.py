@@ -231,3 +231,9 @@ def test_a_free_vibration_too_long_to_run_is_refused_by_name(free_vibration, ste
                rf"needs {steps} steps.*; use a shorter free_vibration")
     with pytest.raises(ValueError, match=refused):
         simulate(frame, GroundMotion([0.0, 1000.0, 0.0], 0.02), free_vibration=free_vibration)
+
+
+def test_masses_that_overflow_the_newmark_terms_are_refused_by_name():
+    # Before: 4 m / dt^2 = inf made the first step fail to converge, with a warning about story 1.
+    with pytest.raises(ValueError, match=r"masses up to 1e\+308 t with dt = 0.02 s overflow Newmark's 4 m / dt\^2"):
+        simulate(ShearBuilding([1e308, 1e308], [1e5, 1e5]), GroundMotion([0.0, 1000.0, 0.0], 0.02))

@@ -75,6 +75,10 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
                          f"({SIMULATION_STEP_RANGE[0]:g} ... {SIMULATION_STEP_RANGE[1]:g} s)")
     substeps = ground_motion.substeps(dt)  # the one check of the step against the record
     dt = ground_motion.dt / substeps
+    heaviest = max(building.masses)
+    if not math.isfinite(4.0 / dt**2 * heaviest):  # Newmark's inertia term of the effective stiffness
+        raise ValueError(f"masses up to {heaviest:.6g} t with dt = {dt!r} s overflow Newmark's 4 m / dt^2 (inf): "
+                         "the masses are too large to integrate")
     floors, walls = building.stories, cast("list[tuple[int, Wall]]", building.wall_list)  # fixed walls only
     # Response and result histories (about 14 per floor), each wall's force, strain and exact memory,
     # energies: float64 a step.
