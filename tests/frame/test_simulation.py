@@ -237,3 +237,11 @@ def test_masses_that_overflow_the_newmark_terms_are_refused_by_name():
     # Before: 4 m / dt^2 = inf made the first step fail to converge, with a warning about story 1.
     with pytest.raises(ValueError, match=r"masses up to 1e\+308 t with dt = 0.02 s overflow Newmark's 4 m / dt\^2"):
         simulate(ShearBuilding([1e308, 1e308], [1e5, 1e5]), GroundMotion([0.0, 1000.0, 0.0], 0.02))
+
+
+def test_an_overflowing_analysis_names_the_record_and_its_pga():
+    # Before: only "the energy histories overflowed", whatever the input that overflowed.
+    motion = GroundMotion(np.array([0.0, 1.0, -1.0, 0.0]) * 9806.65e300, 0.01, "quake")
+    with pytest.raises(ValueError, match=r"overflowed \(inf or NaN\).*\(ground motion 'quake', PGA 9.80665e\+303 "
+                                         r"mm/s\^2 = 1e\+300 g\)"):
+        simulate(ShearBuilding([300.0], [2e5]), motion)

@@ -22,7 +22,7 @@ from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy, wall_order
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation, get_method
-from ..motion.record import GroundMotion
+from ..motion.record import G, GroundMotion
 from .building import ShearBuilding
 from .hysteresis import StoryArrays, story_arrays
 from .integrator import (
@@ -141,7 +141,13 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
                        RuntimeWarning,
                        stacklevel=3)
     keep = slice(0, filled)
-    require_finite("the response", out.displacement[keep])
+    # An overflow names the record and its PGA (in g as well: the unit of a CLI's scale).
+    record = (f"(ground motion {ground_motion.name!r}, " if ground_motion.name else "(") + \
+        f"PGA {ground_motion.pga:.6g} mm/s^2 = {ground_motion.pga / G:.4g} g)"
+    try:
+        require_finite("the response", out.displacement[keep])
+    except ValueError as error:
+        raise ValueError(f"{error} {record}") from None
     time = np.arange(start, start + filled) * dt
     share = np.array([walls[i][1].area / groups[g][1].area for i, g in enumerate(group_of_wall)])
     above = bank.state(kernel.ABOVE_RANGE)[group_of_wall] * dt
@@ -157,11 +163,15 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
                 released[max(int(step) - start, 0):] += energy
         wall_energies = (out.group_heat[keep].sum(axis=1), out.wall_stored[keep], released,
                          out.wall_parameter_loss[keep])
+    try:
+        energies = energy_history(out.energy[keep], wall_energies)
+    except ValueError as error:
+        raise ValueError(f"{error} {record}") from None
     return SimulationResult(
         building=building, time=time, ground_acceleration=ground[keep], displacement=out.displacement[keep],
         velocity=out.velocity[keep], acceleration=out.acceleration[keep], drift=out.drift[keep],
         story_shear=out.story_shear[keep], story_wall_force=out.story_wall_force[keep], base_shear=out.base_shear[keep],
-        energy=energy_history(out.energy[keep], wall_energies), group_force=out.group_force[keep],
+        energy=energies, group_force=out.group_force[keep],
         group_strain=out.group_strain[keep], wall_group=group_of_wall, wall_share=share,
         converged=status != FAILED, collapsed=status == COLLAPSED,
         collapse_time=float(time[-1]) if status == COLLAPSED else None, newton_iterations=iterations,
