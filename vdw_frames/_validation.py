@@ -20,7 +20,8 @@ needs about 0.2 GiB."""
 
 SIMULATION_STEP_RANGE = (1e-9, 1e3)
 """Time steps (s) :func:`vdw_frames.simulate` accepts: far beyond any seismic analysis either way, and
-inside the range where Newmark's coefficients 4/dt^2 and 2/dt are ordinary floats."""
+inside the range where Newmark's coefficients 4/dt^2 and 2/dt are ordinary floats.  The walls' time
+stepping (:func:`time_step`) accepts the same range: dt^-r and 1/dt stay ordinary floats in it."""
 
 
 def show(value: object) -> str:
@@ -122,6 +123,8 @@ def finite_array(name: str, values: ArrayLike, ndim: int | None = 1) -> np.ndarr
     if ndim is not None and array.ndim != ndim:
         raise ValueError(f"{name} must be {ndim}-dimensional, got shape {array.shape}")
     bad = ~np.isfinite(array)
+    if bad.any() and array.ndim == 0:
+        raise ValueError(f"{name} must be finite, got {show(array)}")
     if bad.any():
         index = tuple(int(i) for i in np.argwhere(bad)[0])
         index_text = index[0] if len(index) == 1 else index
@@ -159,6 +162,16 @@ def scaled_value(name: str, value: float, factor: float, factor_name: str = "fac
     return product
 
 
+def wall_geometry(area: object, thickness: object) -> tuple[float, float]:
+    """A wall's (area mm^2, layer thickness mm): both finite and > 0, and area / thickness (the stiffness
+    per MPa, mm) a finite number, else a ValueError naming them."""
+    area_value, thickness_value = positive("area", area), positive("thickness", thickness)
+    if not math.isfinite(area_value / thickness_value):
+        raise ValueError(f"area / thickness = {show(area)} mm^2 / {show(thickness)} mm overflows (inf): the wall's "
+                         "stiffness per MPa is beyond any float; use a thicker layer or a smaller area")
+    return area_value, thickness_value
+
+
 def fractional_order(value: object, name: str = "r") -> float:
     """A fractional order r in (0, 1] (r = 1: classical dashpots)."""
     r = finite_scalar(name, value)
@@ -190,6 +203,16 @@ def require_finite(name: str, values: ArrayLike) -> None:
         raise ValueError(f"{name} overflowed (inf or NaN): the inputs or parameters are too large")
 
 
+def time_step(value: object, name: str = "dt") -> float:
+    """A time step in s: finite, > 0 and within :data:`SIMULATION_STEP_RANGE` (1e-9 ... 1e3 s)."""
+    dt = positive(name, value)
+    low, high = SIMULATION_STEP_RANGE
+    if not low <= dt <= high:
+        raise ValueError(f"{name} = {show(value)} s is outside the range of time steps accepted "
+                         f"({low:g} ... {high:g} s)")
+    return dt
+
+
 def positive_frequencies(name: str, values: ArrayLike) -> np.ndarray:
     """Frequencies in Hz: finite and > 0 (scalars become 0-d arrays)."""
     array = finite_array(name, values, ndim=None)
@@ -198,17 +221,20 @@ def positive_frequencies(name: str, values: ArrayLike) -> np.ndarray:
     return array
 
 
-def check_memory(what: str, steps: int, bytes_per_step: float, hint: str = "") -> None:
+def check_memory(what: str, steps: float, bytes_per_step: float, hint: str = "") -> None:
     """Refuse, before allocating, ``steps`` steps of ``bytes_per_step`` bytes beyond
     :data:`MEMORY_LIMIT_BYTES`; the message gives the step count and the memory it would take."""
     needed = float(steps) * float(bytes_per_step)
     if needed > MEMORY_LIMIT_BYTES:
         advice = f"; {hint}" if hint else ""
-        raise ValueError(f"{what} needs {steps:,.0f} steps, whose arrays would take {_size(needed)} "
+        count = f"{steps:,.0f}" if steps < 1e15 else f"{float(steps):.3g}" if math.isfinite(steps) else "over 1e308"
+        raise ValueError(f"{what} needs {count} steps, whose arrays would take {_size(needed)} "
                          f"(limit {_size(MEMORY_LIMIT_BYTES)}){advice}")
 
 
 def _size(count: float) -> str:
+    if not math.isfinite(count):
+        return "over 1e308 TiB"
     for unit, scale in (("TiB", 1024.0**4), ("GiB", 1024.0**3), ("MiB", 1024.0**2)):
         if count >= scale:
             return f"{count / scale:.3g} {unit}"

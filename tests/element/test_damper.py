@@ -182,3 +182,19 @@ def test_parameters_are_immutable():
     damper = FDMKDamper(**TABLE4)
     with pytest.raises(AttributeError):
         damper.G1 = 1.0
+
+
+@pytest.mark.parametrize("dt", [1e-300, 5e-324, 1e300])
+def test_force_and_state_refuse_absurd_time_steps(dt):
+    # Before: dt = 1e-300 gave forces of 1e182 N for a 1 mm history (dt^-r overflowed the scale).
+    damper = FDMKDamper(**TABLE4)
+    refused = r"dt = .* s is outside the range of time steps accepted \(1e-09 \.\.\. 1000 s\)"
+    with pytest.raises(ValueError, match=refused):
+        damper.force([0.0, 1.0, 0.5], dt)
+    with pytest.raises(ValueError, match="outside the range of time steps accepted"):
+        damper.new_state(dt)
+
+
+def test_scaled_names_the_factor_that_overflows_a_parameter():
+    with pytest.raises(ValueError, match=r"factor = 1e\+308 makes G2 = 3.0 x 1e\+308 overflow"):
+        FDMKDamper(**README_WALL).scaled(1e308)

@@ -109,3 +109,29 @@ def test_bad_bands_tolerances_branch_counts_and_negative_branches_are_refused():
         fit_prony(wall, 0.01, 100.0, tolerance=1e-4, max_branches=2)
     with pytest.raises(ValueError, match="passive"):
         PronySeries(1.0, np.array([[1.0, -1.0]]), 0.1, 1.0, 0.01, 0.0)
+
+
+@pytest.mark.parametrize("branches, match", [
+    ([1.0, 2.0, 3.0], r"branches must be an \(n, 2\) array.*got shape \(3,\)"),
+    ([[1.0, 2.0, 3.0]], r"branches must be an \(n, 2\) array.*got shape \(1, 3\)"),
+    ("ab", "branches must be real numbers"),
+    ([[1.0, np.nan]], "branches must be finite"),
+    ([[0.0, 2.0]], r"k_i > 0 and c_i >= 0 in every branch \(passive\), got branch 1 = \(0.0, 2.0\)"),
+])
+def test_badly_shaped_or_inert_branches_are_refused_by_name(branches, match):
+    # Before: numpy's "cannot reshape array of size 3 into shape (2)", and a k_i = 0 branch gave NaN stiffness.
+    with pytest.raises(ValueError, match=match):
+        PronySeries(1.0, branches, 0.1, 10.0, 0.01, 0.0)
+
+
+@pytest.mark.parametrize("k0, match", [(np.nan, "equilibrium_stiffness must be finite"),
+                                       ("1", "equilibrium_stiffness must be a real number"),
+                                       (-1.0, "equilibrium_stiffness must be >= 0")])
+def test_a_bad_equilibrium_stiffness_is_refused_by_name(k0, match):
+    with pytest.raises(ValueError, match=match):
+        PronySeries(k0, [[1.0, 2.0]], 0.1, 10.0, 0.01, 0.0)
+
+
+def test_a_series_without_branches_is_a_spring():
+    spring = PronySeries(5.0, [], 0.1, 10.0, 0.01, 0.0)
+    np.testing.assert_array_equal(spring.complex_stiffness([0.1, 1.0]), [5.0, 5.0])

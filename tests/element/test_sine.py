@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from builders import README_WALL, TABLE4
 
-from vdw_frames import FDMKDamper, sine_test
+from vdw_frames import FDMKDamper, StrainDependentDamper, sine_test
 
 PARAMETER_SETS = [TABLE4, dict(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.3),
                   dict(G1=1.0, G2=2.0, eta1=0.5, eta2=0.5, r=0.9), dict(G1=0.5, G2=5.0, eta1=0.2, eta2=1.0, r=0.1),
@@ -82,3 +82,14 @@ def test_an_overflowing_sine_test_names_the_amplitude():
         warnings.simplefilter("error")
         with pytest.raises(ValueError, match=r"overflowed .* amplitude = 1e\+300 mm"):
             sine_test(damper, 1e300, 1)
+
+
+@pytest.mark.parametrize("area, thickness", [(1e6, 1e-320), (1e300, 1e-10)])
+def test_a_wall_whose_area_over_thickness_overflows_is_refused_naming_both(area, thickness):
+    # Before: the wall was accepted, and its sine test blamed the amplitude.
+    refused = rf"area / thickness = {area!r} mm\^2 / {thickness!r} mm overflows \(inf\)".replace("+", r"\+")
+    with pytest.raises(ValueError, match=refused):
+        FDMKDamper(**TABLE4, area=area, thickness=thickness)
+    with pytest.raises(ValueError, match=refused):
+        StrainDependentDamper(strains=(1.0, 2.0), G1=(0.5, 0.4), G2=(1.0, 0.9), eta1=(0.1, 0.1), eta2=(0.5, 0.4),
+                              r=(0.5, 0.5), area=area, thickness=thickness)

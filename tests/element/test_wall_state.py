@@ -79,3 +79,21 @@ def test_a_state_of_anything_but_a_wall_is_refused_naming_its_type():
         warnings.simplefilter("error")
         with pytest.raises(ValueError, match="a wall must be an FDMKDamper or a SupportedDamper, got str"):
             WallState("x", 0.01)
+
+
+def test_a_trial_whose_force_overflows_is_refused_naming_the_displacement_and_leaves_no_trace():
+    state = FDMKDamper(**TABLE4).new_state(0.01)
+    with pytest.raises(ValueError, match=r"force overflowed \(inf or NaN\) at displacement = 1e\+308 mm"):
+        state.trial(1e308)
+    with pytest.raises(ValueError, match=r"force overflowed \(inf or NaN\) at displacement = 1e\+305 mm"):
+        state.trial(1e305)
+    with pytest.raises(ValueError, match="commit\\(\\) needs a trial"):
+        state.commit()
+    # Nothing reached the memory: the state is still at rest, and steps on as a fresh one does.
+    assert state.steps == 0
+    fresh = FDMKDamper(**TABLE4).new_state(0.01)
+    for displacement in (1.0, -0.5, 0.25):
+        expected = fresh.trial(displacement)
+        fresh.commit()
+        assert state.trial(displacement) == expected
+        state.commit()

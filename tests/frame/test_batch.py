@@ -66,6 +66,14 @@ def test_spectral_scale_factors_hit_the_target():
         assert motion.scaled(factor).scale_factor_to_spectral_acceleration(2000.0, 0.5) == pytest.approx(1.0)
 
 
+def test_scale_factors_to_targets_that_look_typed_in_g_warn():
+    records = tapered_sine_pair()
+    with pytest.warns(UserWarning, match=r"target spectral acceleration = 0.3 mm/s\^2 .* did you mean 0.3 g"):
+        scale_factors_to_spectral_acceleration(records, [0.3, 2000.0], period=0.5)
+    with pytest.warns(UserWarning, match=r"target PGA = 0.3 mm/s\^2 .* did you mean 0.3 g"):
+        np.testing.assert_allclose(scale_factors_to_pga(records, [0.3]), [[0.3 / m.pga] for m in records], rtol=1e-15)
+
+
 @pytest.mark.slow
 def test_batch_on_a_dask_local_cluster():
     distributed = pytest.importorskip("distributed", reason="dask[distributed] not installed (extra 'dask')")

@@ -114,3 +114,26 @@ def test_stationary_response_validates_its_step_and_padding():
         with pytest.raises(ValueError, match=match):
             frame.stationary_response(ground, dt, pad)
     assert frame.stationary_response(ground, 0.01, np.int64(2)).shape == (16, 2)
+
+
+class StoryNumber(int):
+    """A story number equal to its int but hashed apart from it, so that a dict keeps both keys (Python
+    merges 1, 1.0 and np.int64(1) into one key before the building sees them)."""
+
+    def __hash__(self) -> int:
+        return hash(("story", int(self)))
+
+
+def test_a_story_given_twice_after_normalisation_is_refused():
+    wall = FDMKDamper(**README_WALL)
+    with pytest.raises(ValueError, match=r"walls has story 1 twice \(keys \[1, 1\]\); give each story once"):
+        ShearBuilding([1.0, 1.0], [1.0, 1.0], walls={1: wall, StoryNumber(1): wall})
+    with pytest.raises(ValueError, match=r"hysteresis has story 2 twice"):
+        ShearBuilding([1.0, 1.0], [1.0, 1.0], hysteresis={2: Bilinear(1.0), StoryNumber(2): Bilinear(2.0)})
+
+
+def test_stiffnesses_whose_sum_overflows_are_refused_naming_the_stories():
+    # Before: scipy's "array must not contain infs or NaNs" from the first eigen-analysis.
+    with pytest.raises(ValueError, match=r"stiffnesses of stories 2 and 3 \(1e\+308 and 1e\+308 N/mm\) overflow"):
+        ShearBuilding([1.0] * 3, [1.0, 1e308, 1e308])
+    assert ShearBuilding([1.0] * 2, [1e308, 1.0]).stiffness_matrix[0, 0] == 1e308  # its sum is finite

@@ -7,10 +7,13 @@ building is also checked against the exact frequency-domain solution.  A modal-d
 tangent assembled row by row overwrote its coupling terms) once gave 41-57 % errors here, silently.
 """
 
+import warnings
+
 import numpy as np
 import pytest
 
 import vdw_frames as vdw
+from vdw_frames.frame.integrator import NewtonRaphson
 
 DAMPING_MODELS = ("rayleigh", "modal")
 
@@ -124,3 +127,18 @@ def test_linear_building_with_walls_matches_the_frequency_domain(damping_model):
     drift_exact = np.diff(exact, axis=1, prepend=0.0)
     error = np.abs(result.peak_drift - np.abs(drift_exact).max(axis=0)) / np.abs(drift_exact).max(axis=0)
     assert error.max() <= 3e-3
+
+
+def test_simulate_warns_when_its_energy_balance_breaks():
+    # The self-check that would have caught the modal-damping defect: a run solved far from its
+    # equations (here on purpose, a Newton loop stopped at a 30 % force residual) warns, naming it.
+    building = frame(4, "modal", yielding=True)
+    motion = sine_motion(amplitude=4000.0)
+    loose = NewtonRaphson(displacement_tolerance=50.0, force_tolerance=0.3, max_iterations=1)
+    with pytest.warns(RuntimeWarning, match=r"simulate: the energy balance misses by .* of the peak input energy "
+                                            r"\(self-check bound 0.0001\)"):
+        result = vdw.simulate(building, motion, newton=loose)
+    assert np.abs(result.energy.balance_error).max() > 1e-4 * result.energy.input.max()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # solved to its tolerances, the same run is silent
+        vdw.simulate(building, motion)

@@ -8,10 +8,11 @@ import dataclasses
 import numpy as np
 import pytest
 from builders import TEN_STORY_MASSES, TEN_STORY_STIFFNESSES
+from scipy import stats
 from shared_data import shared_record
 
 from vdw_frames import Bilinear, G, ShearBuilding, incremental_dynamic_analysis, read_at2
-from vdw_frames.frame.ida import IDAResult
+from vdw_frames.frame.ida import Fragility, IDAResult
 
 
 @pytest.mark.records
@@ -56,3 +57,18 @@ def test_a_fragility_with_records_standing_at_the_cap_names_them_and_the_cap_in_
     with pytest.raises(ValueError, match=r"got 1 \(2 of 3 records still stand at the cap, Sa\(T1\) = 4 g: raise "
                                          r"the cap\)$"):
         _ida_result([2, 4, 4], [2.0, None, None]).fragility()
+
+
+def test_fragility_refuses_parameters_and_intensities_that_would_give_nan():
+    for median, dispersion, match in ((0.0, 0.4, "median must be > 0"), (-1.0, 0.4, "median must be > 0"),
+                                      (1.0, 0.0, "dispersion must be > 0"), (np.nan, 0.4, "median must be finite")):
+        with pytest.raises(ValueError, match=match):
+            Fragility(median, dispersion)
+    fragility = Fragility(4000.0, 0.4)
+    with pytest.raises(ValueError, match=r"intensity must be >= 0 mm/s\^2, got -1.0"):
+        fragility.probability([1000.0, -1.0])
+    with pytest.raises(ValueError, match="intensity must be finite, got nan"):
+        fragility.probability(np.nan)
+    # Zero intensity: no collapse; elsewhere the lognormal CDF written out here.
+    probability = fragility.probability([0.0, 2000.0, 4000.0])
+    np.testing.assert_allclose(probability, [0.0, stats.norm.cdf(np.log(0.5) / 0.4), 0.5], rtol=1e-14)

@@ -277,3 +277,16 @@ def test_huge_maxwell_walls_beside_the_search_contour():
     result = modal_analysis(building)
     assert result.pole_count == expected.size == 5
     np.testing.assert_allclose(result.poles, expected, rtol=1e-8)
+
+
+def test_huge_masses_give_finite_energy_estimates():
+    # Masses of 1e308 t: the mass-normalised shapes (~1e-154) squared underflowed, and the energy
+    # estimate came out inf and NaN (vdw-frames design printed them).  Without walls the damping is
+    # classical, so the energy estimate equals the complex modes' ratio; with walls it stays finite.
+    bare = ShearBuilding([1e308] * 3, [3.0e5, 2.0e5, 1.0e5])
+    result = modal_analysis(bare)
+    np.testing.assert_allclose(result.energy_damping_ratios, result.damping_ratios, rtol=1e-9)
+    np.testing.assert_allclose(result.energy_damping_ratios[:2], 0.05, rtol=1e-9)  # Rayleigh modes 1 and 2
+    walled = modal_analysis(bare.with_walls({1: FRACTIONAL, 3: FRACTIONAL}))
+    for name in ("periods", "damping_ratios", "energy_damping_ratios", "energy_inherent", "effective_periods"):
+        assert np.isfinite(getattr(walled, name)).all(), name

@@ -1,6 +1,7 @@
 """Time histories of shear buildings with FDMK walls (vdw_frames.simulate: the Newmark-Newton integrator and
 the fixed-wall run), against independent solutions: the frequency domain, scipy's lsim, the element alone."""
 
+import re
 import warnings
 
 import numpy as np
@@ -17,7 +18,7 @@ from builders import (
 from scipy import signal
 from shared_data import SHARED
 
-from vdw_frames import FDMKDamper, GroundMotion, ShearBuilding, read_at2, simulate
+from vdw_frames import Bilinear, FDMKDamper, GroundMotion, ShearBuilding, read_at2, simulate
 from vdw_frames.motion import default_record
 
 RECORDS = sorted(SHARED.glob("*.[aA][tT]2")) if SHARED.is_dir() else []
@@ -201,3 +202,46 @@ def test_steps_out_of_range_and_unknown_methods_and_memories_are_refused():
             warnings.simplefilter("error")
             with pytest.raises(ValueError, match=match):
                 call()
+
+
+def test_a_building_unstable_under_its_gravity_loads_is_refused_naming_the_story():
+    # Story 2: P/h = 3.6e6 N / 3000 mm = 1200 N/mm above its 1000 N/mm: K + K_G is not positive definite.
+    def building(load_2, hysteresis=None, walls=None):
+        return ShearBuilding([100.0, 100.0], [5000.0, 1000.0], story_heights=[3000.0, 3000.0],
+                             gravity_loads=[6.0e6, load_2], hysteresis=hysteresis, walls=walls)
+
+    motion = tapered_pulse()
+    for unstable in (building(3.6e6), building(3.6e6, hysteresis=[None, Bilinear(2.0e4, 0.05)])):
+        with pytest.raises(ValueError, match=r"unstable under its gravity loads: story 2's P/h = 1200 N/mm "
+                                             r"reaches its stiffness 1000 N/mm"):
+            simulate(unstable, motion, collapse_drift_ratio=None)
+    assert simulate(building(2.7e6), motion).converged  # P/h = 900 N/mm: stable
+    # A wall's static stiffness G1 A / h = 0.5 MPa x 1e5 mm^2 / 10 mm = 5000 N/mm steadies the story, as
+    # modal_analysis counts it.
+    kelvin = FDMKDamper(G1=0.5, G2=0.0, eta1=0.05, eta2=0.0, r=0.5, area=1.0e5, thickness=10.0)
+    assert simulate(building(3.6e6, walls={2: kelvin}), motion).converged
+
+
+@pytest.mark.parametrize("free_vibration, steps", [(1e12, r"50,000,000,000,\d+"), (1e306, r"5e\+307"),
+                                                   (1e308, "over 1e308")])
+def test_a_free_vibration_too_long_to_run_is_refused_by_name(free_vibration, steps):
+    # Before: the steps were blamed (and at 1e308 s an OverflowError escaped).
+    frame = ShearBuilding([300.0], [2e5])
+    refused = (rf"simulate with free_vibration = {re.escape(repr(free_vibration))} s \(dt = 0.02 s.*\) "
+               rf"needs {steps} steps.*; use a shorter free_vibration")
+    with pytest.raises(ValueError, match=refused):
+        simulate(frame, GroundMotion([0.0, 1000.0, 0.0], 0.02), free_vibration=free_vibration)
+
+
+def test_masses_that_overflow_the_newmark_terms_are_refused_by_name():
+    # Before: 4 m / dt^2 = inf made the first step fail to converge, with a warning about story 1.
+    with pytest.raises(ValueError, match=r"masses up to 1e\+308 t with dt = 0.02 s overflow Newmark's 4 m / dt\^2"):
+        simulate(ShearBuilding([1e308, 1e308], [1e5, 1e5]), GroundMotion([0.0, 1000.0, 0.0], 0.02))
+
+
+def test_an_overflowing_analysis_names_the_record_and_its_pga():
+    # Before: only "the energy histories overflowed", whatever the input that overflowed.
+    motion = GroundMotion(np.array([0.0, 1.0, -1.0, 0.0]) * 9806.65e300, 0.01, "quake")
+    with pytest.raises(ValueError, match=r"overflowed \(inf or NaN\).*\(ground motion 'quake', PGA 9.80665e\+303 "
+                                         r"mm/s\^2 = 1e\+300 g\)"):
+        simulate(ShearBuilding([300.0], [2e5]), motion)

@@ -281,3 +281,81 @@ def test_readers_accept_a_bom_crlf_zero_padding_ctrl_z_and_float32_times(tmp_pat
     assert motion.dt == pytest.approx(0.01, rel=1e-6)
     with pytest.raises(ValueError, match="non-uniform time step at line 3"):
         read_two_column(write_file(tmp_path, "uneven.txt", "0 1\n0.01 2\n0.02002 3\n0.03 4\n"))
+
+
+# --------------------------------------------------------------------------------------------------
+# units: the header's (AT2), the argument's (two-column); factors to mm/s^2 by definition of the units
+
+
+def at2_with_header(tmp_path, header_line: str, count_line: str = "NPTS=      7, DT= .01000 SEC") -> Path:
+    rows = [" ".join(f"{v:.7E}" for v in VALUES_G[:5]), " ".join(f"{v:.7E}" for v in VALUES_G[5:])]
+    return write_file(tmp_path, "units.AT2", peer_at2(count_line, rows, header=("PEER RECORD", header_line)))
+
+
+@pytest.mark.parametrize("header_line, factor", [
+    ("ACCELERATION TIME HISTORY IN UNITS OF G. FILTER POINTS: HP=0.1 Hz LP=15.0 Hz", G),
+    ("The units are (g)", G),
+    ("SOME STATION, NO UNIT STATED", G),  # PEER's convention
+    ("ACCELERATION TIME HISTORY IN UNITS OF CM/S/S", 10.0),
+    ("ACCELERATION IN UNITS OF CM/SEC/SEC.", 10.0),
+    ("units of gal", 10.0),
+    ("UNITS: m/s^2", 1000.0),
+    ("UNITS OF MM/SEC**2", 1.0),
+    ("The units are (in/s2)", 25.4),
+])
+def test_read_at2_converts_the_units_its_header_states(tmp_path, header_line, factor):
+    motion = read_at2(at2_with_header(tmp_path, header_line))
+    np.testing.assert_allclose(motion.acceleration, np.array(VALUES_G) * factor, rtol=1e-15)
+
+
+@pytest.mark.parametrize("header_line, problem", [
+    ("VELOCITY TIME HISTORY IN UNITS OF CM/SEC", "line 2 says this is a velocity history"),
+    ("DISPLACEMENT TIME SERIES IN UNITS OF CM", "line 2 says this is a displacement history"),
+    ("IN UNITS OF CM/S", "line 2 states units 'CM/S' .* is a unit of velocity"),
+    ("IN UNITS OF FURLONGS/FORTNIGHT", "line 2 states units 'FURLONGS/FORTNIGHT'.* unknown header unit"),
+])
+def test_read_at2_refuses_other_quantities_and_units_it_cannot_read(tmp_path, header_line, problem):
+    assert_rejected(read_at2, at2_with_header(tmp_path, header_line), problem)
+
+
+def test_read_at2_refuses_a_header_stating_two_units(tmp_path):
+    rows = [" ".join(f"{v:.7E}" for v in VALUES_G)]
+    text = peer_at2("NPTS= 7, DT= 0.01", rows, header=("UNITS OF CM/S2", "IN UNITS OF G"))
+    assert_rejected(read_at2, write_file(tmp_path, "two_units.AT2", text),
+                    "the header states two units, 'CM/S2' on line 1 and 'G' on line 2")
+
+
+@pytest.mark.parametrize("count_line, dt", [
+    ("NPTS= 7, DT= 10ms", 0.01), ("NPTS= 7, DT= 10 MS", 0.01), ("NPTS= 7, DT= .01SEC", 0.01),
+    ("NPTS= 7, DT= 0.02 s", 0.02), ("NPTS= 7, DT= 0.02 (a remark)", 0.02),
+])
+def test_read_at2_reads_dt_in_the_time_unit_it_states(tmp_path, count_line, dt):
+    assert read_at2(at2_with_header(tmp_path, "IN UNITS OF G", count_line)).dt == pytest.approx(dt, rel=1e-15)
+
+
+def test_read_at2_refuses_a_dt_unit_it_cannot_read(tmp_path):
+    assert_rejected(read_at2, at2_with_header(tmp_path, "IN UNITS OF G", "NPTS= 7, DT= 10min"),
+                    "DT unit 'min' on line 3 is not a time unit")
+
+
+@pytest.mark.parametrize("unit, factor", [("in/s2", 25.4), ("CM/SEC/SEC", 10.0), ("gal", 10.0), ("m/s^2", 1000.0),
+                                          ("G", G)])
+def test_read_two_column_reads_every_spelling_of_its_units(tmp_path, unit, factor):
+    motion = read_two_column(write_file(tmp_path, "two.txt", "0 0.5\n0.01 -0.25\n"), unit=unit)
+    np.testing.assert_allclose(motion.acceleration, np.array([0.5, -0.25]) * factor, rtol=1e-15)
+
+
+@pytest.mark.parametrize("unit, problem", [("cm/s", "unit 'cm/s' is a unit of velocity"),
+                                           ("m", "unit 'm' is a unit of displacement"),
+                                           (9.81, "unit must be a string")])
+def test_read_two_column_refuses_units_that_are_not_accelerations(tmp_path, unit, problem):
+    with pytest.raises(ValueError, match=problem):
+        read_two_column(write_file(tmp_path, "two.txt", "0 0.5\n0.01 -0.25\n"), unit=unit)
+
+
+@pytest.mark.parametrize("header", [["ACCELERATION IN UNITS OF CM/S2"], ["VELOCITY TIME HISTORY"]])
+def test_write_at2_refuses_a_header_line_that_would_be_read_as_units(tmp_path, header):
+    motion = GroundMotion(np.array(VALUES_G) * G, 0.01, "rt")
+    with pytest.raises(ValueError, match="would be read as a statement of the file's units or quantity"):
+        write_at2(motion, tmp_path / "x.AT2", header=header)
+    assert not (tmp_path / "x.AT2").exists()

@@ -336,3 +336,13 @@ def test_identify_with_four_or_five_parameters_fixed_finds_the_free_ones_optimum
     reference = min(objective(best), polished.fun)
     assert result.sse <= reference * (1 + 1e-9)
     assert result.sse == pytest.approx(reference, rel=1e-6)
+
+
+@pytest.mark.parametrize("which", ["storage_modulus", "loss_modulus"])
+def test_negative_moduli_are_refused_as_non_physical(which):
+    # Before: G' = -1 MPa everywhere was fitted (G1 = G2 = 0, a dashpot) with no word.
+    data = {"storage_modulus": G6.copy(), "loss_modulus": L6.copy()}
+    data[which][2] = -0.5
+    with pytest.raises(ValueError, match=rf"{which} must be >= 0 MPa \(a passive material\), got -0.5 at index 2 "
+                                         rf"\(f = {float(F6[2])!r} Hz\)"):
+        identify(F6, data["storage_modulus"], data["loss_modulus"])

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validation import finite_array, positive, whole_number
+from .._validation import finite_array, show, time_step, whole_number
 from . import kernel, thermal
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, METHODS, Discretisation, get_method
@@ -117,7 +117,7 @@ class WallBank:
 
     def __post_init__(self) -> None:
         self.walls = tuple(self.walls)
-        self.dt = positive("dt", self.dt)
+        self.dt = time_step(self.dt)
         self.steps = whole_number("steps", self.steps, 0)
         self.method = get_method(self.method)
         memory_strategy(self.memory)
@@ -217,27 +217,44 @@ class WallBank:
         """(Re)evaluate ``tangent`` and ``history_force`` of the coming step from the memory (commit does it)."""
         kernel.bank_affine(self.arrays, self.count)
 
-    def trial_forces(self, deformation: ArrayLike) -> np.ndarray:
-        """Forces (N) at trial deformations (mm, one per wall) this step; the memory is untouched."""
-        return self.tangent * self._deformations(deformation) + self.history_force
+    def trial_forces(self, deformation: ArrayLike, *, name: str = "deformation") -> np.ndarray:
+        """Forces (N) at trial deformations (mm, one per wall) this step; the memory is untouched.  A force
+        that overflows (inf) is a ValueError naming the deformation (as ``name``)."""
+        deformation = self._deformations(deformation, name)
+        with np.errstate(over="ignore", invalid="ignore"):
+            force = self.tangent * deformation + self.history_force
+        self._require_finite(force, deformation, name)
+        return force
 
-    def _deformations(self, deformation: ArrayLike) -> np.ndarray:
-        deformation = finite_array("deformation", deformation, ndim=None)
+    def _require_finite(self, force: np.ndarray, deformation: np.ndarray, name: str) -> None:
+        bad = ~np.isfinite(force)
+        if bad.any():
+            w = int(np.argmax(bad))
+            wall = f" of wall {w + 1}" if len(self.walls) > 1 else ""
+            raise ValueError(f"the force{wall} overflowed (inf or NaN) at {name} = {show(deformation[w])} mm: "
+                             f"the {name} or the wall's parameters are too large")
+
+    def _deformations(self, deformation: ArrayLike, name: str = "deformation") -> np.ndarray:
+        deformation = finite_array(name, deformation, ndim=None)
         if deformation.size != len(self.walls):
-            raise ValueError(f"deformation has {deformation.size} values for {len(self.walls)} walls")
+            raise ValueError(f"{name} has {deformation.size} values for {len(self.walls)} walls")
         return np.ascontiguousarray(deformation.reshape(len(self.walls)))
 
-    def commit(self, deformation: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    def commit(self, deformation: ArrayLike, *, name: str = "deformation") -> tuple[np.ndarray, np.ndarray]:
         """Accept ``deformation`` (mm, one per wall) for this step; returns (forces N, wall strains).
 
-        Advances every wall's memory one step and evaluates the next step's history.
+        Advances every wall's memory one step and evaluates the next step's history.  A force that
+        overflows is a ValueError naming the deformation (as ``name``), before the memory takes it.
         """
-        deformation = self._deformations(deformation)
+        deformation = self._deformations(deformation, name)
+        self.trial_forces(deformation, name=name)  # refuses an overflowing force before the memory takes it
         self.reserve(1)
         force = np.empty(len(self.walls))
         strain = np.empty(len(self.walls))
         kernel.bank_commit(self.arrays, self.count, deformation, force, strain)
         self.count += 1
+        self._require_finite(force, deformation, name)
+        self._require_finite(self.history_force, deformation, name)  # the next step's history
         return force, strain
 
     def reserve(self, steps: int) -> None:

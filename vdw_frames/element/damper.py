@@ -42,6 +42,7 @@ from .._validation import (
     require_finite,
     scaled_value,
     show,
+    wall_geometry,
 )
 from .bank import DEFAULT_MEMORY, MEMORY_STRATEGIES, WallBank, kernel_constants, memory_strategy
 from .fast_memory import FastMemory
@@ -99,8 +100,9 @@ class FDMKDamper(StiffnessMethods):
         for name in ("G1", "G2", "eta1", "eta2"):
             object.__setattr__(self, name, non_negative(name, getattr(self, name)))
         object.__setattr__(self, "r", fractional_order(self.r))
-        object.__setattr__(self, "area", positive("area", self.area))
-        object.__setattr__(self, "thickness", positive("thickness", self.thickness))
+        area, thickness = wall_geometry(self.area, self.thickness)
+        object.__setattr__(self, "area", area)
+        object.__setattr__(self, "thickness", thickness)
         if self.strain_range is not None:
             bounds = self.strain_range if isinstance(self.strain_range, (tuple, list)) else ()
             if len(bounds) != 2:
@@ -345,14 +347,15 @@ class WallState:
     def trial(self, displacement: float) -> tuple[float, float]:
         """(force in N, tangent in N/mm) at the next step for ``displacement`` (mm); memory untouched."""
         displacement = finite_array("displacement", [displacement])[0]
+        force = float(self._bank.trial_forces([displacement], name="displacement")[0])
         self._trial = displacement
-        return float(self._bank.trial_forces([displacement])[0]), float(self._bank.tangent[0])
+        return force, float(self._bank.tangent[0])
 
     def commit(self) -> None:
         """Accept the last trial and advance the memory one step."""
         if self._trial is None:
             raise ValueError("commit() needs a trial() first")
-        force, _ = self._bank.commit([self._trial])
+        force, _ = self._bank.commit([self._trial], name="displacement")
         self.committed_displacement, self.committed_force = self._trial, float(force[0])
         self._trial = None
 

@@ -60,7 +60,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._jit import njit
-from .._validation import finite_scalar, fractional_order, positive
+from .._validation import check_memory, finite_array, finite_scalar, fractional_order, time_step, whole_number
 
 
 @njit(cache=True)
@@ -138,22 +138,26 @@ class Discretisation:
     def weights(self, r: float, count: int, dt: float = 1.0) -> np.ndarray:
         """The first ``count`` weights w_j of ``(D^r x)_n ~= sum_j w_j x_{n-j}``, in s^-r.
 
-        ``dt`` (s) is the step; the weights are those of delta(zeta)^r scaled by dt^-r.
+        ``count``: a whole number >= 1 (bools and text refused; more weights than fit in the memory limit
+        refused before allocating).  ``dt`` (s, within ``SIMULATION_STEP_RANGE``, 1e-9 ... 1e3 s) is the
+        step; the weights are those of delta(zeta)^r scaled by dt^-r.
         """
         r = fractional_order(r)
-        dt = positive("dt", dt)
-        count = int(count)
-        if count < 1:
-            raise ValueError(f"count must be >= 1, got {count}")
+        dt = time_step(dt)
+        count = whole_number("count", count, 1)
+        check_memory(f"weights(count = {count})", count, 8 * 4)  # the weights and the recurrence's arrays
         return self._weights(r, count) * dt ** (-r)
 
     def symbol(self, omega: ArrayLike, dt: float) -> complex | np.ndarray:
         """delta(exp(-i omega dt)) / dt (rad/s, complex): the scheme's stand-in for i*omega.
 
-        omega in rad/s, dt in s.  The discrete steady state of a transfer function H(s) under a
-        sampled sinusoid of circular frequency omega is H(symbol(omega, dt)).
+        omega in rad/s (finite), dt in s (within ``SIMULATION_STEP_RANGE``, 1e-9 ... 1e3 s).  The discrete
+        steady state of a transfer function H(s) under a sampled sinusoid of circular frequency omega is
+        H(symbol(omega, dt)).
         """
-        zeta = np.exp(-1j * np.asarray(omega, dtype=float) * dt)
+        omega = finite_array("omega", omega, ndim=None)
+        dt = time_step(dt)
+        zeta = np.exp(-1j * omega * dt)
         return self.generating_function(zeta) / dt
 
 

@@ -41,7 +41,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validation import positive, positive_frequencies, whole_number
+from .._validation import finite_array, non_negative, positive, positive_frequencies, show, whole_number
 from .wall import StiffnessMethods
 
 if TYPE_CHECKING:
@@ -72,11 +72,25 @@ class PronySeries(StiffnessMethods):
     error: float
 
     def __post_init__(self) -> None:
-        branches = np.array(self.branches, dtype=float).reshape(-1, 2)
-        if not np.isfinite(branches).all() or (branches < 0).any() or self.equilibrium_stiffness < 0:
-            raise ValueError("a Prony series needs finite k_0, k_i, c_i >= 0 (passive)")
+        object.__setattr__(self, "equilibrium_stiffness",
+                           non_negative("equilibrium_stiffness", self.equilibrium_stiffness))
+        branches = finite_array("branches", self.branches, ndim=None).copy()
+        if branches.size == 0:
+            branches = branches.reshape(0, 2)
+        if branches.ndim != 2 or branches.shape[1] != 2:
+            raise ValueError(f"branches must be an (n, 2) array, one row (k_i N/mm, c_i N*s/mm) per branch, got "
+                             f"shape {branches.shape}")
+        bad = (branches[:, 0] <= 0.0) | (branches[:, 1] < 0.0)
+        if bad.any():  # k_i = 0 would make tau_i = c_i / k_i infinite, and K*(f) NaN
+            row = int(np.argmax(bad))
+            raise ValueError(f"a Prony series needs k_i > 0 and c_i >= 0 in every branch (passive), got branch "
+                             f"{row + 1} = {show(tuple(branches[row].tolist()))}")
         branches.setflags(write=False)
         object.__setattr__(self, "branches", branches)
+        object.__setattr__(self, "f_min", positive("f_min", self.f_min))
+        object.__setattr__(self, "f_max", positive("f_max", self.f_max))
+        object.__setattr__(self, "tolerance", positive("tolerance", self.tolerance))
+        object.__setattr__(self, "error", non_negative("error", self.error))
 
     def __len__(self) -> int:
         """The number of Maxwell branches."""

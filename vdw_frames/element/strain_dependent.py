@@ -43,6 +43,7 @@ from .._validation import (
     positive_frequencies,
     refuse_non_numbers,
     scaled_value,
+    wall_geometry,
 )
 from .damper import DEFAULT_MEMORY, FDMKDamper, WallState, driven_force
 from .fast_memory import FastMemory
@@ -117,8 +118,9 @@ class StrainDependentDamper:
                 raise ValueError(f"{name} has {array.size} values for {strains.size} strains")
             check = fractional_order if name == "r" else (lambda v, n=name: non_negative(n, v))
             object.__setattr__(self, name, tuple(check(v) for v in array.tolist()))
-        object.__setattr__(self, "area", positive("area", self.area))
-        object.__setattr__(self, "thickness", positive("thickness", self.thickness))
+        area, thickness = wall_geometry(self.area, self.thickness)
+        object.__setattr__(self, "area", area)
+        object.__setattr__(self, "thickness", thickness)
         if self.thermal is not None and not isinstance(self.thermal, ThermalProperties):
             raise ValueError(f"thermal must be ThermalProperties (or None), got {type(self.thermal).__name__}")
         if self.limits is not None and not isinstance(self.limits, WallLimits):

@@ -24,12 +24,12 @@ from numpy.typing import ArrayLike
 
 from .. import _warnings
 from .._files import write_text
-from .._validation import finite_array, positive, show
+from .._validation import finite_array, show
 from ..element.bank import wall_order
 from ..element.damper import DEFAULT_MEMORY
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation
-from ..motion.record import GroundMotion
+from ..motion.record import GroundMotion, target_acceleration
 from .building import ShearBuilding
 from .results import SimulationResult
 from .simulation import simulate
@@ -366,7 +366,8 @@ def scale_factors_to_spectral_acceleration(motions: Iterable[GroundMotion], targ
 
     Sa is linear in the scale factor: one response spectrum per motion serves every target.
     """
-    targets = np.array([positive("target spectral acceleration", t) for t in finite_array("targets", targets)])
+    targets = np.array([target_acceleration("target spectral acceleration", t, 2)
+                        for t in finite_array("targets", targets)])
     unit = np.array([motion.scale_factor_to_spectral_acceleration(1.0, period, damping_ratio) for motion in motions])
     return unit[:, None] * targets
 

@@ -97,6 +97,12 @@ class ShearBuilding:
             raise ValueError(f"stiffnesses must be > 0 N/mm, got {show(stiffnesses[stiffnesses <= 0][0])}")
         if stiffnesses.size != masses.size:
             raise ValueError(f"stiffnesses has {stiffnesses.size} stories for {masses.size} floors (masses)")
+        with np.errstate(over="ignore"):
+            assembled = stiffnesses[:-1] + stiffnesses[1:]  # the floors' diagonal terms of K
+        if not np.isfinite(assembled).all():
+            story = int(np.argmax(~np.isfinite(assembled)))
+            raise ValueError(f"stiffnesses of stories {story + 1} and {story + 2} ({show(stiffnesses[story])} and "
+                             f"{show(stiffnesses[story + 1])} N/mm) overflow when added into the stiffness matrix")
         object.__setattr__(self, "masses", tuple(masses.tolist()))
         object.__setattr__(self, "stiffnesses", tuple(stiffnesses.tolist()))
         object.__setattr__(self, "damping_ratio", damping_ratio(self.damping_ratio))
@@ -169,9 +175,14 @@ class ShearBuilding:
         models: list[Bilinear | BoucWen | None]
         if isinstance(hysteresis, dict):
             models = [None] * stories
+            given: set[int] = set()
             for story, model in hysteresis.items():
                 if isinstance(story, bool) or not isinstance(story, (int, np.integer)) or not 1 <= story <= stories:
                     raise ValueError(f"hysteresis story must be a story number in 1 ... {stories}, got {story!r}")
+                if int(story) in given:
+                    raise ValueError(f"hysteresis has story {int(story)} twice (keys {show(list(hysteresis))}); "
+                                     "give each story once")
+                given.add(int(story))
                 models[int(story) - 1] = model
         elif isinstance(hysteresis, (list, tuple)):
             if len(hysteresis) != stories:

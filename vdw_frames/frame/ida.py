@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validation import positive
+from .._validation import finite_array, positive, show
 from ..motion.record import G, GroundMotion
 from .batch import run_batch, scale_factors_to_spectral_acceleration
 from .building import ShearBuilding
@@ -45,16 +45,25 @@ COLLAPSE_LIMIT_STATES = "a story drift ratio beyond collapse_drift_ratio, or an 
 
 @dataclass(frozen=True)
 class Fragility:
-    """A lognormal fragility: P(collapse | Sa) = Phi(ln(Sa / median) / dispersion); ``median`` mm/s^2."""
+    """A lognormal fragility: P(collapse | Sa) = Phi(ln(Sa / median) / dispersion); ``median`` mm/s^2 (> 0),
+    ``dispersion`` (-, > 0)."""
 
     median: float
     dispersion: float
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "median", positive("median", self.median))
+        object.__setattr__(self, "dispersion", positive("dispersion", self.dispersion))
+
     def probability(self, intensity: ArrayLike) -> np.ndarray:
-        """P(collapse) at spectral accelerations ``intensity`` (mm/s^2)."""
+        """P(collapse) at spectral accelerations ``intensity`` (mm/s^2, finite, >= 0; 0 gives 0)."""
         from scipy import stats
 
-        return stats.norm.cdf(np.log(np.asarray(intensity, dtype=float) / self.median) / self.dispersion)
+        intensity = finite_array("intensity", intensity, ndim=None)
+        if (intensity < 0.0).any():
+            raise ValueError(f"intensity must be >= 0 mm/s^2, got {show(intensity[intensity < 0.0].flat[0])}")
+        with np.errstate(divide="ignore"):  # ln 0 = -inf: probability 0
+            return stats.norm.cdf(np.log(intensity / self.median) / self.dispersion)
 
 
 @dataclass(frozen=True)

@@ -36,9 +36,11 @@ def simulate(building: ShearBuilding, ground_motion: GroundMotion, dt: float | N
     sub-steps, so a float32 dt works); a larger or non-dividing step, or one outside
     ``vdw_frames._validation.SIMULATION_STEP_RANGE`` (1e-9 ... 1e3 s), is a ValueError.  So is a run
     whose result arrays would exceed the 2 GiB memory limit, refused before allocating with its step
-    count and memory.  ``method`` and ``memory`` (validated even for a frame without walls) select the
-    walls' discretisation and memory strategy ("fast", the default, costs the same at every step and
-    stays within 3e-9 of "exact"; see :meth:`FDMKDamper.force`).
+    count and memory, and so is a building unstable at rest under its gravity loads (a story's P/h at or
+    above its initial stiffness plus its walls' static stiffness), naming the story.  ``method`` and
+    ``memory`` (validated even for a frame without walls) select the walls' discretisation and memory
+    strategy ("fast", the default, costs the same at every step and stays within 3e-9 of "exact"; see
+    :meth:`FDMKDamper.force`).
 
     ``collapse_drift_ratio`` (-, default 0.10; None disables it; needs story heights): when any story's
     drift ratio exceeds it, the analysis stops there with ``result.collapsed`` and
@@ -60,7 +62,9 @@ def simulate(building: ShearBuilding, ground_motion: GroundMotion, dt: float | N
     state's time (the result's rows start there; its energies count from the state).
 
     A step that fails to converge even with the fallbacks stops the analysis with
-    ``result.converged = False`` and a ``RuntimeWarning`` naming the time and story; never NaN.  Warns
+    ``result.converged = False`` and a ``RuntimeWarning`` naming the time and story; never NaN.  A run
+    whose energy balance misses by more than ``vdw_frames.frame.results.ENERGY_BALANCE_TOLERANCE`` (1e-4)
+    of its peak input energy warns (``RuntimeWarning``, a self-check: the equations were not solved).  Warns
     (``UserWarning``) when a wall's peak strain leaves its ``strain_range``.  Returns a
     :class:`SimulationResult`.
     """

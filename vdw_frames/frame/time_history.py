@@ -22,7 +22,7 @@ from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy, wall_order
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation, get_method
-from ..motion.record import GroundMotion
+from ..motion.record import G, GroundMotion
 from .building import ShearBuilding
 from .hysteresis import StoryArrays, story_arrays
 from .integrator import (
@@ -36,6 +36,7 @@ from .integrator import (
     integrate,
     replay,
 )
+from .pushover import static_wall_stiffness
 from .results import FrameState, SimulationResult, energy_history
 
 if TYPE_CHECKING:
@@ -59,6 +60,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         wall_order(wall)
     if not isinstance(ground_motion, GroundMotion):
         raise ValueError(f"ground_motion must be a GroundMotion (see read_at2), got {type(ground_motion).__name__}")
+    _require_stable(building)
     method = get_method(method)
     memory_strategy(memory)
     newton = NewtonRaphson() if newton is None else newton
@@ -73,14 +75,24 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
                          f"({SIMULATION_STEP_RANGE[0]:g} ... {SIMULATION_STEP_RANGE[1]:g} s)")
     substeps = ground_motion.substeps(dt)  # the one check of the step against the record
     dt = ground_motion.dt / substeps
-    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0
-    steps, floors = (ground_motion.acceleration.size - 1) * substeps + 1 + rest, building.stories
-    start = 0 if initial_state is None else _check_state(initial_state, dt, steps, floors)
-    walls = cast("list[tuple[int, Wall]]", building.wall_list)  # fixed walls only (checked above)
+    heaviest = max(building.masses)
+    if not math.isfinite(4.0 / dt**2 * heaviest):  # Newmark's inertia term of the effective stiffness
+        raise ValueError(f"masses up to {heaviest:.6g} t with dt = {dt!r} s overflow Newmark's 4 m / dt^2 (inf): "
+                         "the masses are too large to integrate")
+    floors, walls = building.stories, cast("list[tuple[int, Wall]]", building.wall_list)  # fixed walls only
     # Response and result histories (about 14 per floor), each wall's force, strain and exact memory,
     # energies: float64 a step.
-    check_memory(f"simulate (dt = {dt!r} s, {floors} floors, {len(walls)} walls)", steps,
-                 8 * (14 * floors + 6 * len(walls) + 12), "use a larger dt")
+    step_bytes = 8 * (14 * floors + 6 * len(walls) + 12)
+    record_steps = (ground_motion.acceleration.size - 1) * substeps + 1
+    if free_vibration > 0.0:  # named first: its steps may not even be a number (1e308 s / dt = inf)
+        check_memory(f"simulate with free_vibration = {show(free_vibration)} s (dt = {dt!r} s, {floors} floors, "
+                     f"{len(walls)} walls)", record_steps + free_vibration / dt, step_bytes,
+                     "use a shorter free_vibration")
+    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0
+    steps = record_steps + rest
+    start = 0 if initial_state is None else _check_state(initial_state, dt, steps, floors)
+    check_memory(f"simulate (dt = {dt!r} s, {floors} floors, {len(walls)} walls)", steps, step_bytes,
+                 "use a larger dt")
     ground = ground_motion.interpolated(substeps)
     if rest:
         ground = np.concatenate([ground, np.zeros(rest)])
@@ -129,7 +141,13 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
                        RuntimeWarning,
                        stacklevel=3)
     keep = slice(0, filled)
-    require_finite("the response", out.displacement[keep])
+    # An overflow names the record and its PGA (in g as well: the unit of a CLI's scale).
+    record = (f"(ground motion {ground_motion.name!r}, " if ground_motion.name else "(") + \
+        f"PGA {ground_motion.pga:.6g} mm/s^2 = {ground_motion.pga / G:.4g} g)"
+    try:
+        require_finite("the response", out.displacement[keep])
+    except ValueError as error:
+        raise ValueError(f"{error} {record}") from None
     time = np.arange(start, start + filled) * dt
     share = np.array([walls[i][1].area / groups[g][1].area for i, g in enumerate(group_of_wall)])
     above = bank.state(kernel.ABOVE_RANGE)[group_of_wall] * dt
@@ -145,11 +163,15 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
                 released[max(int(step) - start, 0):] += energy
         wall_energies = (out.group_heat[keep].sum(axis=1), out.wall_stored[keep], released,
                          out.wall_parameter_loss[keep])
+    try:
+        energies = energy_history(out.energy[keep], wall_energies)
+    except ValueError as error:
+        raise ValueError(f"{error} {record}") from None
     return SimulationResult(
         building=building, time=time, ground_acceleration=ground[keep], displacement=out.displacement[keep],
         velocity=out.velocity[keep], acceleration=out.acceleration[keep], drift=out.drift[keep],
         story_shear=out.story_shear[keep], story_wall_force=out.story_wall_force[keep], base_shear=out.base_shear[keep],
-        energy=energy_history(out.energy[keep], wall_energies), group_force=out.group_force[keep],
+        energy=energies, group_force=out.group_force[keep],
         group_strain=out.group_strain[keep], wall_group=group_of_wall, wall_share=share,
         converged=status != FAILED, collapsed=status == COLLAPSED,
         collapse_time=float(time[-1]) if status == COLLAPSED else None, newton_iterations=iterations,
@@ -157,6 +179,22 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         group_failure=failure, group_amplitude=out.group_amplitude[keep],
         group_outside_range=np.stack([bank.state(kernel.BELOW_RANGE), bank.state(kernel.ABOVE_RANGE)], axis=1) * dt,
         initial_state=initial_state)
+
+
+def _require_stable(building: ShearBuilding) -> None:
+    """Refuse a building unstable at rest under its gravity loads: a story whose P/h reaches its initial
+    stiffness plus its walls' static stiffness (the shear building's K + K_G is then not positive
+    definite, and the response grows without bound whatever the record)."""
+    if building.gravity_loads is None:
+        return
+    geometric = np.asarray(building.geometric_stiffness)
+    static = np.asarray(building.stiffnesses) + static_wall_stiffness(building) + geometric
+    if (static <= 0.0).any():
+        story = int(np.argmax(static <= 0.0))
+        raise ValueError(f"the building is unstable under its gravity loads: story {story + 1}'s P/h = "
+                         f"{-geometric[story]:.6g} N/mm reaches its stiffness {static[story] - geometric[story]:.6g} "
+                         "N/mm (initial story stiffness plus its walls' static stiffness); lower gravity_loads "
+                         "or stiffen the story")
 
 
 def _check_state(state: FrameState, dt: float, steps: int, floors: int) -> int:

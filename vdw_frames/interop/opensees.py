@@ -97,8 +97,9 @@ def opensees_module(ops: Any = None) -> Any:
         try:
             import openseespy.opensees as opensees
         except (ImportError, RuntimeError) as error:  # RuntimeError: OpenSeesPy without its BLAS/LAPACK libraries
-            raise ImportError(f"vdw_frames.interop.opensees needs OpenSeesPy ({error}): pip install 'vdw-frames[opensees]' "
-                              "(on Debian/Ubuntu it also needs the libblas3 and liblapack3 packages)") from error
+            raise ImportError(f"vdw_frames.interop.opensees needs OpenSeesPy ({error}): pip install "
+                              "'vdw-frames[opensees]' (on Debian/Ubuntu it also needs the libblas3 and liblapack3 "
+                              "packages)") from error
         ops = opensees
     missing = [name for name in _COMMANDS if not callable(getattr(ops, name, None))]
     if missing:

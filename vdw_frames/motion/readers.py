@@ -1,6 +1,7 @@
 """Ground-motion files: PEER AT2 and two-column text readers, and an AT2 writer.
 
-Units: files in g (AT2) or the stated unit (two-column) are converted to mm/s^2 with :data:`G`.
+Units: files in the unit their header states (AT2; g when it states none) or the unit given (two-column)
+are converted to mm/s^2 (:data:`UNITS`; g with :data:`G`).
 Bad files are a ValueError naming the file and, where it applies, the line; a reader returns a
 :class:`GroundMotion` (finite values) or raises ValueError, nothing else.
 
@@ -29,12 +30,23 @@ TWO_COLUMN_TOLERANCE = 1e-3
 """Two-column files: each time must lie within this fraction of dt of t0 + i dt (float32 time columns,
 e.g. 0.09999999 at dt = 0.01, are off by ~1e-6 dt)."""
 
-UNITS = {"g": G, "mm/s2": 1.0, "cm/s2": 10.0, "m/s2": 1000.0}
-"""Acceleration units accepted by :func:`read_two_column`, with their factor to mm/s^2."""
+UNITS = {"g": G, "mm/s2": 1.0, "cm/s2": 10.0, "m/s2": 1000.0, "in/s2": 25.4}
+"""Acceleration units read by :func:`read_two_column` and from AT2 headers, with their factor to mm/s^2
+(1 in = 25.4 mm exactly).  Spellings are normalised first (:func:`acceleration_unit`): case, ``sec`` for
+``s``, ``/s/s``, ``/s^2``, ``/s**2`` and ``/s²`` for ``/s2``, and ``gal`` for ``cm/s2``."""
+
+_OTHER_QUANTITIES = {**dict.fromkeys(("mm/s", "cm/s", "m/s", "in/s"), "velocity"),
+                     **dict.fromkeys(("mm", "cm", "m", "in"), "displacement")}
+_TIME_UNITS = {**dict.fromkeys(("s", "sec", "secs", "second", "seconds"), 1.0),
+               **dict.fromkeys(("ms", "msec", "msecs", "millisecond", "milliseconds"), 1e-3)}
+# An AT2 header's unit statement: "IN UNITS OF G", "UNITS OF CM/S/S.", "The units are (g)", "UNITS: gal".
+_UNIT_STATEMENT = re.compile(r"\bUNITS?\s*(?:\b(?:OF|ARE|IS|IN)\b|[:=])\s*[:=]?\s*\(?\s*([^\s,;()]*)", re.IGNORECASE)
+# A header naming another quantity: "VELOCITY TIME HISTORY", "DISPLACEMENT TIME SERIES".
+_OTHER_HISTORY = re.compile(r"\b(VELOCITY|DISPLACEMENT)\s+(?:TIME\s+)?(?:HISTORY|SERIES)\b", re.IGNORECASE)
 
 AT2_HEADER_LINES = 10  # the NPTS/DT line must be among the first 10 non-blank lines
 _NPTS = re.compile(r"\bNPTS\s*=\s*([^\s,]*)", re.IGNORECASE)
-_DT = re.compile(r"\bDT\s*=\s*([^\s,]*)", re.IGNORECASE)
+_DT = re.compile(r"\bDT\s*=\s*([^\s,]*)(?:[ \t]+([A-Za-z]+))?", re.IGNORECASE)
 # The legacy PEER (and FEMA P695, NGA-West1) count line: the numbers first, then their labels.
 _LEGACY_COUNT = re.compile(r"^\s*([^\s,]+)[\s,]+([^\s,]+)[\s,]+NPTS\s*,?\s*DT\b", re.IGNORECASE)
 _NEWLINE = re.compile(r"\r*\n|\r")  # "\n", "\r\n", "\r\r\n" and a lone "\r" all end one line
@@ -103,8 +115,55 @@ def _to_mm_s2(values: np.ndarray, factor: float, unit: str, line_numbers: list[i
     return converted
 
 
+def acceleration_unit(unit: object, name: str = "unit") -> float:
+    """The factor to mm/s^2 of the acceleration unit ``unit`` (a key of :data:`UNITS`, in any of the
+    spellings described there); a ValueError naming ``name`` otherwise, saying so when ``unit`` is a unit
+    of velocity or displacement."""
+    if not isinstance(unit, str):
+        raise ValueError(f"{name} must be a string such as 'g' or 'cm/s2', got {show(unit)}")
+    key = unit.strip().lower().replace("\u00b2", "2").replace("**2", "2").replace("^2", "2")
+    key = re.sub(r"(?<=/)sec(?:s|onds?)?", "s", key).replace("/s/s", "/s2")
+    key = "cm/s2" if key in ("gal", "gals") else key
+    if key in UNITS:
+        return UNITS[key]
+    accepted = ", ".join(map(repr, UNITS))
+    if key in _OTHER_QUANTITIES:
+        raise ValueError(f"{name} {unit!r} is a unit of {_OTHER_QUANTITIES[key]}: ground motions are accelerations "
+                         f"({accepted})")
+    raise ValueError(f"unknown {name} {unit!r}; use one of {accepted}")
+
+
+def _header_unit(header: list[tuple[int, str]], path: Path) -> tuple[float, str]:
+    """(factor to mm/s^2, unit) of the values of an AT2 file, from the unit statements of its header
+    lines (g when there is none); a ValueError for a header that names a velocity or displacement
+    history, states a unit that is not an acceleration unit, or states two different units."""
+    stated: list[tuple[int, str, float]] = []
+    for number, line in header:
+        other = _OTHER_HISTORY.search(line)
+        if other:
+            raise ValueError(f"{path}: line {number} says this is a {other.group(1).lower()} history "
+                             f"({line.strip()!r}); read_at2 reads acceleration histories (.AT2)")
+        for match in _UNIT_STATEMENT.finditer(line):
+            unit = match.group(1).rstrip(".")
+            try:
+                stated.append((number, unit, acceleration_unit(unit, "header unit")))
+            except ValueError as error:
+                raise ValueError(f"{path}: line {number} states units {unit!r} ({line.strip()!r}), which read_at2 "
+                                 f"cannot read as an acceleration: {error}") from None
+    if len({factor for *_, factor in stated}) > 1:
+        first, second = stated[0], next(s for s in stated if s[2] != stated[0][2])
+        raise ValueError(f"{path}: the header states two units, {first[1]!r} on line {first[0]} and {second[1]!r} "
+                         f"on line {second[0]}")
+    return (stated[0][2], stated[0][1]) if stated else (G, "g")
+
+
 def read_at2(path: str | os.PathLike[str]) -> GroundMotion:
-    """Read a PEER ``.AT2`` acceleration file (values in g) into a :class:`GroundMotion` (mm/s^2, s).
+    """Read a PEER ``.AT2`` acceleration file into a :class:`GroundMotion` (mm/s^2, s).
+
+    Units: the header's unit statement (``IN UNITS OF G``, ``UNITS OF CM/S/S``, ``The units are (g)``,
+    ``UNITS: gal``; any unit of :data:`UNITS`), g when the header states none (PEER's convention).  A
+    header that names a velocity or displacement history (``VELOCITY TIME HISTORY``), states a unit that
+    is not an acceleration unit, or states two different units is a ValueError naming the line.
 
     The header is free text; the count line is the first line (among the first 10 non-blank ones) that
     is either
@@ -114,8 +173,10 @@ def read_at2(path: str | os.PathLike[str]) -> GroundMotion:
     - a legacy line with the numbers first: ``  3930   0.01000    NPTS, DT`` (older PEER downloads,
       NGA-West1, the FEMA P695 set).
 
-    DT (s) is taken from that line only.  The values, any number a line, follow it; surplus zeros on
-    the last line of values (padding to a full line) are ignored.  The module docstring lists the other
+    DT is taken from that line only, in s unless a time unit follows it (``DT= 10 ms`` or ``DT= 10ms`` is
+    0.01 s; ``SEC``, ``S`` and ``MS`` are read; any other unit written onto the number is refused).  The
+    values, any number a line, follow it; surplus zeros on the last line of values (padding to a full
+    line) are ignored.  The module docstring lists the other
     variants accepted.  ValueError, naming the file, for a missing, unreadable or binary file, an empty
     file, a missing or bad NPTS or DT, fewer or more values than NPTS, or a non-numeric or non-finite
     value (naming its line).  The record's name is the file stem.
@@ -136,12 +197,13 @@ def read_at2(path: str | os.PathLike[str]) -> GroundMotion:
         dt_match = _DT.search(count_line)
         if not dt_match:
             raise ValueError(f"{path}: missing DT (no 'DT=' on the NPTS line, line {count_line_number})")
-        dt = _dt(dt_match.group(1), path, count_line_number)
+        dt = _dt(dt_match.group(1), path, count_line_number, dt_match.group(2))
     else:
         legacy = _LEGACY_COUNT.match(count_line)
         assert legacy is not None  # the count line is a keyword line or a legacy one
         npts = _npts(legacy.group(1), path, count_line_number)
         dt = _dt(legacy.group(2), path, count_line_number)
+    factor, unit = _header_unit(numbered[:header], path)
     tokens, line_numbers = [], []
     for number, line in numbered[header + 1:]:
         words = line.split()
@@ -157,7 +219,7 @@ def read_at2(path: str | os.PathLike[str]) -> GroundMotion:
             raise ValueError(f"{path}: too many values: NPTS = {npts} on line {count_line_number} but "
                              f"{values.size} values follow")
         values, line_numbers = values[:npts], line_numbers[:npts]
-    return _motion(_to_mm_s2(values, G, "g", line_numbers, path), dt, path.stem, path)
+    return _motion(_to_mm_s2(values, factor, unit, line_numbers, path), dt, path.stem, path)
 
 
 def _motion(acceleration: np.ndarray, dt: float, name: str, path: Path) -> GroundMotion:
@@ -173,14 +235,20 @@ def _npts(text: str, path: Path, line: int) -> int:
     return int(text)
 
 
-def _dt(text: str, path: Path, line: int) -> float:
-    """DT from its text: a number, optionally followed by a unit word (``.0050SEC``)."""
+def _dt(text: str, path: Path, line: int, word: str | None = None) -> float:
+    """DT in s from its text: a number, optionally with a time unit written onto it (``.0050SEC``,
+    ``10ms``) or as the next ``word`` (``.0050 SEC``, ``10 ms``; another word is other text)."""
     match = _NUMBER.match(text)
     numbers = _number_texts(match.group(0)) if match else None
-    unit = text[match.end():] if match else ""
-    dt = float(numbers[0]) if numbers and (unit == "" or unit.isalpha()) else float("nan")
+    suffix = text[match.end():] if match else ""
+    if suffix and suffix.isalpha() and suffix.lower() not in _TIME_UNITS:
+        raise ValueError(f"{path}: DT unit {suffix!r} on line {line} is not a time unit read_at2 reads "
+                         f"(s, sec or ms), in {text!r}")
+    unit = suffix or (word if word is not None and word.lower() in _TIME_UNITS else "") or "s"
+    dt = float(numbers[0]) * _TIME_UNITS[unit.lower()] if numbers and (suffix == "" or suffix.isalpha()) \
+        else float("nan")
     if not (np.isfinite(dt) and dt > 0.0):
-        raise ValueError(f"{path}: DT must be a positive number of seconds, got {text!r} on line {line}")
+        raise ValueError(f"{path}: DT must be a positive time step (s or ms), got {text!r} on line {line}")
     return dt
 
 
@@ -188,7 +256,8 @@ def read_two_column(path: str | os.PathLike[str], unit: str = "g", *, skip_rows:
                     name: str | None = None) -> GroundMotion:
     """Read a (time s, acceleration ``unit``) text file into a :class:`GroundMotion` (mm/s^2, s).
 
-    ``unit`` is one of ``"g"``, ``"mm/s2"``, ``"cm/s2"``, ``"m/s2"``.  Columns are separated by
+    ``unit`` is one of ``"g"``, ``"mm/s2"``, ``"cm/s2"``, ``"m/s2"``, ``"in/s2"`` (other spellings as
+    :data:`UNITS` says; a velocity or displacement unit, or an unknown one, is a ValueError).  Columns are separated by
     whitespace and/or commas; ``#`` starts a comment; blank lines are skipped, and so are the first
     ``skip_rows`` lines (e.g. a column-title line).  Every other line must hold exactly two finite
     numbers (the variants of the module docstring accepted).  Times must increase uniformly: each within
@@ -196,8 +265,7 @@ def read_two_column(path: str | os.PathLike[str], unit: str = "g", *, skip_rows:
     naming the line.  The record starts at the first row (times are shifted to start at 0).  ``name``
     defaults to the file stem.
     """
-    if not isinstance(unit, str) or unit not in UNITS:
-        raise ValueError(f"unknown unit {unit!r}; use one of {', '.join(map(repr, UNITS))}")
+    factor = acceleration_unit(unit)
     skip_rows = whole_number("skip_rows", skip_rows, 0)
     if name is not None and not isinstance(name, str):
         raise ValueError(f"name must be a string, got {show(name)}")
@@ -229,7 +297,7 @@ def read_two_column(path: str | os.PathLike[str], unit: str = "g", *, skip_rows:
         row = int(np.argmax(off))
         raise ValueError(f"{path}: non-uniform time step at line {line_numbers[2 * row]}: t = {show(time[row])} s, "
                          f"expected {show(time[0] + row * dt)} s for a step of {show(dt)} s")
-    acceleration = _to_mm_s2(rows[:, 1], UNITS[unit], unit, line_numbers[1::2], path)
+    acceleration = _to_mm_s2(rows[:, 1], factor, unit, line_numbers[1::2], path)
     return _motion(acceleration, float(dt), path.stem if name is None else name, path)
 
 
@@ -263,10 +331,14 @@ def write_at2(motion: GroundMotion, path: str | os.PathLike[str], header: str | 
         if _CONTROL.search(line):
             raise ValueError(f"record name {motion.name!r} has a control character; rename the record "
                              f"or pass header=[line1, line2]")
+        what = f"record name {motion.name!r}" if line == name_line else f"header line {line!r}"
         if _NPTS.search(line) or _DT.search(line) or _LEGACY_COUNT.match(line):
-            what = f"record name {motion.name!r}" if line == name_line else f"header line {line!r}"
             raise ValueError(f"{what} would be read as the NPTS/DT line (it contains 'NPTS=', 'DT=' or "
                              f"'n dt NPTS, DT'); rename the record or pass other header lines")
+        if _UNIT_STATEMENT.search(line) or _OTHER_HISTORY.search(line):
+            raise ValueError(f"{what} would be read as a statement of the file's units or quantity (it contains "
+                             "'UNITS OF ...', 'VELOCITY TIME HISTORY' or the like); the file states its units "
+                             "(g) itself: rename the record or pass other header lines")
     values = motion.acceleration / G
     rows = [" ".join(f"{value:15.7E}" for value in values[i:i + 5]) for i in range(0, values.size, 5)]
     text = "\n".join([*lines, "ACCELERATION TIME HISTORY IN UNITS OF G",

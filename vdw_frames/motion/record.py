@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .. import _warnings
 from .._validation import check_memory, finite_array, finite_scalar, non_negative, positive, show, whole_number
 from .spectrum import spectral_accelerations
 
@@ -23,6 +24,21 @@ STEP_TOLERANCE = 1e-6
 e.g. ``np.float32(0.01)``, is within 3e-8 of the float64 one)."""
 
 _RESAMPLING_BYTES_PER_STEP = 24  # the interpolated array, its temporaries and the record's copy
+
+UNIT_SLIP_BELOW = 1.0
+"""Target accelerations (mm/s^2) below this warn: 1 mm/s^2 is 1e-4 g, far below any seismic target, and a
+target typed in g (0.4 for 0.4 g) lands here."""
+
+
+def target_acceleration(name: str, target: object, stacklevel: int = 2) -> float:
+    """A target acceleration in mm/s^2 (finite, > 0); below :data:`UNIT_SLIP_BELOW` (1 mm/s^2) it warns
+    (``UserWarning``), naming the target and what it would be if it was meant in g."""
+    value = positive(name, target)
+    if value < UNIT_SLIP_BELOW:
+        _warnings.warn(f"{name} = {show(target)} mm/s^2 is below {UNIT_SLIP_BELOW:g} mm/s^2 (1e-4 g): targets are in "
+                       f"mm/s^2; did you mean {show(target)} g = {value * G:.6g} mm/s^2 (multiply by vdw_frames.G)?",
+                       UserWarning, stacklevel=stacklevel + 1)
+    return value
 
 @dataclass(frozen=True, eq=False)
 class GroundMotion:
@@ -84,27 +100,36 @@ class GroundMotion:
         return GroundMotion(acceleration, self.dt, self.name, self.metadata)
 
     def scale_factor_to_pga(self, target: float) -> float:
-        """The factor (dimensionless) that brings the PGA to ``target`` mm/s^2 (> 0)."""
-        target = positive("target PGA", target)
-        return target / self._nonzero("PGA", self.pga)
+        """The factor (dimensionless) that brings the PGA to ``target`` mm/s^2 (> 0; below 1 mm/s^2 warns:
+        see :func:`target_acceleration`)."""
+        return self._pga_factor(target, stacklevel=3)
 
     def scaled_to_pga(self, target: float) -> GroundMotion:
-        """A new record scaled so that its PGA is ``target`` mm/s^2 (> 0)."""
-        return self.scaled(self.scale_factor_to_pga(target))
+        """A new record scaled so that its PGA is ``target`` mm/s^2 (> 0; below 1 mm/s^2 warns)."""
+        return self.scaled(self._pga_factor(target, stacklevel=3))
 
     def scale_factor_to_spectral_acceleration(self, target: float, period: float,
                                               damping_ratio: float = 0.05) -> float:
         """The factor (dimensionless) that brings the pseudo-acceleration Sa(``period`` s,
-        ``damping_ratio``) of :func:`response_spectrum` to ``target`` mm/s^2 (> 0)."""
-        target = positive("target spectral acceleration", target)
-        period = non_negative("period", period)
-        spectral = float(self.spectrum(period, damping_ratio))
-        return target / self._nonzero(f"Sa(T = {show(period)} s)", spectral)
+        ``damping_ratio``) of :func:`response_spectrum` to ``target`` mm/s^2 (> 0; below 1 mm/s^2 warns:
+        see :func:`target_acceleration`)."""
+        return self._spectral_factor(target, period, damping_ratio, stacklevel=3)
 
     def scaled_to_spectral_acceleration(self, target: float, period: float,
                                         damping_ratio: float = 0.05) -> GroundMotion:
-        """A new record scaled so that Sa(``period`` s, ``damping_ratio``) is ``target`` mm/s^2."""
-        return self.scaled(self.scale_factor_to_spectral_acceleration(target, period, damping_ratio))
+        """A new record scaled so that Sa(``period`` s, ``damping_ratio``) is ``target`` mm/s^2 (below
+        1 mm/s^2 warns)."""
+        return self.scaled(self._spectral_factor(target, period, damping_ratio, stacklevel=3))
+
+    def _pga_factor(self, target: float, stacklevel: int) -> float:
+        target = target_acceleration("target PGA", target, stacklevel + 1)
+        return target / self._nonzero("PGA", self.pga)
+
+    def _spectral_factor(self, target: float, period: float, damping_ratio: float, stacklevel: int) -> float:
+        target = target_acceleration("target spectral acceleration", target, stacklevel + 1)
+        period = non_negative("period", period)
+        spectral = float(self.spectrum(period, damping_ratio))
+        return target / self._nonzero(f"Sa(T = {show(period)} s)", spectral)
 
     def spectrum(self, periods: ArrayLike, damping_ratio: float = 0.05) -> np.ndarray:
         """Pseudo-acceleration spectrum Sa (mm/s^2) at ``periods`` (s; 0 gives the PGA) and ``damping_ratio``

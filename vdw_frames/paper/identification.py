@@ -209,6 +209,11 @@ class _Problem:
                              f"{f.size}, {storage.size} and {loss.size}")
         if (f <= 0.0).any():
             raise ValueError(f"frequency must be > 0 Hz, got {show(f[f <= 0.0][0])}")
+        for name, values in (("storage_modulus", storage), ("loss_modulus", loss)):
+            if (values < 0.0).any():  # a passive material stores and dissipates: G' >= 0 and G'' >= 0
+                index = int(np.argmax(values < 0.0))
+                raise ValueError(f"{name} must be >= 0 MPa (a passive material), got {show(values[index])} "
+                                 f"at index {index} (f = {show(f[index])} Hz)")
         if residual not in RESIDUALS:
             raise ValueError(f"residual must be one of {RESIDUALS}, got {residual!r}")
         if residual == "relative":
