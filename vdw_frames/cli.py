@@ -40,6 +40,11 @@ def _damper_from(args):
     return FDMKDamper(**values, area=args.area, thickness=args.thickness)
 
 
+MAX_PGA = 100.0
+"""g: the largest PGA ``simulate --pga/--factor`` accepts (the largest recorded are about 4 g); far beyond it
+an analysis only overflows."""
+
+
 def _command(commands, name: str, **options) -> argparse.ArgumentParser:
     """A sub-command's parser; abbreviated flags are refused, as by the main parser."""
     parser: argparse.ArgumentParser = commands.add_parser(name, allow_abbrev=False, **options)
@@ -95,23 +100,32 @@ def _simulate(args) -> int:
 
     if args.pga is not None and not (math.isfinite(args.pga) and args.pga > 0.0):
         raise ValueError(f"--pga must be a PGA > 0 in g, got {args.pga:g}")
+    if args.pga is not None and args.pga > MAX_PGA:
+        raise ValueError(f"--pga {args.pga:g} g is beyond any earthquake (at most {MAX_PGA:g} g here)")
     if args.factor is not None and not (math.isfinite(args.factor) and args.factor > 0.0):
         raise ValueError(f"--factor must be a scale factor > 0, got {args.factor:g}")
     out = _output_folder(args.out) if args.out is not None else None
     save = _output_folder(args.save) if args.save is not None else None
     building, options = load_analysis(args.building)
     motion = read_at2(args.record)
+    flag = f"--pga {args.pga:g}" if args.pga is not None else \
+        f"--factor {args.factor:g}" if args.factor is not None else None
     try:
         if args.pga is not None:
             motion = motion.scaled_to_pga(args.pga * G)
         elif args.factor is not None:
             motion = motion.scaled(args.factor)
     except ValueError as error:
-        flag = f"--pga {args.pga:g}" if args.pga is not None else f"--factor {args.factor:g}"
         raise ValueError(f"{flag}: {error}") from None
+    if motion.pga > MAX_PGA * G:
+        raise ValueError(f"{flag}: the record's PGA becomes {motion.pga / G:.4g} g, beyond any earthquake (at most "
+                         f"{MAX_PGA:g} g here)")
     scaling = (f", scaled to PGA {args.pga:g} g" if args.pga is not None else
                f", x {args.factor:g}" if args.factor is not None else "")
-    result = simulate(building, motion, dt=args.dt, **options)
+    try:
+        result = simulate(building, motion, dt=args.dt, **options)
+    except ValueError as error:  # e.g. an overflow: say which scaling of the record led there
+        raise ValueError(f"{error} (the record scaled by {flag})" if flag is not None else str(error)) from None
     dt = args.dt if args.dt is not None else motion.dt
     print(f"{args.building}: {building.stories} stories, T1 = {building.periods[0]:.3f} s (bare frame), "
           f"{len(building.wall_list)} FDMK walls")

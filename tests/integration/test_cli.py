@@ -122,6 +122,13 @@ def test_cli_pga_is_checked_in_g_and_factor_as_a_factor(capsys):
     assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", record, "--factor", "1e306"]) == 2
     error = capsys.readouterr().err
     assert error.startswith("vdw-frames: error: --factor 1e+306: ") and error.count("\n") == 1
+    # So is a scaling far beyond any earthquake (it would only overflow the analysis), before any analysis.
+    assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", record, "--pga", "1e300"]) == 2
+    assert capsys.readouterr().err == ("vdw-frames: error: --pga 1e+300 g is beyond any earthquake (at most 100 g "
+                                       "here)\n")
+    assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", record, "--factor", "1000"]) == 2
+    assert capsys.readouterr().err == ("vdw-frames: error: --factor 1000: the record's PGA becomes 350 g, beyond any "
+                                       "earthquake (at most 100 g here)\n")
 
 
 def test_cli_factor_multiplies_the_record_and_pga_scales_it_to_a_peak(tmp_path, capsys):
@@ -210,11 +217,11 @@ def test_cli_save_writes_the_story_summary_and_every_history(tmp_path, capsys):
     assert "saved: " in capsys.readouterr().out
 
 
-def test_cli_a_run_that_stops_within_its_first_steps_is_reported_not_a_traceback(tmp_path, capsys):
+def test_cli_a_run_that_stops_early_is_reported_with_its_steps(tmp_path, capsys):
     path = write_file(tmp_path, "bare.json", json.dumps(_yielding_spec(walls=False)))
-    expected = simulate(building_from_dict(_yielding_spec(walls=False)), default_record().scaled(1e7))
-    assert expected.time.size < 10
-    assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--factor", "1e7"]) == 0
+    expected = simulate(building_from_dict(_yielding_spec(walls=False)), default_record().scaled(250.0))
+    assert expected.collapsed and expected.time.size < 100
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--factor", "250"]) == 0
     out = capsys.readouterr().out
     assert f"outcome: COLLAPSED at t = {expected.collapse_time:.3f} s" in out
     assert f"{expected.time.size} of 2501 steps analysed" in out
