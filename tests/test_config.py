@@ -124,7 +124,7 @@ def test_building_files_with_strain_dependent_walls(tmp_path, capsys):
     record = str(shared_record("elCentro.AT2"))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)
-        assert cli.main(["simulate", str(path), "--record", record, "--scale", "0.8"]) == 0
+        assert cli.main(["simulate", str(path), "--record", record, "--pga", "0.8"]) == 0
     out = capsys.readouterr().out
     assert "strain-compatible analysis converged in" in out and "story 1 " in out
     # A table of settings, in JSON.
