@@ -198,13 +198,13 @@ def positive_frequencies(name: str, values: ArrayLike) -> np.ndarray:
     return array
 
 
-def check_memory(what: str, steps: int, bytes_per_step: float, hint: str = "") -> None:
-    """Refuse, before allocating, ``steps`` steps of ``bytes_per_step`` bytes beyond
-    :data:`MEMORY_LIMIT_BYTES`; the message gives the step count and the memory it would take."""
+def check_memory(what: str, steps: int, bytes_per_step: float, hint: str = "", unit: str = "steps") -> None:
+    """Refuse, before allocating, ``steps`` steps (or other ``unit``: grid points, ...) of ``bytes_per_step``
+    bytes beyond :data:`MEMORY_LIMIT_BYTES`; the message gives the count and the memory it would take."""
     needed = float(steps) * float(bytes_per_step)
     if needed > MEMORY_LIMIT_BYTES:
         advice = f"; {hint}" if hint else ""
-        raise ValueError(f"{what} needs {steps:,.0f} steps, whose arrays would take {_size(needed)} "
+        raise ValueError(f"{what} needs {steps:,.0f} {unit}, whose arrays would take {_size(needed)} "
                          f"(limit {_size(MEMORY_LIMIT_BYTES)}){advice}")
 
 
