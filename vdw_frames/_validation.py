@@ -145,7 +145,10 @@ def whole_number(name: str, value: object, minimum: int) -> int:
         value = value.item()
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer, float, np.floating)):
         raise ValueError(f"{name} must be a whole number >= {minimum}, got {show(value)}")
-    if not math.isfinite(value) or int(value) != value or value < minimum:
+    # (a Python int may be beyond any float: compared as an int, never converted)
+    if isinstance(value, (float, np.floating)) and not (math.isfinite(value) and float(value).is_integer()):
+        raise ValueError(f"{name} must be a whole number >= {minimum}, got {show(value)}")
+    if int(value) < minimum:
         raise ValueError(f"{name} must be a whole number >= {minimum}, got {show(value)}")
     return int(value)
 
@@ -176,6 +179,13 @@ def refuse_non_numbers(name: str, values: object) -> None:
             raise ValueError(f"{name} must be real numbers, got {show(item)}")
 
 
+def text(name: str, value: object) -> str:
+    """A string (a name, a source, a label): anything else is refused, never converted."""
+    if not isinstance(value, str):
+        raise ValueError(f"{name} must be a string, got {show(value)}")
+    return value
+
+
 def damping_ratio(value: object, name: str = "damping_ratio") -> float:
     """A damping ratio in [0, 1)."""
     zeta = finite_scalar(name, value)
@@ -204,11 +214,14 @@ def check_memory(what: str, steps: int, bytes_per_step: float, hint: str = "", u
     needed = float(steps) * float(bytes_per_step)
     if needed > MEMORY_LIMIT_BYTES:
         advice = f"; {hint}" if hint else ""
-        raise ValueError(f"{what} needs {steps:,.0f} {unit}, whose arrays would take {_size(needed)} "
+        count = f"{steps:,.0f}" if steps < 1e15 else f"{float(steps):.3g}"
+        raise ValueError(f"{what} needs {count} {unit}, whose arrays would take {_size(needed)} "
                          f"(limit {_size(MEMORY_LIMIT_BYTES)}){advice}")
 
 
 def _size(count: float) -> str:
+    if not math.isfinite(count):
+        return "more than any memory"
     for unit, scale in (("TiB", 1024.0**4), ("GiB", 1024.0**3), ("MiB", 1024.0**2)):
         if count >= scale:
             return f"{count / scale:.3g} {unit}"

@@ -225,7 +225,7 @@ def _hysteresis(table: object, stories: int) -> tuple[Bilinear | BoucWen, ...] |
     """The story models of a ``[hysteresis]`` table (module docstring), or None."""
     if table is None:
         return None
-    if not isinstance(table, dict) or table.get("model") not in _HYSTERESIS_KEYS:
+    if not isinstance(table, dict) or not isinstance(table.get("model"), str) or table["model"] not in _HYSTERESIS_KEYS:
         raise ValueError(f"hysteresis must be a table with model = 'bilinear' or 'bouc-wen', got {table!r}")
     keys = _HYSTERESIS_KEYS[table["model"]]
     unknown = set(table) - keys

@@ -114,6 +114,7 @@ MAX_TOLERANCE = 1e-4
 peak (measured: 20 000 steps, r 0.3-0.9, trapezoidal and BDF2, dt 0.005 s, with and without the
 equilibrium spring); at 1e-2 they are up to 8 % off and at 1 the trapezoidal rule gives NaN."""
 DEFAULT_MAX_STEPS = 2**20
+MAX_STEPS = 2**40  # the longest horizon the modes are built for (~1.1e12 steps)
 
 _LN3 = math.log(3.0)
 _STEP = 0.25  # sinc step in t = log u: discretisation error ~exp(-pi^2 / h) ~ 1e-17
@@ -483,7 +484,7 @@ class FastMemory:
         object.__setattr__(self, "tolerance", _tolerance(self.tolerance))
         object.__setattr__(self, "window", whole_number("window", self.window, 2))
         object.__setattr__(self, "max_steps", whole_number("max_steps", self.max_steps, self.window + 1))
-        if self.max_steps > 2**40:
+        if self.max_steps > MAX_STEPS:
             raise ValueError(f"max_steps must be <= 2**40, got {self.max_steps!r}")
         object.__setattr__(self, "exact_below", whole_number("exact_below", self.exact_below, 0))
 

@@ -42,7 +42,15 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validation import positive, positive_frequencies, whole_number
+from .._validation import (
+    finite_array,
+    finite_scalar,
+    non_negative,
+    positive,
+    positive_frequencies,
+    show,
+    whole_number,
+)
 from .wall import StiffnessMethods
 
 if TYPE_CHECKING:
@@ -78,11 +86,24 @@ class PronySeries(StiffnessMethods):
     error: float
 
     def __post_init__(self) -> None:
-        branches = np.array(self.branches, dtype=float).reshape(-1, 2)
-        if not np.isfinite(branches).all() or (branches < 0).any() or self.equilibrium_stiffness < 0:
+        equilibrium = finite_scalar("equilibrium_stiffness", self.equilibrium_stiffness)
+        branches = finite_array("branches", self.branches, ndim=None)
+        if branches.ndim != 2 or branches.shape[1] != 2:
+            raise ValueError(f"branches must be rows (k_i N/mm, c_i N*s/mm), shape (n, 2), got shape {branches.shape}")
+        if (branches < 0).any() or equilibrium < 0:
             raise ValueError("a Prony series needs finite k_0, k_i, c_i >= 0 (passive)")
+        branches = branches.copy()
         branches.setflags(write=False)
+        object.__setattr__(self, "equilibrium_stiffness", equilibrium)
         object.__setattr__(self, "branches", branches)
+        f_min, f_max = positive("f_min", self.f_min), positive("f_max", self.f_max)
+        if not f_max > f_min:
+            raise ValueError(f"f_max must exceed f_min, got f_min = {show(self.f_min)} Hz, "
+                             f"f_max = {show(self.f_max)} Hz")
+        object.__setattr__(self, "f_min", f_min)
+        object.__setattr__(self, "f_max", f_max)
+        object.__setattr__(self, "tolerance", positive("tolerance", self.tolerance))
+        object.__setattr__(self, "error", non_negative("error", self.error))
 
     def __len__(self) -> int:
         """The number of Maxwell branches."""

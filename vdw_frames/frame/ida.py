@@ -50,6 +50,10 @@ class Fragility:
     median: float
     dispersion: float
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "median", positive("median", self.median))
+        object.__setattr__(self, "dispersion", positive("dispersion", self.dispersion))
+
     def probability(self, intensity: ArrayLike) -> np.ndarray:
         """P(collapse) at spectral accelerations ``intensity`` (mm/s^2)."""
         from scipy import stats

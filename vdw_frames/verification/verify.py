@@ -48,7 +48,7 @@ from typing import Any
 import numpy as np
 
 from .. import _warnings
-from .._validation import positive, show
+from .._validation import positive, show, text
 from ..frame.building import ShearBuilding
 from ..frame.results import SimulationResult
 from ..frame.simulation import simulate
@@ -88,6 +88,7 @@ class PropertyBounds:
             raise ValueError(f"lambda_max must be >= 1 (the upper-bound properties), got {show(self.upper)}")
         object.__setattr__(self, "lower", lower)
         object.__setattr__(self, "upper", upper)
+        text("source", self.source)
 
     @property
     def cases(self) -> tuple[tuple[str, float], ...]:
