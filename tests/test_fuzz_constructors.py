@@ -12,7 +12,7 @@ hostile arguments, and ``config.load_building``, ``load_analysis`` and ``load_ve
 files with a hostile value anywhere and on arbitrary text.
 
 ``VDW_FUZZ_EXAMPLES=2000 python -m pytest tests/test_fuzz_constructors.py`` fuzzes harder than the
-default (40 examples a constructor, 60 a reader: about 30 s in all).
+default (200 examples a constructor, 300 a reader: about 15 s in all).
 """
 
 from __future__ import annotations
@@ -65,7 +65,7 @@ from vdw_frames.motion import RecordMetadata
 from vdw_frames.paper import strain_dependent
 from vdw_frames.verification import PropertyBounds, Site
 
-EXAMPLES = int(os.environ.get("VDW_FUZZ_EXAMPLES", 40))
+EXAMPLES = int(os.environ.get("VDW_FUZZ_EXAMPLES", 200))
 # The deadline is per example and generous (a loaded 2-core machine): a constructor takes microseconds to
 # milliseconds, a reader a few milliseconds; what it catches is work that grows without bound.
 FUZZ = settings(max_examples=EXAMPLES, deadline=timedelta(seconds=5),
