@@ -111,7 +111,8 @@ def test_bouc_wen_update_is_exact_on_the_asymptote_and_capped_below_it():
 
 def test_bouc_wen_work_does_not_grow_with_the_increment_over_the_yield_drift():
     # A trial of 1e4 mm on a story whose yield drift is 1e-5 mm (1e9 yield drifts: 1e10 sub-steps before),
-    # and 200 steps of a frame whose stories yield at 1e-6 mm (over 120 s before): in a separate process,
+    # 200 steps of a frame whose stories yield at 1e-6 mm (over 120 s before) and a frame running away under
+    # P-Delta with collapse detection off (it hung where Bilinear stories end at once): in a separate process,
     # so that a regression fails on its time limit instead of hanging the tests.  The frame then carries
     # only the tiny yield force: the same response as with Bilinear stories of that strength.
     program = """if True:
@@ -122,23 +123,29 @@ def test_bouc_wen_work_does_not_grow_with_the_increment_over_the_yield_drift():
         force, tangent = BoucWen(1.0).new_state(1e5).trial(1e4)
         k = [8e5, 6e5, 4e5]
         motion = GroundMotion(2000.0 * np.sin(0.05 * np.arange(200)), 0.01, "sine")
-        peaks = []
+        peaks, runaway = [], []
+        strong = GroundMotion(5000.0 * np.sin(0.05 * np.arange(2000)), 0.01, "strong")
         for model in (BoucWen, Bilinear):
             frame = ShearBuilding([500.0] * 3, k, hysteresis=[model(1e-6 * s) for s in k])
+            weak = ShearBuilding([500.0] * 3, k, story_heights=[3000.0] * 3, gravity_loads=[3e6, 2e6, 1e6],
+                                 hysteresis=[model(1e3)] * 3)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 peaks.append(float(np.abs(simulate(frame, motion).drift).max()))
-        print(json.dumps([force, tangent, peaks, time.perf_counter() - start]))
+                runaway.append(float(np.abs(simulate(weak, strong, collapse_drift_ratio=None).drift).max()))
+        print(json.dumps([force, tangent, peaks, runaway, time.perf_counter() - start]))
     """
     try:
         run = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True, timeout=300)
     except subprocess.TimeoutExpired:
         pytest.fail("Bouc-Wen updates did not finish in 300 s")
     assert run.returncode == 0, run.stderr
-    force, tangent, (bouc_wen, bilinear), seconds = json.loads(run.stdout)
+    force, tangent, (bouc_wen, bilinear), runaway, seconds = json.loads(run.stdout)
     assert (force, tangent) == (1.0, 0.0)  # on the strength bound F_y, hardening 0
     assert bouc_wen == pytest.approx(bilinear, rel=1e-6)
-    assert seconds < 60.0  # measured 0.35 s once compiled
+    # A frame running away under P-Delta (collapse detection off): drifts of kilometres, as Bilinear's.
+    assert runaway[0] > 1e6 and runaway[0] == pytest.approx(runaway[1], rel=1e-4)
+    assert seconds < 60.0  # measured 0.4 s once compiled
 
 
 @pytest.mark.parametrize("model", [Bilinear(5000.0, 0.1), BoucWen(5000.0, 0.1, 2.0, 0.6, 0.4)])
