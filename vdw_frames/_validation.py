@@ -211,10 +211,16 @@ def positive_frequencies(name: str, values: ArrayLike) -> np.ndarray:
 def check_memory(what: str, steps: int, bytes_per_step: float, hint: str = "", unit: str = "steps") -> None:
     """Refuse, before allocating, ``steps`` steps (or other ``unit``: grid points, ...) of ``bytes_per_step``
     bytes beyond :data:`MEMORY_LIMIT_BYTES`; the message gives the count and the memory it would take."""
-    needed = float(steps) * float(bytes_per_step)
+    try:
+        needed = float(steps) * float(bytes_per_step)
+    except OverflowError:  # an int beyond any float
+        needed = math.inf
     if needed > MEMORY_LIMIT_BYTES:
         advice = f"; {hint}" if hint else ""
-        count = f"{steps:,.0f}" if steps < 1e15 else f"{float(steps):.3g}"
+        if steps < 1e15:
+            count = f"{steps:,.0f}"
+        else:
+            count = f"{float(steps):.3g}" if steps < 1e300 else f"about 1e{len(str(int(steps))) - 1}"
         raise ValueError(f"{what} needs {count} {unit}, whose arrays would take {_size(needed)} "
                          f"(limit {_size(MEMORY_LIMIT_BYTES)}){advice}")
 
