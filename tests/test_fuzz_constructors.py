@@ -252,13 +252,16 @@ def test_what_the_fuzzing_found(name, argument, value, match):
         constructor(**arguments)
 
 
-def test_a_hysteresis_model_that_is_not_a_name_is_a_value_error(tmp_path):
-    # ``model = [...]`` raised TypeError (unhashable type: 'list') from the building file's reader.
+def test_a_hysteresis_model_or_shift_law_that_is_not_a_name_is_a_value_error():
+    # ``model = [...]`` and ``law = [...]`` raised TypeError (unhashable type: 'list') from the building file's reader.
     spec = building_spec()
     spec["hysteresis"]["model"] = []
-    path = written(json.dumps(spec), "building.json")
     with pytest.raises(ValueError, match=r"hysteresis must be a table with model = 'bilinear' or 'bouc-wen'"):
-        building_files.load_building(path)
+        building_files.load_building(written(json.dumps(spec), "building.json"))
+    spec = building_spec()
+    spec["walls"][0]["thermal"]["shift"]["law"] = []
+    with pytest.raises(ValueError, match=r"walls thermal shift must be one of .* or a table with law = "):
+        building_files.load_building(written(json.dumps(spec), "building.json"))
 
 
 # ------------------------------------------------------------------------------------------------ readers

@@ -349,7 +349,7 @@ def _thermal(value: object) -> ThermalProperties:
                              f"{' / '.join(repr(law) for law in _SHIFT_LAWS)}, got {shift!r}")
         law: WLF | Arrhenius | LogLinear = _NAMED_SHIFT_LAWS[shift]
     else:
-        if not isinstance(shift, dict) or shift.get("law") not in _SHIFT_LAWS:
+        if not isinstance(shift, dict) or not isinstance(shift.get("law"), str) or shift["law"] not in _SHIFT_LAWS:
             raise ValueError(f"walls thermal shift must be one of {sorted(_NAMED_SHIFT_LAWS)} or a table with law = "
                              f"{' / '.join(repr(law) for law in _SHIFT_LAWS)}, got {show(shift)}")
         kind, constants = _SHIFT_LAWS[shift["law"]]
