@@ -163,3 +163,29 @@ def test_the_collapse_report_writes_through_a_temporary_file(tmp_path, monkeypat
     with pytest.raises(ValueError, match=r"report.md: cannot write \(No space left on device\)"):
         report._write_text(path, "new report")
     assert path.read_text() == "old report" and sorted(tmp_path.iterdir()) == [path]
+
+
+def test_the_paper_report_refuses_a_file_or_a_looping_link_as_its_folder(tmp_path):
+    # Both raised a FileExistsError traceback from mkdir before.
+    from vdw_frames.paper import write_paper_report
+
+    afile = write_file(tmp_path, "afile", "x")
+    loop = tmp_path / "loop"
+    loop.symlink_to(loop)
+    for bad in (afile, loop):
+        with pytest.raises(ValueError, match=rf"{bad.name}: exists and is not a folder \(a file, or a symbolic link "
+                                             r"that loops\); give the report folder"):
+            write_paper_report(bad, quick=True)
+    with pytest.raises(ValueError, match="report folder must be a path"):
+        write_paper_report(None, quick=True)
+
+
+@pytest.mark.slow
+def test_a_failed_paper_report_write_keeps_the_old_report(tmp_path, monkeypatch):
+    from vdw_frames.paper import write_paper_report
+
+    old = write_file(tmp_path, "report.md", "old report")
+    monkeypatch.setattr(os, "replace", failing_replace)
+    with pytest.raises(ValueError, match=r"report.md: cannot write \(No space left on device\)"):
+        write_paper_report(tmp_path, quick=True)
+    assert old.read_text() == "old report" and sorted(tmp_path.iterdir()) == [old]

@@ -3,11 +3,16 @@ package silently compiling without its versioned cache or with other error seman
 
 from __future__ import annotations
 
+import json
+import os
 import re
+import subprocess
+import sys
 from importlib.metadata import requires, version
 from pathlib import Path
 
 import numpy as np
+import pytest
 from numba.core import caching
 from packaging.specifiers import SpecifierSet
 
@@ -46,3 +51,56 @@ def test_compiled_division_follows_ieee_not_python():
     # error_model="numpy": x / 0 is inf or NaN (the package's finiteness checks catch it), never an exception.
     assert divide(1.0, 0.0) == np.inf
     assert np.isnan(divide(0.0, 0.0))
+
+
+# A package function compiled in a fresh cache folder (NUMBA_CACHE_DIR), in a separate process each time.
+WEIGHTS = """if True:
+    import json
+    {prelude}
+    from vdw_frames.element.fractional import get_method
+    print(json.dumps([get_method(name).weights(0.5, 12, 0.01).tolist() for name in ("trapezoidal", "bdf2")]))
+"""
+CACHE_WARNING = "RuntimeWarning: vdw_frames: numba's compilation cache"
+
+
+def run_weights(cache, prelude=""):
+    """(weights, stderr) of WEIGHTS run with NUMBA_CACHE_DIR = ``cache``; fails on a non-zero exit."""
+    environment = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
+    run = subprocess.run([sys.executable, "-c", WEIGHTS.format(prelude=prelude)], env=environment,
+                         capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr
+    return json.loads(run.stdout), run.stderr
+
+
+def expected_weights():
+    from vdw_frames.element.fractional import get_method
+
+    return [get_method(name).weights(0.5, 12, 0.01).tolist() for name in ("trapezoidal", "bdf2")]
+
+
+@pytest.mark.parametrize("kind", ["nbi", "nbc"])
+def test_a_truncated_cache_file_is_recompiled_with_one_warning(tmp_path, kind):
+    # A truncated index (or data file) made every later run fail with UnpicklingError.
+    first, stderr = run_weights(tmp_path)
+    assert first == expected_weights() and CACHE_WARNING not in stderr
+    files = sorted(tmp_path.rglob(f"fractional.*.{kind}"))
+    assert len(files) == 2  # the trapezoidal and BDF2 weight functions
+    for path in files:
+        path.write_bytes(path.read_bytes()[:40])
+    again, stderr = run_weights(tmp_path)
+    assert again == first
+    assert stderr.count(CACHE_WARNING) == 1 and "could not be read" in stderr and "recompiling" in stderr
+    _, stderr = run_weights(tmp_path)  # replaced: read back without a word
+    assert CACHE_WARNING not in stderr
+
+
+def test_a_full_disk_under_the_cache_runs_without_it_with_one_warning(tmp_path):
+    # simulate raised a raw OSError [Errno 28] when numba could not write its cache.
+    full = """from numba.core import caching
+    def full(self, *args):
+        raise OSError(28, "No space left on device")
+    caching.IndexDataCacheFile._open_for_write = full"""
+    weights, stderr = run_weights(tmp_path, full)
+    assert weights == expected_weights()
+    assert stderr.count(CACHE_WARNING) == 1 and "could not be written" in stderr
+    assert "No space left on device" in stderr and not list(tmp_path.rglob("*.nbi"))

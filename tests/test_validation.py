@@ -100,3 +100,29 @@ def test_analyses_too_large_for_memory_are_refused_before_allocating():
     assert "sine_test(100,000,000 cycles of 200 steps) needs 20,000,000,001 steps" in message and peak < 20e6
     message, _ = peak_allocation(lambda: vdw.motion.synthetic_ground_motion(duration=1e9))
     assert "needs 100,000,000,001 steps" in message
+
+
+def test_whole_numbers_beyond_any_float_are_compared_not_converted():
+    # 10**400 raised OverflowError (math.isfinite converts to float) instead of being a number like any other.
+    from vdw_frames._validation import whole_number
+
+    assert whole_number("n", 10**400, 0) == 10**400
+    for bad in (-(10**400), 2.5, float("inf"), np.float64("nan")):
+        with pytest.raises(ValueError, match=r"n must be a whole number >= 0, got"):
+            whole_number("n", bad, 0)
+    with pytest.raises(ValueError, match=r"max_steps must be <= 2\*\*40"):
+        vdw.element.FastMemory(max_steps=10**400)
+
+
+def test_a_wall_bank_too_large_for_memory_is_refused_before_allocating():
+    # 1.2e9 steps of exact memory raised MemoryError; 1e308 steps an OverflowError.
+    from vdw_frames.element import FastMemory, WallBank
+
+    wall = FDMKDamper(**README_WALL)
+    with pytest.raises(ValueError, match=r"WallBank \(1 walls, exact memory\) needs 1,188,763,351 steps, whose arrays "
+                                         r"would take 44.3 GiB"):
+        WallBank((wall,), 0.01, 1_188_763_351, memory="exact")
+    with pytest.raises(ValueError, match=r"steps must be at most 2\*\*40 = 1,099,511,627,776 with the fast memory"):
+        WallBank((wall,), 0.01, 1e308, memory=FastMemory())
+    with pytest.raises(ValueError, match="walls must be a sequence of walls, got float"):
+        WallBank(1.5, 0.01, 10)

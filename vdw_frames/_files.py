@@ -95,6 +95,20 @@ def _looks_utf16(data: bytes) -> bool:
     return len(head) >= 4 and (head[1::2].count(0) >= len(head) // 2 - 1 or head[0::2].count(0) >= len(head) // 2 - 1)
 
 
+def output_folder(path: str | os.PathLike[str], what: str = "output folder") -> Path:
+    """``path`` as a folder, created with its parents if missing; a ValueError naming it when it is a file,
+    a symbolic link that loops, or cannot be created."""
+    folder = file_path(path, what)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:
+        raise ValueError(f"{folder}: exists and is not a folder (a file, or a symbolic link that loops); give "
+                         f"the {what}") from None
+    except OSError as error:
+        raise ValueError(f"{folder}: cannot create the {what} ({error.strerror or error})") from None
+    return folder
+
+
 def write_text(path: str | os.PathLike[str], text: str, what: str = "file") -> Path:
     """Write ``text`` (UTF-8) to ``path`` atomically (:func:`replace_file`); returns the path."""
     path = file_path(path, what)

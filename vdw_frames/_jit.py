@@ -10,6 +10,10 @@ where none can be written.
 * numba refuses to decorate a function with ``cache=True`` when it finds no writable cache location (a
   read-only install with an unwritable HOME, for example): ``import vdw_frames`` would then fail.
   Such a function is compiled without a cache instead, with one warning for the whole package.
+* A cache file that cannot be read back (truncated by a full disk or a killed process: numba raises
+  ``UnpicklingError`` on every later run) is dropped and the function recompiled, with one warning; a cache
+  that cannot be written (a full disk: ``OSError`` from inside the first analysis) is given up for the
+  rest of the process, with one warning, and the compiled code is used without it.
 """
 
 from __future__ import annotations
@@ -85,6 +89,56 @@ def _install_locators() -> None:
 
 _install_locators()
 
+_FunctionCache: Any = getattr(caching, "FunctionCache", None)
+_unwritable = False  # set once a cache write failed: no later write is tried
+_said: set[str] = set()
+
+
+def _warn_once(kind: str, message: str) -> None:
+    if kind not in _said:
+        _said.add(kind)
+        warnings.warn(message, RuntimeWarning, stacklevel=2)
+
+
+if _FunctionCache is not None:
+
+    class _GuardedCache(_FunctionCache):
+        """numba's per-function cache, with a cache file that fails to load recompiled and a failed write
+        dropped (module docstring)."""
+
+        def load_overload(self, sig: Any, target_context: Any) -> Any:
+            try:
+                return super().load_overload(sig, target_context)
+            except Exception as error:  # any unreadable cache file: compiling instead is always correct
+                _warn_once("load", f"vdw_frames: numba's compilation cache in {self.cache_path} could not be read "
+                           f"({type(error).__name__}: {error}); recompiling and replacing it")
+                try:  # the index names the data files: without it the next save starts afresh
+                    os.remove(self._cache_file._index_path)
+                except OSError:
+                    pass
+                return None
+
+        def save_overload(self, sig: Any, data: Any) -> None:
+            global _unwritable
+            if _unwritable:
+                return
+            try:
+                super().save_overload(sig, data)
+            except OSError as error:
+                _unwritable = True
+                _warn_once("save", f"vdw_frames: numba's compilation cache could not be written in {self.cache_path} "
+                           f"({error.strerror or error}); going on without it (compiled code is not kept between "
+                           "runs; set NUMBA_CACHE_DIR to a folder with space)")
+
+
+def _guard(dispatcher: Any) -> Any:
+    """``dispatcher`` with its cache made a :class:`_GuardedCache` (same object layout: numba's own class
+    extended, nothing else changed)."""
+    cache = getattr(dispatcher, "_cache", None)
+    if _FunctionCache is not None and type(cache) is _FunctionCache:
+        cache.__class__ = _GuardedCache
+    return dispatcher
+
 
 def njit(*args: Any, cache: bool = False, **options: Any) -> Any:
     """``numba.njit``, used as ``@njit(cache=True)``, with ``error_model="numpy"``; falls back to
@@ -99,7 +153,7 @@ def njit(*args: Any, cache: bool = False, **options: Any) -> Any:
         global _warned
         if cache:
             try:
-                return _numba_njit(cache=True, **options)(function)
+                return _guard(_numba_njit(cache=True, **options)(function))
             except RuntimeError as error:
                 if "cannot cache" not in str(error):
                     raise

@@ -148,7 +148,10 @@ def whole_number(name: str, value: object, minimum: int) -> int:
         value = value.item()
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer, float, np.floating)):
         raise ValueError(f"{name} must be a whole number >= {minimum}, got {show(value)}")
-    if not math.isfinite(value) or int(value) != value or value < minimum:
+    # (a Python int may be beyond any float: compared as an int, never converted)
+    if isinstance(value, (float, np.floating)) and not (math.isfinite(value) and float(value).is_integer()):
+        raise ValueError(f"{name} must be a whole number >= {minimum}, got {show(value)}")
+    if int(value) < minimum:
         raise ValueError(f"{name} must be a whole number >= {minimum}, got {show(value)}")
     return int(value)
 
@@ -189,6 +192,13 @@ def refuse_non_numbers(name: str, values: object) -> None:
             raise ValueError(f"{name} must be real numbers, got {show(item)}")
 
 
+def text(name: str, value: object) -> str:
+    """A string (a name, a source, a label): anything else is refused, never converted."""
+    if not isinstance(value, str):
+        raise ValueError(f"{name} must be a string, got {show(value)}")
+    return value
+
+
 def damping_ratio(value: object, name: str = "damping_ratio") -> float:
     """A damping ratio in [0, 1)."""
     zeta = finite_scalar(name, value)
@@ -221,20 +231,31 @@ def positive_frequencies(name: str, values: ArrayLike) -> np.ndarray:
     return array
 
 
-def check_memory(what: str, steps: float, bytes_per_step: float, hint: str = "") -> None:
-    """Refuse, before allocating, ``steps`` steps of ``bytes_per_step`` bytes beyond
-    :data:`MEMORY_LIMIT_BYTES`; the message gives the step count and the memory it would take."""
-    needed = float(steps) * float(bytes_per_step)
+def check_memory(what: str, steps: float, bytes_per_step: float, hint: str = "", unit: str = "steps") -> None:
+    """Refuse, before allocating, ``steps`` steps (or other ``unit``: grid points, ...) of ``bytes_per_step``
+    bytes beyond :data:`MEMORY_LIMIT_BYTES`; the message gives the count and the memory it would take."""
+    try:
+        count_value = float(steps)
+    except OverflowError:  # an int beyond any float
+        count_value = math.inf
+    needed = count_value * float(bytes_per_step)
     if needed > MEMORY_LIMIT_BYTES:
         advice = f"; {hint}" if hint else ""
-        count = f"{steps:,.0f}" if steps < 1e15 else f"{float(steps):.3g}" if math.isfinite(steps) else "over 1e308"
-        raise ValueError(f"{what} needs {count} steps, whose arrays would take {_size(needed)} "
+        if count_value < 1e15:
+            count = f"{steps:,.0f}"
+        elif math.isfinite(count_value):
+            count = f"{count_value:.3g}"
+        elif isinstance(steps, int):
+            count = f"about 1e{len(str(abs(steps))) - 1}"
+        else:
+            count = "over 1e308"
+        raise ValueError(f"{what} needs {count} {unit}, whose arrays would take {_size(needed)} "
                          f"(limit {_size(MEMORY_LIMIT_BYTES)}){advice}")
 
 
 def _size(count: float) -> str:
     if not math.isfinite(count):
-        return "over 1e308 TiB"
+        return "more than any memory"
     for unit, scale in (("TiB", 1024.0**4), ("GiB", 1024.0**3), ("MiB", 1024.0**2)):
         if count >= scale:
             return f"{count / scale:.3g} {unit}"

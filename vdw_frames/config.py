@@ -230,7 +230,7 @@ def _hysteresis(table: object, stories: int) -> tuple[Bilinear | BoucWen, ...] |
     """The story models of a ``[hysteresis]`` table (module docstring), or None."""
     if table is None:
         return None
-    if not isinstance(table, dict) or table.get("model") not in _HYSTERESIS_KEYS:
+    if not isinstance(table, dict) or not isinstance(table.get("model"), str) or table["model"] not in _HYSTERESIS_KEYS:
         raise ValueError(f"hysteresis must be a table with model = 'bilinear' or 'bouc-wen', got {table!r}")
     keys = _HYSTERESIS_KEYS[table["model"]]
     unknown = set(table) - keys
@@ -354,7 +354,7 @@ def _thermal(value: object) -> ThermalProperties:
                              f"{' / '.join(repr(law) for law in _SHIFT_LAWS)}, got {shift!r}")
         law: WLF | Arrhenius | LogLinear = _NAMED_SHIFT_LAWS[shift]
     else:
-        if not isinstance(shift, dict) or shift.get("law") not in _SHIFT_LAWS:
+        if not isinstance(shift, dict) or not isinstance(shift.get("law"), str) or shift["law"] not in _SHIFT_LAWS:
             raise ValueError(f"walls thermal shift must be one of {sorted(_NAMED_SHIFT_LAWS)} or a table with law = "
                              f"{' / '.join(repr(law) for law in _SHIFT_LAWS)}, got {show(shift)}")
         kind, constants = _SHIFT_LAWS[shift["law"]]

@@ -115,3 +115,21 @@ def test_sizing_refuses_strain_dependent_walls():
         size_walls(five_story(), strain_dependent(area=1e5), 0.1)
     with pytest.raises(ValueError, match="strain-dependent"):
         size_walls(five_story({1: strain_dependent(area=1e5)}), KELVIN_MAXWELL, 0.1)
+
+
+def test_sizing_refuses_buildings_beyond_its_story_limit_and_too_many_factors_before_any_work():
+    # damping_curve measured 198 s at 40 stories (it repeats the complex modal analysis ~50 times).
+    import time
+
+    from vdw_frames.design import sizing
+
+    wall = FDMKDamper(**CLASSICAL_KELVIN_MAXWELL, area=1e5)
+    tall = ShearBuilding([500.0] * (sizing.MAX_STORIES + 1), [6e5] * (sizing.MAX_STORIES + 1))
+    start = time.perf_counter()
+    for call in (lambda: damping_curve(tall, wall), lambda: size_walls(tall, wall, 0.1)):
+        with pytest.raises(ValueError, match=r"wall sizing \(size_walls, damping_curve\) takes buildings of at most "
+                                             r"30 stories, got 31 stories"):
+            call()
+    assert time.perf_counter() - start < 1.0
+    with pytest.raises(ValueError, match="factors holds 1001 area factors; at most 1000"):
+        damping_curve(ShearBuilding([500.0], [6e5]), wall, factors=np.geomspace(0.1, 10.0, 1001))

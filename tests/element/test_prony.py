@@ -12,7 +12,7 @@ from builders import BOTH_BRANCHES
 from reference import closed_form_moduli
 
 from vdw_frames import FDMKDamper, SupportedDamper
-from vdw_frames.element.prony import PronySeries, fit_prony
+from vdw_frames.element.prony import MAX_BAND, PronySeries, fit_prony
 from vdw_frames.paper import fitted
 
 BAND = (0.1, 10.0)  # Hz: the band of a building's first few modes
@@ -135,3 +135,14 @@ def test_a_bad_equilibrium_stiffness_is_refused_by_name(k0, match):
 def test_a_series_without_branches_is_a_spring():
     spring = PronySeries(5.0, [], 0.1, 10.0, 0.01, 0.0)
     np.testing.assert_array_equal(spring.complex_stiffness([0.1, 1.0]), [5.0, 5.0])
+
+
+def test_a_band_beyond_six_decades_is_refused_before_fitting():
+    # 0.1 Hz ... 1e12 Hz ran for minutes and 1e300 never returned; 6 decades are fitted (about 1 s).
+    wall = order_walls()[0.5]
+    for f_max in (1.0e12, 1.0e300, 0.1 * MAX_BAND * (1 + 1e-12)):
+        with pytest.raises(ValueError, match=r"band f_min = 0.1 \.\.\. f_max = .* Hz spans .* decades; .* at most 6"):
+            wall.prony(0.1, f_max)
+    series = wall.prony(0.01, 0.01 * MAX_BAND, tolerance=0.01)
+    f = check_frequencies(0.01, 0.01 * MAX_BAND)
+    assert np.max(np.abs(series.complex_stiffness(f) / wall.complex_stiffness(f) - 1)) <= 0.01

@@ -14,7 +14,7 @@ from builders import (
 )
 from reference import fdmk_modulus
 
-from vdw_frames import Bilinear, FDMKDamper, ShearBuilding
+from vdw_frames import Bilinear, FDMKDamper, ShearBuilding, modal_analysis
 
 
 # ---------------------------------------------------------------------------------------------- arguments
@@ -137,3 +137,22 @@ def test_stiffnesses_whose_sum_overflows_are_refused_naming_the_stories():
     with pytest.raises(ValueError, match=r"stiffnesses of stories 2 and 3 \(1e\+308 and 1e\+308 N/mm\) overflow"):
         ShearBuilding([1.0] * 3, [1.0, 1e308, 1e308])
     assert ShearBuilding([1.0] * 2, [1e308, 1.0]).stiffness_matrix[0, 0] == 1e308  # its sum is finite
+
+
+def test_frequency_domain_refuses_a_frame_unstable_under_its_gravity_loads():
+    # Story 2: P/h = 8e6 / 10 = 8e5 N/mm against k0 = 6e5 plus a wall whose K(0) = G1 A / t = 8.69e4 N/mm.
+    # It returned a bounded stationary_response before; modal_analysis already refused the frame.
+    wall = FDMKDamper(G1=8.69, G2=3.58, eta1=0.75, eta2=0.98, r=0.6, area=1e5, thickness=10.0)
+    unstable = ShearBuilding([500.0] * 3, [8e5, 6e5, 4e5], walls={2: wall}, story_heights=[10.0] * 3,
+                             gravity_loads=[3e6, 8e6, 1e6])
+    message = (r"the frame is unstable under its gravity loads: story 2's P/h = 800000 N/mm is not below its "
+               r"stiffness at rest \(k0 and walls\) 686900 N/mm")
+    with pytest.raises(ValueError, match=r"frequency_response\(\): " + message):
+        unstable.stationary_response(np.sin(0.1 * np.arange(200)), 0.01)
+    with pytest.raises(ValueError, match=message):
+        unstable.frequency_response([0.5, 1.0])
+    with pytest.raises(ValueError, match=message):
+        modal_analysis(unstable)
+    # The walls hold the story at rest once their static stiffness closes the gap.
+    held = unstable.with_walls({2: (wall.resized(3.0),)})  # 6e5 + 2.607e5 > 8e5 N/mm
+    assert np.isfinite(held.stationary_response(np.sin(0.1 * np.arange(200)), 0.01)).all()

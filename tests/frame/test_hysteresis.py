@@ -3,6 +3,10 @@ solve_ivp of its evolution equation, consistent tangents and the trial/commit co
 
 from __future__ import annotations
 
+import json
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
@@ -82,6 +86,66 @@ def test_bouc_wen_update_is_bounded_and_accurate_for_any_increment():
                      - _bouc_wen_update(z0, x - step, n, beta, gamma)[0]) / (2 * step)
         if abs(abs(z) - bound) > 1e-6:  # (clamped on the bound: dz/dx = 0 there, a kink)
             assert tangent == pytest.approx(numerical, rel=1e-4, abs=1e-6)
+
+
+def test_bouc_wen_update_is_exact_on_the_asymptote_and_capped_below_it():
+    # n = 1 from z = 0 has the closed form z = B (1 - exp(-x / B)), B = 1 / (beta + gamma).  With
+    # beta + gamma = 0.01 (B = 100) increments of 100 ... 4000 yield drifts take the capped number of
+    # steps (each longer than 0.1 yield drift): still within 1e-7 of B (measured 3.4e-8).  From 40 B on
+    # the update returns the bound itself, and the last stepped value below 40 B differs from it only by
+    # rounding (measured 8e-14 B): no jump Newton would see.
+    from vdw_frames.frame.hysteresis import _bouc_wen_update
+
+    bound = 100.0
+    for x in (50.0, 101.0, 500.0, 3000.0):
+        z, tangent = _bouc_wen_update(0.0, x, 1.0, 0.005, 0.005)
+        assert z == pytest.approx(bound * -np.expm1(-x / bound), abs=1e-7 * bound)
+        assert tangent == pytest.approx(np.exp(-x / bound), abs=1e-7)
+    for n, beta, gamma in [(1.0, 0.5, 0.5), (100.0, 0.9, 0.1), (3.0, 0.02, 0.0)]:
+        bound = (beta + gamma) ** (-1.0 / n)
+        for z0 in (-bound, 0.0, 0.5 * bound):
+            assert _bouc_wen_update(z0, -40.0 * bound, n, beta, gamma) == (-bound, 0.0)
+            below, _ = _bouc_wen_update(z0, -40.0 * bound * (1 - 1e-12), n, beta, gamma)
+            assert below == pytest.approx(-bound, rel=1e-12)
+
+
+def test_bouc_wen_work_does_not_grow_with_the_increment_over_the_yield_drift():
+    # A trial of 1e4 mm on a story whose yield drift is 1e-5 mm (1e9 yield drifts: 1e10 sub-steps before),
+    # 200 steps of a frame whose stories yield at 1e-6 mm (over 120 s before) and a frame running away under
+    # P-Delta with collapse detection off (it hung where Bilinear stories end at once): in a separate process,
+    # so that a regression fails on its time limit instead of hanging the tests.  The frame then carries
+    # only the tiny yield force: the same response as with Bilinear stories of that strength.
+    program = """if True:
+        import json, time, warnings
+        import numpy as np
+        from vdw_frames import Bilinear, BoucWen, GroundMotion, ShearBuilding, simulate
+        start = time.perf_counter()
+        force, tangent = BoucWen(1.0).new_state(1e5).trial(1e4)
+        k = [8e5, 6e5, 4e5]
+        motion = GroundMotion(2000.0 * np.sin(0.05 * np.arange(200)), 0.01, "sine")
+        peaks, runaway = [], []
+        strong = GroundMotion(5000.0 * np.sin(0.05 * np.arange(2000)), 0.01, "strong")
+        for model in (BoucWen, Bilinear):
+            frame = ShearBuilding([500.0] * 3, k, hysteresis=[model(1e-6 * s) for s in k])
+            weak = ShearBuilding([500.0] * 3, k, story_heights=[3000.0] * 3, gravity_loads=[3e6, 2e6, 1e6],
+                                 hysteresis=[model(1e3)] * 3)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                peaks.append(float(np.abs(simulate(frame, motion).drift).max()))
+                runaway.append(float(np.abs(simulate(weak, strong, collapse_drift_ratio=None).drift).max()))
+        print(json.dumps([force, tangent, peaks, runaway, time.perf_counter() - start]))
+    """
+    try:
+        run = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True, timeout=300)
+    except subprocess.TimeoutExpired:
+        pytest.fail("Bouc-Wen updates did not finish in 300 s")
+    assert run.returncode == 0, run.stderr
+    force, tangent, (bouc_wen, bilinear), runaway, seconds = json.loads(run.stdout)
+    assert (force, tangent) == (1.0, 0.0)  # on the strength bound F_y, hardening 0
+    assert bouc_wen == pytest.approx(bilinear, rel=1e-6)
+    # A frame running away under P-Delta (collapse detection off): drifts of kilometres, as Bilinear's.
+    assert runaway[0] > 1e6 and runaway[0] == pytest.approx(runaway[1], rel=1e-4)
+    assert seconds < 60.0  # measured 0.4 s once compiled
 
 
 @pytest.mark.parametrize("model", [Bilinear(5000.0, 0.1), BoucWen(5000.0, 0.1, 2.0, 0.6, 0.4)])

@@ -290,3 +290,17 @@ def test_huge_masses_give_finite_energy_estimates():
     walled = modal_analysis(bare.with_walls({1: FRACTIONAL, 3: FRACTIONAL}))
     for name in ("periods", "damping_ratios", "energy_damping_ratios", "energy_inherent", "effective_periods"):
         assert np.isfinite(getattr(walled, name)).all(), name
+
+
+def test_a_building_beyond_the_story_limit_is_refused_before_any_work():
+    # 3000 stories: the design command on it ran past 300 s; 100 stories take about 2 minutes.
+    import time
+
+    wall = fitted(300)
+    for stories in (modal.MAX_STORIES + 1, 3000):
+        tall = ShearBuilding([500.0] * stories, [6e5] * stories, walls={1: wall})
+        start = time.perf_counter()
+        with pytest.raises(ValueError, match=rf"a complex modal analysis takes buildings of at most 100 stories, "
+                                             rf"got {stories} stories"):
+            modal_analysis(tall)
+        assert time.perf_counter() - start < 1.0

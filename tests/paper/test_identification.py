@@ -294,6 +294,13 @@ L6 = paper.TABLES[300]["loss_modulus"]
     ((F6, G6, L6), {"fixed": [("r", 0.5)]}, "fixed must be a dict"),
     ((F6, G6, np.r_[0.0, L6[1:]]), {"residual": "relative"}, "divides by loss_modulus"),
     ((F6, G6, L6), {"grid": (2, 10)}, "grid"),
+    ((F6, G6, L6), {"grid": (3.5, 10)}, r"grid must be two whole numbers >= 3 .*got \(3.5, 10\)"),
+    ((F6, G6, L6), {"grid": (True, 10)}, "grid must be two whole numbers"),
+    ((F6, G6, L6), {"grid": (5, 5, 5)}, "grid must be two whole numbers"),
+    ((F6, G6, L6), {"grid": "55"}, "grid must be two whole numbers"),
+    # Refused before allocating (it asked numpy for 7.28 TiB).
+    ((F6, G6, L6), {"grid": (10**6, 10**6)}, r"identify\(grid = \(1000000, 1000000\), 6 frequencies\) needs "
+                                             r"1,000,000,000,000 grid points, whose arrays would take .* TiB"),
 ])
 def test_bad_input_raises_value_error_naming_it(args, kwargs, match):
     with pytest.raises(ValueError, match=match):

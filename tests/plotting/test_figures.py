@@ -37,3 +37,31 @@ def test_loop_figure_is_written(tmp_path):
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     with pytest.raises(ValueError, match="labels"):
         plot_loops(results, tmp_path / "x.png", labels=["one"])
+
+
+def test_response_figures_of_a_run_at_rest_or_stopped_at_its_first_step(tmp_path):
+    # The energy figure raised numpy's "need at least one array to concatenate" when no energy part moved.
+    import warnings
+
+    import numpy as np
+
+    from vdw_frames import BoucWen, GroundMotion, ShearBuilding, simulate
+    from vdw_frames.frame import NewtonRaphson
+    from vdw_frames.plotting import plot_drift_envelope, plot_energy, plot_roof_displacement, plot_story_hysteresis
+
+    frame = ShearBuilding([500.0] * 2, [8e5, 6e5], story_heights=[3000.0] * 2,
+                          hysteresis=[BoucWen(1e5, exponent=100.0)] * 2)
+    at_rest = simulate(frame, GroundMotion(np.zeros(20), 0.01, "zero"))
+    strict = NewtonRaphson(displacement_tolerance=1e-300, force_tolerance=1e-300, max_iterations=1,
+                           fallback_iterations=1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the non-convergence warning: the point of this run
+        stopped = simulate(frame, GroundMotion([0.0, 3e6, -3e6, 0.0], 0.01, "pulse"), newton=strict,
+                           collapse_drift_ratio=None)
+    assert stopped.time.size == 1 and not stopped.converged
+    for result in (at_rest, stopped):
+        runs = {"run": result}
+        for plot, arguments in ((plot_energy, (result,)), (plot_story_hysteresis, (result, 1)),
+                                (plot_drift_envelope, (runs,)), (plot_roof_displacement, (runs,))):
+            path = plot(*arguments, tmp_path / f"{plot.__name__}.png")
+            assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

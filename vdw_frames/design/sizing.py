@@ -37,12 +37,18 @@ from .._validation import damping_ratio as check_damping_ratio
 from .._validation import finite_array, whole_number
 from ..element.supported import WALL_TYPES
 from ..frame.building import ShearBuilding, require_fixed_walls, story_matrix
-from ..frame.modal import complex_modes
+from ..frame.modal import complex_modes, require_modal_size
 
 if TYPE_CHECKING:
     from ..element.wall import Wall
 
 DISTRIBUTIONS = ("uniform", "stiffness", "drift")
+MAX_STORIES = 30
+"""Largest building (stories) :func:`size_walls` and :func:`damping_curve` take, refused before any work:
+they repeat the complex modal analysis some 50-100 times (:data:`vdw_frames.frame.modal.MAX_STORIES` is
+its own limit).  Measured on the development machine under load, damping_curve 7 s at 20 stories, 24 s at
+30, 51 s at 35 and 198 s at 40; ``vdw-frames design`` runs both."""
+MAX_FACTORS = 1000  # damping_curve's factors: each is a complex modal analysis
 # Default factors of the damping-versus-size curve: 1/50 to 50 times the template wall's area.
 DEFAULT_FACTORS = np.geomspace(0.02, 50.0, 41)
 _SEARCH = (1e-3, 1e3)  # the factors searched for the largest damping ratio
@@ -89,6 +95,7 @@ class _Sizer:
                  stories: int | Sequence[int] | str | None) -> None:
         if not isinstance(building, ShearBuilding):
             raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
+        require_modal_size(building, "wall sizing (size_walls, damping_curve)", MAX_STORIES)
         require_fixed_walls(building, "wall sizing")
         _check_wall(wall)
         self.mode = whole_number("mode", mode, 1)
@@ -146,13 +153,17 @@ def damping_curve(building: ShearBuilding, wall: Wall, mode: int = 1, distributi
                   stories: int | Sequence[int] | str | None = None, factors: ArrayLike | None = None) -> SizingCurve:
     """Period and damping ratio of ``mode`` against the walls' size (see the module docstring).
 
-    ``factors``: area factors (> 0) to evaluate (default 0.02 ... 50, 41 points, geometric).
+    ``factors``: area factors (> 0) to evaluate (default 0.02 ... 50, 41 points, geometric; at most
+    :data:`MAX_FACTORS`).  Buildings above :data:`MAX_STORIES` (30) stories are refused before any work.
     Returns a :class:`SizingCurve` (mm^2, s, -).
     """
     sizer = _Sizer(building, wall, mode, distribution, stories)
     factors = DEFAULT_FACTORS if factors is None else finite_array("factors", factors)
     if factors.size == 0 or (factors <= 0).any():
         raise ValueError("factors must be one or more area factors > 0")
+    if factors.size > MAX_FACTORS:
+        raise ValueError(f"factors holds {factors.size} area factors; at most {MAX_FACTORS} are evaluated (each "
+                         "is a complex modal analysis)")
     poles = np.array([sizer.pole(float(f)) for f in factors])
     best_factor, best_ratio = sizer.best()
     areas = np.outer(factors, sizer.weights) * wall.area
@@ -171,7 +182,8 @@ def size_walls(building: ShearBuilding, wall: Wall, target_damping: float, mode:
     are replaced.  The ratio is the complex-mode value -Re s / |s| (:func:`modal_analysis`),
     inherent damping included, met to 1e-6 (the issue asks 1e-3).  The smallest walls that reach it
     are returned.  ValueError when the target is below the bare frame's ratio or above the largest
-    achievable one (the message states that maximum and the wall size that gives it).
+    achievable one (the message states that maximum and the wall size that gives it), and for buildings
+    above :data:`MAX_STORIES` (30) stories, before any work.
     """
     target = check_damping_ratio(target_damping, "target_damping")
     sizer = _Sizer(building, wall, mode, distribution, stories)

@@ -26,8 +26,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validation import finite_array, show, time_step, whole_number
+from .._validation import check_memory, finite_array, show, time_step, whole_number
 from . import kernel, thermal
+from .fast_memory import MAX_STEPS as MAX_FAST_STEPS
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, METHODS, Discretisation, get_method
 
@@ -116,6 +117,8 @@ class WallBank:
     arrays: kernel.BankArrays = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
+        if not isinstance(self.walls, (tuple, list)):
+            raise ValueError(f"walls must be a sequence of walls, got {type(self.walls).__name__}")
         self.walls = tuple(self.walls)
         self.dt = time_step(self.dt)
         self.steps = whole_number("steps", self.steps, 0)
@@ -173,6 +176,12 @@ class WallBank:
         return self.arrays.states.table[:, column].copy()
 
     def _allocate(self, steps: int, states: kernel.WallStates) -> kernel.BankArrays:
+        strategy = memory_strategy(self.memory)
+        if strategy is None or 0 < steps <= strategy.exact_below:  # the exact memory: weights and values, each step
+            check_memory(f"WallBank ({len(self.walls)} walls, exact memory)", steps, 40.0 * max(len(self.walls), 1),
+                         "use the fast memory")
+        elif steps > MAX_FAST_STEPS:
+            raise ValueError(f"steps must be at most 2**40 = {MAX_FAST_STEPS:,} with the fast memory, got {steps:,}")
         memories = [_Memory.allocate(wall_order(wall), self.dt, steps, self.method, self.memory) for wall in self.walls]
         self.max_steps = min((m.max_steps for m in memories), default=max(steps, 1))
         size = max((m.window_weights.size for m in memories), default=1)

@@ -243,7 +243,8 @@ class FDMKDamper(StiffnessMethods):
 
     def prony(self, f_min: float, f_max: float, tolerance: float = 0.01) -> PronySeries:
         """A generalized Maxwell model (:class:`~vdw_frames.element.prony.PronySeries`) matching K*(f) within
-        ``tolerance`` (relative, on |K*|) over [``f_min``, ``f_max``] Hz with the fewest branches; passive.
+        ``tolerance`` (relative, on |K*|) over [``f_min``, ``f_max``] Hz (at most 6 decades) with the fewest
+        branches; passive.
         For programs that cannot host the exact wall; see :mod:`vdw_frames.element.prony`."""
         return fit_prony(self, f_min, f_max, tolerance)
 

@@ -35,6 +35,7 @@ Units: stiffness N/mm, damping coefficient N*s/mm, relaxation time s, frequency 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -49,6 +50,11 @@ if TYPE_CHECKING:
 
 FIT_POINTS_PER_DECADE = 24
 CHECK_POINTS_PER_DECADE = 1000
+MAX_BAND = 1e6
+"""Widest band accepted, f_max / f_min (6 decades: 0.01-10 000 Hz holds any seismic analysis).  The
+relaxation times tried then span 10 decades, already more than one time step resolves in a host program,
+and the fit's cost grows steeply beyond: measured <= 5 s at 6 decades for any tolerance, up to 26 s at 8,
+240 s at 10 (tolerance 1e-4) and endless at 1e12."""
 _LAWSON_ROUNDS = 40
 _SHORTEST = 1e-3  # x 1 / omega_max: the shortest relaxation time tried (a dashpot to 0.1 % in the band)
 _LONGEST = 10.0  # x 1 / omega_min: the longest (a spring to 10 % at f_min)
@@ -72,8 +78,7 @@ class PronySeries(StiffnessMethods):
     error: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "equilibrium_stiffness",
-                           non_negative("equilibrium_stiffness", self.equilibrium_stiffness))
+        equilibrium = non_negative("equilibrium_stiffness", self.equilibrium_stiffness)
         branches = finite_array("branches", self.branches, ndim=None).copy()
         if branches.size == 0:
             branches = branches.reshape(0, 2)
@@ -86,9 +91,14 @@ class PronySeries(StiffnessMethods):
             raise ValueError(f"a Prony series needs k_i > 0 and c_i >= 0 in every branch (passive), got branch "
                              f"{row + 1} = {show(tuple(branches[row].tolist()))}")
         branches.setflags(write=False)
+        object.__setattr__(self, "equilibrium_stiffness", equilibrium)
         object.__setattr__(self, "branches", branches)
-        object.__setattr__(self, "f_min", positive("f_min", self.f_min))
-        object.__setattr__(self, "f_max", positive("f_max", self.f_max))
+        f_min, f_max = positive("f_min", self.f_min), positive("f_max", self.f_max)
+        if not f_max > f_min:
+            raise ValueError(f"f_max must exceed f_min, got f_min = {show(self.f_min)} Hz, "
+                             f"f_max = {show(self.f_max)} Hz")
+        object.__setattr__(self, "f_min", f_min)
+        object.__setattr__(self, "f_max", f_max)
         object.__setattr__(self, "tolerance", positive("tolerance", self.tolerance))
         object.__setattr__(self, "error", non_negative("error", self.error))
 
@@ -207,12 +217,17 @@ def fit_prony(wall: Wall, f_min: float, f_max: float, tolerance: float = 0.01, m
     ``tolerance`` (relative, on |K*|) over [``f_min``, ``f_max``] Hz (see the module for the method).
 
     ``wall``: anything with ``complex_stiffness(f)`` in N/mm (an :class:`~vdw_frames.FDMKDamper` or a
-    :class:`~vdw_frames.SupportedDamper`).  ``tolerance`` in (0, 0.5]; ``max_branches``: the most
+    :class:`~vdw_frames.SupportedDamper`).  The band may span at most :data:`MAX_BAND` (6 decades).
+    ``tolerance`` in (0, 0.5]; ``max_branches``: the most
     branches tried before giving up with a ValueError.  Returns a :class:`PronySeries`.
     """
     f_min, f_max = positive("f_min", f_min), positive("f_max", f_max)
     if not f_max > f_min:
         raise ValueError(f"f_max must exceed f_min, got f_min = {f_min!r} Hz, f_max = {f_max!r} Hz")
+    if f_max > MAX_BAND * f_min:
+        raise ValueError(f"the band f_min = {f_min!r} ... f_max = {f_max!r} Hz spans {math.log10(f_max / f_min):.3g} "
+                         f"decades; a Prony series is fitted over at most {math.log10(MAX_BAND):g} "
+                         "(f_max <= 1e6 f_min): narrow the band to the frequencies the analysis excites")
     tolerance = positive("tolerance", tolerance)
     if tolerance > 0.5:
         raise ValueError(f"tolerance must lie in (0, 0.5], got {tolerance!r}")

@@ -68,7 +68,7 @@ from typing import Protocol, cast, runtime_checkable
 
 import numpy as np
 
-from .._validation import finite_scalar, positive, show
+from .._validation import finite_scalar, positive, show, text
 
 ABSOLUTE_ZERO = -273.15
 """degC."""
@@ -133,6 +133,7 @@ class WLF:
         if reference <= ABSOLUTE_ZERO:
             raise ValueError(f"reference must be above absolute zero ({ABSOLUTE_ZERO} degC), got {show(reference)}")
         object.__setattr__(self, "reference", reference)
+        text("source", self.source)
         object.__setattr__(self, "valid", _check_range("valid", self.valid, reference,
                                                       max(ABSOLUTE_ZERO, reference - self.C2)))
 
@@ -173,6 +174,7 @@ class Arrhenius:
         if reference <= ABSOLUTE_ZERO:
             raise ValueError(f"reference must be above absolute zero ({ABSOLUTE_ZERO} degC), got {show(reference)}")
         object.__setattr__(self, "reference", reference)
+        text("source", self.source)
         object.__setattr__(self, "valid", _check_range("valid", self.valid, reference, ABSOLUTE_ZERO))
 
     def log10_shift(self, temperature) -> np.ndarray:
@@ -209,6 +211,7 @@ class LogLinear:
         if reference <= ABSOLUTE_ZERO:
             raise ValueError(f"reference must be above absolute zero ({ABSOLUTE_ZERO} degC), got {show(reference)}")
         object.__setattr__(self, "reference", reference)
+        text("source", self.source)
         object.__setattr__(self, "valid", _check_range("valid", self.valid, reference, ABSOLUTE_ZERO))
 
     def log10_shift(self, temperature) -> np.ndarray:

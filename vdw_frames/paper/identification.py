@@ -47,7 +47,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import least_squares
 
-from .._validation import finite_array, finite_scalar, show
+from .._validation import check_memory, finite_array, finite_scalar, show, whole_number
 from ..element.damper import FDMKDamper
 
 PARAMETERS = ("G1", "G2", "eta1", "eta2", "r")
@@ -58,6 +58,9 @@ DEFAULT_GRID = (41, 49)  # (orders r, values of log lambda)
 START_BAND = 0.05  # polish every refined grid minimum within 5 % of the best one ...
 MAX_PROFILE_MINIMA = 8  # ... and the best points of up to 8 local minima of the profile over r
 MAX_STARTS = 40  # at most this many starts from the band (thinned evenly in r)
+# Bytes the grid search holds per grid point and datum (G' or G''): measured ~180 (peak traced memory of
+# identify on 6 and 60 frequencies), rounded up.  A grid whose arrays would pass the 2 GiB limit is refused.
+_BYTES_PER_POINT_AND_DATUM = 256
 _GOLDEN_STEPS = 40  # golden-section steps refining u between grid neighbours (0.618^40 ~ 5e-9)
 _LINEAR = ("G1", "eta1", "G2")  # the coefficients solved by non-negative least squares
 _BOUND_FACES = ({"G2": 0.0, "eta2": 0.0}, {"G1": 0.0}, {"eta1": 0.0}, {"r": 1.0})
@@ -127,10 +130,15 @@ def identify(frequency: ArrayLike, storage_modulus: ArrayLike, loss_modulus: Arr
     frequency in Hz (> 0; repeated frequencies allowed, e.g. several strain levels pooled),
     storage_modulus and loss_modulus in MPa; ``residual`` is "absolute" or "relative"; ``fixed``
     pins parameters, e.g. ``{"r": 0.6}``; ``grid`` = (number of orders r, number of log lambda
-    values) of the global search.  Raises ValueError naming the offending value.
+    values) of the global search, whole numbers >= 3 (a grid whose search would hold more than 2 GiB is
+    refused before allocating).  Raises ValueError naming the offending value.
     """
     problem = _Problem(frequency, storage_modulus, loss_modulus, residual, fixed)
     n_r, n_u = _grid_size(grid)
+    points = (1 if "r" in problem.fixed else n_r) * (n_u if problem.searches_lambda else 1)
+    check_memory(f"identify(grid = {show(grid)}, {problem.frequency.size} frequencies)", points,
+                 _BYTES_PER_POINT_AND_DATUM * 2 * problem.frequency.size, "use a coarser grid (the default is "
+                 f"{DEFAULT_GRID}; the result does not depend on it)", unit="grid points")
     r_values = np.array([problem.fixed["r"]]) if "r" in problem.fixed else np.linspace(R_MIN, 1.0, n_r)
     u_values = np.linspace(-LOG_LAMBDA_SPAN, LOG_LAMBDA_SPAN, n_u) if problem.searches_lambda else np.zeros(1)
 
@@ -146,12 +154,13 @@ def identify(frequency: ArrayLike, storage_modulus: ArrayLike, loss_modulus: Arr
 
 # ---------------------------------------------------------------------------------------------- internals
 def _grid_size(grid):
+    message = f"grid must be two whole numbers >= 3 (orders, log lambda values), got {show(grid)}"
+    if isinstance(grid, (str, bytes)) or not isinstance(grid, (tuple, list, np.ndarray)) or len(grid) != 2:
+        raise ValueError(message)
     try:
-        n_r, n_u = (int(n) for n in grid)
-    except (TypeError, ValueError):
-        raise ValueError(f"grid must be two whole numbers (orders, log lambda values), got {grid!r}") from None
-    if n_r < 3 or n_u < 3:
-        raise ValueError(f"grid must have at least 3 values each way, got {grid!r}")
+        n_r, n_u = (whole_number("grid", n, 3) for n in grid)
+    except ValueError:
+        raise ValueError(message) from None
     return n_r, n_u
 
 

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._files import write_text, write_via
+from .._files import output_folder, write_text, write_via
 from ..element.sine import sine_test
 from ..element.strain_dependent import PARAMETERS
 from ..plotting import plot_loops
@@ -449,8 +449,7 @@ def write_paper_report(out_dir: str | os.PathLike[str], quick: bool = False) -> 
     ``quick=True`` leaves out the figures (the tables and errata are computed in full).
     """
     start = time.perf_counter()
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_folder(out_dir, "report folder")
     sets = parameter_sets()
     candidates = table5_candidates(sets)
     numbers = errata()

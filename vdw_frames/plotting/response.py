@@ -106,7 +106,9 @@ def plot_energy(result: SimulationResult, path: str | os.PathLike[str], title: s
              ("story yielding", energy.hysteretic), ("frame strain", energy.frame_strain),
              ("kinetic", energy.kinetic)]
     parts = [(name, values) for name, values in parts if np.abs(values).max() > 0.0]
-    axes.stackplot(result.time, *[values / 1e6 for _, values in parts], labels=[name for name, _ in parts], alpha=0.8)
+    if parts:  # (none at rest, or in a run that stopped at its first step)
+        axes.stackplot(result.time, *[values / 1e6 for _, values in parts], labels=[name for name, _ in parts],
+                       alpha=0.8)
     axes.plot(result.time, energy.input / 1e6, "k", lw=1.0, label="input")
     if np.abs(energy.p_delta).max() > 0.0:
         axes.plot(result.time, (energy.input - energy.p_delta) / 1e6, "k--", lw=0.8, label="input + gravity (P-Delta)")

@@ -49,7 +49,7 @@ from typing import Any
 import numpy as np
 
 from .. import _warnings
-from .._validation import finite_scalar, positive, show
+from .._validation import finite_scalar, positive, show, text
 from ..frame.building import ShearBuilding
 from ..frame.results import SimulationResult
 from ..frame.simulation import simulate
@@ -100,6 +100,7 @@ class PropertyBounds:
             raise ValueError(f"lambda_max must be >= 1 (the upper-bound properties), got {show(self.upper)}")
         object.__setattr__(self, "lower", lower)
         object.__setattr__(self, "upper", upper)
+        text("source", self.source)
         if self.ambient is not None:
             values = self.ambient
             if not isinstance(values, (tuple, list)) or len(values) != 2:
