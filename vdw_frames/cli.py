@@ -264,9 +264,11 @@ def _design(args) -> int:
     """The ``design`` command: modal table with and without walls, sizing, damping-versus-size figure."""
     from .config import load_building
     from .design import damping_curve, size_walls
+    from .design.sizing import MAX_STORIES as SIZING_MAX_STORIES
     from .design.sizing import story_text
     from .element.strain_dependent import StrainDependentDamper
-    from .frame.modal import modal_analysis
+    from .frame.modal import MAX_STORIES as MODAL_MAX_STORIES
+    from .frame.modal import modal_analysis, require_modal_size
     from .plotting import plot_damping_curve
 
     # Every argument checked before any work (a modal search of a large building takes seconds).
@@ -284,6 +286,10 @@ def _design(args) -> int:
     building = load_building(args.building)
     if args.target is not None and not building.wall_list:
         raise ValueError(f"--target {args.target:g}: {args.building} has no walls to size; add a [[walls]] group")
+    # The sizing below repeats the modal analysis many times: a building beyond its limit is refused now, not
+    # after the modal table.
+    require_modal_size(building, "vdw-frames design (sizing walls)" if building.wall_list else "vdw-frames design",
+                       SIZING_MAX_STORIES if building.wall_list else MODAL_MAX_STORIES)
     if building.strain_dependent:
         # A modal analysis needs one amplitude: the engineer's, or the centre (in logarithm) of the range
         # where each wall's parameters were identified, which the layer-sizing rule aims the amplitudes at.

@@ -325,6 +325,19 @@ def test_design_command_without_walls(tmp_path, capsys):
                                       "[[walls]] group\n"
 
 
+def test_design_command_refuses_a_building_too_tall_to_size_before_any_work(tmp_path, capsys, monkeypatch):
+    """31 stories with walls: the sizing's limit (30) applies before the modal table is computed."""
+    def no_work(*args, **kwargs):
+        raise AssertionError("the modal analysis ran before the size was checked")
+
+    monkeypatch.setattr(vdw.frame.modal, "modal_analysis", no_work)
+    spec = {"masses": [300.0] * 31, "stiffnesses": [2e5] * 31, "walls": [{"stories": "all", "parameters": README_WALL}]}
+    path = write_file(tmp_path, "tall.json", json.dumps(spec))
+    assert cli.main(["design", str(path), "--out", str(tmp_path)]) == 2
+    assert capsys.readouterr().err.startswith("vdw-frames: error: vdw-frames design (sizing walls) takes buildings of "
+                                              "at most 30 stories, got 31 stories")
+
+
 @pytest.mark.parametrize(("argv", "message"), [
     (["--target", "10"], "--target must be a damping ratio in (0, 1), e.g. 0.15, got 10 (a percentage? 10 % is "
                          "--target 0.1)"),
