@@ -203,9 +203,10 @@ def test_opensees_frame_example_runs_and_its_prony_frame_follows_the_bridge(tmp_
     assert "Maxwell branches" in printed and "Damper - Exponential" in printed
     for name in ("drift_envelope.png", "wall_hysteresis.png"):
         assert (tmp_path / name).stat().st_size > 10_000
-    # OpenSees's own messages are in the log, not among the tables.
-    assert "Maxwell Model" in (tmp_path / "opensees.log").read_text()
-    assert "Maxwell Model" not in printed
+    # OpenSees's own messages are in the log, not among the tables (its Maxwell banner comes once a process,
+    # so the test looks for the element warnings every model build gives).
+    assert "ZeroLength::setDomain" in (tmp_path / "opensees.log").read_text()
+    assert "ZeroLength" not in printed and "Maxwell Model" not in printed
 
 
 @pytest.mark.slow
