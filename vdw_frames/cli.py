@@ -265,7 +265,7 @@ def _design(args) -> int:
     from .config import load_building
     from .design import damping_curve, size_walls
     from .design.sizing import MAX_STORIES as SIZING_MAX_STORIES
-    from .design.sizing import story_text
+    from .design.sizing import SEARCH_FACTORS, story_text
     from .element.strain_dependent import StrainDependentDamper
     from .frame.modal import MAX_STORIES as MODAL_MAX_STORIES
     from .frame.modal import modal_analysis, require_modal_size
@@ -330,9 +330,15 @@ def _design(args) -> int:
           f"scaled, {args.distribution} over {story_text(tuple(stories))}")
     own = modal_analysis(building, args.mode)
     print(f"  the file's walls: xi = {100 * own.damping_ratios[0]:.2f} %, T = {own.periods[0]:.3f} s")
-    print(f"  largest achievable: xi = {100 * curve.best_damping_ratio:.2f} % at {curve.best_factor:.3g} x "
-          f"({curve.best_factor * area:.4g} m^2 {per}), T = {curve.best_period:.3f} s; larger walls stiffen the "
-          "frame more than they damp it")
+    if curve.best_factor >= SEARCH_FACTORS[1]:  # no maximum within the sizes searched: say so, not "largest"
+        largest = SEARCH_FACTORS[1]
+        print(f"  no largest damping ratio up to {largest:g} x the template ({largest * area:.4g} m^2 "
+              f"{per}): xi = {100 * curve.best_damping_ratio:.2f} % there, T = {curve.best_period:.3f} s (walls that "
+              "large lock the stories; the ratio still grows)")
+    else:
+        print(f"  largest achievable: xi = {100 * curve.best_damping_ratio:.2f} % at {curve.best_factor:.3g} x "
+              f"({curve.best_factor * area:.4g} m^2 {per}), T = {curve.best_period:.3f} s; larger walls stiffen the "
+              "frame more than they damp it")
     # The file's walls lie on the uniform curve (at 1 x) when every walled story holds the same walls.
     uniform_file = all(building.walls[story] == lowest for story in stories)
     marks = {"file's walls": 1.0} if uniform_file and args.distribution == "uniform" else {}

@@ -325,6 +325,23 @@ def test_design_command_without_walls(tmp_path, capsys):
                                       "[[walls]] group\n"
 
 
+def test_design_command_says_when_the_damping_still_grows_at_the_largest_size_searched(tmp_path, capsys):
+    """The guide's four-story file (walls that differ by story): scaled uniformly, the ratio grows up to the end of
+    the search; "largest achievable ... larger walls stiffen the frame more than they damp it" was false there."""
+    from vdw_frames.design.sizing import SEARCH_FACTORS
+
+    path = REPO / "docs" / "examples" / "four_story.toml"
+    building = load_building(path)
+    lowest = building.walls[min(building.walls)]
+    curve = damping_curve(building, lowest[0].resized(len(lowest)))
+    assert curve.best_factor == SEARCH_FACTORS[1]  # the case: the maximum is at the end of the search
+    assert cli.main(["design", str(path), "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert (f"no largest damping ratio up to 1000 x the template ({1000 * lowest[0].area * len(lowest) / 1e6:.4g} m^2 "
+            f"per story): xi = {100 * curve.best_damping_ratio:.2f} % there") in out
+    assert "largest achievable" not in out
+
+
 def test_design_command_refuses_a_building_too_tall_to_size_before_any_work(tmp_path, capsys, monkeypatch):
     """31 stories with walls: the sizing's limit (30) applies before the modal table is computed."""
     def no_work(*args, **kwargs):

@@ -51,7 +51,9 @@ its own limit).  Measured on the development machine under load, damping_curve 7
 MAX_FACTORS = 1000  # damping_curve's factors: each is a complex modal analysis
 # Default factors of the damping-versus-size curve: 1/50 to 50 times the template wall's area.
 DEFAULT_FACTORS = np.geomspace(0.02, 50.0, 41)
-_SEARCH = (1e-3, 1e3)  # the factors searched for the largest damping ratio
+SEARCH_FACTORS = (1e-3, 1e3)
+"""The area factors searched for the largest damping ratio (:attr:`SizingCurve.best_factor`): a best factor at
+an end means the ratio still grows there (no interior maximum within a million-fold range of sizes)."""
 
 
 @dataclass(frozen=True)
@@ -126,8 +128,8 @@ class _Sizer:
         return float(-s.real / abs(s))
 
     def best(self) -> tuple[float, float]:
-        """(factor, damping ratio) of the largest damping ratio over the factors of _SEARCH."""
-        grid = np.geomspace(*_SEARCH, 49)
+        """(factor, damping ratio) of the largest damping ratio over the factors of SEARCH_FACTORS."""
+        grid = np.geomspace(*SEARCH_FACTORS, 49)
         values = np.array([self.damping(f) for f in grid])
         values = np.where(np.isfinite(values), values, -np.inf)
         from scipy.optimize import minimize_scalar  # imported on use: `import vdw_frames` need not pay for it
@@ -193,12 +195,12 @@ def size_walls(building: ShearBuilding, wall: Wall, target_damping: float, mode:
                          f"{bare:.4f}: no walls are needed")
     best_factor, best_ratio = sizer.best()
     if target > best_ratio:
-        limit = " (still growing at the largest size tried)" if best_factor >= _SEARCH[1] else ""
+        limit = " (still growing at the largest size tried)" if best_factor >= SEARCH_FACTORS[1] else ""
         raise ValueError(f"target_damping {target!r} is out of reach: the largest achievable mode-{sizer.mode} "
                          f"damping ratio is {best_ratio:.4f} ({best_ratio - bare:.4f} added to the bare frame's "
                          f"{bare:.4f}), with {sizer.describe(best_factor)}{limit}")
     # The smallest factor reaching the target: damping rises from the bare value to the maximum.
-    low = _SEARCH[0]
+    low = SEARCH_FACTORS[0]
     while sizer.damping(low) > target:
         low *= 1e-2
         if low < 1e-12:
