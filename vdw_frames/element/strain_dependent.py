@@ -15,7 +15,12 @@ of G' and G'' (see :mod:`vdw_frames.element.damper`) is non-negative: the wall i
 clamped to the nearest end and a ``UserWarning`` names the amplitude reached.
 
 This is a model of *amplitude* dependence for steady harmonic cycles, the way the tests measured it.
-A time-history analysis uses it through the equivalent-linear (strain-compatible) iteration of
+In a time-history analysis (:func:`vdw_frames.simulate`) such a wall follows its own running half-cycle
+amplitude at every committed step, with one fractional order r for the whole wall (the convolution weights
+depend on r: a family with different r per node is refused there; :func:`vdw_frames.paper.strain_dependent`
+is the paper's sets with one common r); the coefficients at the amplitude come from the same interpolation
+(:func:`vdw_frames.element.kernel.track_amplitude`, :func:`vdw_frames.element.kernel.set_coefficients`).
+``simulate(..., strain_compatible=True)`` instead runs the equivalent-linear iteration of
 :mod:`vdw_frames.frame.strain_compatible`, which gives each wall one fixed parameter set per analysis.
 
 Units: strain amplitude dimensionless (3.0 = 300 %), moduli MPa, viscosities MPa*s^r, area mm^2,
