@@ -408,17 +408,29 @@ class ShearBuilding:
         return np.fft.irfft(response * spectrum[:, None], size, axis=0)[: ground.size]
 
 
+def static_wall_stiffness(building: ShearBuilding) -> np.ndarray:
+    """The walls' static (zero-frequency) stiffness summed per story, N/mm: K(s = 0) of every wall
+    (G1 A / h, in series with its support for a SupportedDamper; 0 for a Maxwell-only wall).  A wall that
+    follows its strain amplitude counts as at rest, with the G1 of its lowest amplitude node (where a
+    time-history analysis starts it): its static stiffness at larger strains is not part of the model."""
+    stiffness = np.zeros(building.stories)
+    for story, wall in building.wall_list:
+        if isinstance(wall, StrainDependentDamper):
+            stiffness[story - 1] += wall.G1[0] * wall.stiffness_scale
+        else:
+            stiffness[story - 1] += float(np.real(wall.stiffness_transfer(0.0)))
+    return stiffness
+
+
 def require_stable_under_gravity(building: ShearBuilding, analysis: str) -> None:
     """ValueError naming the story when a story's P-Delta stiffness -P/h cancels its stiffness at rest
-    (k0 plus its walls' K(s = 0)): the linear frame is then unstable under its own gravity loads, with no
-    modes and no bounded response.  (Per story suffices: K + K_G + walls = B^T diag(story totals) B with B
-    the invertible difference matrix, positive definite exactly when every story total is positive.)
-    Fixed walls only (the caller checked)."""
+    (k0 plus its walls' K(s = 0), :func:`static_wall_stiffness`): the linear frame is then unstable under its
+    own gravity loads, with no modes and no bounded response, whatever the record.  (Per story suffices:
+    K + K_G + walls = B^T diag(story totals) B with B the invertible difference matrix, positive definite
+    exactly when every story total is positive.)"""
     if building.gravity_loads is None:
         return
-    at_rest = np.array(building.stiffnesses, dtype=float)
-    for story, wall in cast("list[tuple[int, Wall]]", building.wall_list):
-        at_rest[story - 1] += float(np.real(wall.stiffness_transfer(0.0)))
+    at_rest = np.array(building.stiffnesses, dtype=float) + static_wall_stiffness(building)
     unstable = np.flatnonzero(at_rest + np.asarray(building.geometric_stiffness) <= 0.0)
     if unstable.size:
         story = int(unstable[0])

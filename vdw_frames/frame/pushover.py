@@ -40,9 +40,8 @@ import numpy as np
 from scipy.linalg import eigh
 
 from .._validation import finite_array, positive, show, whole_number
-from ..element.strain_dependent import StrainDependentDamper
 from ..motion.record import G
-from .building import ShearBuilding, story_matrix
+from .building import ShearBuilding, static_wall_stiffness, story_matrix
 from .hysteresis import StoryState
 
 PATTERNS = ("modal", "triangular")
@@ -99,20 +98,6 @@ class PushoverResult:
     def normalized_base_shear(self) -> np.ndarray:
         """V / W (-)."""
         return self.base_shear / self.weight
-
-
-def static_wall_stiffness(building: ShearBuilding) -> np.ndarray:
-    """The walls' static (zero-frequency) stiffness summed per story, N/mm: K(s = 0) of every wall
-    (G1 A / h, in series with its support for a SupportedDamper; 0 for a Maxwell-only wall).  A wall that
-    follows its strain amplitude counts as at rest, with the G1 of its lowest amplitude node (where a
-    time-history analysis starts it): its static stiffness at larger strains is not part of the model."""
-    stiffness = np.zeros(building.stories)
-    for story, wall in building.wall_list:
-        if isinstance(wall, StrainDependentDamper):
-            stiffness[story - 1] += wall.G1[0] * wall.stiffness_scale
-        else:
-            stiffness[story - 1] += float(np.real(wall.stiffness_transfer(0.0)))
-    return stiffness
 
 
 def elastic_mode(building: ShearBuilding, wall_stiffness: np.ndarray) -> tuple[float, np.ndarray]:

@@ -17,13 +17,13 @@ from typing import TYPE_CHECKING, cast
 import numpy as np
 
 from .. import _warnings
-from .._validation import SIMULATION_STEP_RANGE, check_memory, non_negative, positive, require_finite, show
+from .._validation import check_memory, non_negative, positive, require_finite, show, time_step
 from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy, wall_order
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation, get_method
 from ..motion.record import G, GroundMotion
-from .building import ShearBuilding
+from .building import ShearBuilding, require_stable_under_gravity
 from .hysteresis import StoryArrays, story_arrays
 from .integrator import (
     COLLAPSED,
@@ -36,7 +36,6 @@ from .integrator import (
     integrate,
     replay,
 )
-from .pushover import static_wall_stiffness
 from .results import FrameState, SimulationResult, energy_history
 
 if TYPE_CHECKING:
@@ -60,7 +59,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         wall_order(wall)
     if not isinstance(ground_motion, GroundMotion):
         raise ValueError(f"ground_motion must be a GroundMotion (see read_at2), got {type(ground_motion).__name__}")
-    _require_stable(building)
+    require_stable_under_gravity(building, "simulate")
     method = get_method(method)
     memory_strategy(memory)
     newton = NewtonRaphson() if newton is None else newton
@@ -69,10 +68,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     if collapse_drift_ratio is not None:
         collapse_drift_ratio = positive("collapse_drift_ratio", collapse_drift_ratio)
     free_vibration = non_negative("free_vibration", free_vibration)
-    dt = positive("dt", ground_motion.dt if dt is None else dt)
-    if not SIMULATION_STEP_RANGE[0] <= dt <= SIMULATION_STEP_RANGE[1]:
-        raise ValueError(f"time step dt = {show(dt)} s is outside the range simulate accepts "
-                         f"({SIMULATION_STEP_RANGE[0]:g} ... {SIMULATION_STEP_RANGE[1]:g} s)")
+    dt = time_step(ground_motion.dt if dt is None else dt)
     substeps = ground_motion.substeps(dt)  # the one check of the step against the record
     dt = ground_motion.dt / substeps
     heaviest = max(building.masses)
@@ -179,22 +175,6 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         group_failure=failure, group_amplitude=out.group_amplitude[keep],
         group_outside_range=np.stack([bank.state(kernel.BELOW_RANGE), bank.state(kernel.ABOVE_RANGE)], axis=1) * dt,
         initial_state=initial_state)
-
-
-def _require_stable(building: ShearBuilding) -> None:
-    """Refuse a building unstable at rest under its gravity loads: a story whose P/h reaches its initial
-    stiffness plus its walls' static stiffness (the shear building's K + K_G is then not positive
-    definite, and the response grows without bound whatever the record)."""
-    if building.gravity_loads is None:
-        return
-    geometric = np.asarray(building.geometric_stiffness)
-    static = np.asarray(building.stiffnesses) + static_wall_stiffness(building) + geometric
-    if (static <= 0.0).any():
-        story = int(np.argmax(static <= 0.0))
-        raise ValueError(f"the building is unstable under its gravity loads: story {story + 1}'s P/h = "
-                         f"{-geometric[story]:.6g} N/mm reaches its stiffness {static[story] - geometric[story]:.6g} "
-                         "N/mm (initial story stiffness plus its walls' static stiffness); lower gravity_loads "
-                         "or stiffen the story")
 
 
 def _check_state(state: FrameState, dt: float, steps: int, floors: int) -> int:
