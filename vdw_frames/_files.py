@@ -96,8 +96,9 @@ def _looks_utf16(data: bytes) -> bool:
 
 
 def output_folder(path: str | os.PathLike[str], what: str = "output folder") -> Path:
-    """``path`` as a folder, created with its parents if missing; a ValueError naming it when it is a file,
-    a symbolic link that loops, or cannot be created."""
+    """``path`` as a folder, created with its parents if missing, checked writable before any work; a
+    ValueError naming it when it is a file, a symbolic link that loops, cannot be created or is not
+    writable."""
     folder = file_path(path, what)
     try:
         folder.mkdir(parents=True, exist_ok=True)
@@ -106,6 +107,8 @@ def output_folder(path: str | os.PathLike[str], what: str = "output folder") -> 
                          f"the {what}") from None
     except OSError as error:
         raise ValueError(f"{folder}: cannot create the {what} ({error.strerror or error})") from None
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise ValueError(f"{folder}: the {what} is not writable")
     return folder
 
 

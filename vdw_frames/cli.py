@@ -10,7 +10,6 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import math
-import os
 import sys
 import warnings
 from collections.abc import Iterator, Sequence
@@ -51,20 +50,16 @@ def _command(commands, name: str, **options) -> argparse.ArgumentParser:
     return parser
 
 
-def _output_folder(out) -> Path:
-    """The --out folder, created and checked before any analysis runs."""
+def _output_folder(out, flag: str = "--out") -> Path:
+    """The folder given to ``flag`` (--out, --save), created and checked before any analysis runs."""
+    from ._files import output_folder
+
     if not str(out).strip():
-        raise ValueError("--out must name a folder, got ''")
-    folder = Path(out)
-    if folder.exists() and not folder.is_dir():
-        raise ValueError(f"--out {out}: exists and is not a folder")
+        raise ValueError(f"{flag} must name a folder, got ''")
     try:
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError as error:
-        raise ValueError(f"--out {out}: cannot create the folder ({error.strerror or error})") from None
-    if not os.access(folder, os.W_OK | os.X_OK):
-        raise ValueError(f"--out {out}: the folder is not writable")
-    return folder
+        return output_folder(out, "folder")
+    except ValueError as error:
+        raise ValueError(f"{flag} {error}") from None
 
 
 def _sine_test(args) -> int:
@@ -105,7 +100,7 @@ def _simulate(args) -> int:
     if args.factor is not None and not (math.isfinite(args.factor) and args.factor > 0.0):
         raise ValueError(f"--factor must be a scale factor > 0, got {args.factor:g}")
     out = _output_folder(args.out) if args.out is not None else None
-    save = _output_folder(args.save) if args.save is not None else None
+    save = _output_folder(args.save, "--save") if args.save is not None else None
     building, options = load_analysis(args.building)
     motion = read_at2(args.record)
     flag = f"--pga {args.pga:g}" if args.pga is not None else \
