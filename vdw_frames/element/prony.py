@@ -60,6 +60,14 @@ _SHORTEST = 1e-3  # x 1 / omega_max: the shortest relaxation time tried (a dashp
 _LONGEST = 10.0  # x 1 / omega_min: the longest (a spring to 10 % at f_min)
 
 
+def _band(f_min: object, f_max: object) -> tuple[float, float]:
+    """(f_min, f_max) in Hz: both finite and > 0, f_max above f_min."""
+    low, high = positive("f_min", f_min), positive("f_max", f_max)
+    if not high > low:
+        raise ValueError(f"f_max must exceed f_min, got f_min = {show(f_min)} Hz, f_max = {show(f_max)} Hz")
+    return low, high
+
+
 @dataclass(frozen=True, eq=False)
 class PronySeries(StiffnessMethods):
     """An equilibrium spring and Maxwell branches fitted to a wall's complex stiffness (see the module).
@@ -93,10 +101,7 @@ class PronySeries(StiffnessMethods):
         branches.setflags(write=False)
         object.__setattr__(self, "equilibrium_stiffness", equilibrium)
         object.__setattr__(self, "branches", branches)
-        f_min, f_max = positive("f_min", self.f_min), positive("f_max", self.f_max)
-        if not f_max > f_min:
-            raise ValueError(f"f_max must exceed f_min, got f_min = {show(self.f_min)} Hz, "
-                             f"f_max = {show(self.f_max)} Hz")
+        f_min, f_max = _band(self.f_min, self.f_max)
         object.__setattr__(self, "f_min", f_min)
         object.__setattr__(self, "f_max", f_max)
         object.__setattr__(self, "tolerance", positive("tolerance", self.tolerance))
@@ -221,9 +226,7 @@ def fit_prony(wall: Wall, f_min: float, f_max: float, tolerance: float = 0.01, m
     ``tolerance`` in (0, 0.5]; ``max_branches``: the most
     branches tried before giving up with a ValueError.  Returns a :class:`PronySeries`.
     """
-    f_min, f_max = positive("f_min", f_min), positive("f_max", f_max)
-    if not f_max > f_min:
-        raise ValueError(f"f_max must exceed f_min, got f_min = {f_min!r} Hz, f_max = {f_max!r} Hz")
+    f_min, f_max = _band(f_min, f_max)
     if f_max > MAX_BAND * f_min:
         raise ValueError(f"the band f_min = {f_min!r} ... f_max = {f_max!r} Hz spans {math.log10(f_max / f_min):.3g} "
                          f"decades; a Prony series is fitted over at most {math.log10(MAX_BAND):g} "
