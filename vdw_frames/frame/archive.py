@@ -41,11 +41,11 @@ def write_archive(path: str | os.PathLike[str], arrays: Mapping[str, np.ndarray]
     target = file_path(path, "file")
     if target.suffix != ".npz":
         raise ValueError(f"{path}: give a file name ending in .npz")
+    if "metadata" in arrays:
+        raise ValueError("an array may not be called 'metadata'")
     known = _known(classes)
     text = json.dumps({"format": kind, **{name: _encode(value, known) for name, value in metadata.items()}})
     contents = {**arrays, "metadata": np.array(text)}
-    if "metadata" in arrays:
-        raise ValueError("an array may not be called 'metadata'")
 
     def write(temporary: Path) -> None:
         with open(temporary, "wb") as file:

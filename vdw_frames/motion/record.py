@@ -40,6 +40,7 @@ def target_acceleration(name: str, target: object, stacklevel: int = 2) -> float
                        UserWarning, stacklevel=stacklevel + 1)
     return value
 
+
 @dataclass(frozen=True, eq=False)
 class GroundMotion:
     """A uniformly sampled ground acceleration record.
