@@ -152,6 +152,20 @@ EL_CENTRO_HEADER = ("PEER STRONG MOTION DATABASE RECORD.", "IMPERIAL VALLEY 10/1
                     "ACCELEROGRAM IN G.  FILTER POINTS:  HP=0.1 Hz LP=40.0 Hz")
 
 
+def replace_somewhere(spec, path: list[int], value):
+    """``spec`` with the item at ``path`` (keys/indices, followed as far as they go) replaced by ``value``."""
+    node = spec
+    for step in path[:-1]:
+        items = list(node) if isinstance(node, dict) else range(len(node)) if isinstance(node, list) else []
+        if not items or not isinstance(node[items[step % len(items)]], (dict, list)):
+            break
+        node = node[items[step % len(items)]]
+    items = list(node) if isinstance(node, dict) else list(range(len(node)))
+    if items:
+        node[items[path[-1] % len(items)]] = value
+    return spec
+
+
 def peer_at2(count_line: str, rows: list[str], header=EL_CENTRO_HEADER) -> str:
     """The text of a PEER-style AT2 file: ``header`` lines, the count line, the rows of values."""
     return "\n".join([*header, count_line, *rows]) + "\n"

@@ -7,7 +7,7 @@ import json
 import warnings
 
 import pytest
-from builders import README_WALL, three_story_spec, write_file
+from builders import README_WALL, replace_somewhere, three_story_spec, write_file
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from shared_data import shared_record
@@ -56,20 +56,6 @@ def test_wall_stories_are_whole_numbers_given_once_each():
 json_values = st.recursive(st.none() | st.booleans() | st.floats() | st.integers() | st.text(max_size=5),
                            lambda inner: st.lists(inner, max_size=3) | st.dictionaries(st.text(max_size=5), inner,
                                                                                          max_size=3), max_leaves=8)
-
-
-def replace_somewhere(spec, path, value):
-    """``spec`` with the item at ``path`` (keys/indices, followed as far as they go) replaced by ``value``."""
-    node = spec
-    for step in path[:-1]:
-        items = list(node) if isinstance(node, dict) else range(len(node)) if isinstance(node, list) else []
-        if not items or not isinstance(node[items[step % len(items)]], (dict, list)):
-            break
-        node = node[items[step % len(items)]]
-    items = list(node) if isinstance(node, dict) else list(range(len(node)))
-    if items:
-        node[items[path[-1] % len(items)]] = value
-    return spec
 
 
 @settings(max_examples=300, deadline=None)

@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from builders import TABLE4
+from builders import TABLE4, replace_somewhere
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -349,20 +349,6 @@ def building_spec() -> dict:
         "site": {"sms": 1.5, "sm1": 0.9, "tl": 8.0, "risk_category": "II"},
         "verification": {"bounds": [0.8, 1.2], "bounds_source": "a test"},
     }
-
-
-def replace_somewhere(spec, path: list[int], value):
-    """``spec`` with the item at ``path`` (keys/indices, followed as far as they go) replaced by ``value``."""
-    node = spec
-    for step in path[:-1]:
-        items = list(node) if isinstance(node, dict) else list(range(len(node)))
-        if not items or not isinstance(node[items[step % len(items)]], (dict, list)):
-            break
-        node = node[items[step % len(items)]]
-    items = list(node) if isinstance(node, dict) else list(range(len(node)))
-    if items:
-        node[items[path[-1] % len(items)]] = value
-    return spec
 
 
 JSON_VALUES = st.recursive(st.none() | st.booleans() | st.floats() | st.integers(-(2**70), 2**70)

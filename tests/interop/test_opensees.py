@@ -402,37 +402,35 @@ def test_bad_nodes_dofs_walls_steps_algorithms_and_memories_are_refused(ops):
     ops.wipe()
 
 
+def _opensees_module_error(setup: str) -> str:
+    """What ``opensees_module()`` says, as an ImportError, in a fresh interpreter where ``setup`` (Python
+    lines) has broken the import of OpenSeesPy."""
+    program = (setup + "import vdw_frames.interop.opensees as bridge\n"
+               "try:\n"
+               "    bridge.opensees_module()\n"
+               "except ImportError as error:\n"
+               "    print(error)\n")
+    return subprocess.run([sys.executable, "-c", program], capture_output=True, text=True, check=True).stdout
+
+
 def test_vdw_frames_opensees_imports_openseespy_lazily_and_says_how_to_install_it():
-    program = (
-        "import sys; sys.modules['openseespy'] = None; sys.modules['openseespy.opensees'] = None\n"
-        "import vdw_frames.interop.opensees as bridge\n"
-        "try:\n"
-        "    bridge.opensees_module()\n"
-        "except ImportError as error:\n"
-        "    print(error)\n")
-    completed = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True, check=True)
-    assert "pip install 'vdw-frames[opensees]'" in completed.stdout
+    said = _opensees_module_error("import sys; sys.modules['openseespy'] = None; sys.modules['openseespy.opensees'] "
+                                  "= None\n")
+    assert "pip install 'vdw-frames[opensees]'" in said
     assert opensees_module(None) is opensees_frame.opensees()
 
 
 def test_openseespy_without_its_blas_libraries_is_an_import_error_with_the_fix():
     """OpenSeesPy raises RuntimeError ('Failed to import openseespy on Linux.') when libblas.so.3 is
     missing: it must reach the user as the ImportError naming the packages, not as a traceback."""
-    program = (
-        "import sys, types\n"
-        "class Finder:\n"
-        "    def find_spec(self, name, path=None, target=None):\n"
-        "        if name.startswith('openseespy'):\n"
-        "            raise RuntimeError('Failed to import openseespy on Linux.')\n"
-        "sys.meta_path.insert(0, Finder())\n"
-        "import vdw_frames.interop.opensees as bridge\n"
-        "try:\n"
-        "    bridge.opensees_module()\n"
-        "except ImportError as error:\n"
-        "    print(error)\n")
-    completed = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True, check=True)
-    assert "Failed to import openseespy on Linux." in completed.stdout
-    assert "libblas3 and liblapack3" in completed.stdout
+    said = _opensees_module_error("import sys\n"
+                                  "class Finder:\n"
+                                  "    def find_spec(self, name, path=None, target=None):\n"
+                                  "        if name.startswith('openseespy'):\n"
+                                  "            raise RuntimeError('Failed to import openseespy on Linux.')\n"
+                                  "sys.meta_path.insert(0, Finder())\n")
+    assert "Failed to import openseespy on Linux." in said
+    assert "libblas3 and liblapack3" in said
 
 
 @pytest.mark.records
