@@ -180,23 +180,40 @@ def _outcome(result) -> str:
     return f"outcome: ran to t = {end:.3f} s, converged, no collapse"
 
 
-def _print_story_table(result) -> None:
-    """Per story: peak drift and drift ratio, residual drift, peak ductility, floor acceleration, walls."""
+def _story_columns() -> tuple[tuple[str, str, float, int, int], ...]:
+    """The story table's columns: CSV name (its unit), printed heading, scale to the printed unit, width,
+    decimals.  :func:`_story_peaks` gives their values."""
     from .motion import G
 
-    building = result.building
+    return (("peak_drift_mm", "drift mm", 1.0, 9, 2), ("peak_drift_ratio", "ratio %", 100.0, 8, 3),
+            ("residual_drift_mm", "resid. mm", 1.0, 9, 2), ("peak_ductility", "ductility", 1.0, 9, 2),
+            ("peak_floor_acceleration_mm_s2", "floor acc g", 1.0 / G, 11, 3),
+            ("peak_story_wall_force_N", "walls kN", 1e-3, 10, 1), ("peak_story_wall_strain", "strain %", 100.0, 9, 1))
+
+
+def _story_peaks(result) -> list[list[float | None]]:
+    """Per story, the values of :func:`_story_columns` in their CSV units; None where one does not exist (no
+    story heights, a linear story, a story without walls)."""
     ratio, ductility = result.peak_drift_ratio, result.peak_ductility
-    print(f"{'story':>5s} {'drift mm':>9s} {'ratio %':>8s} {'resid. mm':>9s} {'ductility':>9s} "
-          f"{'floor acc g':>11s} {'walls kN':>10s} {'strain %':>9s}")
-    for k in range(building.stories):
-        walled = k + 1 in building.walls  # '-' where a value does not exist (no heights, linear story, no walls)
-        print(f"{k + 1:5d} {result.peak_drift[k]:9.2f} "
-              f"{f'{100 * ratio[k]:8.3f}' if ratio is not None else '-':>8s} "
-              f"{result.residual_drift[k]:9.2f} "
-              f"{f'{ductility[k]:9.2f}' if not np.ma.is_masked(ductility[k]) else '-':>9s} "
-              f"{result.peak_absolute_acceleration[k] / G:11.3f} "
-              f"{f'{result.peak_story_wall_force[k] / 1e3:10.1f}' if walled else '-':>10s} "
-              f"{f'{100 * np.abs(result.story_wall_strain[:, k]).max():9.1f}' if walled else '-':>9s}")
+    rows: list[list[float | None]] = []
+    for k in range(result.building.stories):
+        walled = k + 1 in result.building.walls
+        rows.append([float(result.peak_drift[k]), float(ratio[k]) if ratio is not None else None,
+                     float(result.residual_drift[k]),
+                     float(ductility[k]) if not np.ma.is_masked(ductility[k]) else None,
+                     float(result.peak_absolute_acceleration[k]),
+                     float(result.peak_story_wall_force[k]) if walled else None,
+                     float(np.abs(result.story_wall_strain[:, k]).max()) if walled else None])
+    return rows
+
+
+def _print_story_table(result) -> None:
+    """Per story: peak drift and drift ratio, residual drift, peak ductility, floor acceleration, walls."""
+    columns = _story_columns()
+    print(f"{'story':>5s} " + " ".join(f"{heading:>{width}s}" for _, heading, _, width, _ in columns))
+    for k, values in enumerate(_story_peaks(result), 1):
+        print(f"{k:5d} " + " ".join(f"{value * scale:{width}.{decimals}f}" if value is not None else f"{'-':>{width}s}"
+                                    for value, (_, _, scale, width, decimals) in zip(values, columns, strict=True)))
     print("ductility: peak drift / yield drift of the story model ('-': a linear story); resid.: drift at the "
           "last step")
 
@@ -205,19 +222,9 @@ def _write_summary(result, path: Path) -> Path:
     """The story table as CSV (units in the header); '' where a value does not exist."""
     from ._files import write_text
 
-    ratio, ductility = result.peak_drift_ratio, result.peak_ductility
-    rows = ["story,peak_drift_mm,peak_drift_ratio,residual_drift_mm,peak_ductility,peak_floor_acceleration_mm_s2,"
-            "peak_story_wall_force_N,peak_story_wall_strain"]
-    for k in range(result.building.stories):
-        walled = k + 1 in result.building.walls
-        rows.append(",".join([
-            str(k + 1), repr(float(result.peak_drift[k])),
-            repr(float(ratio[k])) if ratio is not None else "",
-            repr(float(result.residual_drift[k])),
-            repr(float(ductility[k])) if not np.ma.is_masked(ductility[k]) else "",
-            repr(float(result.peak_absolute_acceleration[k])),
-            repr(float(result.peak_story_wall_force[k])) if walled else "",
-            repr(float(np.abs(result.story_wall_strain[:, k]).max())) if walled else ""]))
+    rows = [",".join(["story", *(name for name, *_ in _story_columns())])]
+    rows += [",".join([str(k), *(repr(value) if value is not None else "" for value in values)])
+             for k, values in enumerate(_story_peaks(result), 1)]
     return write_text(path, "\n".join(rows) + "\n", "summary")
 
 
