@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from numba.core import caching
+from numba.core import caching, errors
 from packaging.specifiers import SpecifierSet
 
 from vdw_frames import _jit
@@ -51,6 +51,39 @@ def test_compiled_division_follows_ieee_not_python():
     # error_model="numpy": x / 0 is inf or NaN (the package's finiteness checks catch it), never an exception.
     assert divide(1.0, 0.0) == np.inf
     assert np.isnan(divide(0.0, 0.0))
+
+
+def test_allocates_false_compiles_without_reference_counts_and_refuses_an_allocation():
+    # The step loops rely on numba's (underscored) _nrt option: no reference counting, no allocation.
+    @_jit.njit(cache=False, inline="always")
+    def branchy(arrays, i, x):
+        if arrays[0][i] == 0.0:
+            return x, 1.0
+        if x > arrays[1][i]:
+            return arrays[1][i], 0.0
+        return x * arrays[2][i], arrays[2][i]
+
+    def loop(arrays, out):
+        for i in range(out.shape[0] // 2):
+            out[i], out[-1 - i] = branchy(arrays, i, 2.0)
+
+    arrays = (np.array([1.0, 0.0, 3.0]), np.array([1.0, 5.0, 3.0]), np.array([2.0, 2.0, 2.0]))
+    expected = np.zeros(6)
+    loop(arrays, expected)  # plain Python
+    assert list(expected) == [1.0, 2.0, 4.0, 2.0, 1.0, 0.0]
+    for allocates in (True, False):
+        compiled, out = _jit.njit(cache=False, allocates=allocates)(loop), np.zeros(6)
+        compiled(arrays, out)
+        assert list(out) == list(expected)
+        # With numba's runtime, the helper's array arguments are counted (what the option avoids); without, never.
+        assert ("NRT_incref" in next(iter(compiled.inspect_llvm().values()))) == allocates
+
+    @_jit.njit(cache=False, allocates=False)
+    def allocate(n):
+        return np.zeros(n)
+
+    with pytest.raises(errors.TypingError):
+        allocate(3)
 
 
 # A package function compiled in a fresh cache folder (NUMBA_CACHE_DIR), in a separate process each time.
@@ -96,7 +129,7 @@ def test_a_truncated_cache_file_is_recompiled_with_one_warning(tmp_path, kind):
 
 def test_a_full_disk_under_the_cache_runs_without_it_with_one_warning(tmp_path):
     # simulate raised a raw OSError [Errno 28] when numba could not write its cache.
-    full = """from numba.core import caching
+    full = """from numba.core import caching, errors
     def full(self, *args):
         raise OSError(28, "No space left on device")
     caching.IndexDataCacheFile._open_for_write = full"""

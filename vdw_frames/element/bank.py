@@ -291,7 +291,9 @@ class WallBank:
         """(force N, wall strain) histories of a one-wall bank at rest for a displacement history (mm)."""
         if len(self.walls) != 1 or self.count != 0:
             raise ValueError("drive() needs a one-wall bank at rest")
-        return kernel.displacement_driven(self.arrays, displacement)
+        force, strain = np.empty(len(displacement)), np.empty(len(displacement))
+        kernel.displacement_driven(self.arrays, displacement, force, strain)
+        return force, strain
 
 
 @dataclass(frozen=True)

@@ -131,7 +131,7 @@ class BankArrays(NamedTuple):
     followed: bool  # some wall's state is followed (WallStates.tracked): only then is there any to update
 
 
-@njit(cache=True, fastmath=_FAST)
+@njit(cache=True, fastmath=_FAST, allocates=False)
 def memory_history(memory, count):
     """The history sums of every wall at step ``count`` into ``memory.history`` (2, W); the memory is untouched."""
     walls, size = memory.window_weights.shape
@@ -149,7 +149,7 @@ def memory_history(memory, count):
             memory.history[c, w] = total
 
 
-@njit(cache=True, fastmath=_FAST)
+@njit(cache=True, fastmath=_FAST, allocates=False)
 def memory_advance(memory, count):
     """Commit step ``count``'s ``memory.values`` (2, W: strain, Maxwell stress) and put the next step's history
     sums into ``memory.history``, in one pass over the modes.  The value leaving the window enters the modes."""
@@ -379,7 +379,7 @@ def _follow_amplitude(table, w, strain):
             table[w, ABOVE_RANGE] += 1.0
 
 
-@njit(cache=True, fastmath=_FAST)
+@njit(cache=True, fastmath=_FAST, allocates=False)
 def update_walls(states, constants, values, force, count):
     """After the commit of step ``count`` (forces (W,) N, the memory advanced, ``values`` (2, W) the
     committed strain and Maxwell stress): each followed wall's heat over the step, stored energy,
@@ -447,7 +447,7 @@ def update_walls(states, constants, values, force, count):
         table[w, STORED] = renewed
 
 
-@njit(cache=True)
+@njit(cache=True, allocates=False)
 def bank_affine(bank, count):
     """Every wall of ``bank`` at the start of step ``count``: history sums, K_t (N/mm) and H_n (N) into
     ``bank.memory.history``, ``bank.tangent`` and ``bank.history_force``."""
@@ -471,13 +471,9 @@ def bank_commit(bank, count, deformation, force, strain):
         bank.tangent[w], bank.history_force[w] = wall_affine(bank, w)
 
 
-@njit(cache=True)
-def displacement_driven(bank, displacement):
-    """(force N, wall strain) histories (steps,) of a one-wall bank at rest for a displacement history
-    (mm, (steps,)): :func:`bank_commit` step after step."""
-    steps = displacement.shape[0]
-    force = np.empty(steps)
-    strain = np.empty(steps)
-    for n in range(steps):
+@njit(cache=True, allocates=False)
+def displacement_driven(bank, displacement, force, strain):
+    """The force (N) and wall strain (-) histories, into ``force`` and ``strain`` (steps,), of a one-wall bank
+    at rest for a displacement history (mm, (steps,)): :func:`bank_commit` step after step."""
+    for n in range(displacement.shape[0]):
         bank_commit(bank, n, displacement[n:n + 1], force[n:n + 1], strain[n:n + 1])
-    return force, strain

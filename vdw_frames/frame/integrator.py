@@ -143,8 +143,9 @@ class Histories(NamedTuple):
 
 
 class Scratch(NamedTuple):
-    """Work arrays of one step (n stories, G wall groups)."""
+    """Work arrays of the integration (n stories, G wall groups)."""
 
+    displacement: np.ndarray  # (n,) trial displacements, mm
     drift: np.ndarray  # (n,) trial drifts, mm
     story_force: np.ndarray  # (n,) trial frame-spring forces, N
     story_tangent: np.ndarray  # (n,) N/mm
@@ -161,7 +162,25 @@ class Scratch(NamedTuple):
     wall_deformation: np.ndarray  # (G,) mm
     wall_force: np.ndarray  # (G,) N
     wall_strain: np.ndarray  # (G,) -
+    # Constant over the run:
+    dynamic_mass: np.ndarray  # (n,) (4/dt^2) m, N/mm
+    dynamic_band: np.ndarray  # (2, n) (4/dt^2) M + (2/dt) C: diagonal, super-diagonal (tridiagonal only), N/mm
+    # Constant over a step (from the committed state of row n):
+    step_force: np.ndarray  # (n,) m (a0 u_n + (4/dt) v_n + a_n) + C ((2/dt) u_n + v_n) - m a_g, N
+    damping_offset: np.ndarray  # (n,) C ((2/dt) u_n + v_n), N
+    inertia_scale: np.ndarray  # (n,) m ((4/dt) |v_n| + |a_n|), N
+    initial_stiffness: np.ndarray  # (n,) k_0 + k_G, N/mm
+    line_search: np.ndarray  # (n,) displacements tried by the line search, mm
+    old_damping_force: np.ndarray  # (n,) C v of the last committed step, N
 
+
+def scratch(stories: int, groups: int) -> Scratch:
+    """Zeroed work arrays for :func:`integrate` of a building of ``stories`` stories and ``groups`` wall
+    groups (the integrator allocates nothing: it is compiled without numba's reference counting)."""
+    n = stories
+    shapes = {"work": (2, n), "matrix": (n, n), "wall_deformation": (groups,), "wall_force": (groups,),
+              "wall_strain": (groups,), "dynamic_band": (2, n)}
+    return Scratch(*(np.zeros(shapes.get(name, (n,))) for name in Scratch._fields))
 
 
 # ---------------------------------------------------------------------------------------------- compiled
@@ -173,43 +192,62 @@ def _story_state(stories, work):
 
 
 @njit(cache=True, inline="always")
-def _residual(u, step, ground, dt, frame, stories, out, work):
-    """Unbalanced force R = -M a_g - (M a + C v + B^T f)(u) at trial displacements u (n,) of step
-    ``step`` + 1, into ``work.residual``; returns the force scale.
+def _step_constants(step, ground, dt, frame, out, work):
+    """The parts of the residual fixed by the committed state of row ``step`` and the ground acceleration
+    ``ground`` (mm/s^2) of step ``step`` + 1, into ``work``; returns the step's least force scale (N)."""
+    displacement, velocity, acceleration = out.displacement, out.velocity, out.acceleration
+    masses, damping = frame.masses, frame.damping
+    n = masses.shape[0]
+    v1, a1 = 2.0 / dt, 4.0 / dt
+    least = 1.0
+    for i in range(n):
+        offset = 0.0
+        low, high = (max(i - 1, 0), min(i + 2, n)) if frame.tridiagonal else (0, n)
+        for j in range(low, high):
+            offset += damping[i, j] * (v1 * displacement[step, j] + velocity[step, j])
+        work.damping_offset[i] = offset
+        external = masses[i] * ground
+        work.step_force[i] = (work.dynamic_mass[i] * displacement[step, i]
+                              + masses[i] * (a1 * velocity[step, i] + acceleration[step, i]) + offset - external)
+        work.inertia_scale[i] = masses[i] * (a1 * abs(velocity[step, i]) + abs(acceleration[step, i]))
+        least = max(least, abs(external))
+    return least
 
-    Fills the drifts, the stories' trial forces/tangents/states, the total story forces (spring +
-    P-Delta + walls) and the damping forces C v.
+
+@njit(cache=True, inline="always")
+def _residual(u, dt, least, frame, stories, work):
+    """Unbalanced force R = -M a_g - (M a + C v + B^T f)(u) at trial displacements u (n,) of the step whose
+    constants :func:`_step_constants` put in ``work`` (its least force scale ``least``, N), into
+    ``work.residual``; returns the force scale.
+
+    Newmark's a and v are affine in u: R = step_force - (4/dt^2) M u - (2/dt) C u - B^T f(u).  Fills the
+    drifts, the stories' trial forces/tangents/states, the total story forces (spring + P-Delta + walls)
+    and the damping forces C v.
     """
-    u_n, v_n, a_n = out.displacement[step], out.velocity[step], out.acceleration[step]
-    masses, damping, geometric = frame.masses, frame.damping, frame.geometric
+    damping, geometric = frame.damping, frame.geometric
     n = u.shape[0]
-    a0, v1 = 4.0 / dt**2, 2.0 / dt
+    v1 = 2.0 / dt
     for s in range(n):
         work.drift[s] = u[s] - (u[s - 1] if s > 0 else 0.0)
     _story_state(stories, work)
     for s in range(n):
         work.story_total[s] = (work.story_force[s] + geometric[s] * work.drift[s]
                                + work.wall_tangent[s] * work.drift[s] + work.wall_history[s])
-    scale = 1.0
+    scale = least
     for i in range(n):
-        increment = u[i] - u_n[i]
-        inertia = masses[i] * (a0 * increment - (4.0 / dt) * v_n[i] - a_n[i])
-        viscous = 0.0
-        if frame.tridiagonal:
-            for j in range(max(i - 1, 0), min(i + 2, n)):
-                viscous += damping[i, j] * (v1 * (u[j] - u_n[j]) - v_n[j])
-        else:
-            for j in range(n):
-                viscous += damping[i, j] * (v1 * (u[j] - u_n[j]) - v_n[j])
+        damped = 0.0
+        low, high = (max(i - 1, 0), min(i + 2, n)) if frame.tridiagonal else (0, n)
+        for j in range(low, high):
+            damped += damping[i, j] * u[j]
+        viscous = v1 * damped - work.damping_offset[i]
         work.damping_force[i] = viscous
         above = work.story_total[i + 1] if i + 1 < n else 0.0
-        external = masses[i] * ground
-        work.residual[i] = -external - inertia - viscous - (work.story_total[i] - above)
+        work.residual[i] = (work.step_force[i] - work.dynamic_mass[i] * u[i] - v1 * damped
+                            - (work.story_total[i] - above))
         # The residual's round-off is relative to its largest terms, including the inertia terms before
         # they cancel (m a0 |u| for the increment u - u_n): the force tolerance is relative to them all.
-        inertia_terms = masses[i] * (a0 * abs(u[i]) + (4.0 / dt) * abs(v_n[i]) + abs(a_n[i]))
-        scale = max(scale, abs(external), inertia_terms, abs(viscous), abs(work.story_force[i]),
-                    abs(work.story_total[i]))
+        scale = max(scale, work.dynamic_mass[i] * abs(u[i]) + work.inertia_scale[i], abs(viscous),
+                    abs(work.story_force[i]), abs(work.story_total[i]))
     return scale
 
 
@@ -227,21 +265,21 @@ def _largest(values):
 def _solve(frame, dt, work):
     """Solve ((4/dt^2) M + (2/dt) C + B^T diag(k) B) x = R for the correction x (n,), k =
     ``work.stiffness_diagonal``, R = ``work.residual``: the Thomas algorithm when tridiagonal, else LU."""
-    masses, damping, k = frame.masses, frame.damping, work.stiffness_diagonal
+    damping, k = frame.damping, work.stiffness_diagonal
     rhs, out, band, matrix = work.residual, work.correction, work.work, work.matrix
     n = rhs.shape[0]
-    a0, v1 = 4.0 / dt**2, 2.0 / dt
+    v1 = 2.0 / dt
     if frame.tridiagonal:
-        # diagonal in band[0], super-diagonal in band[1]
-        for i in range(n):
-            above = k[i + 1] if i + 1 < n else 0.0
-            band[0, i] = a0 * masses[i] + v1 * damping[i, i] + k[i] + above
-            band[1, i] = (v1 * damping[i, i + 1] - k[i + 1]) if i + 1 < n else 0.0
-        # forward elimination (symmetric tridiagonal), in place
+        # diagonal in band[0], super-diagonal in band[1]; forward elimination (symmetric tridiagonal)
+        diagonal = work.dynamic_band[0, 0] + k[0] + (k[1] if n > 1 else 0.0)
+        band[0, 0] = diagonal
         out[0] = rhs[0]
         for i in range(1, n):
-            factor = band[1, i - 1] / band[0, i - 1]
-            band[0, i] -= factor * band[1, i - 1]
+            upper = work.dynamic_band[1, i - 1] - k[i]
+            band[1, i - 1] = upper
+            factor = upper / diagonal
+            diagonal = work.dynamic_band[0, i] + k[i] + (k[i + 1] if i + 1 < n else 0.0) - factor * upper
+            band[0, i] = diagonal
             out[i] = rhs[i] - factor * out[i - 1]
         out[n - 1] /= band[0, n - 1]
         for i in range(n - 2, -1, -1):
@@ -253,7 +291,7 @@ def _solve(frame, dt, work):
             matrix[i, j] = v1 * damping[i, j]
         out[i] = rhs[i]
     for i in range(n):
-        matrix[i, i] += a0 * masses[i] + k[i] + (k[i + 1] if i + 1 < n else 0.0)
+        matrix[i, i] += work.dynamic_mass[i] + k[i] + (k[i + 1] if i + 1 < n else 0.0)
         if i + 1 < n:
             matrix[i, i + 1] -= k[i + 1]
             matrix[i + 1, i] -= k[i + 1]
@@ -279,36 +317,35 @@ def _solve(frame, dt, work):
         out[i] = total / matrix[i, i]
 
 
-@njit(cache=True)
-def integrate(ground, dt, frame, stories, walls, newton, out, start):
+@njit(cache=True, allocates=False)
+def integrate(ground, dt, frame, stories, walls, newton, out, start, work):
     """Newmark average acceleration with Newton-Raphson, rows 1 .. N-1 from the state in row 0, in place.
 
     ``ground`` (N,) mm/s^2; ``dt`` s; ``frame`` :class:`FrameArrays`; ``stories`` :class:`StoryArrays`
     (its committed state advances); ``walls`` :class:`WallArrays` (its bank's memory advances);
     ``newton`` :class:`NewtonSettings`; ``out`` :class:`Histories`, whose row 0 holds the starting state
     (rest, or a state the stories and walls were brought to by :func:`replay`); ``start``: the number of
-    steps the walls have committed before row 0 (0 from rest).  Returns the number of rows filled;
-    ``out.outcome`` receives (status, failed or collapsed story, Newton corrections).
+    steps the walls have committed before row 0 (0 from rest); ``work`` :class:`Scratch` of the building
+    (:func:`scratch`).  Returns the number of rows filled; ``out.outcome`` receives (status, failed or
+    collapsed story, Newton corrections).
     """
     steps, n = out.displacement.shape
     bank = walls.bank
     groups = walls.group_story.shape[0]
     geometric = frame.geometric
     a0, v1 = 4.0 / dt**2, 2.0 / dt
-    work = Scratch(np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
-                   np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros((2, n)), np.zeros((n, n)),
-                   np.zeros(groups), np.zeros(groups), np.zeros(groups))
-    initial_stiffness = np.empty(n)
-    for s in range(n):
-        initial_stiffness[s] = stories.parameters[s, 0] + geometric[s]
-    trial = np.zeros(n)
-    old_damping_force = np.zeros(n)  # C v of row 0 (loops, not slice operations: those compile numba's
-    for i in range(n):               # shape-error machinery)
+    for i in range(n):
+        work.dynamic_mass[i] = a0 * frame.masses[i]
+        work.dynamic_band[0, i] = work.dynamic_mass[i] + v1 * frame.damping[i, i]
+        work.dynamic_band[1, i] = v1 * frame.damping[i, i + 1] if i + 1 < n else 0.0
+        work.initial_stiffness[i] = stories.parameters[i, 0] + geometric[i]
+    old_damping_force, trial = work.old_damping_force, work.line_search
+    for i in range(n):  # C v of row 0 (loops, not slice operations: those compile numba's shape-error machinery)
+        old_damping_force[i] = 0.0
         for j in range(n):
             old_damping_force[i] += frame.damping[i, j] * out.velocity[0, j]
     total_iterations = 0
     for step in range(steps - 1):
-        u_n, v_n, a_n = out.displacement[step], out.velocity[step], out.acceleration[step]
         # 1. walls: their history for this step came with the last commit; their trial force is K_t d + H_n
         for s in range(n):
             work.wall_tangent[s] = 0.0
@@ -317,20 +354,21 @@ def integrate(ground, dt, frame, stories, walls, newton, out, start):
             work.wall_tangent[walls.group_story[g]] += bank.tangent[g]
             work.wall_history[walls.group_story[g]] += bank.history_force[g]
         # 2. Newton-Raphson from u_n; strategies in turn, each from u_n again
-        u = out.displacement[step + 1]
+        least = _step_constants(step, ground[step + 1], dt, frame, out, work)
+        u = work.displacement
         converged = False
         for strategy in range(3):
             if frame.linear and strategy > 0:
                 break
             for i in range(n):
-                u[i] = u_n[i]
+                u[i] = out.displacement[step, i]
             limit = newton.max_iterations if strategy < _INITIAL else newton.fallback_iterations
             if frame.linear:
                 limit = 1
             last_correction = np.inf
             exact_solve = False  # the last correction solved the model itself (no tangent changed since)
             for iteration in range(limit + 1):
-                scale = _residual(u, step, ground[step + 1], dt, frame, stories, out, work)
+                scale = _residual(u, dt, least, frame, stories, work)
                 norm = _largest(work.residual)
                 if exact_solve:
                     for s in range(n):
@@ -347,7 +385,7 @@ def integrate(ground, dt, frame, stories, walls, newton, out, start):
                     break
                 for s in range(n):
                     if strategy == _INITIAL:
-                        work.stiffness_diagonal[s] = initial_stiffness[s] + work.wall_tangent[s]
+                        work.stiffness_diagonal[s] = work.initial_stiffness[s] + work.wall_tangent[s]
                     else:
                         work.stiffness_diagonal[s] = work.story_tangent[s] + geometric[s] + work.wall_tangent[s]
                 _solve(frame, dt, work)
@@ -358,7 +396,7 @@ def integrate(ground, dt, frame, stories, walls, newton, out, start):
                     for _ in range(8):
                         for i in range(n):
                             trial[i] = u[i] + step_length * work.correction[i]
-                        _residual(trial, step, ground[step + 1], dt, frame, stories, out, work)
+                        _residual(trial, dt, least, frame, stories, work)
                         if _largest(work.residual) < norm:
                             break
                         step_length *= 0.5  # (after 8 halvings the 1/256 step is taken; the next residual judges it)
@@ -401,9 +439,11 @@ def integrate(ground, dt, frame, stories, walls, newton, out, start):
                 for g in range(groups):
                     out.group_amplitude[step + 1, g] = table[g, kernel.AMPLITUDE]
         for i in range(n):
-            increment = u[i] - u_n[i]
-            out.velocity[step + 1, i] = v1 * increment - v_n[i]
-            out.acceleration[step + 1, i] = a0 * increment - (4.0 / dt) * v_n[i] - a_n[i]
+            increment = u[i] - out.displacement[step, i]
+            out.displacement[step + 1, i] = u[i]
+            out.velocity[step + 1, i] = v1 * increment - out.velocity[step, i]
+            out.acceleration[step + 1, i] = (a0 * increment - (4.0 / dt) * out.velocity[step, i]
+                                             - out.acceleration[step, i])
         _record(step, ground, frame, stories, out, work, old_damping_force)
         # 4. collapse
         if frame.collapse_ratio > 0.0:
@@ -415,22 +455,25 @@ def integrate(ground, dt, frame, stories, walls, newton, out, start):
     return steps
 
 
-@njit(cache=True)
-def replay(drift, stories, walls, out):
+@njit(cache=True, allocates=False)
+def replay(drift, stories, walls, out, work):
     """Commit the stories and the walls through a drift history as the integrator commits them, and write
     the state of its last row into row 0 of ``out``'s story and wall histories.
 
     ``drift`` (k + 1, n) mm: every story's drift from rest (row 0) to step k; ``stories``
     :class:`StoryArrays` and ``walls`` :class:`WallArrays` at rest (their committed states advance k
     steps); ``out`` :class:`Histories` (row 0 of story_shear, story_wall_force, group_force and
-    group_strain is written).  A frame with fractional walls and hysteretic stories is hereditary: its
-    state is its history, so committing the same drifts reproduces the states the analysis reached.
+    group_strain is written); ``work`` :class:`Scratch` of the building.  A frame with fractional walls
+    and hysteretic stories is hereditary: its state is its history, so committing the same drifts
+    reproduces the states the analysis reached.
     Returns the walls' work over the history (N*mm, trapezoidal increments, as the integrator's energy).
     """
     steps, n = drift.shape
     groups = walls.group_story.shape[0]
-    deformation, force, strain = np.zeros(groups), np.zeros(groups), np.zeros(groups)
-    story_wall = np.zeros(n)
+    deformation, force, strain = work.wall_deformation, work.wall_force, work.wall_strain
+    story_wall = work.story_total
+    for s in range(n):
+        out.story_wall_force[0, s] = 0.0
     wall_work = 0.0
     for j in range(1, steps):
         for s in range(n):
@@ -458,7 +501,6 @@ def _record(step, ground, frame, stories, out, work, old_damping_force):
     of the outputs holds the previous step's values, row 0 is rest."""
     n = work.drift.shape[0]
     masses, geometric = frame.masses, frame.geometric
-    u, u_n = out.displacement[step + 1], out.displacement[step]
     kinetic = 0.0
     recoverable = 0.0
     input_work = 0.0
@@ -481,7 +523,7 @@ def _record(step, ground, frame, stories, out, work, old_damping_force):
         out.story_wall_force[step + 1, s] = wall_force
         out.drift[step + 1, s] = drift
     for i in range(n):
-        change = u[i] - u_n[i]
+        change = out.displacement[step + 1, i] - out.displacement[step, i]
         kinetic += 0.5 * masses[i] * out.velocity[step + 1, i] ** 2
         input_work -= 0.5 * masses[i] * (ground[step + 1] + ground[step]) * change
         damping_work += 0.5 * (work.damping_force[i] + old_damping_force[i]) * change

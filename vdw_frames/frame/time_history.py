@@ -32,9 +32,11 @@ from .integrator import (
     FrameArrays,
     Histories,
     NewtonRaphson,
+    Scratch,
     WallArrays,
     integrate,
     replay,
+    scratch,
 )
 from .results import FrameState, SimulationResult, energy_history
 
@@ -117,10 +119,11 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         group_amplitude=np.zeros((followed if bank.state(kernel.AMPLITUDE_NODES).any() else 0, len(groups))))
     stories = story_arrays(building.story_models, building.stiffnesses)
     wall_arrays = WallArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64), bank.arrays)
+    work = scratch(floors, len(groups))
     if initial_state is None:
         out.acceleration[0] = -ground[0]
     else:
-        _start_from(initial_state, frame, stories, wall_arrays, out)
+        _start_from(initial_state, frame, stories, wall_arrays, out, work)
     if followed:
         out.group_temperature[0] = bank.state(kernel.TEMPERATURE)
         out.group_heat[0] = bank.state(kernel.HEAT)
@@ -128,7 +131,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         out.wall_parameter_loss[0] = bank.state(kernel.PARAMETER_LOSS).sum()
         if out.group_amplitude.shape[0]:
             out.group_amplitude[0] = bank.state(kernel.AMPLITUDE)
-    filled = integrate(ground, dt, frame, stories, wall_arrays, newton.arrays(), out, start)
+    filled = integrate(ground, dt, frame, stories, wall_arrays, newton.arrays(), out, start, work)
     status, story_index, iterations = (int(x) for x in out.outcome)
     if status == FAILED:
         _warnings.warn(f"simulate: the step to t = {(start + filled) * dt:.6g} s did not converge "
@@ -194,7 +197,7 @@ def _check_state(state: FrameState, dt: float, steps: int, floors: int) -> int:
 
 
 def _start_from(state: FrameState, frame: FrameArrays, stories: StoryArrays, walls: WallArrays,
-                out: Histories) -> None:
+                out: Histories, work: Scratch) -> None:
     """Row 0 of ``out`` at ``state``: the stories and walls committed through its drift history
     (:func:`~vdw_frames.frame.integrator.replay`), the floors' motion, and the energy the state holds.
 
@@ -203,7 +206,7 @@ def _start_from(state: FrameState, frame: FrameArrays, stories: StoryArrays, wal
     dissipation of the stories and of the inherent damping starts at 0, and the input starts at their
     sum -- the balance closes from row 0 on.
     """
-    wall_work = replay(np.ascontiguousarray(state.drift), stories, walls, out)
+    wall_work = replay(np.ascontiguousarray(state.drift), stories, walls, out, work)
     drift = state.drift[-1]
     out.displacement[0], out.velocity[0], out.acceleration[0], out.drift[0] = (
         state.displacement, state.velocity, state.acceleration, drift)
