@@ -101,18 +101,21 @@ def test_the_diffusive_representation_reproduces_s_to_the_r(dt):
 
 
 def test_node_coefficients_integrate_a_relaxing_mode_exactly():
-    # For an input rising linearly by dx over a step, phi' = -xi phi + dx/dt: its end value and int xi phi^2 dt
-    # against solve_ivp, from slow (z = 1e-4) to fast (z = 30) modes.
+    # For an input rising linearly by dx over a step, phi' = -xi phi + dx/dt: its end value and its dissipation
+    # int xi phi^2 dt (work less the change of phi^2 / 2) against solve_ivp, from slow (z = 1e-4, the series)
+    # to fast (z = 30) modes.
     dt, dx, phi0 = 0.01, 0.7, -0.3
-    nodes = np.array([1e-2, 1.0, 30.0, 3000.0])
+    nodes = np.array([1e-2, 1.0, 4.0, 30.0, 3000.0])
     coefficients = node_coefficients(nodes, dt)
-    for xi, (e, ratio, A, B, C) in zip(nodes, coefficients, strict=True):
+    for xi, (e, gain, work) in zip(nodes, coefficients, strict=True):
         def rate(t, y, xi=xi):
             return [-xi * y[0] + dx / dt, xi * y[0] ** 2]
 
         exact = solve_ivp(rate, (0.0, dt), [phi0, 0.0], rtol=1e-12, atol=1e-15, method="DOP853").y[:, -1]
-        assert e * phi0 + ratio * dx == pytest.approx(exact[0], rel=1e-9, abs=1e-14)
-        assert A * phi0**2 + B * phi0 * dx + C * dx**2 == pytest.approx(exact[1], rel=1e-8, abs=1e-14)
+        end = e * phi0 + gain * dx
+        assert end == pytest.approx(exact[0], rel=1e-9, abs=1e-14)
+        dissipated = gain * phi0 * dx + work * dx**2 - 0.5 * (end**2 - phi0**2)
+        assert dissipated == pytest.approx(exact[1], rel=1e-8, abs=1e-14)
 
 
 # ------------------------------------------------------------------------------- heat

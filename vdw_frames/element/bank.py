@@ -161,13 +161,13 @@ class WallBank:
         table[:, kernel.SHIFT_ANCHOR] = np.nan  # no exp taken yet
         tracked = np.flatnonzero(table[:, kernel.ENERGY])
         xi = thermal.diffusive_nodes(self.dt) if tracked.size else np.zeros(0)
-        e, ratio, A, B, C = thermal.node_coefficients(xi, self.dt).T
-        nodes = np.zeros((count, 5, xi.size))
+        e, gain, work = thermal.node_coefficients(xi, self.dt).T
+        nodes = np.zeros((count, 4, xi.size))
         for w in tracked.tolist():
-            weights, table[w, kernel.TAIL_DASHPOT], table[w, kernel.TAIL_SPRING] = \
-                thermal.diffusive_weights(table[w, kernel.ORDER], xi)
-            nodes[w] = e, ratio, weights * A, weights * B, weights
-            table[w, kernel.NODE_C_SUM] = float(weights @ C)
+            weights, dashpot, table[w, kernel.TAIL_SPRING] = thermal.diffusive_weights(table[w, kernel.ORDER], xi)
+            table[w, kernel.TAIL_DASHPOT] = dashpot / self.dt  # its heat is dashpot dx^2 / dt
+            nodes[w] = e, gain, weights * gain, weights
+            table[w, kernel.NODE_WORK_SUM] = float(weights @ work)
         return kernel.WallStates(dt=self.dt, table=table, nodes=nodes, node_state=np.zeros((count, 2, xi.size)),
                                  amplitude_table=amplitude_table)
 

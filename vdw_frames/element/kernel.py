@@ -69,25 +69,27 @@ _LN10 = math.log(10.0)
  LIMIT_STRAIN, LIMIT_STRESS, LIMIT_TEMPERATURE, RESIDUAL, FAILURE_STEP, FAILURE_MODE, SCALE, OUTSIDE,
  PREVIOUS_STRAIN, PREVIOUS_DASHPOT_STRAIN, TAIL_DASHPOT, TAIL_SPRING,
  AMPLITUDE_NODES, TURN, EXTREME, DIRECTION, LAST_AMPLITUDE, AMPLITUDE, BELOW_RANGE, ABOVE_RANGE,
- NODE_C_SUM, FOLLOWED_AT_TURN, CONFIRMED_AT, ENERGY, AMPLITUDE_LOW, AMPLITUDE_HIGH,
- AMPLITUDE_USED, AT_G1, AT_G2, AT_ETA1, AT_ETA2, SHIFT_ANCHOR, SHIFT_FACTOR) = range(54)
-STATE_FIELDS = 54
+ NODE_WORK_SUM, FOLLOWED_AT_TURN, CONFIRMED_AT, ENERGY, AMPLITUDE_LOW, AMPLITUDE_HIGH,
+ AMPLITUDE_USED, AT_G1, AT_G2, AT_ETA1, AT_ETA2, SHIFT_ANCHOR, SHIFT_FACTOR, NODE_SQUARE_1, NODE_SQUARE_2) = range(56)
+STATE_FIELDS = 56
 """TRACKED: 1 when the wall's state is followed (a thermal description, limits or amplitude following);
 ENERGY: 1 when its heat and stored energy are (a thermal description or limits: the diffusive nodes);
 BASE_*: G1, G2 (MPa), eta1, eta2 (MPa s^r) at the reference temperature (fixed walls); ORDER: r;
 T_*: the thermal row (thermal.thermal_row: law kind (0: none), its two parameters and reference (degC),
-rho c V (N*mm/K), ambient (degC), exp(-dt / tau), (tau / dt)(1 - exp(-dt / tau)), validity range (degC));
+rho c V (N*mm/K), ambient (degC), exp(-dt / tau), (tau / dt)(1 - exp(-dt / tau)) / (rho c V) (K per N*mm),
+validity range (degC));
 TEMPERATURE (degC), HEAT (N*mm dissipated since rest), STORED (N*mm), RELEASED (N*mm lost at failure),
 PARAMETER_LOSS (N*mm the wall's stored energy lost, at no work, as its parameters changed with
 temperature or amplitude: positive as it softens); LIMIT_* (strain -, stress
 MPa, temperature degC; inf: none), RESIDUAL (force factor after failure), FAILURE_STEP (-1 intact),
 FAILURE_MODE (FAILURE_MODES index), SCALE (force factor now), OUTSIDE (first step outside the shift law's
 range, -1); PREVIOUS_*: the springpots' inputs eps, eps_v at the last commit; TAIL_*: the diffusive tails
-(dashpot s^(1-r), spring s^-r); amplitude tracking (amplitude-dependent walls): AMPLITUDE_NODES (K, 0 for
+(dashpot s^(1-r) over dt, spring s^-r); amplitude tracking (amplitude-dependent walls): AMPLITUDE_NODES (K, 0 for
 fixed parameters), TURN and EXTREME (strain at the last reversal, extreme of the current half-cycle),
 DIRECTION (+1, -1, 0 at rest), LAST_AMPLITUDE (of the last completed half-cycle), AMPLITUDE (the one the
-parameters follow), BELOW_RANGE and ABOVE_RANGE (steps spent outside the table's range); NODE_C_SUM:
-sum_k c_k C_k of the diffusive nodes (WallStates.nodes); FOLLOWED_AT_TURN and CONFIRMED_AT: the amplitude
+parameters follow), BELOW_RANGE and ABOVE_RANGE (steps spent outside the table's range); NODE_WORK_SUM:
+sum_k c_k D_k of the diffusive nodes (WallStates.nodes), NODE_SQUARE_1 and NODE_SQUARE_2: sum_k c_k phi_k^2
+of the Kelvin and the Maxwell springpot at the last commit; FOLLOWED_AT_TURN and CONFIRMED_AT: the amplitude
 followed, and the strain, when the last reversal was confirmed; AMPLITUDE_LOW and AMPLITUDE_HIGH: the
 amplitude table's range (-); AMPLITUDE_USED and AT_*: the amplitude the coefficients were last
 interpolated at and G1, G2, eta1, eta2 there (reused while the amplitude stays); SHIFT_ANCHOR and
@@ -102,7 +104,7 @@ class WallStates(NamedTuple):
 
     dt: float  # s
     table: np.ndarray  # (W, STATE_FIELDS): the columns above
-    nodes: np.ndarray  # (W, 5, N): e, (1 - e) / z, c_k A_k, c_k B_k, c_k of every node (thermal.node_coefficients)
+    nodes: np.ndarray  # (W, 4, N): e, g, c_k g, c_k of every node (thermal.node_coefficients, diffusive_weights)
     node_state: np.ndarray  # (W, 2, N): phi of the Kelvin (eps) and Maxwell (eps_v) springpots
     amplitude_table: np.ndarray  # (W, K, 5): log strain, G1, G2, eta1, eta2 at the amplitude nodes
 
@@ -239,39 +241,41 @@ def wall_response(bank, w, deformation):
 def _springpots(nodes, node_state, table, w, dt, strain, strain_v):
     """(heat of the Kelvin springpot, of the Maxwell one, their stored energies), each per unit volume and
     unit viscosity (times eta: MPa = N*mm/mm^3), over the step that took their inputs to ``strain`` (eps)
-    and ``strain_v`` (eps_v), in one pass over the diffusive nodes of wall ``w`` (nodes (W, 5, N),
-    node_state (W, 2, N), table (W, STATE_FIELDS)): each node exactly for an input linear over the step
-    (thermal.node_coefficients), the tails in closed form.  Advances the nodes.  Every node's heat is a
-    positive semi-definite form; the sums are clipped at 0 against rounding: an adiabatic wall never cools."""
+    and ``strain_v`` (eps_v), in one pass over the diffusive nodes of wall ``w`` (nodes (W, 4, N),
+    node_state (W, 2, N), table (W, STATE_FIELDS)), each node exactly for an input linear over the step
+    (thermal.node_coefficients), the tails in closed form.  Advances the nodes.
+
+    A node's heat over the step is its work less the change of its stored energy,
+    c (g phi dx + D dx^2) - c (phi'^2 - phi^2) / 2 (thermal module docstring): two sums a node, the stored
+    energy before the step kept from the last (NODE_SQUARE_*).  It is a positive semi-definite form of
+    (phi, dx); the sums are clipped at 0 against rounding: an adiabatic wall never cools."""
     dx = strain - table[w, PREVIOUS_STRAIN]
     dv = strain_v - table[w, PREVIOUS_DASHPOT_STRAIN]
-    # sum_k c_k (A phi^2 + B phi dx + C dx^2), the C part summed once (NODE_C_SUM)
+    work_1 = 0.0
+    work_2 = 0.0
     square_1 = 0.0
     square_2 = 0.0
-    cross_1 = 0.0
-    cross_2 = 0.0
-    stored_1 = 0.0
-    stored_2 = 0.0
-    for k in range(nodes.shape[2]):
-        phi = node_state[w, 0, k]
-        psi = node_state[w, 1, k]
-        square_1 += nodes[w, 2, k] * phi * phi
-        square_2 += nodes[w, 2, k] * psi * psi
-        cross_1 += nodes[w, 3, k] * phi
-        cross_2 += nodes[w, 3, k] * psi
-        phi = nodes[w, 0, k] * phi + nodes[w, 1, k] * dx
-        psi = nodes[w, 0, k] * psi + nodes[w, 1, k] * dv
-        node_state[w, 0, k] = phi
-        node_state[w, 1, k] = psi
-        stored_1 += nodes[w, 4, k] * phi * phi
-        stored_2 += nodes[w, 4, k] * psi * psi
-    heat_1 = square_1 + cross_1 * dx + table[w, NODE_C_SUM] * dx * dx
-    heat_2 = square_2 + cross_2 * dv + table[w, NODE_C_SUM] * dv * dv
-    dashpot, spring = table[w, TAIL_DASHPOT] / dt, table[w, TAIL_SPRING]
+    # Separate passes (reads, then updates, then reads): each a simple loop the compiler vectorises.
+    count = nodes.shape[2]
+    for k in range(count):
+        work_1 += nodes[w, 2, k] * node_state[w, 0, k]
+        work_2 += nodes[w, 2, k] * node_state[w, 1, k]
+    for k in range(count):
+        node_state[w, 0, k] = nodes[w, 0, k] * node_state[w, 0, k] + nodes[w, 1, k] * dx
+    for k in range(count):
+        node_state[w, 1, k] = nodes[w, 0, k] * node_state[w, 1, k] + nodes[w, 1, k] * dv
+    for k in range(count):
+        square_1 += nodes[w, 3, k] * node_state[w, 0, k] * node_state[w, 0, k]
+        square_2 += nodes[w, 3, k] * node_state[w, 1, k] * node_state[w, 1, k]
+    heat_1 = dx * (work_1 + dx * table[w, NODE_WORK_SUM]) - 0.5 * (square_1 - table[w, NODE_SQUARE_1])
+    heat_2 = dv * (work_2 + dv * table[w, NODE_WORK_SUM]) - 0.5 * (square_2 - table[w, NODE_SQUARE_2])
+    dashpot, spring = table[w, TAIL_DASHPOT], table[w, TAIL_SPRING]
     table[w, PREVIOUS_STRAIN] = strain
     table[w, PREVIOUS_DASHPOT_STRAIN] = strain_v
+    table[w, NODE_SQUARE_1] = square_1
+    table[w, NODE_SQUARE_2] = square_2
     return (max(heat_1, 0.0) + dashpot * dx * dx, max(heat_2, 0.0) + dashpot * dv * dv,
-            0.5 * (stored_1 + spring * strain * strain), 0.5 * (stored_2 + spring * strain_v * strain_v))
+            0.5 * (square_1 + spring * strain * strain), 0.5 * (square_2 + spring * strain_v * strain_v))
 
 
 @njit(cache=True, inline="always")
@@ -401,9 +405,11 @@ def update_walls(states, constants, values, force, count):
         maxwell_branch = G2 > 0.0 and eta2 > 0.0  # a Maxwell branch without G2 or eta2 carries no stress
         springs = 0.5 * G1 * strain * strain
         strain_v = 0.0
+        compliance = 0.0
         if maxwell_branch:
-            strain_v = strain - maxwell / G2
-            springs += 0.5 * maxwell * maxwell / G2
+            compliance = 1.0 / G2
+            strain_v = strain - maxwell * compliance
+            springs += 0.5 * maxwell * maxwell * compliance
         heat_1, heat_2, stored_1, stored_2 = _springpots(nodes, node_state, table, w, dt, strain, strain_v)
         if not maxwell_branch:
             heat_2 = stored_2 = 0.0
@@ -413,7 +419,7 @@ def update_walls(states, constants, values, force, count):
         if table[w, T_CAPACITY] > 0.0:
             ambient = table[w, T_AMBIENT]
             temperature = (ambient + (table[w, TEMPERATURE] - ambient) * table[w, T_DECAY]
-                           + heat / table[w, T_CAPACITY] * table[w, T_GAIN])
+                           + heat * table[w, T_GAIN])
             table[w, TEMPERATURE] = temperature
             if table[w, OUTSIDE] < 0.0 and not table[w, T_LOW] <= temperature <= table[w, T_HIGH]:
                 table[w, OUTSIDE] = count + 1
@@ -439,7 +445,9 @@ def update_walls(states, constants, values, force, count):
         # difference does no work and warms nothing in this model; it is accounted, not hidden in the heat.
         springs = 0.5 * constants[w, 0] * strain * strain
         if maxwell_branch and constants[w, 1] > 0.0:
-            springs += 0.5 * maxwell * maxwell / constants[w, 1]
+            if constants[w, 1] != G2:  # (G2 follows the amplitude only)
+                compliance = 1.0 / constants[w, 1]
+            springs += 0.5 * maxwell * maxwell * compliance
         renewed = ((springs + constants[w, 2] * stored_1 + constants[w, 3] * stored_2)
                    * constants[w, 4] * constants[w, 5] * table[w, SCALE])
         if not failing:
