@@ -425,8 +425,8 @@ def integrate(ground, dt, frame, stories, walls, newton, out, start, work):
             out.group_force[step + 1, g] = work.wall_force[g]
             out.group_strain[step + 1, g] = work.wall_strain[g]
             out.peak_group_strain[g] = max(out.peak_group_strain[g], abs(work.wall_strain[g]))
+        table = bank.states.table
         if out.group_heat.shape[0] > 0:
-            table = bank.states.table
             stored, parameter_loss = 0.0, 0.0
             for g in range(groups):
                 out.group_temperature[step + 1, g] = table[g, kernel.TEMPERATURE]
@@ -435,9 +435,9 @@ def integrate(ground, dt, frame, stories, walls, newton, out, start, work):
                 parameter_loss += table[g, kernel.PARAMETER_LOSS]
             out.wall_stored[step + 1] = stored
             out.wall_parameter_loss[step + 1] = parameter_loss
-            if out.group_amplitude.shape[0] > 0:
-                for g in range(groups):
-                    out.group_amplitude[step + 1, g] = table[g, kernel.AMPLITUDE]
+        if out.group_amplitude.shape[0] > 0:
+            for g in range(groups):
+                out.group_amplitude[step + 1, g] = table[g, kernel.AMPLITUDE]
         for i in range(n):
             increment = u[i] - out.displacement[step, i]
             out.displacement[step + 1, i] = u[i]

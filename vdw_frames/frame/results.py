@@ -296,7 +296,8 @@ class SimulationResult:
     @cached_property
     def wall_temperature(self) -> np.ndarray | None:
         """Temperature of every wall's viscoelastic layers (degC), (steps, walls); NaN for a wall without a
-        thermal description; None when no wall is followed (:class:`~vdw_frames.element.thermal.ThermalProperties`)."""
+        thermal description; None when no wall's heat is followed (a thermal description or limits:
+        :class:`~vdw_frames.element.thermal.ThermalProperties`, :class:`~vdw_frames.WallLimits`)."""
         if self.group_temperature.shape[0] == 0:
             return None
         return np.take(self.group_temperature, self.wall_group, axis=1)
@@ -304,7 +305,7 @@ class SimulationResult:
     @property
     def peak_temperature_rise(self) -> np.ndarray | None:
         """Largest temperature rise of every wall over its temperature at rest (K), (walls,); NaN without a
-        thermal description; None when no wall is followed."""
+        thermal description; None when no wall's heat is followed."""
         temperature = self.wall_temperature
         if temperature is None:
             return None
@@ -312,7 +313,8 @@ class SimulationResult:
 
     @cached_property
     def wall_heat(self) -> np.ndarray | None:
-        """Energy every wall has dissipated since rest (N*mm), (steps, walls); None when no wall is followed."""
+        """Energy every wall has dissipated since rest (N*mm), (steps, walls); None when no wall's heat is followed
+        (a thermal description or limits)."""
         if self.group_heat.shape[0] == 0:
             return None
         return np.take(self.group_heat, self.wall_group, axis=1) * self.wall_share

@@ -99,7 +99,8 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
 
     groups, group_of_wall = group_walls(walls)
     bank = WallBank(tuple(wall for _, wall in groups), dt, steps, method, memory)
-    followed = rows if bank.arrays.followed else 0
+    heated = rows if bank.state(kernel.ENERGY).any() else 0  # walls whose heat and stored energy are followed
+    amplitudes = rows if bank.state(kernel.AMPLITUDE_NODES).any() else 0
     heights = np.asarray(building.story_heights) if building.story_heights is not None else np.ones(floors)
     collapse_ratio = collapse_drift_ratio if (collapse_drift_ratio and building.story_heights) else 0.0
     frame = FrameArrays(
@@ -114,9 +115,9 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         base_shear=np.zeros(rows), group_force=np.zeros((rows, len(groups))),
         group_strain=np.zeros((rows, len(groups))), peak_group_strain=np.zeros(len(groups)),
         energy=np.zeros((rows, ENERGIES)), outcome=np.zeros(3, dtype=np.int64),
-        group_temperature=np.zeros((followed, len(groups))), group_heat=np.zeros((followed, len(groups))),
-        wall_stored=np.zeros(followed), wall_parameter_loss=np.zeros(followed),
-        group_amplitude=np.zeros((followed if bank.state(kernel.AMPLITUDE_NODES).any() else 0, len(groups))))
+        group_temperature=np.zeros((heated, len(groups))), group_heat=np.zeros((heated, len(groups))),
+        wall_stored=np.zeros(heated), wall_parameter_loss=np.zeros(heated),
+        group_amplitude=np.zeros((amplitudes, len(groups))))
     stories = story_arrays(building.story_models, building.stiffnesses)
     wall_arrays = WallArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64), bank.arrays)
     work = scratch(floors, len(groups))
@@ -124,13 +125,13 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         out.acceleration[0] = -ground[0]
     else:
         _start_from(initial_state, frame, stories, wall_arrays, out, work)
-    if followed:
+    if heated:
         out.group_temperature[0] = bank.state(kernel.TEMPERATURE)
         out.group_heat[0] = bank.state(kernel.HEAT)
         out.wall_stored[0] = bank.state(kernel.STORED).sum()
         out.wall_parameter_loss[0] = bank.state(kernel.PARAMETER_LOSS).sum()
-        if out.group_amplitude.shape[0]:
-            out.group_amplitude[0] = bank.state(kernel.AMPLITUDE)
+    if amplitudes:
+        out.group_amplitude[0] = bank.state(kernel.AMPLITUDE)
     filled = integrate(ground, dt, frame, stories, wall_arrays, newton.arrays(), out, start, work)
     status, story_index, iterations = (int(x) for x in out.outcome)
     if status == FAILED:
@@ -155,7 +156,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     _warn_temperature_range(groups, bank, dt)
     failure = np.stack([bank.state(kernel.FAILURE_STEP), bank.state(kernel.FAILURE_MODE)], axis=1).astype(np.int64)
     wall_energies = None
-    if followed and bank.state(kernel.ENERGY).all():
+    if heated and bank.state(kernel.ENERGY).all():
         released = np.zeros(filled)  # from each failure's row on, the stored energy it released
         for step, energy in zip(failure[:, 0], bank.state(kernel.RELEASED), strict=True):
             if step >= 0:
