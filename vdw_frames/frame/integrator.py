@@ -32,7 +32,12 @@ average acceleration balances energy to the iteration tolerance.
 The compiled functions take their arrays as named tuples (:class:`FrameArrays`, :class:`StoryArrays`,
 :class:`~vdw_frames.element.kernel.BankArrays`, :class:`Histories`, :class:`Scratch`), whose fields
 give every array's shape; nothing here imports the drivers above it
-(:mod:`vdw_frames.frame.time_history`, :mod:`vdw_frames.frame.simulation`).
+(:mod:`vdw_frames.frame.time_history`, :mod:`vdw_frames.frame.simulation`).  The step loops allocate
+nothing (their work arrays come from :func:`scratch`): they are compiled without numba's reference
+counting, which cost more than the step's arithmetic (``allocates=False`` in :mod:`vdw_frames._jit`).
+Newmark's velocity and acceleration are affine in the trial displacements, so the parts of the residual
+that depend only on the committed state are formed once a step (:func:`_step_constants`) and the
+dynamic stiffness (4/dt^2) M + (2/dt) C once a run.
 
 Units: N, mm, s, tonne.
 """
