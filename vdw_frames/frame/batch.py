@@ -77,7 +77,7 @@ class BatchTask:
 
 def _story_temperature_rise(result: SimulationResult) -> np.ndarray | None:
     """The largest temperature rise (K) of the walls of each story (0 where none has a thermal description);
-    None when no wall is followed."""
+    None when no wall's heat is followed (a thermal description or limits)."""
     rise = result.peak_temperature_rise
     if rise is None:
         return None
