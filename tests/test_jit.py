@@ -129,7 +129,7 @@ def test_a_truncated_cache_file_is_recompiled_with_one_warning(tmp_path, kind):
 
 def test_a_full_disk_under_the_cache_runs_without_it_with_one_warning(tmp_path):
     # simulate raised a raw OSError [Errno 28] when numba could not write its cache.
-    full = """from numba.core import caching, errors
+    full = """from numba.core import caching
     def full(self, *args):
         raise OSError(28, "No space left on device")
     caching.IndexDataCacheFile._open_for_write = full"""

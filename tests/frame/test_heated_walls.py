@@ -107,3 +107,21 @@ class _Serial:
 
     def shutdown(self, *args, **kwargs):
         pass
+
+
+def test_walls_that_only_follow_their_amplitude_record_it_and_no_temperature_or_heat():
+    # The same family heating at an enormous heat capacity from its law's reference (coefficients as given,
+    # temperature still): its amplitudes come through the heated walls' recording, which the amplitude-only
+    # walls no longer share.
+    family = vdw.paper.strain_dependent(area=3e5, thickness=8.0)
+    still = heated(family, heat_capacity=1e12, temperature=ISD110_LOSS_PEAK.reference)
+    motion = default_record().scaled(1.5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        following, reference = (vdw.simulate(five_story([wall]), motion) for wall in (family, still))
+    assert following.wall_temperature is None and following.wall_heat is None
+    assert following.peak_temperature_rise is None
+    assert reference.wall_temperature is not None and np.ptp(reference.wall_temperature) < 1e-6
+    assert following.wall_amplitude is not None and following.wall_amplitude.shape == (following.time.size, 5)
+    assert np.all(following.wall_amplitude[0] == 0.0) and following.wall_amplitude.max() > 1.0
+    np.testing.assert_allclose(following.wall_amplitude, reference.wall_amplitude, rtol=0.0, atol=1e-9)

@@ -167,16 +167,16 @@ class Scratch(NamedTuple):
     wall_deformation: np.ndarray  # (G,) mm
     wall_force: np.ndarray  # (G,) N
     wall_strain: np.ndarray  # (G,) -
+    line_search: np.ndarray  # (n,) displacements tried by the line search, mm
+    old_damping_force: np.ndarray  # (n,) C v of the last committed step, N
     # Constant over the run:
     dynamic_mass: np.ndarray  # (n,) (4/dt^2) m, N/mm
     dynamic_band: np.ndarray  # (2, n) (4/dt^2) M + (2/dt) C: diagonal, super-diagonal (tridiagonal only), N/mm
+    initial_stiffness: np.ndarray  # (n,) k_0 + k_G, N/mm
     # Constant over a step (from the committed state of row n):
     step_force: np.ndarray  # (n,) m (a0 u_n + (4/dt) v_n + a_n) + C ((2/dt) u_n + v_n) - m a_g, N
     damping_offset: np.ndarray  # (n,) C ((2/dt) u_n + v_n), N
     inertia_scale: np.ndarray  # (n,) m ((4/dt) |v_n| + |a_n|), N
-    initial_stiffness: np.ndarray  # (n,) k_0 + k_G, N/mm
-    line_search: np.ndarray  # (n,) displacements tried by the line search, mm
-    old_damping_force: np.ndarray  # (n,) C v of the last committed step, N
 
 
 def scratch(stories: int, groups: int) -> Scratch:
