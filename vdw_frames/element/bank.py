@@ -168,7 +168,7 @@ class WallBank:
             table[w, kernel.TAIL_DASHPOT] = dashpot / self.dt  # its heat is dashpot dx^2 / dt
             nodes[w] = e, gain, weights * gain, weights
             table[w, kernel.NODE_WORK_SUM] = float(weights @ work)
-        return kernel.WallStates(dt=self.dt, table=table, nodes=nodes, node_state=np.zeros((count, 2, xi.size)),
+        return kernel.WallStates(table=table, nodes=nodes, node_state=np.zeros((count, 2, xi.size)),
                                  amplitude_table=amplitude_table)
 
     def state(self, column: int) -> np.ndarray:

@@ -102,7 +102,6 @@ class WallStates(NamedTuple):
     """Every wall's state beyond its memory (W walls, N diffusive nodes, K amplitude nodes), changed only by
     :func:`update_walls`."""
 
-    dt: float  # s
     table: np.ndarray  # (W, STATE_FIELDS): the columns above
     nodes: np.ndarray  # (W, 4, N): e, g, c_k g, c_k of every node (thermal.node_coefficients, diffusive_weights)
     node_state: np.ndarray  # (W, 2, N): phi of the Kelvin (eps) and Maxwell (eps_v) springpots
@@ -238,7 +237,7 @@ def wall_response(bank, w, deformation):
 
 
 @njit(cache=True, inline="always")
-def _springpots(nodes, node_state, table, w, dt, strain, strain_v):
+def _springpots(nodes, node_state, table, w, strain, strain_v):
     """(heat of the Kelvin springpot, of the Maxwell one, their stored energies), each per unit volume and
     unit viscosity (times eta: MPa = N*mm/mm^3), over the step that took their inputs to ``strain`` (eps)
     and ``strain_v`` (eps_v), from the diffusive nodes of wall ``w`` (nodes (W, 4, N),
@@ -389,7 +388,7 @@ def update_walls(states, constants, values, force, count):
     committed strain and Maxwell stress): each followed wall's heat over the step, stored energy,
     temperature, amplitude, limits (``states``: :class:`WallStates`), and the coefficients of the next step
     (``constants`` (W, 7)).  One call a step for the whole bank: a call costs more than a wall's update."""
-    table, nodes, node_state, dt = states.table, states.nodes, states.node_state, states.dt
+    table, nodes, node_state = states.table, states.nodes, states.node_state
     amplitude_table = states.amplitude_table
     for w in range(constants.shape[0]):
         if table[w, TRACKED] == 0.0:
@@ -410,7 +409,7 @@ def update_walls(states, constants, values, force, count):
             compliance = 1.0 / G2
             strain_v = strain - maxwell * compliance
             springs += 0.5 * maxwell * maxwell * compliance
-        heat_1, heat_2, stored_1, stored_2 = _springpots(nodes, node_state, table, w, dt, strain, strain_v)
+        heat_1, heat_2, stored_1, stored_2 = _springpots(nodes, node_state, table, w, strain, strain_v)
         if not maxwell_branch:
             heat_2 = stored_2 = 0.0
         heat = (eta1 * heat_1 + eta2 * heat_2) * volume  # N*mm
