@@ -197,6 +197,12 @@ def _story_state(stories, work):
 
 
 @njit(cache=True, inline="always")
+def _damped_floors(frame, i, n):
+    """The floors j (low <= j < high) whose velocities enter floor i's damping force (C's nonzero columns)."""
+    return (max(i - 1, 0), min(i + 2, n)) if frame.tridiagonal else (0, n)
+
+
+@njit(cache=True, inline="always")
 def _step_constants(step, ground, dt, frame, out, work):
     """The parts of the residual fixed by the committed state of row ``step`` and the ground acceleration
     ``ground`` (mm/s^2) of step ``step`` + 1, into ``work``; returns the step's least force scale (N)."""
@@ -207,7 +213,7 @@ def _step_constants(step, ground, dt, frame, out, work):
     least = 1.0
     for i in range(n):
         offset = 0.0
-        low, high = (max(i - 1, 0), min(i + 2, n)) if frame.tridiagonal else (0, n)
+        low, high = _damped_floors(frame, i, n)
         for j in range(low, high):
             offset += damping[i, j] * (v1 * displacement[step, j] + velocity[step, j])
         work.damping_offset[i] = offset
@@ -241,7 +247,7 @@ def _residual(u, dt, least, frame, stories, work):
     scale = least
     for i in range(n):
         damped = 0.0
-        low, high = (max(i - 1, 0), min(i + 2, n)) if frame.tridiagonal else (0, n)
+        low, high = _damped_floors(frame, i, n)
         for j in range(low, high):
             damped += damping[i, j] * u[j]
         viscous = v1 * damped - work.damping_offset[i]
