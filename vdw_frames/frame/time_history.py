@@ -99,7 +99,8 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
 
     groups, group_of_wall = group_walls(walls)
     bank = WallBank(tuple(wall for _, wall in groups), dt, steps, method, memory)
-    heated = rows if bank.state(kernel.ENERGY).any() else 0  # walls whose heat and stored energy are followed
+    energy_followed = bank.state(kernel.ENERGY)  # walls whose heat and stored energy are followed
+    heated = rows if energy_followed.any() else 0
     amplitudes = rows if bank.state(kernel.AMPLITUDE_NODES).any() else 0
     heights = np.asarray(building.story_heights) if building.story_heights is not None else np.ones(floors)
     collapse_ratio = collapse_drift_ratio if (collapse_drift_ratio and building.story_heights) else 0.0
@@ -156,7 +157,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     _warn_temperature_range(groups, bank, dt)
     failure = np.stack([bank.state(kernel.FAILURE_STEP), bank.state(kernel.FAILURE_MODE)], axis=1).astype(np.int64)
     wall_energies = None
-    if heated and bank.state(kernel.ENERGY).all():
+    if heated and energy_followed.all():
         released = np.zeros(filled)  # from each failure's row on, the stored energy it released
         for step, energy in zip(failure[:, 0], bank.state(kernel.RELEASED), strict=True):
             if step >= 0:
