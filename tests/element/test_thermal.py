@@ -11,6 +11,8 @@ from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
 from vdw_frames import FDMKDamper, SupportedDamper
+from vdw_frames.element.bank import WallBank
+from vdw_frames.element.kernel import SHIFT_ANCHOR, TEMPERATURE
 from vdw_frames.element.thermal import (
     ISD110_LOSS_PEAK,
     WLF,
@@ -130,6 +132,28 @@ def test_the_heat_of_a_steady_cycle_equals_the_loop_area(r):
     last_cycle = heat[-1] - heat[-1 - per_cycle]
     loop_area = np.pi * float(wall.loss_stiffness(frequency)) * amplitude**2
     assert last_cycle == pytest.approx(loop_area, rel=5e-3)
+
+
+@pytest.mark.parametrize("law", LAWS, ids=["WLF", "Arrhenius", "LogLinear"])
+def test_a_heating_wall_steps_with_the_viscosities_of_its_committed_temperature(law):
+    # The compiled update takes a_T^r from an anchor's exp and a series in the small change since (kernel
+    # set_coefficients); the reference is the law evaluated afresh, 10^(r log10 a_T), at the committed
+    # temperature (measured within 9e-16).  Dropping the x^4 term shows (4e-14 at x = 1e-3).
+    r, dt = 0.6, 0.005
+    wall = thermal_wall(law=law, r=r)  # heated by 30-35 K, within every law's valid range (kept)
+    bank = WallBank((wall,), dt, 1200, "damped", "fast")
+    start = bank.arrays.constants[0, 2:4].copy()  # eta1, eta2 at 21.2 degC, the laws' reference
+    anchors, last = 0, math.nan
+    for d in 15.0 * np.sin(2 * np.pi * 1.5 * np.arange(1, 1201) * dt):
+        bank.commit([d])
+        temperature = float(bank.state(TEMPERATURE)[0])
+        factor = 10.0 ** (r * law.log10_shift(temperature))
+        np.testing.assert_allclose(bank.arrays.constants[0, 2:4], start * factor, rtol=1e-14)
+        anchor = float(bank.state(SHIFT_ANCHOR)[0])
+        anchors += anchor != last
+        last = anchor
+    assert 20.0 < temperature - 21.2 < law.valid[1] - 21.2
+    assert anchors > 20  # many anchors, and many steps on the series between them
 
 
 def test_an_isothermal_thermal_wall_steps_exactly_as_the_plain_wall():
