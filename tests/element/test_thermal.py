@@ -249,6 +249,152 @@ def test_the_coupled_problem_of_a_classical_wall_matches_solve_ivp_at_first_orde
     assert np.all(errors[:-1] / errors[1:] >= 1.8)  # first order or better under halving
 
 
+def dense_springpot(r, low, high, per_decade):
+    """(xi_k rad/s, c_k s^-r, tail dashpot s^(1-r), tail spring s^-r): D^r x = sum_k c_k phi_k + dashpot x' +
+    spring x, phi_k' = -xi_k phi_k + x', from rest; written here from the diffusive representation
+    D^r x = int mu(xi) phi(xi) d xi, mu = sin(r pi) / pi xi^(r - 1), independently of the package's nodes.
+
+    The trapezoidal rule in u = ln xi (mu d xi = sin(r pi) / pi e^(r u) du), ``per_decade`` nodes a decade from
+    ``low`` to ``high``, the end nodes at half weight.  The rest of the infinite grid, in its asymptotic form, is
+    summed exactly: above ``high`` (xi >> omega) a mode is a dashpot (s / (s + xi) ~ s / xi), below ``low``
+    (xi << omega, xi t << 1) a spring (s / (s + xi) ~ 1); with the end node's other half,
+    sum_{j >= 0}' h e^(-a (u_end + j h)) = e^(-a u_end) (h / 2) coth(a h / 2), a = 1 - r above and r below.
+    The trapezoidal rule on the whole line is spectrally accurate (the integrand is analytic in a strip of
+    half-width pi / 2 about the real u axis: error ~ exp(-pi^2 / h), 5e-10 at 4 nodes a decade); the tails'
+    asymptotic forms are off by (omega / high)^(2 - r) and (low / omega)^(1 + r) of s^r."""
+    count = int(round(math.log10(high / low) * per_decade)) + 1
+    xi = np.geomspace(low, high, count)
+    h = math.log(xi[1] / xi[0])
+    density = math.sin(r * math.pi) / math.pi
+    weights = density * h * xi**r
+    weights[[0, -1]] *= 0.5
+    dashpot = density * xi[-1] ** (r - 1.0) * 0.5 * h / math.tanh(0.5 * (1.0 - r) * h)
+    spring = density * xi[0] ** r * 0.5 * h / math.tanh(0.5 * r * h)
+    return xi, weights, dashpot, spring
+
+
+def fractional_coupled_reference(strain, time, r, G1, G2, eta1, eta2, capacity, law, temperature0, springpot):
+    """0 < r < 1 Kelvin + Maxwell with eta(T) = eta_ref a_T(T)^r, heated adiabatically by the dissipation of both
+    springpots (per unit volume): solve_ivp (BDF) on the diffusive states of a dense representation
+    ``springpot`` = (xi, c, dashpot, spring) of D^r, for a strain given as a dense function.
+
+    States: phi_k (the Kelvin springpot, input eps), psi_k (the Maxwell springpot, input eps_v), eps_v, T.
+    The Maxwell branch, sigma2 = G2 (eps - eps_v) = eta2(T) D^r eps_v with eta2(T(t)) outside the derivative:
+        G2 (eps - eps_v) = eta2(T) [sum_k c_k psi_k + dashpot eps_v' + spring eps_v],
+    with the tail dashpot > 0 itself an ODE for eps_v, solved for eps_v'.  eta2(T) multiplies D^r eps_v, so no
+    d eta2 / dt enters (differentiating the relation instead would add eta2' [..] and need eps_v'').
+    Heat: P = eta1(T) [sum_k c_k xi_k phi_k^2 + dashpot eps'^2] + eta2(T) [sum_k c_k xi_k psi_k^2 + dashpot eps_v'^2]
+    (a tail mode above the last node has phi = x' / xi: c xi phi^2 = c x'^2 / xi, summed: dashpot x'^2; those
+    below store, never dissipate); dT/dt = P / (rho c).  Returns (stress MPa, T degC) at ``time``."""
+    xi, c, dashpot, spring = springpot
+    n = xi.size
+    loss = c * xi
+
+    def factor(T):
+        return 10.0 ** (r * float(law.log10_shift(T)))
+
+    def factor_slope(T):  # (for the Jacobian only: it steers Newton's iterations, not the solution)
+        return (factor(T + 1e-4) - factor(T - 1e-4)) / 2e-4
+
+    def unpack(t, y):
+        psi, v, T = y[n:2 * n], y[2 * n], y[2 * n + 1]
+        a = factor(T)
+        eps, eps_dot = strain(t, 0), strain(t, 1)
+        v_dot = (G2 * (eps - v) / (eta2 * a) - c @ psi - spring * v) / dashpot
+        return a, eps, eps_dot, v_dot
+
+    def rate(t, y):
+        phi, psi = y[:n], y[n:2 * n]
+        a, _, eps_dot, v_dot = unpack(t, y)
+        power = a * (eta1 * (loss @ phi**2 + dashpot * eps_dot**2) + eta2 * (loss @ psi**2 + dashpot * v_dot**2))
+        return np.concatenate([eps_dot - xi * phi, v_dot - xi * psi, [v_dot, power / capacity]])
+
+    def jacobian(t, y):
+        phi, psi, v, T = y[:n], y[n:2 * n], y[2 * n], y[2 * n + 1]
+        a, eps, eps_dot, v_dot = unpack(t, y)
+        slope = factor_slope(T)
+        by_psi, by_v = -c / dashpot, -(G2 / (eta2 * a) + spring) / dashpot  # d v_dot / d (psi, v, T)
+        by_T = -G2 * (eps - v) / (eta2 * a**2 * dashpot) * slope
+        J = np.zeros((2 * n + 2, 2 * n + 2))
+        J[np.arange(n), np.arange(n)] = -xi
+        J[n:2 * n + 1, n:2 * n] = by_psi
+        J[np.arange(n, 2 * n), np.arange(n, 2 * n)] -= xi
+        J[n:2 * n + 1, 2 * n] = by_v
+        J[n:2 * n + 1, 2 * n + 1] = by_T
+        maxwell = 2.0 * a * eta2 * dashpot * v_dot / capacity
+        J[-1, :n] = 2.0 * a * eta1 * loss * phi / capacity
+        J[-1, n:2 * n] = 2.0 * a * eta2 * loss * psi / capacity + maxwell * by_psi
+        J[-1, 2 * n] = maxwell * by_v
+        power = eta1 * (loss @ phi**2 + dashpot * eps_dot**2) + eta2 * (loss @ psi**2 + dashpot * v_dot**2)
+        J[-1, -1] = slope * power / capacity + maxwell * by_T
+        return J
+
+    start = np.zeros(2 * n + 2)
+    start[-1] = temperature0
+    tolerance = np.full(2 * n + 2, 1e-12)
+    tolerance[-1] = 1e-9
+    solution = solve_ivp(rate, (time[0], time[-1]), start, t_eval=time, method="BDF", jac=jacobian, rtol=1e-9,
+                         atol=tolerance)
+    assert solution.success, solution.message
+    phi, v, T = solution.y[:n], solution.y[2 * n], solution.y[2 * n + 1]
+    eps, eps_dot = strain(time, 0), strain(time, 1)
+    rate_of_strain = c @ phi + dashpot * eps_dot + spring * eps  # D^r eps
+    stress = G1 * eps + eta1 * np.array([factor(t) for t in T]) * rate_of_strain + G2 * (eps - v)
+    return stress, T
+
+
+@pytest.mark.parametrize("r", [0.6, 0.822])
+def test_the_coupled_problem_of_a_fractional_wall_matches_a_dense_diffusive_reference(r):
+    # The reference: 4 nodes a decade from 1e-6 to 1e7 rad/s (53 a springpot), against s^r over 0.01-1000 rad/s
+    # (the input: a 1 Hz carrier, its spectrum falling like omega^-3 from the kinks of eps'' at t = 0 and 1 s;
+    # 1e-6 t < 3e-6 over the 3 s): measured 5e-7 (r = 0.6) and 2.9e-6 (r = 0.822); converged in itself to
+    # ~1e-7 of the ranges (6 nodes a decade from 1e-7 to 1e8 rad/s, rtol 1e-10, Radau).
+    parameters = dict(G1=0.5, G2=3.0, eta1=0.3, eta2=2.0)
+    amplitude, frequency, area, thickness, capacity, duration = 3.0, 1.0, 1e5, 10.0, 1.5, 3.0
+    springpot = dense_springpot(r, 1e-6, 1e7, 4)
+    xi, c, dashpot, spring = springpot
+    s = 1j * np.geomspace(1e-2, 1e3, 2001)
+    approximation = (c * s[:, None] / (s[:, None] + xi)).sum(axis=1) + dashpot * s + spring
+    assert np.abs(approximation / s**r - 1.0).max() <= 1e-5
+
+    def strain(t, derivative):  # smooth start: eps = A sin, ramped over the first second
+        ramp, ramp_dot = np.minimum(t, 1.0), np.where(t < 1.0, 1.0, 0.0)
+        w = 2 * np.pi * frequency
+        if derivative == 0:
+            return amplitude * ramp * np.sin(w * t)
+        return amplitude * (ramp_dot * np.sin(w * t) + ramp * w * np.cos(w * t))
+
+    wall = FDMKDamper(**parameters, r=r, area=area, thickness=thickness,
+                      thermal=ThermalProperties(ISD110_LOSS_PEAK, capacity, 21.2))
+    steps = (0.004, 0.002, 0.001)
+    fine = np.arange(int(round(duration / steps[-1])) + 1) * steps[-1]
+    stress, reference_temperature = fractional_coupled_reference(strain, fine, r, **parameters, capacity=capacity,
+                                                                 law=ISD110_LOSS_PEAK, temperature0=21.2,
+                                                                 springpot=springpot)
+    reference_force = stress * area
+    errors = []
+    for dt in steps:
+        every = int(round(dt / steps[-1]))
+        time = fine[::every]
+        force, temperature, _ = drive(wall, strain(time, 0) * thickness, dt)
+        errors.append((np.abs(force - reference_force[::every]).max() / np.ptp(reference_force),
+                       np.abs(temperature - reference_temperature[::every]).max() / np.ptp(reference_temperature)))
+    errors = np.array(errors)
+    # Measured (force, temperature) at dt = 0.004, 0.002, 0.001 s, over a rise of 34.3 K (r = 0.6) and 36.4 K
+    # (r = 0.822): r = 0.6 (2.7e-3, 1.0e-3), (1.5e-3, 7.3e-4), (7.6e-4, 1.0e-3); r = 0.822 (5.7e-3, 1.5e-3),
+    # (3.0e-3, 9.3e-4), (1.4e-3, 3.6e-4).  The force falls at first order (the coupling's one-step lag), by
+    # 1.77 and 2.05 (r = 0.6), 1.90 and 2.14 (r = 0.822).  The temperature does not keep falling: below ~1e-3 of
+    # its range it meets the package's own heat quadrature (1.5 nodes a decade: a ripple of up to 3.5e-3 in s^r,
+    # its nodes moving with dt), which no step size removes.  With that quadrature's nodes in place of the dense
+    # ones for the heat alone (a diagnostic, not run here), the reference gives first order in both, 2.0-2.3 a
+    # halving (r = 0.6: force 2.6e-3, 1.3e-3, 6.4e-4; temperature 3.8e-4, 1.8e-4, 8.5e-5).  That floor also moves
+    # the force by ~2e-4, hence the first ratio's 1.77: asserted are 1.6 a halving and 3.3 over both.
+    assert 20.0 < np.ptp(reference_temperature) and reference_temperature.max() < ISD110_LOSS_PEAK.valid[1]
+    assert errors[-1].max() <= 5e-3
+    assert np.all(errors[:-1, 0] / errors[1:, 0] >= 1.6)
+    assert errors[0, 0] / errors[-1, 0] >= 3.3
+
+
 # ------------------------------------------------------------------------------- bad input
 @pytest.mark.parametrize("make, match", [
     (lambda: ThermalProperties(ISD110_LOSS_PEAK, 0.0), "heat_capacity must be > 0, got 0.0"),
