@@ -94,6 +94,19 @@ def test_the_energy_balance_closes_with_the_energy_released_at_failure(thermal):
     # The released energy is the stored energy the failed walls held at their failure step (residual 0).
     assert np.abs(energy.balance_error).max() <= 1e-4 * energy.input.max()
     assert np.abs(energy.heat_balance_error).max() <= 5e-3 * energy.input.max()
+    if thermal is not None:
+        assert energy.wall_parameter_loss[-1] > 0.0  # heated walls soften: their state stores less
+
+
+def test_walls_of_fixed_parameters_lose_no_stored_energy_to_a_change_of_parameters():
+    # Walls with limits only: their energy split is followed, their parameters never change, so the
+    # parameter loss is zero -- exactly, not a sum of rounding (3.8e-13 N*mm before it was made exact).
+    wall = vdw.paper.strain_dependent().at(3.0)
+    building = five_story({story: [dataclasses.replace(wall.resized(2e5 - 1e4 * story), limits=WallLimits(strain=50.0))]
+                           for story in range(1, 6)})
+    energy = quiet_simulate(building, MOTION).energy
+    assert energy.wall_stored.max() > 0.0
+    assert np.all(energy.wall_parameter_loss == 0.0)
 
 
 @pytest.mark.parametrize("case", ["bilinear", "bouc-wen", "heating", "amplitude"])

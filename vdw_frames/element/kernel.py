@@ -440,6 +440,10 @@ def update_walls(states, constants, values, force, count):
                 stored *= table[w, RESIDUAL]
         _follow_amplitude(table, w, strain)
         set_coefficients(table, amplitude_table, constants, w)
+        if (constants[w, 0] == G1 and constants[w, 1] == G2 and constants[w, 2] == eta1
+                and constants[w, 3] == eta2):  # the parameters stay (limits only): so does the stored energy
+            table[w, STORED] = stored
+            continue
         # The same state stores another energy under the next step's parameters (temperature, amplitude): the
         # difference does no work and warms nothing in this model; it is accounted, not hidden in the heat.
         springs = 0.5 * constants[w, 0] * strain * strain
