@@ -51,14 +51,19 @@ phi_(n+1) = e phi_n + g dx with z = xi dt, e = exp(-z), g = (1 - e) / z, and int
 - (the change of its stored energy) = g phi_n dx + D dx^2 - (phi_(n+1)^2 - phi_n^2) / 2, D = (1 - g) / z
 (:func:`node_coefficients`; a positive semi-definite form of (phi_n, dx), so the heat of every step is
 >= 0 and an adiabatic wall never cools; summed over the nodes it takes two sums a node, sum c g phi_n and
-sum c phi_(n+1)^2, the previous step's sum c phi_n^2 being kept).  With 1.5 nodes a decade (12 nodes at
-dt = 0.004 s, 11 to 13 from dt = 0.02 to 0.001 s) the representation reproduces (i omega)^r within 3.5e-3
-(relative) from 0.01 Hz to the Nyquist frequency, for r from 0.05 to 1 and dt from 0.001 to 0.02 s
-(measured in the tests).  The trapezoidal rule's error, periodic in log omega, sets that figure; the tails
-stay below it at both ends of the band (the wider range of 14 nodes, 1e-3 to 1000 / dt rad/s, gave 3.2e-3;
-2 nodes a decade on that range give 7e-4 with 18 nodes).  The heat per steady cycle equals the loop area of
-the convolution-quadrature force within the same ripple: 1.4e-3, 6e-4 and 2e-5 for r = 0.3, 0.6 and 1 at
-omega dt = 0.016 (the test's tolerance is 5e-3 of pi K'' d0^2).
+sum c phi_(n+1)^2, the previous step's sum c phi_n^2 being kept).
+
+With 1.5 nodes a decade (12 nodes at dt = 0.004 s, 11 to 13 from dt = 0.02 to 0.001 s) the representation
+reproduces (i omega)^r within 3.5e-3 (relative) from 0.01 Hz to the Nyquist frequency, for r from 0.05 to 1
+and dt from 0.001 to 0.02 s (the tests check six steps; a dense sweep gives 3.49e-3 at worst, near
+0.015 Hz and r ~ 0.5).  That is
+the trapezoidal rule's ripple, periodic in log omega and at most 3.2e-3, plus the tails: the modes below
+the first node taken as a spring are off by up to 1.5e-3 of s^r at 0.01 Hz (most at small r), those above
+the last taken as a dashpot by up to 9e-4 at the Nyquist frequency (most at r ~ 0.9).  The wider range of
+14 nodes, 1e-3 to 1000 / dt rad/s, gave 3.2e-3; 2 nodes a decade on that range give 7e-4 with 18 nodes.
+The heat per steady cycle equals the loop area of the convolution-quadrature force within the same error:
+1.4e-3, 6e-4 and 2e-5 for r = 0.3, 0.6 and 1 at omega dt = 0.016 (the test's tolerance is 5e-3 of
+pi K'' d0^2).
 
 Units: temperature degC (kelvin only inside Arrhenius), activation energy J/mol, volumetric heat
 capacity MPa/K (= J/(cm^3 K)), time s, heat N*mm.
@@ -83,12 +88,12 @@ GAS_CONSTANT = 8.314462618
 NODES_PER_DECADE = 1.5
 """Nodes of the diffusive representation per decade of relaxation rate."""
 XI_LOW = 3e-3
-"""rad/s: the slowest node (periods up to ~2 000 s are represented; slower modes act as one spring, which
-at 0.01 Hz, the band's low end, is within the trapezoidal rule's own error)."""
+"""rad/s: the slowest node (periods up to ~2 000 s are represented; slower modes act as one spring: up to
+1.5e-3 of s^r at 0.01 Hz, the band's low end; module docstring)."""
 XI_HIGH_STEPS = 100.0
 """The fastest node is XI_HIGH_STEPS / dt rad/s: it relaxes within a step (exp(-100) ~ 4e-44), as the modes
-beyond it, summed into the tail dashpot, do (their departure from a dashpot at the Nyquist frequency is
-below the trapezoidal rule's error for every r)."""
+beyond it, summed into the tail dashpot, do (their departure from a dashpot is up to 9e-4 of s^r at the
+Nyquist frequency, most at r ~ 0.9; module docstring)."""
 
 
 @runtime_checkable
