@@ -91,9 +91,20 @@ def test_the_energy_balance_closes_with_the_energy_released_at_failure(thermal):
     assert 0 < result.wall_failed.sum() < 5
     energy = result.energy
     assert energy.wall_released[-1] > 0.0
-    # The released energy is the stored energy the failed walls held at their failure step (residual 0).
     assert np.abs(energy.balance_error).max() <= 1e-4 * energy.input.max()
     assert np.abs(energy.heat_balance_error).max() <= 5e-3 * energy.input.max()
+    # A failed wall releases its stored energy at the failing row and, at the next, the work the frame's
+    # trapezoidal balance does on it over that step as its force falls to the residual (here 0): half its
+    # force at failure times the step's drift (one wall a story, no support), from the histories.  With it
+    # the walls' heat balance does not jump at a failure (before: 2.3e5 N*mm, 19 times the walls' heat).
+    dt = result.time[1] - result.time[0]
+    for wall in np.flatnonzero(result.wall_failed):
+        row = int(round(result.wall_failure_time[wall] / dt))
+        force_work = 0.5 * result.wall_force[row, wall] * (result.drift[row + 1, wall] - result.drift[row, wall])
+        step_release = energy.wall_released[row + 1] - energy.wall_released[row]
+        assert step_release == pytest.approx(force_work, rel=1e-9)
+        jump = energy.heat_balance_error[row + 1] - energy.heat_balance_error[row]
+        assert abs(jump) <= 1e-3 * abs(force_work)
     if thermal is not None:
         assert energy.wall_parameter_loss[-1] > 0.0  # heated walls soften: their state stores less
 

@@ -70,8 +70,9 @@ _LN10 = math.log(10.0)
  PREVIOUS_STRAIN, PREVIOUS_DASHPOT_STRAIN, TAIL_DASHPOT, TAIL_SPRING,
  AMPLITUDE_NODES, TURN, EXTREME, DIRECTION, LAST_AMPLITUDE, AMPLITUDE, BELOW_RANGE, ABOVE_RANGE,
  NODE_WORK_SUM, FOLLOWED_AT_TURN, CONFIRMED_AT, ENERGY, AMPLITUDE_LOW, AMPLITUDE_HIGH,
- AMPLITUDE_USED, AT_G1, AT_G2, AT_ETA1, AT_ETA2, SHIFT_ANCHOR, SHIFT_FACTOR, NODE_SQUARE_1, NODE_SQUARE_2) = range(56)
-STATE_FIELDS = 56
+ AMPLITUDE_USED, AT_G1, AT_G2, AT_ETA1, AT_ETA2, SHIFT_ANCHOR, SHIFT_FACTOR, NODE_SQUARE_1, NODE_SQUARE_2,
+ FAILURE_FORCE, FAILURE_DEFORMATION, RELEASED_WORK) = range(59)
+STATE_FIELDS = 59
 """TRACKED: 1 when the wall's state is followed (a thermal description, limits or amplitude following);
 ENERGY: 1 when its heat and stored energy are (a thermal description or limits: the diffusive nodes);
 BASE_*: G1, G2 (MPa), eta1, eta2 (MPa s^r) at the reference temperature (fixed walls); ORDER: r;
@@ -93,7 +94,10 @@ of the Kelvin and the Maxwell springpot at the last commit; FOLLOWED_AT_TURN and
 followed, and the strain, when the last reversal was confirmed; AMPLITUDE_LOW and AMPLITUDE_HIGH: the
 amplitude table's range (-); AMPLITUDE_USED and AT_*: the amplitude the coefficients were last
 interpolated at and G1, G2, eta1, eta2 there (reused while the amplitude stays); SHIFT_ANCHOR and
-SHIFT_FACTOR: an exponent ln a_T^r and its exp (NaN: none yet), from which nearby factors are found."""
+SHIFT_FACTOR: an exponent ln a_T^r and its exp (NaN: none yet), from which nearby factors are found;
+FAILURE_FORCE (N) and FAILURE_DEFORMATION (mm): the wall's force and deformation at its failing commit;
+RELEASED_WORK (N*mm): the work done on its failing share over the next step, as its force fell to the
+residual (booked at that step: :func:`update_walls`)."""
 FAILURE_MODES = ("", "strain", "stress", "temperature")
 """Names of the FAILURE_MODE column."""
 
@@ -383,17 +387,27 @@ def _follow_amplitude(table, w, strain):
 
 
 @njit(cache=True, fastmath=_FAST, allocates=False)
-def update_walls(states, constants, values, force, count):
-    """After the commit of step ``count`` (forces (W,) N, the memory advanced, ``values`` (2, W) the
-    committed strain and Maxwell stress): each followed wall's heat over the step, stored energy,
-    temperature, amplitude, limits (``states``: :class:`WallStates`), and the coefficients of the next step
-    (``constants`` (W, 7)).  One call a step for the whole bank: a call costs more than a wall's update."""
+def update_walls(states, constants, values, force, deformation, count):
+    """After the commit of step ``count`` (forces (W,) N and deformations (W,) mm, the memory advanced,
+    ``values`` (2, W) the committed strain and Maxwell stress): each followed wall's heat over the step,
+    stored energy, temperature, amplitude, limits (``states``: :class:`WallStates`), and the coefficients
+    of the next step (``constants`` (W, 7)).  One call a step for the whole bank: a call costs more than a
+    wall's update.
+
+    A wall fails at the commit that exceeds a limit: it releases the share (1 - residual) of the energy it
+    stores then, and its force is the residual share from the next step on.  Over that next step the force
+    the frame sees falls from the intact wall's to the residual's; the trapezoidal work of the frame's
+    energy balance counts half the lost share's force over the step's deformation, (1 - residual) F dd / 2,
+    and that work goes into the tearing too: it is released, at that step."""
     table, nodes, node_state = states.table, states.nodes, states.node_state
     amplitude_table = states.amplitude_table
     for w in range(constants.shape[0]):
         if table[w, TRACKED] == 0.0:
             continue
         strain, maxwell = values[0, w], values[1, w]
+        if table[w, FAILURE_STEP] == count:  # the step after the failing commit
+            table[w, RELEASED_WORK] = (0.5 * (1.0 - table[w, RESIDUAL]) * table[w, FAILURE_FORCE]
+                                       * (deformation[w] - table[w, FAILURE_DEFORMATION]))
         if table[w, ENERGY] == 0.0:  # a wall that only follows its amplitude: no heat, no energy split
             _follow_amplitude(table, w, strain)
             set_coefficients(table, amplitude_table, constants, w)
@@ -436,6 +450,8 @@ def update_walls(states, constants, values, force, count):
                 table[w, FAILURE_STEP] = count + 1
                 table[w, FAILURE_MODE] = mode
                 table[w, RELEASED] = (1.0 - table[w, RESIDUAL]) * stored
+                table[w, FAILURE_FORCE] = force[w]
+                table[w, FAILURE_DEFORMATION] = deformation[w]
                 table[w, SCALE] = table[w, RESIDUAL]
                 stored *= table[w, RESIDUAL]
         _follow_amplitude(table, w, strain)
@@ -477,7 +493,7 @@ def bank_commit(bank, count, deformation, force, strain):
         bank.memory.values[0, w] = strain[w]
     memory_advance(bank.memory, count)
     if bank.followed:
-        update_walls(bank.states, bank.constants, bank.memory.values, force, count)
+        update_walls(bank.states, bank.constants, bank.memory.values, force, deformation, count)
     for w in range(bank.constants.shape[0]):
         bank.tangent[w], bank.history_force[w] = wall_affine(bank, w)
 

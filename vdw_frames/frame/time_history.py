@@ -158,10 +158,12 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     failure = np.stack([bank.state(kernel.FAILURE_STEP), bank.state(kernel.FAILURE_MODE)], axis=1).astype(np.int64)
     wall_energies = None
     if heated and energy_followed.all():
-        released = np.zeros(filled)  # from each failure's row on, the stored energy it released
-        for step, energy in zip(failure[:, 0], bank.state(kernel.RELEASED), strict=True):
+        released = np.zeros(filled)  # from each failure's row on, the stored energy it released; from the next
+        for step, energy, work in zip(failure[:, 0], bank.state(kernel.RELEASED), bank.state(kernel.RELEASED_WORK),
+                                      strict=True):  # row on, the work on its lost share as its force fell
             if step >= 0:
                 released[max(int(step) - start, 0):] += energy
+                released[max(int(step) + 1 - start, 0):] += work
         wall_energies = (out.group_heat[keep].sum(axis=1), out.wall_stored[keep], released,
                          out.wall_parameter_loss[keep])
     try:
