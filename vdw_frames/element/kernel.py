@@ -457,7 +457,7 @@ def update_walls(states, constants, values, force, deformation, count):
         _follow_amplitude(table, w, strain)
         set_coefficients(table, amplitude_table, constants, w)
         if (constants[w, 0] == G1 and constants[w, 1] == G2 and constants[w, 2] == eta1
-                and constants[w, 3] == eta2):  # the parameters stay (limits only): so does the stored energy
+                and constants[w, 3] == eta2):  # parameters that stay (limits only) keep the stored energy
             table[w, STORED] = stored
             continue
         # The same state stores another energy under the next step's parameters (temperature, amplitude): the

@@ -56,11 +56,11 @@ sum c phi_(n+1)^2, the previous step's sum c phi_n^2 being kept).
 With 1.5 nodes a decade (12 nodes at dt = 0.004 s, 11 to 13 from dt = 0.02 to 0.001 s) the representation
 reproduces (i omega)^r within 3.5e-3 (relative) from 0.01 Hz to the Nyquist frequency, for r from 0.05 to 1
 and dt from 0.001 to 0.02 s (the tests check six steps; a dense sweep gives 3.49e-3 at worst, near
-0.015 Hz and r ~ 0.5).  That is
-the trapezoidal rule's ripple, periodic in log omega and at most 3.2e-3, plus the tails: the modes below
-the first node taken as a spring are off by up to 1.5e-3 of s^r at 0.01 Hz (most at small r), those above
-the last taken as a dashpot by up to 9e-4 at the Nyquist frequency (most at r ~ 0.9).  The wider range of
-14 nodes, 1e-3 to 1000 / dt rad/s, gave 3.2e-3; 2 nodes a decade on that range give 7e-4 with 18 nodes.
+0.015 Hz and r ~ 0.5).  That is the trapezoidal rule's ripple, periodic in log omega and at most 3.2e-3,
+plus the tails: the modes below the first node taken as a spring are off by up to 1.5e-3 of s^r at
+0.01 Hz (most at small r), those above the last taken as a dashpot by up to 9e-4 at the Nyquist frequency
+(most at r ~ 0.9).  The wider range of 14 nodes, 1e-3 to 1000 / dt rad/s, gave 3.2e-3; 2 nodes a decade
+on that range give 7e-4 with 18 nodes.
 The heat per steady cycle equals the loop area of the convolution-quadrature force within the same error:
 1.4e-3, 6e-4 and 2e-5 for r = 0.3, 0.6 and 1 at omega dt = 0.016 (the test's tolerance is 5e-3 of
 pi K'' d0^2).

@@ -46,10 +46,10 @@ class EnergyHistory:
     ``wall_stored`` (in their springs and springpots now), ``wall_released`` (lost when a wall failed: the
     share of its stored energy it lost, and the work on that share over the next step, as its force fell
     to the residual's; :func:`vdw_frames.element.kernel.update_walls`) and ``wall_parameter_loss`` (stored
-    energy the walls' states lost as their parameters
-    changed with temperature or amplitude: the parameters are coefficients, so a fall of eta or G scales
-    the energy the same state stores down, at no work -- a property of the coupling, measured rather than
-    hidden in the heat; negative when a wall stiffens);
+    energy the walls' states lost as their parameters changed with temperature or amplitude: the
+    parameters are coefficients, so a fall of eta or G scales the energy the same state stores down, at no
+    work -- a property of the coupling, measured rather than hidden in the heat; negative when a wall
+    stiffens);
     :attr:`heat_balance_error` is the balance with them in place of ``wall_work``.  None otherwise.
     """
 
