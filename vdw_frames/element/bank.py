@@ -229,7 +229,10 @@ class WallBank:
     def trial_forces(self, deformation: ArrayLike, *, name: str = "deformation") -> np.ndarray:
         """Forces (N) at trial deformations (mm, one per wall) this step; the memory is untouched.  A force
         that overflows (inf) is a ValueError naming the deformation (as ``name``)."""
-        deformation = self._deformations(deformation, name)
+        return self._trial(self._deformations(deformation, name), name)
+
+    def _trial(self, deformation: np.ndarray, name: str) -> np.ndarray:
+        """:meth:`trial_forces` of deformations :meth:`_deformations` already checked."""
         with np.errstate(over="ignore", invalid="ignore"):
             force = self.tangent * deformation + self.history_force
         self._require_finite(force, deformation, name)
@@ -256,7 +259,7 @@ class WallBank:
         overflows is a ValueError naming the deformation (as ``name``), before the memory takes it.
         """
         deformation = self._deformations(deformation, name)
-        self.trial_forces(deformation, name=name)  # refuses an overflowing force before the memory takes it
+        self._trial(deformation, name)  # refuses an overflowing force before the memory takes it
         self.reserve(1)
         force = np.empty(len(self.walls))
         strain = np.empty(len(self.walls))
