@@ -142,13 +142,10 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
                        RuntimeWarning,
                        stacklevel=3)
     keep = slice(0, filled)
-    # An overflow names the record and its PGA (in g as well: the unit of a CLI's scale).
-    record = (f"(ground motion {ground_motion.name!r}, " if ground_motion.name else "(") + \
-        f"PGA {ground_motion.pga:.6g} mm/s^2 = {ground_motion.pga / G:.4g} g)"
     try:
         require_finite("the response", out.displacement[keep])
     except ValueError as error:
-        raise ValueError(f"{error} {record}") from None
+        raise ValueError(f"{error} {_record_text(ground_motion)}") from None
     time = np.arange(start, start + filled) * dt
     share = np.array([walls[i][1].area / groups[g][1].area for i, g in enumerate(group_of_wall)])
     above = bank.state(kernel.ABOVE_RANGE)[group_of_wall] * dt
@@ -169,7 +166,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     try:
         energies = energy_history(out.energy[keep], wall_energies)
     except ValueError as error:
-        raise ValueError(f"{error} {record}") from None
+        raise ValueError(f"{error} {_record_text(ground_motion)}") from None
     return SimulationResult(
         building=building, time=time, ground_acceleration=ground[keep], displacement=out.displacement[keep],
         velocity=out.velocity[keep], acceleration=out.acceleration[keep], drift=out.drift[keep],
@@ -182,6 +179,13 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         group_failure=failure, group_amplitude=out.group_amplitude[keep],
         group_outside_range=np.stack([bank.state(kernel.BELOW_RANGE), bank.state(kernel.ABOVE_RANGE)], axis=1) * dt,
         initial_state=initial_state)
+
+
+def _record_text(ground_motion: GroundMotion) -> str:
+    """The record and its PGA, in g as well (the unit of a CLI's scale), for an overflow's message: formed
+    only when one is raised (the PGA is a pass over the record)."""
+    name = f"ground motion {ground_motion.name!r}, " if ground_motion.name else ""
+    return f"({name}PGA {ground_motion.pga:.6g} mm/s^2 = {ground_motion.pga / G:.4g} g)"
 
 
 def _check_state(state: FrameState, dt: float, steps: int, floors: int) -> int:
