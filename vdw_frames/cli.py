@@ -194,16 +194,16 @@ def _story_columns() -> tuple[tuple[str, str, float, int, int], ...]:
 def _story_peaks(result) -> list[list[float | None]]:
     """Per story, the values of :func:`_story_columns` in their CSV units; None where one does not exist (no
     story heights, a linear story, a story without walls)."""
-    ratio, ductility = result.peak_drift_ratio, result.peak_ductility
+    # Each peak once (they are properties, computed over the whole history at every access).
+    drift, ratio, residual = result.peak_drift, result.peak_drift_ratio, result.residual_drift
+    ductility, acceleration = result.peak_ductility, result.peak_absolute_acceleration
+    wall_force, wall_strain = result.peak_story_wall_force, np.abs(result.story_wall_strain).max(axis=0, initial=0.0)
     rows: list[list[float | None]] = []
     for k in range(result.building.stories):
         walled = k + 1 in result.building.walls
-        rows.append([float(result.peak_drift[k]), float(ratio[k]) if ratio is not None else None,
-                     float(result.residual_drift[k]),
-                     float(ductility[k]) if not np.ma.is_masked(ductility[k]) else None,
-                     float(result.peak_absolute_acceleration[k]),
-                     float(result.peak_story_wall_force[k]) if walled else None,
-                     float(np.abs(result.story_wall_strain[:, k]).max()) if walled else None])
+        rows.append([float(drift[k]), float(ratio[k]) if ratio is not None else None, float(residual[k]),
+                     float(ductility[k]) if not np.ma.is_masked(ductility[k]) else None, float(acceleration[k]),
+                     float(wall_force[k]) if walled else None, float(wall_strain[k]) if walled else None])
     return rows
 
 
