@@ -117,7 +117,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         group_strain=np.zeros((rows, len(groups))), peak_group_strain=np.zeros(len(groups)),
         energy=np.zeros((rows, ENERGIES)), outcome=np.zeros(3, dtype=np.int64),
         group_temperature=np.zeros((heated, len(groups))), group_heat=np.zeros((heated, len(groups))),
-        wall_stored=np.zeros(heated), wall_parameter_loss=np.zeros(heated),
+        wall_heat=np.zeros(heated), wall_stored=np.zeros(heated), wall_parameter_loss=np.zeros(heated),
         group_amplitude=np.zeros((amplitudes, len(groups))))
     stories = story_arrays(building.story_models, building.stiffnesses)
     wall_arrays = WallArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64), bank.arrays)
@@ -129,6 +129,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     if heated:
         out.group_temperature[0] = bank.state(kernel.TEMPERATURE)
         out.group_heat[0] = bank.state(kernel.HEAT)
+        out.wall_heat[0] = out.group_heat[0].sum()
         out.wall_stored[0] = bank.state(kernel.STORED).sum()
         out.wall_parameter_loss[0] = bank.state(kernel.PARAMETER_LOSS).sum()
     if amplitudes:
@@ -161,7 +162,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
             if step >= 0:
                 released[max(int(step) - start, 0):] += energy
                 released[max(int(step) + 1 - start, 0):] += work
-        wall_energies = (out.group_heat[keep].sum(axis=1), out.wall_stored[keep], released,
+        wall_energies = (out.wall_heat[keep], out.wall_stored[keep], released,
                          out.wall_parameter_loss[keep])
     try:
         energies = energy_history(out.energy[keep], wall_energies)
