@@ -157,11 +157,11 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     wall_energies = None
     if heated and energy_followed.all():
         released = np.zeros(filled)  # from each failure's row on, the stored energy it released; from the next
-        for step, energy, work in zip(failure[:, 0], bank.state(kernel.RELEASED), bank.state(kernel.RELEASED_WORK),
-                                      strict=True):  # row on, the work on its lost share as its force fell
-            if step >= 0:
+        for step, energy, falling_work in zip(failure[:, 0], bank.state(kernel.RELEASED),
+                                              bank.state(kernel.RELEASED_WORK), strict=True):
+            if step >= 0:  # (row on, the work on its lost share as its force fell)
                 released[max(int(step) - start, 0):] += energy
-                released[max(int(step) + 1 - start, 0):] += work
+                released[max(int(step) + 1 - start, 0):] += falling_work
         wall_energies = (out.wall_heat[keep], out.wall_stored[keep], released,
                          out.wall_parameter_loss[keep])
     try:
