@@ -163,8 +163,12 @@ class WallBank:
         xi = thermal.diffusive_nodes(self.dt) if tracked.size else np.zeros(0)
         e, gain, work = thermal.node_coefficients(xi, self.dt).T
         nodes = np.zeros((count, 4, xi.size))
+        by_order: dict[float, tuple[np.ndarray, float, float]] = {}  # (walls of a frame mostly share one r)
         for w in tracked.tolist():
-            weights, dashpot, table[w, kernel.TAIL_SPRING] = thermal.diffusive_weights(table[w, kernel.ORDER], xi)
+            order = float(table[w, kernel.ORDER])
+            if order not in by_order:
+                by_order[order] = thermal.diffusive_weights(order, xi)
+            weights, dashpot, table[w, kernel.TAIL_SPRING] = by_order[order]
             table[w, kernel.TAIL_DASHPOT] = dashpot / self.dt  # its heat is dashpot dx^2 / dt
             nodes[w] = e, gain, weights * gain, weights
             table[w, kernel.NODE_WORK_SUM] = float(weights @ work)

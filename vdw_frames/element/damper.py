@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -117,10 +118,11 @@ class FDMKDamper(StiffnessMethods):
             raise ValueError(f"limits must be WallLimits (or None), got {type(self.limits).__name__}")
 
     # ------------------------------------------------------------------ temperature
-    @property
+    @cached_property
     def viscosities(self) -> tuple[float, float]:
         """(eta1, eta2) (MPa*s^r) at the wall's temperature at rest: times a_T^r with a thermal description
-        (time-temperature superposition: :mod:`vdw_frames.element.thermal`), as given otherwise."""
+        (time-temperature superposition: :mod:`vdw_frames.element.thermal`), as given otherwise.  Kept once
+        found (the wall is frozen): an analysis asks for it several times a wall."""
         if self.thermal is None:
             return self.eta1, self.eta2
         factor = self.thermal.viscosity_factor(self.thermal.temperature, self.r)

@@ -73,6 +73,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Protocol, cast, runtime_checkable
 
 import numpy as np
@@ -332,7 +333,12 @@ def thermal_row(thermal: ThermalProperties | None, volume: float, dt: float) -> 
 def diffusive_nodes(dt: float) -> np.ndarray:
     """Relaxation rates xi_k (rad/s) of the diffusive representation for steps of ``dt`` s: log-spaced,
     ``NODES_PER_DECADE`` a decade, from XI_LOW to XI_HIGH_STEPS / dt."""
-    dt = positive("dt", dt)
+    return _diffusive_nodes(positive("dt", dt)).copy()
+
+
+@lru_cache(maxsize=16)
+def _diffusive_nodes(dt: float) -> np.ndarray:
+    """diffusive_nodes, kept per step (every analysis of a step builds the same nodes; callers get a copy)."""
     high = XI_HIGH_STEPS / dt
     decades = max(math.log10(high / XI_LOW), 0.0)
     count = int(math.ceil(decades * NODES_PER_DECADE)) + 1
