@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 import vdw_frames as vdw
-from vdw_frames.element.thermal import ISD110_LOSS_PEAK, ThermalProperties
+from vdw_frames.element.thermal import ISD110_LOSS_PEAK, ThermalProperties, thermal_row
+from vdw_frames.frame.results import _heat_from_temperature
 from vdw_frames.motion import default_record
 
 
@@ -40,8 +41,35 @@ def test_the_energy_balance_closes_with_the_walls_heat_as_their_dissipation():
     # The split is the walls' work: heat + stored + parameter loss (no wall failed) equals int F dd.
     split = energy.wall_heat + energy.wall_stored + energy.wall_released + energy.wall_parameter_loss
     assert np.abs(split - energy.wall_work).max() <= 5e-3 * energy.input.max()
-    # The walls' heat is the sum of their own.
-    np.testing.assert_allclose(result.wall_heat.sum(axis=1), energy.wall_heat, rtol=1e-12)
+    # The walls' heat is the sum of their own (found from their temperatures: rounding of T times rho c V).
+    np.testing.assert_allclose(result.wall_heat.sum(axis=1), energy.wall_heat, rtol=1e-12,
+                               atol=1e-12 * energy.wall_heat[-1])
+
+
+def test_a_wall_heat_found_from_its_cooling_temperature_is_the_heat_the_kernel_summed():
+    # One wall with limits and no heat capacity makes the analysis record every group's heat as the kernel
+    # sums it; the heated groups' heat found from their temperatures (cooling: the update inverted) must equal it.
+    cooling = dataclasses.replace(WALL, thermal=ThermalProperties(ISD110_LOSS_PEAK, 1.5, 15.0, cooling_time=4.0))
+    limits_only = dataclasses.replace(WALL, area=1e5, limits=vdw.WallLimits(strain=50.0))
+    building = five_story([cooling])
+    recorded = vdw.ShearBuilding(building.masses, building.stiffnesses, building.damping_ratio,
+                                 building.damping_modes, {**building.walls, 1: [cooling, limits_only]},
+                                 building.story_heights, building.hysteresis, building.gravity_loads)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        derived, summed = vdw.simulate(building, default_record()), vdw.simulate(recorded, default_record())
+    assert derived.group_heat.shape[0] == 0 and summed.group_heat.shape[0] == derived.time.size
+    # The heated groups' temperatures fall while they cool (a decay really is inverted).
+    assert np.any(np.diff(derived.wall_temperature[:, 0]) < 0.0)
+    dt = float(summed.time[1] - summed.time[0])
+    heated = np.isfinite(summed.group_temperature[0])  # every group but the one without a heat capacity
+    assert heated.sum() == 5
+    row = thermal_row(cooling.thermal, WALL.area * WALL.thickness, dt)  # each heated group: one wall
+    terms = np.zeros((heated.size, 4))
+    terms[heated] = (0.0, 15.0, np.exp(-dt / 4.0), row[7])
+    found = _heat_from_temperature(summed.group_temperature, terms)
+    np.testing.assert_allclose(found[:, heated], summed.group_heat[:, heated], rtol=1e-12,
+                               atol=1e-11 * summed.group_heat.max())
 
 
 def test_a_wall_temperature_is_its_heat_over_its_heat_capacity():

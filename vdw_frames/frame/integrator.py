@@ -141,7 +141,7 @@ class Histories(NamedTuple):
     outcome: np.ndarray  # (3,) int64: status, failed or collapsed story, Newton corrections
     # Walls whose heat is followed (thermal description or limits); (0, G) when none is:
     group_temperature: np.ndarray  # (N, G) degC (NaN for a group without a thermal description)
-    group_heat: np.ndarray  # (N, G) N*mm dissipated since rest
+    group_heat: np.ndarray  # (N, G) N*mm dissipated since rest; (0, G) when every followed group has a temperature
     wall_heat: np.ndarray  # (N,) N*mm dissipated in all walls since rest
     wall_stored: np.ndarray  # (N,) N*mm stored in all walls
     wall_parameter_loss: np.ndarray  # (N,) N*mm the walls' stored energy lost as their parameters changed
@@ -438,11 +438,12 @@ def integrate(ground, dt, frame, stories, walls, newton, out, start, work):
             out.group_strain[step + 1, g] = work.wall_strain[g]
             out.peak_group_strain[g] = max(out.peak_group_strain[g], abs(work.wall_strain[g]))
         table = bank.states.table
-        if out.group_heat.shape[0] > 0:
+        if out.group_temperature.shape[0] > 0:
             heat, stored, parameter_loss = 0.0, 0.0, 0.0
             for g in range(groups):
                 out.group_temperature[step + 1, g] = table[g, kernel.TEMPERATURE]
-                out.group_heat[step + 1, g] = table[g, kernel.HEAT]
+                if out.group_heat.shape[0] > 0:
+                    out.group_heat[step + 1, g] = table[g, kernel.HEAT]
                 heat += table[g, kernel.HEAT]
                 stored += table[g, kernel.STORED]
                 parameter_loss += table[g, kernel.PARAMETER_LOSS]

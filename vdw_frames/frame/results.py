@@ -194,6 +194,10 @@ class SimulationResult:
     # Followed walls (thermal description or limits): (steps, groups) histories, (0, groups) when none is.
     group_temperature: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # degC
     group_heat: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # N*mm
+    # (groups, 4) when the heat is found from the temperature instead (every followed group has a heat
+    # capacity): each group's heat at row 0 (N*mm), ambient (degC), decay exp(-dt/tau) and gain (K per N*mm)
+    # of its temperature update (kernel.update_walls); (0, 4) otherwise.
+    group_heat_terms: np.ndarray = field(default_factory=lambda: np.zeros((0, 4)), repr=False)
     group_failure: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64),
                                       repr=False)  # (groups, 2): step (-1 intact), mode
     group_amplitude: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # (steps, groups)
@@ -316,10 +320,18 @@ class SimulationResult:
     @cached_property
     def wall_heat(self) -> np.ndarray | None:
         """Energy every wall has dissipated since rest (N*mm), (steps, walls); None when no wall's heat is followed
-        (a thermal description or limits)."""
-        if self.group_heat.shape[0] == 0:
+        (a thermal description or limits).
+
+        Walls that all have a heat capacity keep their heat in their temperature: the heat of each step is
+        found from the kernel's update, T' = T_a + (T - T_a) exp(-dt/tau) + gain * heat, inverted (exact
+        up to the rounding of T: about 1e-14 K times rho c V)."""
+        if self.group_heat.shape[0] > 0:
+            heat = self.group_heat
+        elif self.group_heat_terms.shape[0] > 0 and self.group_temperature.shape[0] > 0:
+            heat = _heat_from_temperature(self.group_temperature, self.group_heat_terms)
+        else:
             return None
-        return np.take(self.group_heat, self.wall_group, axis=1) * self.wall_share
+        return np.take(heat, self.wall_group, axis=1) * self.wall_share
 
     @cached_property
     def absolute_acceleration(self) -> np.ndarray:
@@ -400,6 +412,20 @@ class SimulationResult:
     def peak_wall_strain(self) -> np.ndarray:
         """max |strain| of every wall (-), in ``building.wall_list`` order."""
         return np.abs(self.group_strain).max(axis=0, initial=0.0)[self.wall_group]
+
+
+def _heat_from_temperature(temperature: np.ndarray, terms: np.ndarray) -> np.ndarray:
+    """Every group's heat since rest (N*mm), (steps, groups), from its temperature history (degC, (steps,
+    groups)) and ``terms`` (groups, 4): heat at row 0, ambient, decay and gain of the temperature update
+    (a group with gain 0 has no temperature and no heat)."""
+    initial, ambient, decay, gain = terms.T
+    heat = np.zeros(temperature.shape)
+    heat[0] = initial
+    heated = gain > 0.0
+    rise = temperature[:, heated] - ambient[heated]
+    steps = (rise[1:] - rise[:-1] * decay[heated]) / gain[heated]
+    heat[1:, heated] = initial[heated] + np.cumsum(steps, axis=0)
+    return heat
 
 
 def check_energy_balance(energy: EnergyHistory) -> None:

@@ -101,6 +101,9 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     bank = WallBank(tuple(wall for _, wall in groups), dt, steps, method, memory)
     energy_followed = bank.state(kernel.ENERGY)  # walls whose heat and stored energy are followed
     heated = rows if energy_followed.any() else 0
+    # A group with a heat capacity keeps its heat in its temperature (SimulationResult.wall_heat finds it from
+    # there); the heat itself is recorded only when some followed group has none (limits only).
+    heat_rows = heated if np.any((energy_followed > 0.0) & (bank.state(kernel.T_CAPACITY) <= 0.0)) else 0
     amplitudes = rows if bank.state(kernel.AMPLITUDE_NODES).any() else 0
     heights = np.asarray(building.story_heights) if building.story_heights is not None else np.ones(floors)
     collapse_ratio = collapse_drift_ratio if (collapse_drift_ratio and building.story_heights) else 0.0
@@ -116,7 +119,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         base_shear=np.zeros(rows), group_force=np.zeros((rows, len(groups))),
         group_strain=np.zeros((rows, len(groups))), peak_group_strain=np.zeros(len(groups)),
         energy=np.zeros((rows, ENERGIES)), outcome=np.zeros(3, dtype=np.int64),
-        group_temperature=np.zeros((heated, len(groups))), group_heat=np.zeros((heated, len(groups))),
+        group_temperature=np.zeros((heated, len(groups))), group_heat=np.zeros((heat_rows, len(groups))),
         wall_heat=np.zeros(heated), wall_stored=np.zeros(heated), wall_parameter_loss=np.zeros(heated),
         group_amplitude=np.zeros((amplitudes, len(groups))))
     stories = story_arrays(building.story_models, building.stiffnesses)
@@ -128,8 +131,8 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         _start_from(initial_state, frame, stories, wall_arrays, out, work)
     if heated:
         out.group_temperature[0] = bank.state(kernel.TEMPERATURE)
-        out.group_heat[0] = bank.state(kernel.HEAT)
-        out.wall_heat[0] = out.group_heat[0].sum()
+        out.group_heat[:1] = initial_heat = bank.state(kernel.HEAT)
+        out.wall_heat[0] = initial_heat.sum()
         out.wall_stored[0] = bank.state(kernel.STORED).sum()
         out.wall_parameter_loss[0] = bank.state(kernel.PARAMETER_LOSS).sum()
     if amplitudes:
@@ -177,6 +180,9 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         converged=status != FAILED, collapsed=status == COLLAPSED,
         collapse_time=float(time[-1]) if status == COLLAPSED else None, newton_iterations=iterations,
         group_temperature=out.group_temperature[keep], group_heat=out.group_heat[keep],
+        group_heat_terms=(np.stack([initial_heat, bank.state(kernel.T_AMBIENT), bank.state(kernel.T_DECAY),
+                                    bank.state(kernel.T_GAIN)], axis=1) if heated and not heat_rows
+                          else np.zeros((0, 4))),
         group_failure=failure, group_amplitude=out.group_amplitude[keep],
         group_outside_range=np.stack([bank.state(kernel.BELOW_RANGE), bank.state(kernel.ABOVE_RANGE)], axis=1) * dt,
         initial_state=initial_state)
