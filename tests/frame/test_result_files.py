@@ -70,6 +70,7 @@ def test_a_saved_result_loads_back_equal_in_every_history_and_the_building(resul
     assert loaded.wall_failure_mode == result.wall_failure_mode
     assert loaded.wall_failure_time == result.wall_failure_time
     _same(loaded.peak_temperature_rise, result.peak_temperature_rise)
+    _same(loaded.wall_heat, result.wall_heat)  # (found from the temperatures: the terms come back too)
 
 
 def test_a_loaded_result_goes_on_from_its_state_as_the_saved_one_does(result, tmp_path):

@@ -162,16 +162,17 @@ class WallBank:
         tracked = np.flatnonzero(table[:, kernel.ENERGY])
         xi = thermal.diffusive_nodes(self.dt) if tracked.size else np.zeros(0)
         e, gain, work = thermal.node_coefficients(xi, self.dt).T
-        nodes = np.zeros((count, 4, xi.size))
-        by_order: dict[float, tuple[np.ndarray, float, float]] = {}  # (walls of a frame mostly share one r)
+        orders = sorted({float(table[w, kernel.ORDER]) for w in tracked.tolist()})  # one node set for each
+        nodes = np.zeros((len(orders), 4, xi.size))
+        tails = []
+        for n, order in enumerate(orders):
+            weights, dashpot, spring = thermal.diffusive_weights(order, xi)
+            nodes[n] = e, gain, weights * gain, weights
+            tails.append((dashpot / self.dt, spring, float(weights @ work)))  # a dashpot's heat is dashpot dx^2 / dt
         for w in tracked.tolist():
-            order = float(table[w, kernel.ORDER])
-            if order not in by_order:
-                by_order[order] = thermal.diffusive_weights(order, xi)
-            weights, dashpot, table[w, kernel.TAIL_SPRING] = by_order[order]
-            table[w, kernel.TAIL_DASHPOT] = dashpot / self.dt  # its heat is dashpot dx^2 / dt
-            nodes[w] = e, gain, weights * gain, weights
-            table[w, kernel.NODE_WORK_SUM] = float(weights @ work)
+            n = orders.index(float(table[w, kernel.ORDER]))
+            table[w, kernel.NODE_SET] = n
+            table[w, kernel.TAIL_DASHPOT], table[w, kernel.TAIL_SPRING], table[w, kernel.NODE_WORK_SUM] = tails[n]
         return kernel.WallStates(table=table, nodes=nodes, node_state=np.zeros((count, 2, xi.size)),
                                  amplitude_table=amplitude_table)
 

@@ -72,8 +72,8 @@ _LN10 = math.log(10.0)
  NODE_WORK_SUM, FOLLOWED_AT_TURN, CONFIRMED_AT, ENERGY, AMPLITUDE_LOW, AMPLITUDE_HIGH,
  AMPLITUDE_USED, AT_G1, AT_G2, AT_ETA1, AT_ETA2, SHIFT_ANCHOR, SHIFT_FACTOR, NODE_SQUARE_1, NODE_SQUARE_2,
  FAILURE_FORCE, FAILURE_DEFORMATION, RELEASED_WORK, SPRINGPOT_HEAT_1, SPRINGPOT_HEAT_2, SPRINGPOT_STORED_1,
- SPRINGPOT_STORED_2) = range(63)
-STATE_FIELDS = 63
+ SPRINGPOT_STORED_2, NODE_SET) = range(64)
+STATE_FIELDS = 64
 """TRACKED: 1 when the wall's state is followed (a thermal description, limits or amplitude following);
 ENERGY: 1 when its heat and stored energy are (a thermal description or limits: the diffusive nodes);
 BASE_*: G1, G2 (MPa), eta1, eta2 (MPa s^r) at the reference temperature (fixed walls); ORDER: r;
@@ -100,7 +100,8 @@ FAILURE_FORCE (N) and FAILURE_DEFORMATION (mm): the wall's force and deformation
 RELEASED_WORK (N*mm): the work done on its failing share over the next step, as its force fell to the
 residual (booked at that step: :func:`update_walls`); SPRINGPOT_HEAT_1 and SPRINGPOT_HEAT_2, SPRINGPOT_STORED_1
 and SPRINGPOT_STORED_2: the Kelvin and the Maxwell springpot's heat over the last committed step and their
-stored energy after it, per unit volume and unit viscosity (MPa; :func:`_springpots`)."""
+stored energy after it, per unit volume and unit viscosity (MPa; :func:`_springpots`); NODE_SET: the wall's
+set of diffusive nodes (WallStates.nodes: one set for every order r of the bank's followed walls)."""
 FAILURE_MODES = ("", "strain", "stress", "temperature")
 """Names of the FAILURE_MODE column."""
 
@@ -110,7 +111,9 @@ class WallStates(NamedTuple):
     :func:`update_walls`."""
 
     table: np.ndarray  # (W, STATE_FIELDS): the columns above
-    nodes: np.ndarray  # (W, 4, N): e, g, c_k g, c_k of every node (thermal.node_coefficients, diffusive_weights)
+    # (S, 4, N): e, g, c_k g, c_k of every node (thermal.node_coefficients, diffusive_weights), one set for each
+    # order r (table NODE_SET): walls of one order share theirs, which keeps the update's data small
+    nodes: np.ndarray
     node_state: np.ndarray  # (W, 2, N): phi of the Kelvin (eps) and Maxwell (eps_v) springpots
     amplitude_table: np.ndarray  # (W, K, 5): log strain, G1, G2, eta1, eta2 at the amplitude nodes
 
@@ -247,9 +250,9 @@ def wall_response(bank, w, deformation):
 def _springpots(nodes, node_state, table, w, strain, strain_v):
     """(heat of the Kelvin springpot, of the Maxwell one, their stored energies), each per unit volume and
     unit viscosity (times eta: MPa = N*mm/mm^3), over the step that took their inputs to ``strain`` (eps)
-    and ``strain_v`` (eps_v), from the diffusive nodes of wall ``w`` (nodes (W, 4, N),
-    node_state (W, 2, N), table (W, STATE_FIELDS)), each node exactly for an input linear over the step
-    (thermal.node_coefficients), the tails in closed form.  Advances the nodes.
+    and ``strain_v`` (eps_v), from the diffusive nodes of wall ``w`` (nodes (S, 4, N): its set
+    table[w, NODE_SET]; node_state (W, 2, N), table (W, STATE_FIELDS)), each node exactly for an input
+    linear over the step (thermal.node_coefficients), the tails in closed form.  Advances the nodes.
 
     A node's heat over the step is its work less the change of its stored energy,
     c (g phi dx + D dx^2) - c (phi'^2 - phi^2) / 2 (thermal module docstring): two sums a node, the stored
@@ -263,16 +266,17 @@ def _springpots(nodes, node_state, table, w, strain, strain_v):
     square_2 = 0.0
     # Separate passes (reads, then updates, then reads): measured faster than one fused pass.
     count = nodes.shape[2]
+    n = int(table[w, NODE_SET])
     for k in range(count):
-        work_1 += nodes[w, 2, k] * node_state[w, 0, k]
-        work_2 += nodes[w, 2, k] * node_state[w, 1, k]
+        work_1 += nodes[n, 2, k] * node_state[w, 0, k]
+        work_2 += nodes[n, 2, k] * node_state[w, 1, k]
     for k in range(count):
-        node_state[w, 0, k] = nodes[w, 0, k] * node_state[w, 0, k] + nodes[w, 1, k] * dx
+        node_state[w, 0, k] = nodes[n, 0, k] * node_state[w, 0, k] + nodes[n, 1, k] * dx
     for k in range(count):
-        node_state[w, 1, k] = nodes[w, 0, k] * node_state[w, 1, k] + nodes[w, 1, k] * dv
+        node_state[w, 1, k] = nodes[n, 0, k] * node_state[w, 1, k] + nodes[n, 1, k] * dv
     for k in range(count):
-        square_1 += nodes[w, 3, k] * node_state[w, 0, k] * node_state[w, 0, k]
-        square_2 += nodes[w, 3, k] * node_state[w, 1, k] * node_state[w, 1, k]
+        square_1 += nodes[n, 3, k] * node_state[w, 0, k] * node_state[w, 0, k]
+        square_2 += nodes[n, 3, k] * node_state[w, 1, k] * node_state[w, 1, k]
     heat_1 = dx * (work_1 + dx * table[w, NODE_WORK_SUM]) - 0.5 * (square_1 - table[w, NODE_SQUARE_1])
     heat_2 = dv * (work_2 + dv * table[w, NODE_WORK_SUM]) - 0.5 * (square_2 - table[w, NODE_SQUARE_2])
     dashpot, spring = table[w, TAIL_DASHPOT], table[w, TAIL_SPRING]
