@@ -442,12 +442,11 @@ def integrate(ground, dt, frame, stories, walls, newton, out, start, work):
             heat, stored, parameter_loss = 0.0, 0.0, 0.0
             for g in range(groups):
                 out.group_temperature[step + 1, g] = table[g, kernel.TEMPERATURE]
+                if out.group_heat.shape[0] > 0:
+                    out.group_heat[step + 1, g] = table[g, kernel.HEAT]
                 heat += table[g, kernel.HEAT]
                 stored += table[g, kernel.STORED]
                 parameter_loss += table[g, kernel.PARAMETER_LOSS]
-            if out.group_heat.shape[0] > 0:  # (some followed group has no heat capacity)
-                for g in range(groups):
-                    out.group_heat[step + 1, g] = table[g, kernel.HEAT]
             out.wall_heat[step + 1] = heat
             out.wall_stored[step + 1] = stored
             out.wall_parameter_loss[step + 1] = parameter_loss
