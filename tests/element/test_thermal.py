@@ -1,6 +1,7 @@
 """Walls that heat: time-temperature superposition, the heat of the diffusive representation, and the
 coupled mechanical-thermal problem, each against an independent reference."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -10,9 +11,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
-from vdw_frames import FDMKDamper, SupportedDamper
+from vdw_frames import FDMKDamper, SupportedDamper, WallLimits
 from vdw_frames.element.bank import WallBank
-from vdw_frames.element.kernel import SHIFT_ANCHOR, TEMPERATURE
+from vdw_frames.element.kernel import HEAT, HEATING_ONLY, PARAMETER_LOSS, SHIFT_ANCHOR, STORED, TEMPERATURE
 from vdw_frames.element.thermal import (
     ISD110_LOSS_PEAK,
     WLF,
@@ -21,6 +22,7 @@ from vdw_frames.element.thermal import (
     ThermalProperties,
     diffusive_nodes,
     diffusive_weights,
+    log10_shift,
     node_coefficients,
 )
 
@@ -67,6 +69,16 @@ def test_shift_laws_follow_their_formulas():
                                                                / math.log(10.0), rel=1e-12)
     # Ver & Beranek Table 14.1: the ISD-110 loss peak moves one decade per (65.6 - 26.7) / 2 K.
     assert float(log_linear.log10_shift(21.2 + 19.45)) == pytest.approx(-1.0, rel=1e-12)
+
+
+@pytest.mark.parametrize("law", LAWS, ids=["WLF", "Arrhenius", "LogLinear"])
+def test_the_kernel_row_of_every_law_is_the_law(law):
+    # The compiled update evaluates every law as -slope d / (1 + curvature d) (thermal.log10_shift of the law's
+    # kernel_row); the reference is each law's own formula, over its valid range and beyond.
+    _, slope, curvature, reference = law.kernel_row()
+    temperatures = np.linspace(law.valid[0] - 10.0, law.valid[1] + 10.0, 97)
+    rows = [log10_shift(slope, curvature, reference, float(t)) for t in temperatures]
+    np.testing.assert_allclose(rows, law.log10_shift(temperatures), rtol=1e-13, atol=1e-15)
 
 
 def test_a_frequency_shift_changes_the_storage_and_loss_stiffness_by_different_factors():
@@ -137,7 +149,7 @@ def test_the_heat_of_a_steady_cycle_equals_the_loop_area(r):
 @pytest.mark.parametrize("law", LAWS, ids=["WLF", "Arrhenius", "LogLinear"])
 def test_a_heating_wall_steps_with_the_viscosities_of_its_committed_temperature(law):
     # The compiled update takes a_T^r from an anchor's exp and a series in the small change since (kernel
-    # set_coefficients); the reference is the law evaluated afresh, 10^(r log10 a_T), at the committed
+    # _shift_factor); the reference is the law evaluated afresh, 10^(r log10 a_T), at the committed
     # temperature (measured within 9e-16).  Dropping the x^4 term shows (4e-14 at x = 1e-3).
     r, dt = 0.6, 0.005
     wall = thermal_wall(law=law, r=r)  # heated by 29-36 K, within every law's valid range (kept)
@@ -154,6 +166,23 @@ def test_a_heating_wall_steps_with_the_viscosities_of_its_committed_temperature(
         last = anchor
     assert 20.0 < temperature - 21.2 < law.valid[1] - 21.2
     assert anchors > 20  # many anchors, and many steps on the series between them
+
+
+def test_a_heating_wall_takes_the_same_steps_on_the_update_s_straight_path_as_on_its_general_one():
+    # A wall whose temperature is all that is followed goes straight through the update (HEATING_ONLY); the same
+    # wall with a limit it never reaches goes the general way, with every check.  The steps are the same
+    # functions in the same order, so the two walls must agree to the last bit.
+    plain = thermal_wall(law=WLF(C1=8.86, C2=101.6, reference=21.2, valid=(-20.0, 80.0)), r=0.6)
+    limited = dataclasses.replace(plain, limits=WallLimits(strain=1e6))
+    bank = WallBank((plain, limited), 0.005, 1500, "damped", "fast")
+    assert list(bank.state(HEATING_ONLY)) == [1.0, 0.0]
+    for d in 15.0 * np.sin(2 * np.pi * 1.5 * np.arange(1, 1501) * 0.005):
+        bank.commit([d, d])
+    for column in (TEMPERATURE, HEAT, STORED, PARAMETER_LOSS):
+        values = bank.state(column)
+        assert values[0] == values[1], column
+    assert bank.state(TEMPERATURE)[0] - 21.2 > 20.0 and bank.state(PARAMETER_LOSS)[0] != 0.0
+    np.testing.assert_array_equal(bank.arrays.constants[0], bank.arrays.constants[1])
 
 
 def test_an_isothermal_thermal_wall_steps_exactly_as_the_plain_wall():

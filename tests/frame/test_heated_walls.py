@@ -65,7 +65,8 @@ def test_a_wall_heat_found_from_its_cooling_temperature_is_the_heat_the_kernel_s
     heated = np.isfinite(summed.group_temperature[0])  # every group but the one without a heat capacity
     assert heated.sum() == 5
     row = thermal_row(cooling.thermal, WALL.area * WALL.thickness, dt)  # each heated group: one wall
-    # (row[7]: the update's gain, K per N*mm, in thermal_row's order kind, C1, C2, T_ref, rho c V, T_0, decay, gain)
+    # (row[7]: the update's gain, K per N*mm, in thermal_row's order kind, slope, curvature, T_ref, rho c V, T_0,
+    # decay, gain)
     terms = np.zeros((heated.size, 4))
     terms[heated] = (0.0, 15.0, np.exp(-dt / 4.0), row[7])
     found = _heat_from_temperature(summed.group_temperature, terms)

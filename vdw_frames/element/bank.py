@@ -19,6 +19,7 @@ Units: deformation mm, force N, stiffness N/mm, time s.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -150,10 +151,14 @@ class WallBank:
         for w, (wall_thermal, c) in enumerate(zip(thermals, constants, strict=True)):
             table[w, kernel.T_KIND:kernel.T_HIGH + 1] = thermal.thermal_row(wall_thermal, c[4] * c[5], self.dt)
         table[:, kernel.TEMPERATURE] = [t.temperature if t is not None else np.nan for t in thermals]
+        table[:, kernel.SHIFT_RATE] = math.log(10.0) * table[:, kernel.ORDER] * table[:, kernel.T_SLOPE]
         table[:, kernel.LIMIT_STRAIN:kernel.RESIDUAL + 1] = [np.inf, np.inf, np.inf, 0.0]
         for w, wall_limits in enumerate(limits):
             if wall_limits is not None:
                 table[w, kernel.LIMIT_STRAIN:kernel.RESIDUAL + 1] = wall_limits.kernel_row()
+        table[:, kernel.LIMITED] = [lim is not None for lim in limits]
+        table[:, kernel.HEATING_ONLY] = [t is not None and lim is None and nodes.size == 0
+                                         for t, lim, nodes in zip(thermals, limits, tables, strict=True)]
         table[:, kernel.FAILURE_STEP] = -1.0
         table[:, kernel.SCALE] = 1.0
         table[:, kernel.OUTSIDE] = -1.0

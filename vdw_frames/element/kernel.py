@@ -64,7 +64,7 @@ _LN10 = math.log(10.0)
 
 # Columns of WallStates.table: every per-wall scalar of a wall's state, in one row.
 (TRACKED, BASE_G1, BASE_G2, BASE_ETA1, BASE_ETA2, ORDER,
- T_KIND, T_FIRST, T_SECOND, T_REFERENCE, T_CAPACITY, T_AMBIENT, T_DECAY, T_GAIN, T_LOW, T_HIGH,
+ T_KIND, T_SLOPE, T_CURVATURE, T_REFERENCE, T_CAPACITY, T_AMBIENT, T_DECAY, T_GAIN, T_LOW, T_HIGH,
  TEMPERATURE, HEAT, STORED, RELEASED, PARAMETER_LOSS,
  LIMIT_STRAIN, LIMIT_STRESS, LIMIT_TEMPERATURE, RESIDUAL, FAILURE_STEP, FAILURE_MODE, SCALE, OUTSIDE,
  PREVIOUS_STRAIN, PREVIOUS_DASHPOT_STRAIN, TAIL_DASHPOT, TAIL_SPRING,
@@ -72,14 +72,15 @@ _LN10 = math.log(10.0)
  NODE_WORK_SUM, FOLLOWED_AT_TURN, CONFIRMED_AT, ENERGY, AMPLITUDE_LOW, AMPLITUDE_HIGH,
  AMPLITUDE_USED, AT_G1, AT_G2, AT_ETA1, AT_ETA2, SHIFT_ANCHOR, SHIFT_FACTOR, NODE_SQUARE_1, NODE_SQUARE_2,
  FAILURE_FORCE, FAILURE_DEFORMATION, RELEASED_WORK, SPRINGPOT_HEAT_1, SPRINGPOT_HEAT_2, SPRINGPOT_STORED_1,
- SPRINGPOT_STORED_2, NODE_SET) = range(64)
-STATE_FIELDS = 64
+ SPRINGPOT_STORED_2, NODE_SET, SHIFT_RATE, LIMITED, HEATING_ONLY) = range(67)
+STATE_FIELDS = 67
 """TRACKED: 1 when the wall's state is followed (a thermal description, limits or amplitude following);
 ENERGY: 1 when its heat and stored energy are (a thermal description or limits: the diffusive nodes);
 BASE_*: G1, G2 (MPa), eta1, eta2 (MPa s^r) at the reference temperature (fixed walls); ORDER: r;
-T_*: the thermal row (thermal.thermal_row: law kind (0: none), its two parameters and reference (degC),
-rho c V (N*mm/K), ambient (degC), exp(-dt / tau), (tau / dt)(1 - exp(-dt / tau)) / (rho c V) (K per N*mm),
-validity range (degC));
+T_*: the thermal row (thermal.thermal_row: law kind (0: none), its slope (1/K) and curvature (1/K),
+log10 a_T = -slope (T - T_ref) / (1 + curvature (T - T_ref)), and reference T_ref (degC), rho c V
+(N*mm/K), ambient (degC), exp(-dt / tau), (tau / dt)(1 - exp(-dt / tau)) / (rho c V) (K per N*mm),
+validity range (degC)); SHIFT_RATE: ln(10) r slope, the exponent of a_T^r per K near T_ref;
 TEMPERATURE (degC), HEAT (N*mm dissipated since rest), STORED (N*mm), RELEASED (N*mm lost at failure),
 PARAMETER_LOSS (N*mm the wall's stored energy lost, at no work, as its parameters changed with
 temperature or amplitude: positive as it softens); LIMIT_* (strain -, stress
@@ -101,7 +102,9 @@ RELEASED_WORK (N*mm): the work done on its failing share over the next step, as 
 residual (booked at that step: :func:`update_walls`); SPRINGPOT_HEAT_1 and SPRINGPOT_HEAT_2, SPRINGPOT_STORED_1
 and SPRINGPOT_STORED_2: the Kelvin and the Maxwell springpot's heat over the last committed step and their
 stored energy after it, per unit volume and unit viscosity (MPa; :func:`_springpots`); NODE_SET: the wall's
-set of diffusive nodes (WallStates.nodes: one set for every order r of the bank's followed walls)."""
+set of diffusive nodes (WallStates.nodes: one set for every order r of the bank's followed walls); LIMITED:
+1 when the wall has limits; HEATING_ONLY: 1 when its temperature is all that is followed (a thermal
+description, no limits, fixed parameters otherwise): the update takes it straight through."""
 FAILURE_MODES = ("", "strain", "stress", "temperature")
 """Names of the FAILURE_MODE column."""
 
@@ -289,57 +292,75 @@ def _springpots(nodes, node_state, table, w, strain, strain_v):
 
 
 @njit(cache=True, inline="always")
-def _log10_shift(table, w, temperature):
-    """log10 a_T of wall ``w``'s shift law at ``temperature`` (degC): thermal.log10_shift, compiled."""
-    kind, first, second, reference = table[w, T_KIND], table[w, T_FIRST], table[w, T_SECOND], table[w, T_REFERENCE]
-    if kind == 1.0:  # WLF
-        difference = temperature - reference
-        return -first * difference / (second + difference)
-    if kind == 2.0:  # Arrhenius, parameter 1 = E_a / R (K)
-        return first * (1.0 / (temperature + 273.15) - 1.0 / (reference + 273.15)) / 2.302585092994046
-    if kind == 3.0:  # log-linear, parameter 1 = 1 / (K per decade)
-        return -first * (temperature - reference)
-    return 0.0
+def _shift_factor(table, w, count):
+    """a_T^r (-) of wall ``w`` at its committed temperature, clamped to its shift law's range (the first step
+    outside it is noted, OUTSIDE), found from the last exp taken where the exponent has moved little.
+
+    The exponent ln a_T^r = -(ln 10 r slope) d / (1 + curvature d), d = T - T_ref, is every law of
+    :mod:`~vdw_frames.element.thermal` (thermal.log10_shift); a log-linear law has no curvature and so no
+    division.  Near the anchor, exp(anchor + x) = exp(anchor) exp(x) with the series of exp(x) to x^4 (|x| <=
+    1e-3: x^5 / 120 < 1e-17, within an ulp; Estrin's grouping, a shorter chain than Horner's)."""
+    temperature = table[w, TEMPERATURE]
+    clamped = min(max(temperature, table[w, T_LOW]), table[w, T_HIGH])
+    if clamped != temperature and table[w, OUTSIDE] < 0.0:
+        table[w, OUTSIDE] = count + 1
+    difference = clamped - table[w, T_REFERENCE]
+    exponent = -table[w, SHIFT_RATE] * difference
+    curvature = table[w, T_CURVATURE]
+    if curvature != 0.0:
+        exponent /= 1.0 + curvature * difference
+    x = exponent - table[w, SHIFT_ANCHOR]
+    if abs(x) <= 1e-3:
+        x2 = x * x
+        return table[w, SHIFT_FACTOR] * ((1.0 + x) + x2 * ((0.5 + x * (1.0 / 6.0)) + x2 * (1.0 / 24.0)))
+    factor = math.exp(exponent)  # (the first call too: the anchor starts as NaN)
+    table[w, SHIFT_ANCHOR] = exponent
+    table[w, SHIFT_FACTOR] = factor
+    return factor
+
+
+@njit(cache=True, allocates=False)
+def _interpolate_amplitude(table, amplitude_table, w):
+    """G1, G2, eta1, eta2 of amplitude-following wall ``w`` at its amplitude into AT_* (``amplitude_table``
+    (W, K, 5): linear in log strain between the nodes, the end node's outside them).  Not inlined: it runs
+    only when the followed amplitude has moved, and the update's loop stays short without it."""
+    count = int(table[w, AMPLITUDE_NODES])
+    amplitude = table[w, AMPLITUDE]
+    x = math.log(max(amplitude, 1e-300))
+    k = 0
+    while k < count - 2 and x > amplitude_table[w, k + 1, 0]:
+        k += 1
+    low, high = amplitude_table[w, k, 0], amplitude_table[w, k + 1, 0]
+    t = min(max((x - low) / (high - low), 0.0), 1.0)
+    for column, field in ((1, AT_G1), (2, AT_G2), (3, AT_ETA1), (4, AT_ETA2)):
+        table[w, field] = (amplitude_table[w, k, column]
+                           + t * (amplitude_table[w, k + 1, column] - amplitude_table[w, k, column]))
+    table[w, AMPLITUDE_USED] = amplitude
 
 
 @njit(cache=True, inline="always")
-def set_coefficients(table, amplitude_table, constants, w):
-    """Wall ``w``'s G1, G2, eta1, eta2 (``constants`` (W, 7)) at its committed amplitude and temperature:
-    the parameters at the amplitude (``amplitude_table`` (W, K, 5), linear in log strain between the nodes,
-    the end node's outside them; the base parameters of ``table`` for a wall of fixed parameters), eta
-    times a_T^r at the temperature (clamped to the shift law's range; thermal module docstring)."""
-    G1, G2, eta1, eta2 = table[w, BASE_G1], table[w, BASE_G2], table[w, BASE_ETA1], table[w, BASE_ETA2]
-    count = int(table[w, AMPLITUDE_NODES])
-    if count > 0:
-        amplitude = table[w, AMPLITUDE]
-        if amplitude != table[w, AMPLITUDE_USED]:  # (held within much of a half-cycle: reuse the last)
-            x = math.log(max(amplitude, 1e-300))
-            k = 0
-            while k < count - 2 and x > amplitude_table[w, k + 1, 0]:
-                k += 1
-            low, high = amplitude_table[w, k, 0], amplitude_table[w, k + 1, 0]
-            t = min(max((x - low) / (high - low), 0.0), 1.0)
-            for column, field in ((1, AT_G1), (2, AT_G2), (3, AT_ETA1), (4, AT_ETA2)):
-                table[w, field] = (amplitude_table[w, k, column]
-                                   + t * (amplitude_table[w, k + 1, column] - amplitude_table[w, k, column]))
-            table[w, AMPLITUDE_USED] = amplitude
-        G1, G2, eta1, eta2 = table[w, AT_G1], table[w, AT_G2], table[w, AT_ETA1], table[w, AT_ETA2]
-    factor = 1.0
+def set_coefficients(table, amplitude_table, constants, w, count):
+    """Wall ``w``'s G1, G2, eta1, eta2 (``constants`` (W, 7)) for the step after commit ``count``, at its
+    committed amplitude and temperature: the parameters at the amplitude (``amplitude_table`` (W, K, 5); the
+    base parameters of ``table`` for a wall of fixed parameters), eta times a_T^r at the temperature
+    (:func:`_shift_factor`).  Returns whether they follow anything (False: the base parameters, as before)."""
+    eta1, eta2 = table[w, BASE_ETA1], table[w, BASE_ETA2]
+    follows = False
+    if table[w, AMPLITUDE_NODES] > 0.0:
+        if table[w, AMPLITUDE] != table[w, AMPLITUDE_USED]:  # (held within much of a half-cycle: reuse the last)
+            _interpolate_amplitude(table, amplitude_table, w)
+        constants[w, 0] = table[w, AT_G1]
+        constants[w, 1] = table[w, AT_G2]
+        eta1, eta2 = table[w, AT_ETA1], table[w, AT_ETA2]
+        follows = True
     if table[w, T_KIND] != 0.0:
-        temperature = min(max(table[w, TEMPERATURE], table[w, T_LOW]), table[w, T_HIGH])
-        exponent = _LN10 * table[w, ORDER] * _log10_shift(table, w, temperature)
-        x = exponent - table[w, SHIFT_ANCHOR]
-        if abs(x) <= 1e-3:  # exp(anchor + x) = exp(anchor) exp(x), the series to x^4 (x^5 / 120 < 1e-17):
-            x2 = x * x      # within an ulp of exp(x); Estrin's grouping, a shorter chain than Horner's
-            factor = table[w, SHIFT_FACTOR] * ((1.0 + x) + x2 * ((0.5 + x * (1.0 / 6.0)) + x2 * (1.0 / 24.0)))
-        else:  # (the first call too: the anchor starts as NaN)
-            factor = math.exp(exponent)
-            table[w, SHIFT_ANCHOR] = exponent
-            table[w, SHIFT_FACTOR] = factor
-    constants[w, 0] = G1
-    constants[w, 1] = G2
-    constants[w, 2] = eta1 * factor
-    constants[w, 3] = eta2 * factor
+        factor = _shift_factor(table, w, count)
+        eta1 *= factor
+        eta2 *= factor
+        follows = True
+    constants[w, 2] = eta1
+    constants[w, 3] = eta2
+    return follows
 
 
 REVERSAL_GATE = 0.05
@@ -393,6 +414,47 @@ def _follow_amplitude(table, w, strain):
             table[w, ABOVE_RANGE] += 1.0
 
 
+@njit(cache=True, inline="always")
+def _springs(constants, w, strain, maxwell):
+    """The energy (MPa) in the springs of wall ``w`` (G1 at ``strain``, G2 at the Maxwell stress ``maxwell``
+    MPa) per unit volume, under its parameters ``constants`` (W, 7).  A Maxwell branch without G2 or eta2
+    carries no stress."""
+    springs = 0.5 * constants[w, 0] * strain * strain
+    if constants[w, 1] > 0.0 and constants[w, 3] > 0.0:
+        springs += 0.5 * maxwell * maxwell / constants[w, 1]
+    return springs
+
+
+@njit(cache=True, inline="always")
+def _stored(table, constants, w, springs):
+    """The energy (N*mm) wall ``w`` stores under the parameters ``constants`` (W, 7): its springs' (``springs``,
+    MPa, :func:`_springs`) and its springpots' (the diffusive nodes' after the last commit, SPRINGPOT_STORED_*;
+    the Maxwell one's only with a Maxwell branch), over its volume (times SCALE after a failure)."""
+    stored = springs + constants[w, 2] * table[w, SPRINGPOT_STORED_1]
+    if constants[w, 1] > 0.0 and constants[w, 3] > 0.0:
+        stored += constants[w, 3] * table[w, SPRINGPOT_STORED_2]
+    return stored * (constants[w, 4] * constants[w, 5] * table[w, SCALE])
+
+
+@njit(cache=True, inline="always")
+def _energy(table, constants, w, strain, maxwell):
+    """(heat over the step, stored energy after it, both N*mm; the springs' energy, MPa) of wall ``w`` under the
+    step's parameters ``constants`` (W, 7), from its springpots' heat and stored energy (SPRINGPOT_*)."""
+    springs = _springs(constants, w, strain, maxwell)
+    heat = constants[w, 2] * table[w, SPRINGPOT_HEAT_1]
+    if constants[w, 1] > 0.0 and constants[w, 3] > 0.0:
+        heat += constants[w, 3] * table[w, SPRINGPOT_HEAT_2]
+    return heat * (constants[w, 4] * constants[w, 5] * table[w, SCALE]), _stored(table, constants, w, springs), springs
+
+
+@njit(cache=True, inline="always")
+def _warm(table, w, heat):
+    """Wall ``w``'s temperature (degC) after a step's ``heat`` (N*mm): T' = T_a + (T - T_a) exp(-dt / tau)
+    + gain heat, the exact step of rho c V dT/dt = P - rho c V (T - T_a) / tau for a power P constant over it."""
+    ambient = table[w, T_AMBIENT]
+    table[w, TEMPERATURE] = ambient + (table[w, TEMPERATURE] - ambient) * table[w, T_DECAY] + heat * table[w, T_GAIN]
+
+
 @njit(cache=True, fastmath=_FAST, allocates=False)
 def update_walls(states, constants, values, force, deformation, count):
     """After the commit of step ``count`` (forces (W,) N and deformations (W,) mm, the memory advanced,
@@ -424,38 +486,32 @@ def update_walls(states, constants, values, force, deformation, count):
         if table[w, TRACKED] == 0.0:
             continue
         strain, maxwell = values[0, w], values[1, w]
-        if table[w, FAILURE_STEP] == count:  # the step after the failing commit
+        if table[w, HEATING_ONLY] != 0.0:  # the common case, straight through: the same steps as below, no checks
+            heat, stored, springs = _energy(table, constants, w, strain, maxwell)
+            table[w, HEAT] += heat
+            _warm(table, w, heat)
+            factor = _shift_factor(table, w, count)
+            constants[w, 2] = table[w, BASE_ETA1] * factor
+            constants[w, 3] = table[w, BASE_ETA2] * factor
+            renewed = _stored(table, constants, w, springs)
+            table[w, PARAMETER_LOSS] += stored - renewed
+            table[w, STORED] = renewed
+            continue
+        limited = table[w, LIMITED] != 0.0
+        if limited and table[w, FAILURE_STEP] == count:  # the step after the failing commit
             table[w, RELEASED_WORK] = (0.5 * (1.0 - table[w, RESIDUAL]) * table[w, FAILURE_FORCE]
                                        * (deformation[w] - table[w, FAILURE_DEFORMATION]))
         if table[w, ENERGY] == 0.0:  # a wall that only follows its amplitude: no heat, no energy split
             _follow_amplitude(table, w, strain)
-            set_coefficients(table, amplitude_table, constants, w)
+            set_coefficients(table, amplitude_table, constants, w, count)
             continue
-        G1, G2, eta1, eta2 = constants[w, 0], constants[w, 1], constants[w, 2], constants[w, 3]
-        scale = table[w, SCALE]  # a failed wall keeps its residual share
-        volume = constants[w, 4] * constants[w, 5] * scale
-        maxwell_branch = G2 > 0.0 and eta2 > 0.0  # a Maxwell branch without G2 or eta2 carries no stress
-        springs = 0.5 * G1 * strain * strain
-        compliance = 0.0
-        heat_1, heat_2 = table[w, SPRINGPOT_HEAT_1], table[w, SPRINGPOT_HEAT_2]
-        stored_1, stored_2 = table[w, SPRINGPOT_STORED_1], table[w, SPRINGPOT_STORED_2]
-        if maxwell_branch:
-            compliance = 1.0 / G2
-            springs += 0.5 * maxwell * maxwell * compliance
-        else:
-            heat_2 = stored_2 = 0.0
-        heat = (eta1 * heat_1 + eta2 * heat_2) * volume  # N*mm
-        stored = (springs + eta1 * stored_1 + eta2 * stored_2) * volume
+        G1, G2 = constants[w, 0], constants[w, 1]
+        heat, stored, springs = _energy(table, constants, w, strain, maxwell)
         table[w, HEAT] += heat
         if table[w, T_CAPACITY] > 0.0:
-            ambient = table[w, T_AMBIENT]
-            temperature = (ambient + (table[w, TEMPERATURE] - ambient) * table[w, T_DECAY]
-                           + heat * table[w, T_GAIN])
-            table[w, TEMPERATURE] = temperature
-            if table[w, OUTSIDE] < 0.0 and not table[w, T_LOW] <= temperature <= table[w, T_HIGH]:
-                table[w, OUTSIDE] = count + 1
+            _warm(table, w, heat)
         failing = False
-        if table[w, FAILURE_STEP] < 0.0:
+        if limited and table[w, FAILURE_STEP] < 0.0:
             mode = 0.0
             if abs(strain) > table[w, LIMIT_STRAIN]:
                 mode = 1.0
@@ -473,20 +529,14 @@ def update_walls(states, constants, values, force, deformation, count):
                 table[w, SCALE] = table[w, RESIDUAL]
                 stored *= table[w, RESIDUAL]
         _follow_amplitude(table, w, strain)
-        set_coefficients(table, amplitude_table, constants, w)
-        if (constants[w, 0] == G1 and constants[w, 1] == G2 and constants[w, 2] == eta1
-                and constants[w, 3] == eta2):  # parameters that stay (limits only) keep the stored energy
-            table[w, STORED] = stored
+        if not set_coefficients(table, amplitude_table, constants, w, count):  # limits only: parameters stay,
+            table[w, STORED] = stored                                          # and so does the stored energy
             continue
         # The same state stores another energy under the next step's parameters (temperature, amplitude): the
         # difference does no work and warms nothing in this model; it is accounted, not hidden in the heat.
-        springs = 0.5 * constants[w, 0] * strain * strain
-        if maxwell_branch and constants[w, 1] > 0.0:
-            if constants[w, 1] != G2:  # (G2 follows the amplitude only)
-                compliance = 1.0 / constants[w, 1]
-            springs += 0.5 * maxwell * maxwell * compliance
-        renewed = ((springs + constants[w, 2] * stored_1 + constants[w, 3] * stored_2)
-                   * constants[w, 4] * constants[w, 5] * table[w, SCALE])
+        if constants[w, 0] != G1 or constants[w, 1] != G2:  # (G1 and G2 follow the amplitude only)
+            springs = _springs(constants, w, strain, maxwell)
+        renewed = _stored(table, constants, w, springs)
         if not failing:
             table[w, PARAMETER_LOSS] += stored - renewed
         table[w, STORED] = renewed

@@ -109,7 +109,8 @@ class ShiftLaw(Protocol):
         ...
 
     def kernel_row(self) -> tuple[float, float, float, float]:
-        """(kind, parameter 1, parameter 2, reference) for the compiled update (see :func:`log10_shift`)."""
+        """(kind, slope, curvature, reference) for the compiled update: log10 a_T = -slope d / (1 + curvature d),
+        d = T - reference (:func:`log10_shift`)."""
         ...
 
 
@@ -165,7 +166,7 @@ class WLF:
         return -self.C1 * difference / (self.C2 + difference)
 
     def kernel_row(self) -> tuple[float, float, float, float]:
-        return (float(WLF_KIND), self.C1, self.C2, self.reference)
+        return (float(WLF_KIND), self.C1 / self.C2, 1.0 / self.C2, self.reference)
 
 
 @dataclass(frozen=True)
@@ -200,7 +201,9 @@ class Arrhenius:
             / math.log(10.0)
 
     def kernel_row(self) -> tuple[float, float, float, float]:
-        return (float(ARRHENIUS_KIND), self.activation_energy / GAS_CONSTANT, 0.0, self.reference)
+        kelvin = self.reference - ABSOLUTE_ZERO  # 1/T - 1/T_ref = -(d / T_ref^2) / (1 + d / T_ref)
+        return (float(ARRHENIUS_KIND), self.activation_energy / GAS_CONSTANT / math.log(10.0) / kelvin**2, 1.0 / kelvin,
+                self.reference)
 
 
 @dataclass(frozen=True)
@@ -249,16 +252,14 @@ to published measurements, and its source says where it is an assumption."""
 NO_SHIFT, WLF_KIND, ARRHENIUS_KIND, LOG_LINEAR_KIND = 0, 1, 2, 3
 
 
-def log10_shift(kind: float, first: float, second: float, reference: float, temperature: float) -> float:
-    """log10 a_T of a kernel row (see ``kernel_row``); the compiled update uses the same formula."""
-    if kind == WLF_KIND:
-        difference = temperature - reference
-        return -first * difference / (second + difference)
-    if kind == ARRHENIUS_KIND:
-        return first * (1.0 / (temperature - ABSOLUTE_ZERO) - 1.0 / (reference - ABSOLUTE_ZERO)) / math.log(10.0)
-    if kind == LOG_LINEAR_KIND:
-        return -first * (temperature - reference)
-    return 0.0
+def log10_shift(slope: float, curvature: float, reference: float, temperature: float) -> float:
+    """log10 a_T = -slope d / (1 + curvature d), d = temperature - reference (degC), of a law's ``kernel_row``: the
+    form every law here takes (WLF: slope C1 / C2, curvature 1 / C2; Arrhenius: slope E_a / (R ln 10 T_ref^2),
+    curvature 1 / T_ref, T_ref in kelvin; log-linear: no curvature), as the compiled update evaluates it."""
+    difference = temperature - reference
+    if curvature == 0.0:
+        return -slope * difference
+    return -slope * difference / (1.0 + curvature * difference)
 
 
 SHIFT_LAWS = (WLF, Arrhenius, LogLinear)
@@ -320,12 +321,12 @@ def thermal_row(thermal: ThermalProperties | None, volume: float, dt: float) -> 
     row[8], row[9] = -math.inf, math.inf
     if thermal is None:
         return row
-    kind, first, second, reference = thermal.shift.kernel_row()
+    kind, slope, curvature, reference = thermal.shift.kernel_row()
     decay = math.exp(-dt / thermal.cooling_time)
     gain = 1.0 if thermal.cooling_time == math.inf else -math.expm1(-dt / thermal.cooling_time) \
         * thermal.cooling_time / dt
     capacity = thermal.heat_capacity * volume
-    row[:] = (kind, first, second, reference, capacity, thermal.temperature, decay, gain / capacity,
+    row[:] = (kind, slope, curvature, reference, capacity, thermal.temperature, decay, gain / capacity,
               *thermal.shift.valid)
     return row
 
