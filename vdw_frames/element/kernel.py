@@ -415,36 +415,24 @@ def _follow_amplitude(table, w, strain):
 
 
 @njit(cache=True, inline="always")
-def _springs(constants, w, strain, maxwell):
-    """The energy (MPa) in the springs of wall ``w`` (G1 at ``strain``, G2 at the Maxwell stress ``maxwell``
-    MPa) per unit volume, under its parameters ``constants`` (W, 7).  A Maxwell branch without G2 or eta2
-    carries no stress."""
-    springs = 0.5 * constants[w, 0] * strain * strain
-    if constants[w, 1] > 0.0 and constants[w, 3] > 0.0:
-        springs += 0.5 * maxwell * maxwell / constants[w, 1]
-    return springs
+def _energies(table, w, G1, G2, eta2, strain, maxwell):
+    """(springs, heat_1, heat_2, stored_1, stored_2) of wall ``w`` (``table`` (W, STATE_FIELDS)) after a commit: the
+    energy in its springs (G1 at ``strain``, G2 at the Maxwell stress ``maxwell`` MPa) per unit volume (MPa), and
+    its springpots' heat over the step and stored energy after it per unit volume and unit viscosity
+    (SPRINGPOT_*).  A Maxwell branch without G2 or eta2 carries no stress: its terms are 0."""
+    springs = 0.5 * G1 * strain * strain
+    heat_2 = stored_2 = 0.0
+    if G2 > 0.0 and eta2 > 0.0:
+        springs += 0.5 * maxwell * maxwell / G2
+        heat_2, stored_2 = table[w, SPRINGPOT_HEAT_2], table[w, SPRINGPOT_STORED_2]
+    return springs, table[w, SPRINGPOT_HEAT_1], heat_2, table[w, SPRINGPOT_STORED_1], stored_2
 
 
 @njit(cache=True, inline="always")
-def _stored(table, constants, w, springs):
-    """The energy (N*mm) wall ``w`` stores under the parameters ``constants`` (W, 7): its springs' (``springs``,
-    MPa, :func:`_springs`) and its springpots' (the diffusive nodes' after the last commit, SPRINGPOT_STORED_*;
-    the Maxwell one's only with a Maxwell branch), over its volume (times SCALE after a failure)."""
-    stored = springs + constants[w, 2] * table[w, SPRINGPOT_STORED_1]
-    if constants[w, 1] > 0.0 and constants[w, 3] > 0.0:
-        stored += constants[w, 3] * table[w, SPRINGPOT_STORED_2]
-    return stored * (constants[w, 4] * constants[w, 5] * table[w, SCALE])
-
-
-@njit(cache=True, inline="always")
-def _energy(table, constants, w, strain, maxwell):
-    """(heat over the step, stored energy after it, both N*mm; the springs' energy, MPa) of wall ``w`` under the
-    step's parameters ``constants`` (W, 7), from its springpots' heat and stored energy (SPRINGPOT_*)."""
-    springs = _springs(constants, w, strain, maxwell)
-    heat = constants[w, 2] * table[w, SPRINGPOT_HEAT_1]
-    if constants[w, 1] > 0.0 and constants[w, 3] > 0.0:
-        heat += constants[w, 3] * table[w, SPRINGPOT_HEAT_2]
-    return heat * (constants[w, 4] * constants[w, 5] * table[w, SCALE]), _stored(table, constants, w, springs), springs
+def _stored(springs, eta1, eta2, stored_1, stored_2, volume):
+    """The energy (N*mm) a wall of ``volume`` mm^3 (times SCALE after a failure) stores under viscosities ``eta1``,
+    ``eta2`` (MPa s^r): its springs' (``springs``, MPa) and its springpots' (per unit volume and viscosity)."""
+    return (springs + eta1 * stored_1 + eta2 * stored_2) * volume
 
 
 @njit(cache=True, inline="always")
@@ -486,14 +474,20 @@ def update_walls(states, constants, values, force, deformation, count):
         if table[w, TRACKED] == 0.0:
             continue
         strain, maxwell = values[0, w], values[1, w]
-        if table[w, HEATING_ONLY] != 0.0:  # the common case, straight through: the same steps as below, no checks
-            heat, stored, springs = _energy(table, constants, w, strain, maxwell)
+        G1, G2, eta1, eta2 = constants[w, 0], constants[w, 1], constants[w, 2], constants[w, 3]
+        volume = constants[w, 4] * constants[w, 5] * table[w, SCALE]  # a failed wall keeps its residual share
+        # A wall that only heats (the common case) goes straight through: the same steps as the general path below,
+        # without its checks, each of which costs about half a nanosecond a wall and step (docs/validation.rst).
+        if table[w, HEATING_ONLY] != 0.0:
+            springs, heat_1, heat_2, stored_1, stored_2 = _energies(table, w, G1, G2, eta2, strain, maxwell)
+            heat = (eta1 * heat_1 + eta2 * heat_2) * volume
+            stored = _stored(springs, eta1, eta2, stored_1, stored_2, volume)
             table[w, HEAT] += heat
             _warm(table, w, heat)
             factor = _shift_factor(table, w, count)
-            constants[w, 2] = table[w, BASE_ETA1] * factor
-            constants[w, 3] = table[w, BASE_ETA2] * factor
-            renewed = _stored(table, constants, w, springs)
+            eta1, eta2 = table[w, BASE_ETA1] * factor, table[w, BASE_ETA2] * factor
+            constants[w, 2], constants[w, 3] = eta1, eta2
+            renewed = _stored(springs, eta1, eta2, stored_1, stored_2, volume)
             table[w, PARAMETER_LOSS] += stored - renewed
             table[w, STORED] = renewed
             continue
@@ -505,8 +499,9 @@ def update_walls(states, constants, values, force, deformation, count):
             _follow_amplitude(table, w, strain)
             set_coefficients(table, amplitude_table, constants, w, count)
             continue
-        G1, G2 = constants[w, 0], constants[w, 1]
-        heat, stored, springs = _energy(table, constants, w, strain, maxwell)
+        springs, heat_1, heat_2, stored_1, stored_2 = _energies(table, w, G1, G2, eta2, strain, maxwell)
+        heat = (eta1 * heat_1 + eta2 * heat_2) * volume
+        stored = _stored(springs, eta1, eta2, stored_1, stored_2, volume)
         table[w, HEAT] += heat
         if table[w, T_CAPACITY] > 0.0:
             _warm(table, w, heat)
@@ -535,8 +530,9 @@ def update_walls(states, constants, values, force, deformation, count):
         # The same state stores another energy under the next step's parameters (temperature, amplitude): the
         # difference does no work and warms nothing in this model; it is accounted, not hidden in the heat.
         if constants[w, 0] != G1 or constants[w, 1] != G2:  # (G1 and G2 follow the amplitude only)
-            springs = _springs(constants, w, strain, maxwell)
-        renewed = _stored(table, constants, w, springs)
+            springs = _energies(table, w, constants[w, 0], constants[w, 1], constants[w, 3], strain, maxwell)[0]
+        renewed = _stored(springs, constants[w, 2], constants[w, 3], stored_1, stored_2,
+                          constants[w, 4] * constants[w, 5] * table[w, SCALE])
         if not failing:
             table[w, PARAMETER_LOSS] += stored - renewed
         table[w, STORED] = renewed
