@@ -13,7 +13,15 @@ from scipy.integrate import solve_ivp
 
 from vdw_frames import FDMKDamper, SupportedDamper, WallLimits
 from vdw_frames.element.bank import WallBank
-from vdw_frames.element.kernel import HEAT, HEATING_ONLY, PARAMETER_LOSS, SHIFT_ANCHOR, STORED, TEMPERATURE
+from vdw_frames.element.kernel import (
+    HEAT,
+    HEATING_ONLY,
+    OUTSIDE,
+    PARAMETER_LOSS,
+    SHIFT_ANCHOR,
+    STORED,
+    TEMPERATURE,
+)
 from vdw_frames.element.thermal import (
     ISD110_LOSS_PEAK,
     WLF,
@@ -74,11 +82,20 @@ def test_shift_laws_follow_their_formulas():
 @pytest.mark.parametrize("law", LAWS, ids=["WLF", "Arrhenius", "LogLinear"])
 def test_the_kernel_row_of_every_law_is_the_law(law):
     # The compiled update evaluates every law as -slope d / (1 + curvature d) (thermal.log10_shift of the law's
-    # kernel_row); the reference is each law's own formula, over its valid range and beyond.
+    # kernel_row).  The reference is each law's printed formula, over its valid range and beyond; Arrhenius's
+    # 1/T - 1/T_ref written (T_ref - T) / (T T_ref), the difference taken in degC, which keeps its digits near T_ref.
     _, slope, curvature, reference = law.kernel_row()
-    temperatures = np.linspace(law.valid[0] - 10.0, law.valid[1] + 10.0, 97)
-    rows = [log10_shift(slope, curvature, reference, float(t)) for t in temperatures]
-    np.testing.assert_allclose(rows, law.log10_shift(temperatures), rtol=1e-13, atol=1e-15)
+    temperatures = np.linspace(law.valid[0] - 10.0, law.valid[1] + 10.0, 401)
+    rows = np.array([log10_shift(slope, curvature, reference, float(t)) for t in temperatures])
+    if isinstance(law, Arrhenius):
+        kelvin, reference_kelvin = temperatures + 273.15, law.reference + 273.15
+        expected = (law.activation_energy / 8.314462618 * (law.reference - temperatures) / (kelvin * reference_kelvin)
+                    / math.log(10.0))
+    elif isinstance(law, WLF):
+        expected = -law.C1 * (temperatures - law.reference) / (law.C2 + temperatures - law.reference)
+    else:
+        expected = -(temperatures - law.reference) / law.degrees_per_decade
+    np.testing.assert_allclose(rows, expected, rtol=1e-13, atol=1e-16)
 
 
 def test_a_frequency_shift_changes_the_storage_and_loss_stiffness_by_different_factors():
@@ -168,21 +185,60 @@ def test_a_heating_wall_steps_with_the_viscosities_of_its_committed_temperature(
     assert anchors > 20  # many anchors, and many steps on the series between them
 
 
-def test_a_heating_wall_takes_the_same_steps_on_the_update_s_straight_path_as_on_its_general_one():
+NARROW = [WLF(C1=8.86, C2=101.6, reference=21.2, valid=(18.0, 40.0)),
+          LogLinear(degrees_per_decade=19.45, reference=21.2, valid=(18.0, 40.0))]
+
+
+@pytest.mark.parametrize("law", NARROW, ids=["WLF", "LogLinear"])
+@pytest.mark.parametrize("cooling_time", [math.inf, 3.0], ids=["adiabatic", "cooling"])
+@pytest.mark.parametrize("maxwell", [True, False], ids=["Maxwell", "Kelvin only"])
+def test_a_heating_wall_takes_the_same_steps_on_the_update_s_straight_path_as_on_its_general_one(law, cooling_time,
+                                                                                               maxwell):
     # A wall whose temperature is all that is followed goes straight through the update (HEATING_ONLY); the same
     # wall with a limit it never reaches goes the general way, with every check.  The steps are the same
-    # functions in the same order, so the two walls must agree to the last bit.
-    plain = thermal_wall(law=WLF(C1=8.86, C2=101.6, reference=21.2, valid=(-20.0, 80.0)), r=0.6)
+    # inlined functions in the same order, so the two walls agree to the last bit (as long as LLVM compiles
+    # the two inlined copies alike, which it does).  The wall heats beyond its law's range (clamped there).
+    parameters = {} if maxwell else {"G2": 0.0}
+    plain = thermal_wall(law=law, r=0.6, heat_capacity=1.0, cooling_time=cooling_time, **parameters)
     limited = dataclasses.replace(plain, limits=WallLimits(strain=1e6))
     bank = WallBank((plain, limited), 0.005, 1500, "damped", "fast")
     assert list(bank.state(HEATING_ONLY)) == [1.0, 0.0]
-    for d in 15.0 * np.sin(2 * np.pi * 1.5 * np.arange(1, 1501) * 0.005):
+    for d in 20.0 * np.sin(2 * np.pi * 1.5 * np.arange(1, 1501) * 0.005):
         bank.commit([d, d])
-    for column in (TEMPERATURE, HEAT, STORED, PARAMETER_LOSS):
+    for column in (TEMPERATURE, HEAT, STORED, PARAMETER_LOSS, OUTSIDE):
         values = bank.state(column)
         assert values[0] == values[1], column
-    assert bank.state(TEMPERATURE)[0] - 21.2 > 20.0 and bank.state(PARAMETER_LOSS)[0] != 0.0
+    assert bank.state(PARAMETER_LOSS)[0] != 0.0 and bank.state(OUTSIDE)[0] > 0
     np.testing.assert_array_equal(bank.arrays.constants[0], bank.arrays.constants[1])
+
+
+@pytest.mark.parametrize("law", NARROW, ids=["WLF", "LogLinear"])
+@pytest.mark.parametrize("limits", [None, WallLimits(strain=1e6)], ids=["straight", "general"])
+def test_a_wall_outside_its_law_s_range_is_noted_at_its_first_step_there_and_steps_at_the_range_s_end(law, limits):
+    # References: the committed temperature history itself (the first step above the range's end) and the law
+    # evaluated afresh at that end, 10^(r log10 a_T(T_high)).
+    r, dt = 0.6, 0.005
+    wall = dataclasses.replace(thermal_wall(law=law, r=r), limits=limits)
+    bank = WallBank((wall,), dt, 1500, "damped", "fast")
+    start = bank.arrays.constants[0, 2:4].copy()
+    temperatures = []
+    for d in 20.0 * np.sin(2 * np.pi * 1.5 * np.arange(1, 1501) * dt):
+        bank.commit([d])
+        temperatures.append(float(bank.state(TEMPERATURE)[0]))
+        if temperatures[-1] <= law.valid[1]:
+            assert bank.state(OUTSIDE)[0] == -1.0
+    first = int(np.argmax(np.array(temperatures) > law.valid[1]))
+    assert first > 0 and temperatures[-1] > law.valid[1] + 5.0
+    assert bank.state(OUTSIDE)[0] == first + 1  # the step (time / dt) of the first committed state outside
+    np.testing.assert_allclose(bank.arrays.constants[0, 2:4], start * 10.0 ** (r * law.log10_shift(law.valid[1])),
+                               rtol=1e-14)
+    # A wall at rest below the range is outside from its first step on, at the range's lower end.
+    cold = WallBank((dataclasses.replace(thermal_wall(law=law, r=r, temperature=10.0), limits=limits),), dt, 10,
+                    "damped", "fast")
+    cold.commit([0.0])
+    assert cold.state(OUTSIDE)[0] == 1.0
+    np.testing.assert_allclose(cold.arrays.constants[0, 2:4], start * 10.0 ** (r * law.log10_shift(law.valid[0])),
+                               rtol=1e-14)
 
 
 def test_an_isothermal_thermal_wall_steps_exactly_as_the_plain_wall():

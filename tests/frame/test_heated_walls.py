@@ -2,13 +2,14 @@
 ambient temperatures -- each against an independent computation."""
 
 import dataclasses
+import re
 import warnings
 
 import numpy as np
 import pytest
 
 import vdw_frames as vdw
-from vdw_frames.element.thermal import ISD110_LOSS_PEAK, ThermalProperties, thermal_row
+from vdw_frames.element.thermal import ISD110_LOSS_PEAK, LogLinear, ThermalProperties, thermal_row
 from vdw_frames.frame.results import _heat_from_temperature
 from vdw_frames.motion import default_record
 
@@ -155,3 +156,20 @@ def test_walls_that_only_follow_their_amplitude_record_it_and_no_temperature_or_
     assert following.wall_amplitude is not None and following.wall_amplitude.shape == (following.time.size, 5)
     assert np.all(following.wall_amplitude[0] == 0.0) and following.wall_amplitude.max() > 1.0
     np.testing.assert_allclose(following.wall_amplitude, reference.wall_amplitude, rtol=0.0, atol=1e-9)
+
+
+def test_a_warning_names_each_wall_whose_temperature_left_its_law_s_range_and_when():
+    # Reference: the recorded temperature histories -- the first time each group is above the range's end.
+    narrow = LogLinear(degrees_per_decade=19.45, reference=21.2, valid=(15.0, 40.0))
+    building = five_story([dataclasses.replace(WALL, thermal=ThermalProperties(narrow, 1.8, 21.2))])
+    with pytest.warns(UserWarning, match="wall temperature outside its shift law's range") as caught:
+        result = vdw.simulate(building, default_record().scaled(1.5))
+    message = next(str(w.message) for w in caught if "shift law's range" in str(w.message))
+    named = {int(story): float(time) for story, time in re.findall(r"story (\d+) at t = ([\d.e+-]+) s", message)}
+    above = result.wall_temperature > 40.0
+    expected = {story + 1: float(result.time[np.argmax(above[:, story])])
+                for story in range(5) if above[:, story].any()}
+    assert 0 < len(expected) < 5  # some walls leave the range, some do not
+    assert named.keys() == expected.keys()
+    for story, time in expected.items():
+        assert named[story] == pytest.approx(time, rel=1e-3)

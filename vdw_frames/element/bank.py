@@ -157,8 +157,10 @@ class WallBank:
             if wall_limits is not None:
                 table[w, kernel.LIMIT_STRAIN:kernel.RESIDUAL + 1] = wall_limits.kernel_row()
         table[:, kernel.LIMITED] = [lim is not None for lim in limits]
-        table[:, kernel.HEATING_ONLY] = [t is not None and lim is None and nodes.size == 0
-                                         for t, lim, nodes in zip(thermals, limits, tables, strict=True)]
+        # The update's straight path calls the temperature and shift-law steps unchecked: only for a wall with both.
+        heats = (table[:, kernel.T_KIND] != 0.0) & (table[:, kernel.T_CAPACITY] > 0.0)
+        only = (table[:, kernel.LIMITED] == 0.0) & (table[:, kernel.AMPLITUDE_NODES] == 0.0)
+        table[:, kernel.HEATING_ONLY] = heats & only
         table[:, kernel.FAILURE_STEP] = -1.0
         table[:, kernel.SCALE] = 1.0
         table[:, kernel.OUTSIDE] = -1.0

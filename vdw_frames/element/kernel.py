@@ -36,12 +36,12 @@ own deformation d_w solves K_w d_w + H_w = (d - d_w) / f_s, so d_w = (d - f_s H_
 closed form, and the wall's memory sees d_w, not d.
 
 The wall's state beyond its memory (:class:`WallStates`: temperature, dissipated heat, stored energy,
-failure) changes only at commit, in :func:`update_walls`, after the memory has advanced: the step's heat
-from the diffusive representation of :mod:`vdw_frames.element.thermal`, the temperature, the limits, and
-the coefficients of the *next* step (eta1 and eta2 times a_T(T)^r at the committed temperature: an
-explicit coupling with a one-step lag).  The convolution weights depend only on r and dt, so the memory
-is the same whatever the coefficients do; a wall without a thermal description or limits keeps its
-coefficients and runs the same code.
+amplitude, failure) changes only at commit, in :func:`update_walls`, after the memory has advanced: the
+step's heat from the diffusive representation of :mod:`vdw_frames.element.thermal`, the temperature, the
+limits, the amplitude, and the coefficients of the *next* step (those at the followed amplitude, eta1 and
+eta2 times a_T(T)^r at the committed temperature: an explicit coupling with a one-step lag).  The
+convolution weights depend only on r and dt, so the memory is the same whatever the coefficients do; a
+wall that follows neither temperature nor amplitude keeps its coefficients and runs the same code.
 """
 
 from __future__ import annotations
@@ -59,7 +59,6 @@ from .._jit import njit
 # arithmetic of a short memory.  The commit is inlined into the integrators that call it every step, as
 # are the small per-wall functions into the bank loops.
 _FAST = {"reassoc", "contract"}
-_LN10 = math.log(10.0)
 
 
 # Columns of WallStates.table: every per-wall scalar of a wall's state, in one row.
@@ -80,7 +79,7 @@ BASE_*: G1, G2 (MPa), eta1, eta2 (MPa s^r) at the reference temperature (fixed w
 T_*: the thermal row (thermal.thermal_row: law kind (0: none), its slope (1/K) and curvature (1/K),
 log10 a_T = -slope (T - T_ref) / (1 + curvature (T - T_ref)), and reference T_ref (degC), rho c V
 (N*mm/K), ambient (degC), exp(-dt / tau), (tau / dt)(1 - exp(-dt / tau)) / (rho c V) (K per N*mm),
-validity range (degC)); SHIFT_RATE: ln(10) r slope, the exponent of a_T^r per K near T_ref;
+validity range (degC)); SHIFT_RATE (1/K): ln(10) r slope, -d(ln a_T^r)/dT at T_ref;
 TEMPERATURE (degC), HEAT (N*mm dissipated since rest), STORED (N*mm), RELEASED (N*mm lost at failure),
 PARAMETER_LOSS (N*mm the wall's stored energy lost, at no work, as its parameters changed with
 temperature or amplitude: positive as it softens); LIMIT_* (strain -, stress
@@ -319,11 +318,12 @@ def _shift_factor(table, w, count):
     return factor
 
 
-@njit(cache=True, allocates=False)
+@njit(cache=True, fastmath=_FAST, allocates=False)
 def _interpolate_amplitude(table, amplitude_table, w):
     """G1, G2, eta1, eta2 of amplitude-following wall ``w`` at its amplitude into AT_* (``amplitude_table``
     (W, K, 5): linear in log strain between the nodes, the end node's outside them).  Not inlined: it runs
-    only when the followed amplitude has moved, and the update's loop stays short without it."""
+    only when the followed amplitude has moved, and the update's loop stays short without it (compiled with the
+    update's own floating-point flags, as it was when inlined)."""
     count = int(table[w, AMPLITUDE_NODES])
     amplitude = table[w, AMPLITUDE]
     x = math.log(max(amplitude, 1e-300))
@@ -343,7 +343,8 @@ def set_coefficients(table, amplitude_table, constants, w, count):
     """Wall ``w``'s G1, G2, eta1, eta2 (``constants`` (W, 7)) for the step after commit ``count``, at its
     committed amplitude and temperature: the parameters at the amplitude (``amplitude_table`` (W, K, 5); the
     base parameters of ``table`` for a wall of fixed parameters), eta times a_T^r at the temperature
-    (:func:`_shift_factor`).  Returns whether they follow anything (False: the base parameters, as before)."""
+    (:func:`_shift_factor`).  G1 and G2 are written only for a wall that follows its amplitude (nothing else
+    changes them).  Returns whether the coefficients follow anything (False: the base parameters, as before)."""
     eta1, eta2 = table[w, BASE_ETA1], table[w, BASE_ETA2]
     follows = False
     if table[w, AMPLITUDE_NODES] > 0.0:
@@ -477,7 +478,7 @@ def update_walls(states, constants, values, force, deformation, count):
         G1, G2, eta1, eta2 = constants[w, 0], constants[w, 1], constants[w, 2], constants[w, 3]
         volume = constants[w, 4] * constants[w, 5] * table[w, SCALE]  # a failed wall keeps its residual share
         # A wall that only heats (the common case) goes straight through: the same steps as the general path below,
-        # without its checks, each of which costs about half a nanosecond a wall and step (docs/validation.rst).
+        # without its checks (each about half a nanosecond a wall and step; docs/validation.rst, Performance).
         if table[w, HEATING_ONLY] != 0.0:
             springs, heat_1, heat_2, stored_1, stored_2 = _energies(table, w, G1, G2, eta2, strain, maxwell)
             heat = (eta1 * heat_1 + eta2 * heat_2) * volume

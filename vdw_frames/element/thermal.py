@@ -109,8 +109,8 @@ class ShiftLaw(Protocol):
         ...
 
     def kernel_row(self) -> tuple[float, float, float, float]:
-        """(kind, slope, curvature, reference) for the compiled update: log10 a_T = -slope d / (1 + curvature d),
-        d = T - reference (:func:`log10_shift`)."""
+        """(kind, slope 1/K, curvature 1/K, reference degC) for the compiled update: log10 a_T =
+        -slope d / (1 + curvature d), d = T - reference (:func:`log10_shift`)."""
         ...
 
 
@@ -253,9 +253,10 @@ NO_SHIFT, WLF_KIND, ARRHENIUS_KIND, LOG_LINEAR_KIND = 0, 1, 2, 3
 
 
 def log10_shift(slope: float, curvature: float, reference: float, temperature: float) -> float:
-    """log10 a_T = -slope d / (1 + curvature d), d = temperature - reference (degC), of a law's ``kernel_row``: the
-    form every law here takes (WLF: slope C1 / C2, curvature 1 / C2; Arrhenius: slope E_a / (R ln 10 T_ref^2),
-    curvature 1 / T_ref, T_ref in kelvin; log-linear: no curvature), as the compiled update evaluates it."""
+    """log10 a_T = -slope d / (1 + curvature d), d = temperature - reference (degC; slope and curvature 1/K), of a
+    law's ``kernel_row``: the one form every law here takes (WLF: slope C1 / C2, curvature 1 / C2; Arrhenius:
+    slope E_a / (R ln 10 T_ref^2), curvature 1 / T_ref, T_ref in kelvin; log-linear: no curvature).  The compiled
+    update uses the same form, its exponent ln a_T^r with ln(10) r slope found once (kernel SHIFT_RATE)."""
     difference = temperature - reference
     if curvature == 0.0:
         return -slope * difference
@@ -269,7 +270,7 @@ SHIFT_LAWS = (WLF, Arrhenius, LogLinear)
 class ThermalProperties:
     """What a wall needs to change with temperature and to heat itself.
 
-    ``shift``: its :class:`WLF` or :class:`Arrhenius` law; the wall's parameters are those at
+    ``shift``: its :class:`WLF`, :class:`Arrhenius` or :class:`LogLinear` law; the wall's parameters are those at
     ``shift.reference``.  ``heat_capacity`` rho c of the viscoelastic layers (MPa/K = J/(cm^3 K), > 0;
     polymers 1.5-2.0).  ``temperature`` (degC): the layers' temperature at rest and the ambient they cool
     towards; default ``shift.reference``.  ``cooling_time`` tau (s, > 0; default inf, adiabatic): the time
@@ -315,8 +316,9 @@ class ThermalProperties:
 
 
 def thermal_row(thermal: ThermalProperties | None, volume: float, dt: float) -> np.ndarray:
-    """The kernel's row of THERMAL_FIELDS values (:class:`vdw_frames.element.kernel.WallStates`) of a wall
-    with ``thermal`` (None: no temperature dependence) and ``volume`` mm^3 of viscoelastic layers."""
+    """The kernel's ten T_* values (kernel.T_KIND to T_HIGH of :class:`vdw_frames.element.kernel.WallStates`'
+    table) of a wall with ``thermal`` (None: no temperature dependence) and ``volume`` mm^3 of viscoelastic layers,
+    for steps of ``dt`` s."""
     row = np.zeros(10)
     row[8], row[9] = -math.inf, math.inf
     if thermal is None:
