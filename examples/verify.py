@@ -56,7 +56,7 @@ def main(argv: list[str] | None = None) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     building = load_building(BUILDING_FILE)
-    start = time.perf_counter()
+    started = time.perf_counter()
     result = verify(building, SITE, fema_p695_records("far-field"), bounds=BOUNDS)
     print(SITE.describe())
     print(result.suite.range.describe())
@@ -64,8 +64,8 @@ def main(argv: list[str] | None = None) -> int:
     for c, (case, factor) in enumerate(result.cases):
         storage, loss = result.stiffness_factors[c, :, 0], result.stiffness_factors[c, :, 1]
         at = BOUNDS.temperature(case)
-        start = at if at is not None else building.wall_list[0][1].thermal.temperature
-        print(f"{case}: lambda {factor:g}, walls from {start:g} degC: K' x {storage.min():.3f}-{storage.max():.3f}, "
+        initial = at if at is not None else building.wall_list[0][1].thermal.temperature
+        print(f"{case}: lambda {factor:g}, walls from {initial:g} degC: K' x {storage.min():.3f}-{storage.max():.3f}, "
               f"K'' x {loss.min():.3f}-{loss.max():.3f} at {frequency:.3f} Hz")
     for criterion in result.criteria:
         print(f"{'pass' if criterion.passed else 'FAIL'}: {criterion.name}: {criterion.text}")
@@ -83,7 +83,8 @@ def main(argv: list[str] | None = None) -> int:
         write_text(out / name, text, "CSV file")
     path = write_text(out / "report.md", report.markdown(result, figures, "ASCE 7-16 verification of ten_story.toml"),
                       "report")
-    print(f"verification: {'PASS' if result.passed else 'FAIL'} ({time.perf_counter() - start:.0f} s); report: {path}")
+    seconds = time.perf_counter() - started
+    print(f"verification: {'PASS' if result.passed else 'FAIL'} ({seconds:.0f} s); report: {path}")
     return 0
 
 

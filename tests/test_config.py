@@ -4,8 +4,10 @@ and the strain-compatible settings of strain-dependent walls."""
 from __future__ import annotations
 
 import json
+import re
 import warnings
 
+import numpy as np
 import pytest
 from builders import README_WALL, replace_somewhere, three_story_spec, write_file
 from hypothesis import given, settings
@@ -14,6 +16,7 @@ from shared_data import shared_record
 
 from vdw_frames import FDMKDamper, ShearBuilding, cli, paper
 from vdw_frames.config import building_from_dict, load_analysis, load_building
+from vdw_frames.element.thermal import ISD110_LOSS_PEAK, ThermalProperties
 from vdw_frames.frame import StrainCompatibleOptions
 from vdw_frames.motion import default_record_path
 
@@ -138,3 +141,52 @@ def test_building_files_with_strain_dependent_walls(tmp_path, capsys):
 def test_building_file_strain_compatible_validation(value, match):
     with pytest.raises(ValueError, match=match):
         building_from_dict(strain_dependent_building_data(strain_compatible=value))
+
+
+# ---------------------------------------------------------------------------------------------- keys and lengths
+@pytest.mark.parametrize("text, key", [
+    ('{"masses": [1.0], "stiffnesses": [1.0], "masses": [2.0]}', "masses"),
+    ('{"masses": [1.0], "stiffnesses": [1.0], "walls": [{"parameters": "fitted-300", "area": 1e5, "area": 2e5}]}',
+     "area"),
+])
+def test_a_json_key_given_twice_is_refused_naming_it(tmp_path, text, key):
+    path = write_file(tmp_path, "twice.json", text)
+    assert json.loads(text)  # json alone keeps the last value silently
+    with pytest.raises(ValueError) as error:
+        load_building(path)
+    assert str(error.value) == (f"{path}: the key {key!r} is given twice in one JSON object (which one is meant? "
+                                "json would keep the last silently)")
+
+
+@pytest.mark.parametrize("table, message", [
+    ({"site": {"sms": 1.5, "sm1": 0.9, "tl": 8.0, "riskcategory": "II"}}, "unknown site keys ['riskcategory']"),
+    ({"verification": {"bounds": [0.8, 1.2], "bound_source": "x"}}, "unknown verification keys ['bound_source']"),
+])
+def test_site_and_verification_tables_are_checked_on_every_load(tmp_path, table, message):
+    spec = dict(three_story_spec(), **table)
+    path = write_file(tmp_path, "typo.json", json.dumps(spec))
+    for load in (load_building, load_analysis):
+        with pytest.raises(ValueError, match=re.escape(message)):
+            load(path)
+
+
+def test_a_list_of_the_wrong_length_is_named_before_the_walls():
+    spec = {"masses": [100.0] * 3, "stiffnesses": [1e5] * 4, "walls": [{"parameters": "fitted-300", "area": [1e6] * 4}]}
+    with pytest.raises(ValueError) as error:
+        building_from_dict(spec)
+    assert str(error.value) == "stiffnesses must give one value per story: masses gives 3 stories, stiffnesses 4 values"
+    for key in ("story_heights", "gravity_loads"):
+        spec = dict(three_story_spec(), **{key: [1e3, 1e3]})
+        with pytest.raises(ValueError, match=f"{key} must give one value per story: masses gives 3 stories, {key} 2"):
+            building_from_dict(spec)
+
+
+@pytest.mark.parametrize("cooling", [[1.0, 2.0], np.array([1.0, 2.0])])
+def test_a_cooling_time_that_is_not_one_number_is_named(cooling):
+    with pytest.raises(ValueError, match=r"^cooling_time must be a time in s, got "):
+        ThermalProperties(ISD110_LOSS_PEAK, 1.8, cooling_time=cooling)
+    spec = dict(three_story_spec())
+    spec["walls"] = [{"parameters": "fitted-300", "thermal": {"shift": "isd110-loss-peak", "heat_capacity": 1.8,
+                                                              "cooling_time": [1.0, 2.0]}}]
+    with pytest.raises(ValueError, match=r"^cooling_time must be a time in s, got \[1.0, 2.0\]"):
+        building_from_dict(spec)

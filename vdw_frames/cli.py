@@ -1,8 +1,9 @@
 """The ``vdw-frames`` command line: ``sine-test``, ``simulate``, ``design``, ``collapse``, ``verify`` and
 ``paper-report``.
 
-Errors are one line ``vdw-frames: error: ...`` on standard error with exit code 2; warnings are one
-line ``warning: ...`` each.
+Errors are one line ``vdw-frames: error: ...`` on standard error with exit code 2 (an unknown or
+mistyped flag is named, with the nearest flag the command has); a verdict of FAIL (``verify``) exits 1;
+Ctrl-C stops with one line and exit code 130.  Warnings are one line ``warning: ...`` each.
 """
 
 from __future__ import annotations
@@ -99,6 +100,8 @@ def _simulate(args) -> int:
         raise ValueError(f"--pga {args.pga:g} g is beyond any earthquake (at most {MAX_PGA:g} g here)")
     if args.factor is not None and not (math.isfinite(args.factor) and args.factor > 0.0):
         raise ValueError(f"--factor must be a scale factor > 0, got {args.factor:g}")
+    if not (math.isfinite(args.free_vibration) and args.free_vibration >= 0.0):
+        raise ValueError(f"--free-vibration must be seconds >= 0, got {args.free_vibration:g}")
     out = _output_folder(args.out) if args.out is not None else None
     save = _output_folder(args.save, "--save") if args.save is not None else None
     building, options = load_analysis(args.building)
@@ -118,16 +121,17 @@ def _simulate(args) -> int:
     scaling = (f", scaled to PGA {args.pga:g} g" if args.pga is not None else
                f", x {args.factor:g}" if args.factor is not None else "")
     try:
-        result = simulate(building, motion, dt=args.dt, **options)
+        result = simulate(building, motion, dt=args.dt, free_vibration=args.free_vibration, **options)
     except ValueError as error:  # e.g. an overflow: say which scaling of the record led there
         raise ValueError(f"{error} (the record scaled by {flag})" if flag is not None else str(error)) from None
     dt = args.dt if args.dt is not None else motion.dt
     print(f"{args.building}: {building.stories} stories, T1 = {building.periods[0]:.3f} s (bare frame), "
           f"{len(building.wall_list)} FDMK walls")
-    print(f"record {motion.name}{scaling}: PGA = {motion.pga / G:.3f} g, dt = {dt:g} s, {result.time.size} of "
-          f"{_steps(motion, dt)} steps analysed")
+    rest = f" and {args.free_vibration:g} s of rest" if args.free_vibration > 0.0 else ""
+    print(f"record {motion.name}{scaling}{rest}: PGA = {motion.pga / G:.3f} g, dt = {dt:g} s, {result.time.size} of "
+          f"{_steps(motion, dt, args.free_vibration)} steps analysed")
     _print_wall_assumptions(building)
-    _print_story_table(result)
+    _print_story_table(result, args.free_vibration)
     if result.strain_iterations is not None:
         state = "converged" if result.strain_converged else "did NOT converge"
         assert result.wall_effective_strain is not None  # a strain-compatible result carries both
@@ -162,9 +166,11 @@ def _simulate(args) -> int:
     return 0
 
 
-def _steps(motion, dt: float) -> int:
-    """The steps an analysis of ``motion`` at ``dt`` takes (the record's duration, rest included)."""
-    return int(round(motion.duration / dt)) + 1
+def _steps(motion, dt: float, free_vibration: float = 0.0) -> int:
+    """The steps an analysis of ``motion`` at ``dt`` takes (the record's duration, rest included), with
+    ``free_vibration`` s of rest after it (as :func:`~vdw_frames.frame.time_history.integrate` rounds it up)."""
+    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0
+    return int(round(motion.duration / dt)) + 1 + rest
 
 
 def _outcome(result) -> str:
@@ -185,10 +191,11 @@ def _story_columns() -> tuple[tuple[str, str, float, int, int], ...]:
     decimals.  :func:`_story_peaks` gives their values."""
     from .motion import G
 
-    return (("peak_drift_mm", "drift mm", 1.0, 9, 2), ("peak_drift_ratio", "ratio %", 100.0, 8, 3),
+    return (("peak_drift_mm", "drift mm", 1.0, 9, 2), ("peak_drift_ratio_fraction", "ratio %", 100.0, 8, 3),
             ("residual_drift_mm", "resid. mm", 1.0, 9, 2), ("peak_ductility", "ductility", 1.0, 9, 2),
             ("peak_floor_acceleration_mm_s2", "floor acc g", 1.0 / G, 11, 3),
-            ("peak_story_wall_force_N", "walls kN", 1e-3, 10, 1), ("peak_story_wall_strain", "strain %", 100.0, 9, 1))
+            ("peak_story_wall_force_N", "walls kN", 1e-3, 10, 1),
+            ("peak_story_wall_strain_fraction", "strain %", 100.0, 9, 1))
 
 
 def _story_peaks(result) -> list[list[float | None]]:
@@ -207,19 +214,22 @@ def _story_peaks(result) -> list[list[float | None]]:
     return rows
 
 
-def _print_story_table(result) -> None:
+def _print_story_table(result, free_vibration: float = 0.0) -> None:
     """Per story: peak drift and drift ratio, residual drift, peak ductility, floor acceleration, walls."""
     columns = _story_columns()
     print(f"{'story':>5s} " + " ".join(f"{heading:>{width}s}" for _, heading, _, width, _ in columns))
     for k, values in enumerate(_story_peaks(result), 1):
         print(f"{k:5d} " + " ".join(f"{value * scale:{width}.{decimals}f}" if value is not None else f"{'-':>{width}s}"
                                     for value, (_, _, scale, width, decimals) in zip(values, columns, strict=True)))
-    print("ductility: peak drift / yield drift of the story model ('-': a linear story); resid.: drift at the "
-          "last step")
+    resid = (f"drift after {free_vibration:g} s of rest" if free_vibration > 0.0 else
+             "drift at the record's last step (--free-vibration S to measure it at rest)")
+    print(f"ductility: peak drift / yield drift of the story model ('-': a linear story); resid.: {resid}")
 
 
 def _write_summary(result, path: Path) -> Path:
-    """The story table as CSV (units in the header); '' where a value does not exist."""
+    """The story table as CSV, each column's unit the end of its name (``_mm``, ``_mm_s2``, ``_N``;
+    ``_fraction``: a ratio such as 0.0123, where the console prints the percent 1.23; ``peak_ductility`` is
+    dimensionless); '' where a value does not exist."""
     from ._files import write_text
 
     rows = [",".join(["story", *(name for name, *_ in _story_columns())])]
@@ -381,7 +391,7 @@ def _collapse(args) -> int:
         except ValueError:
             raise ValueError(f"--period must be T1 or seconds, got {args.period!r}") from None
     out = _output_folder(args.out)
-    criterion = CollapseCriterion(drift_ratio=args.drift_limit)
+    criterion = CollapseCriterion(drift_ratio=args.drift_limit, wall_failure=args.wall_failure)
     search = HuntAndFill(tolerance=args.tolerance)
     buildings = {"bare frame": building.without_walls(), "with walls": building} if args.bare and \
         building.wall_list else {"building": building}
@@ -422,6 +432,9 @@ def _add_collapse_command(commands) -> None:
                           help="quality ratings A-D of the design requirements, test data and model (default B B B)")
     collapse.add_argument("--drift-limit", type=float, default=0.10,
                           help="story drift ratio counted as collapse (default 0.10)")
+    collapse.add_argument("--wall-failure", action="store_true",
+                          help="count the failure of any wall (its [walls.limits]) as collapse too (default: a "
+                               "failed wall leaves the frame standing; CollapseCriterion.wall_failure)")
     collapse.add_argument("--tolerance", type=float, default=0.02,
                           help="hunt-and-fill tolerance on the collapse intensity (default 0.02)")
     collapse.add_argument("--bare", action="store_true",
@@ -517,7 +530,7 @@ def _verify(args) -> int:
         print(f"{'pass' if criterion.passed else 'FAIL'}: {criterion.name}: {criterion.text}")
     print(f"verification: {'PASS' if result.passed else 'FAIL'}")
     print(f"report: {path}")
-    return 0
+    return 0 if result.passed else 1  # a verdict of FAIL exits 1; errors exit 2
 
 
 def _add_verify_command(commands) -> None:
@@ -574,9 +587,21 @@ def _add_design_command(commands) -> None:
     design.set_defaults(run=_design)
 
 
+DESCRIPTION = ("Seismic analysis of shear buildings with FDMK viscoelastic damping walls. Errors print one line "
+               "'vdw-frames: error: ...' and exit 2; a verification that FAILs exits 1; Ctrl-C exits 130. "
+               "'vdw-frames COMMAND --help' describes each command.")
+"""The top-level help's description: plain text (the module docstring is reST, for the documentation)."""
+
+EXIT_INTERRUPTED = 130
+"""Exit code after Ctrl-C (128 + SIGINT, the shells' convention)."""
+
+
 def build_parser() -> argparse.ArgumentParser:
+    from . import __version__
+
     # allow_abbrev=False everywhere: an abbreviation (--scal) must not silently become another flag.
-    parser = argparse.ArgumentParser(prog="vdw-frames", description=__doc__, allow_abbrev=False)
+    parser = argparse.ArgumentParser(prog="vdw-frames", description=DESCRIPTION, allow_abbrev=False)
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
 
     sine = _command(commands, "sine-test", help="sinusoidal test of one FDMK damper: K', K'', loop area, loop PNG")
@@ -594,6 +619,9 @@ def build_parser() -> argparse.ArgumentParser:
     scale.add_argument("--pga", type=float, help="scale the record to this peak ground acceleration, g")
     scale.add_argument("--factor", type=float, help="multiply the record by this factor")
     run.add_argument("--dt", type=float, help="time step, s (default: the record's; must divide it)")
+    run.add_argument("--free-vibration", type=float, default=0.0, metavar="S",
+                     help="seconds of rest appended to the record, so that residual drifts are measured at rest "
+                          "(default 0: the drift at the record's last step; examples/seismic_simulation.py uses 10)")
     run.add_argument("--out", help="folder for figures (default: none)")
     run.add_argument("--save", metavar="DIR", help="write summary.csv (per-story peaks) and result.npz (every "
                                                    "history, read with SimulationResult.load) into DIR")
@@ -623,14 +651,54 @@ def plain_warnings() -> Iterator[None]:
         yield
 
 
+def _is_flag(token: str) -> bool:
+    """Whether a command-line word is a flag (``--out``, ``-h``), not a value such as ``-0.5``."""
+    if not token.startswith("-") or token == "-":
+        return False
+    try:
+        float(token)
+    except ValueError:
+        return True
+    return False  # a negative number (argparse decides whether it may follow its flag)
+
+
+def _refuse_unknown_flags(parser: argparse.ArgumentParser, argv: Sequence[str]) -> None:
+    """Exit 2 naming the first flag that neither the program nor its command knows, with the nearest one.
+
+    argparse itself reports a missing required flag first ("required: --record" for ``--recrod x``), which
+    hides the typo; this check runs before it.  Values that look like flags (``--out -x``) are taken for
+    flags; a word after ``--`` is not checked."""
+    import difflib
+
+    subparsers = next(action for action in parser._actions if isinstance(action, argparse._SubParsersAction))
+    current = parser
+    for token in argv:
+        if token == "--":
+            return
+        if not _is_flag(token):
+            if current is parser and token in subparsers.choices:
+                current = subparsers.choices[token]
+            continue
+        name = token.split("=", 1)[0]
+        if name not in current._option_string_actions:
+            close = difflib.get_close_matches(name, list(current._option_string_actions), n=1)
+            current.error(f"unrecognized argument {name}" + (f" (did you mean {close[0]}?)" if close else ""))
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    args = build_parser().parse_args(argv)
+    parser = build_parser()
+    argv = list(sys.argv[1:] if argv is None else argv)
+    _refuse_unknown_flags(parser, argv)
+    args = parser.parse_args(argv)
     with plain_warnings():
         try:
             return args.run(args)
         except (ValueError, OSError) as error:
             print(f"vdw-frames: error: {error}", file=sys.stderr)
             return 2
+        except KeyboardInterrupt:  # one line, no traceback
+            print(f"vdw-frames: interrupted (Ctrl-C); {args.command} stopped", file=sys.stderr)
+            return EXIT_INTERRUPTED
 
 
 if __name__ == "__main__":

@@ -152,24 +152,30 @@ def load_verification(path: str | os.PathLike[str]) -> tuple[ShearBuilding, Site
     :class:`~vdw_frames.verification.PropertyBounds`); None for a table the file does not have."""
     path, data = _read_data(path)
     try:
-        building = building_from_dict(data)
-        site = None if "site" not in data else site_from_values(_table("site", data["site"], set(SITE_KEYS)))
-        bounds = None
-        if "verification" in data:
-            table = _table("verification", data["verification"], _VERIFICATION_KEYS)
-            values = table.get("bounds")
-            if not isinstance(values, list) or len(values) != 2:
-                raise ValueError(f"verification bounds must be [lambda_min, lambda_max], got {show(values)}")
-            source = table.get("bounds_source", "stated in the building file")
-            if not isinstance(source, str):
-                raise ValueError(f"verification bounds_source must be text, got {show(source)}")
-            ambient = table.get("ambient")
-            if ambient is not None and (not isinstance(ambient, list) or len(ambient) != 2):
-                raise ValueError(f"verification ambient must be [coldest, hottest] in degC, got {show(ambient)}")
-            bounds = PropertyBounds(values[0], values[1], source, None if ambient is None else tuple(ambient))
-        return building, site, bounds
+        return (building_from_dict(data), *site_and_bounds(data))
     except ValueError as error:
         raise ValueError(f"{path}: {error}") from None
+
+
+def site_and_bounds(data: dict[str, Any]) -> tuple[Site | None, PropertyBounds | None]:
+    """(site, property bounds) of a building dict's ``[site]`` and ``[verification]`` tables (None for a table
+    it does not have); :func:`building_from_dict` checks them too, so that every command that reads a building
+    file refuses a typo in them, not only ``verify``."""
+    site = None if "site" not in data else site_from_values(_table("site", data["site"], set(SITE_KEYS)))
+    bounds = None
+    if "verification" in data:
+        table = _table("verification", data["verification"], _VERIFICATION_KEYS)
+        values = table.get("bounds")
+        if not isinstance(values, list) or len(values) != 2:
+            raise ValueError(f"verification bounds must be [lambda_min, lambda_max], got {show(values)}")
+        source = table.get("bounds_source", "stated in the building file")
+        if not isinstance(source, str):
+            raise ValueError(f"verification bounds_source must be text, got {show(source)}")
+        ambient = table.get("ambient")
+        if ambient is not None and (not isinstance(ambient, list) or len(ambient) != 2):
+            raise ValueError(f"verification ambient must be [coldest, hottest] in degC, got {show(ambient)}")
+        bounds = PropertyBounds(values[0], values[1], source, None if ambient is None else tuple(ambient))
+    return site, bounds
 
 
 def _read_data(path: str | os.PathLike[str]) -> tuple[Any, Any]:
@@ -179,14 +185,32 @@ def _read_data(path: str | os.PathLike[str]) -> tuple[Any, Any]:
         if path.suffix.lower() == ".toml":
             data = tomllib.loads(text)
         elif path.suffix.lower() == ".json":
-            data = json.loads(text)
+            data = json.loads(text, object_pairs_hook=_unique_keys)
         else:
             raise ValueError(f"{path}: building files must end in .toml or .json")
     except (ValueError, RecursionError) as error:  # JSONDecodeError and TOMLDecodeError are ValueErrors
         if str(error).startswith(str(path)):
             raise
+        if isinstance(error, _DuplicateKeyError):
+            raise ValueError(f"{path}: {error}") from None
         raise ValueError(f"{path}: not valid {path.suffix[1:].upper()}: {error}") from None
     return path, data
+
+
+class _DuplicateKeyError(ValueError):
+    """A JSON object that gives one key twice."""
+
+
+def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    """A JSON object as a dict, refusing a key given twice (``json`` would keep the last one silently; TOML
+    refuses it by itself)."""
+    table: dict[str, Any] = {}
+    for key, value in pairs:
+        if key in table:
+            raise _DuplicateKeyError(f"the key {key!r} is given twice in one JSON object (which one is meant? json "
+                                     "would keep the last silently)")
+        table[key] = value
+    return table
 
 
 def building_from_dict(data: dict[str, Any]) -> ShearBuilding:
@@ -205,8 +229,15 @@ def building_from_dict(data: dict[str, Any]) -> ShearBuilding:
         raise ValueError(f"damping_modes must be a list of two mode numbers, got {data['damping_modes']!r}")
     if not isinstance(data.get("walls", []), list):
         raise ValueError(f"walls must be a list of wall groups, got {data['walls']!r}")
-    simulate_options(data)  # validated here too; load_analysis returns it
     stories = len(data["masses"])
+    # One value per story in every list, checked before the walls, whose per-story lists would otherwise be
+    # blamed for a masses or stiffnesses list of the wrong length.
+    for key in ("stiffnesses", "story_heights", "gravity_loads"):
+        if isinstance(data.get(key), list) and len(data[key]) != stories:
+            raise ValueError(f"{key} must give one value per story: masses gives {stories} stories, {key} "
+                             f"{len(data[key])} values")
+    simulate_options(data)  # validated here too; load_analysis returns it
+    site_and_bounds(data)  # likewise: a typo in [site] or [verification] is refused by every command
     dampers: dict[int, list[FDMKDamper | StrainDependentDamper]] = {}
     for group in data.get("walls", []):
         walls, per_story = _wall_group(group, stories)

