@@ -190,3 +190,27 @@ def test_a_cooling_time_that_is_not_one_number_is_named(cooling):
                                                               "cooling_time": [1.0, 2.0]}}]
     with pytest.raises(ValueError, match=r"^cooling_time must be a time in s, got \[1.0, 2.0\]"):
         building_from_dict(spec)
+
+
+def test_reading_a_building_file_imports_neither_the_paper_nor_scipy_optimize(tmp_path):
+    """The parameter catalogue lives with the element (vdw_frames.element.catalogue); the paper's modules
+    re-export the same objects under their old names."""
+    import os
+    import subprocess
+    import sys
+
+    from shared_data import REPO
+
+    from vdw_frames.element import catalogue
+    from vdw_frames.paper import data, strain_dependence
+
+    path = write_file(tmp_path, "walls.json", json.dumps(three_story_spec()))
+    code = ("import sys; from vdw_frames.config import load_building; load_building(sys.argv[1]); "
+            "print(sorted(m for m in sys.modules if m.startswith(('vdw_frames.paper', 'scipy.optimize'))))")
+    done = subprocess.run([sys.executable, "-c", code, str(path)], capture_output=True, text=True, check=True,
+                          env={**os.environ, "PYTHONPATH": str(REPO)})
+    assert done.stdout == "[]\n"
+    assert paper.fitted is data.fitted is catalogue.fitted and data.FITTED is catalogue.FITTED
+    assert strain_dependence.strain_dependent is paper.strain_dependent is catalogue.strain_dependent
+    assert strain_dependence.STRAIN_DEPENDENT_COMMON is catalogue.STRAIN_DEPENDENT_COMMON
+    assert paper.fitted(300) == catalogue.fitted(300.0)

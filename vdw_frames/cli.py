@@ -31,8 +31,8 @@ def _add_damper_options(parser: argparse.ArgumentParser) -> None:
 
 
 def _damper_from(args):
+    from .element.catalogue import fitted
     from .element.damper import FDMKDamper
-    from .paper.data import fitted
 
     base = fitted(args.strain)
     values = {name: getattr(args, name) if getattr(args, name) is not None else getattr(base, name)
@@ -125,7 +125,8 @@ def _simulate(args) -> int:
     except ValueError as error:  # e.g. an overflow: say which scaling of the record led there
         raise ValueError(f"{error} (the record scaled by {flag})" if flag is not None else str(error)) from None
     dt = args.dt if args.dt is not None else motion.dt
-    print(f"{args.building}: {building.stories} stories, T1 = {building.periods[0]:.3f} s (bare frame), "
+    period = 2.0 * math.pi / building.lowest_circular_frequencies(1)[0]  # no full eigendecomposition
+    print(f"{args.building}: {building.stories} stories, T1 = {period:.3f} s (bare frame), "
           f"{len(building.wall_list)} FDMK walls")
     rest = f" and {args.free_vibration:g} s of rest" if args.free_vibration > 0.0 else ""
     print(f"record {motion.name}{scaling}{rest}: PGA = {motion.pga / G:.3f} g, dt = {dt:g} s, {result.time.size} of "

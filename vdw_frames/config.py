@@ -95,6 +95,7 @@ else:  # Python 3.10: the same parser, as a package
 
 from ._files import read_text
 from ._validation import show, whole_number
+from .element.catalogue import fitted, strain_dependent
 from .element.damper import FDMKDamper
 from .element.limits import WallLimits
 from .element.strain_dependent import StrainDependentDamper
@@ -102,8 +103,6 @@ from .element.thermal import ISD110_LOSS_PEAK, WLF, Arrhenius, LogLinear, Therma
 from .frame.building import ShearBuilding
 from .frame.hysteresis import Bilinear, BoucWen
 from .frame.strain_compatible import StrainCompatibleOptions
-from .paper.data import fitted
-from .paper.strain_dependence import strain_dependent
 from .verification.spectrum import SITE_KEYS, Site, site_from_values
 from .verification.verify import PropertyBounds
 
@@ -308,9 +307,13 @@ def _wall_group(group: object, stories: int) -> tuple[list[tuple[int, FDMKDamper
             raise ValueError(f"walls {key} must be one number or one per listed story ({len(story_numbers)} "
                              f"stories), got {len(values)} values")
     walls = []
+    made: dict[str, FDMKDamper | StrainDependentDamper] = {}  # one wall per distinct size: the rest are the same
     for index, story in enumerate(story_numbers):
         each = {key: values[index] for key, values in sizes.items()}
-        walls.append((story, _wall(dict(group, **each))))
+        size = repr(sorted(each.items()))  # repr: 1 and 1.0 are one key to a dict, not to the constructor
+        if size not in made:
+            made[size] = _wall(dict(group, **each))
+        walls.append((story, made[size]))
     return walls, per_story
 
 

@@ -489,3 +489,40 @@ def test_cli_free_vibration_measures_the_residual_drift_at_rest(tmp_path, capsys
     assert np.abs(expected.residual_drift - at_end.residual_drift).max() > 0.01  # the rest changes it
     assert cli.main(["simulate", str(path), "--record", str(default_record_path()), "--free-vibration", "-1"]) == 2
     assert capsys.readouterr().err == "vdw-frames: error: --free-vibration must be seconds >= 0, got -1\n"
+
+
+def test_cli_simulates_a_10000_story_file_without_a_dense_eigendecomposition(tmp_path, capsys, monkeypatch):
+    """Once >150 s in a dense eigendecomposition for the two Rayleigh frequencies: now those come from the
+    tridiagonal problem, and T1 printed is the uniform chain's closed form 2 pi / (2 sqrt(k/m) sin(pi/(2(2n+1))))."""
+    n = 10_000
+    spec = {"masses": [100.0] * n, "stiffnesses": [1e5] * n, "story_heights": [3000.0] * n,
+            "walls": [{"stories": "all", "parameters": "strain-dependent", "area": 2e5}]}
+    path = write_file(tmp_path, "tall.json", json.dumps(spec))
+    # one wall object for the group's 10 000 stories: loading builds each distinct wall once
+    assert len({id(wall) for _, wall in load_building(path).wall_list}) == 1
+    record = default_record()
+    short = tmp_path / "short.AT2"
+    vdw.motion.write_at2(vdw.GroundMotion(record.acceleration[:30], record.dt, "first 30 steps"), short)
+
+    def no_dense_solver(*args, **kwargs):
+        raise AssertionError("the dense eigendecomposition was called")
+
+    monkeypatch.setattr("vdw_frames.frame.building.eigh", no_dense_solver)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # the walls stay far below their tested amplitudes
+        assert cli.main(["simulate", str(path), "--record", str(short)]) == 0
+    out = capsys.readouterr().out
+    period = 2 * np.pi / (2 * np.sqrt(1e5 / 100.0) * np.sin(np.pi / (2 * (2 * n + 1))))
+    assert f"{n} stories, T1 = {period:.3f} s (bare frame), {n} FDMK walls" in out
+    assert "30 of 30 steps analysed" in out
+
+
+def test_simulate_states_its_limits_before_any_work():
+    modal = vdw.ShearBuilding([100.0] * 301, [1e5] * 301, damping_model="modal")
+    with pytest.raises(ValueError, match=r"^simulate takes buildings of at most 300 stories with modal damping, got "
+                                         r"301 stories: .* O\(n\^3\); use damping_model='rayleigh'"):
+        simulate(modal, default_record())
+    huge = vdw.ShearBuilding([100.0] * 20_000, [1e5] * 20_000)
+    with pytest.raises(ValueError, match=r"^simulate's damping matrix \(20000 x 20000 floors\) needs 400,000,000 "
+                                         r"entries, whose arrays would take 2.98 GiB \(limit 2 GiB\); fewer stories"):
+        simulate(huge, default_record())

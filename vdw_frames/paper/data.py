@@ -74,13 +74,18 @@ from typing import TypedDict
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..element.damper import FDMKDamper
+# The recommended sets live in the element's catalogue (a building file reads them without the identification);
+# their names here are the same objects.
+from ..element.catalogue import AREA as AREA
+from ..element.catalogue import FIT_RANGE as FIT_RANGE
+from ..element.catalogue import FITTED as FITTED
+from ..element.catalogue import STRAINS as STRAINS
+from ..element.catalogue import THICKNESS as THICKNESS
+from ..element.catalogue import fitted as fitted
+from ..element.catalogue import strain_key as _strain_key
 
 FREQUENCIES = np.array([0.5, 1.0, 1.5, 2.0, 5.0, 10.0])  # Hz
-STRAINS = (225, 300, 450)  # shear strain amplitude, %
 TEMPERATURE = 21.2  # degC
-AREA = 1.0e6  # total shear area A, mm^2 (paper, after eq. (10))
-THICKNESS = 10.0  # thickness h of one viscoelastic layer, mm
 
 COLUMN_UNITS = {
     "storage_modulus": "MPa",
@@ -146,27 +151,10 @@ def table_moduli(strain: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return FREQUENCIES, table["storage_modulus"], table["loss_modulus"]
 
 
-def _strain_key(strain: float) -> int:
-    for key in STRAINS:
-        try:
-            if float(strain) == key:
-                return key
-        except (TypeError, ValueError):
-            break
-    raise ValueError(f"strain must be one of the paper's strain levels {STRAINS} (%), got {strain!r}")
-
-
 # ---------------------------------------------------------------------------- recommended parameter sets
 RECOMMENDED_RESIDUAL = "relative"
 
-FITTED = {  # identify(*table_moduli(strain), residual="relative").params, to full precision
-    225: {"G1": 0.0, "G2": 1.345063289561554, "eta1": 0.017660063643352687, "eta2": 0.365874967763888,
-          "r": 1.0},
-    300: {"G1": 0.0, "G2": 2.629620360282735, "eta1": 0.03553163240054065, "eta2": 1.9554766033255833,
-          "r": 0.5891742702867667},
-    450: {"G1": 1.873862947265929, "G2": 1.2119939259478345, "eta1": 0.052314549243817524,
-          "eta2": 0.7978350638064874, "r": 0.46424699522808816},
-}
+# FITTED (identify(*table_moduli(strain), residual="relative").params): vdw_frames.element.catalogue.
 
 FIT_QUALITY = {  # relative SSE, max |relative error| of G' and of G'' over the six frequencies
     225: {"sse": 1.5199190989974034, "storage": 0.7857779085933676, "loss": 0.3433724128570297},
@@ -174,25 +162,6 @@ FIT_QUALITY = {  # relative SSE, max |relative error| of G' and of G'' over the 
     450: {"sse": 0.15788682990806244, "storage": 0.26963071379193315, "loss": 0.05994714816674129},
 }
 
-FIT_RANGE = {225: (225.0, 262.5), 300: (262.5, 375.0), 450: (375.0, 450.0)}  # shear strain, %
-
-
-def fitted(strain: float, area: float = AREA, thickness: float = THICKNESS) -> FDMKDamper:
-    """The recommended FDMK damper for the paper's strain level ``strain`` (225, 300 or 450 %).
-
-    Parameters from ``FITTED``: the global minimum of objective (12) with relative residuals,
-    sum of ((G'_model - G'_test)/G'_test)^2 + ((G''_model - G''_test)/G''_test)^2 over that strain's
-    six frequencies (why relative: module docstring).  Fit quality (``FIT_QUALITY``): SSE 1.520 /
-    0.3213 / 0.1579 and max |relative error| in G' 78.6 / 29.6 / 27.0 % and in G'' 34.3 / 15.7 / 6.0 %
-    at 225 / 300 / 450 %.  Shear area ``area`` (mm^2) and layer
-    thickness ``thickness`` (mm) default to the paper's.  The damper's ``strain_range`` is
-    ``FIT_RANGE[strain]`` as fractions (3.0 = 300 %), so simulations warn outside it.
-    """
-    key = _strain_key(strain)
-    low, high = FIT_RANGE[key]
-    p = FITTED[key]
-    return FDMKDamper(G1=p["G1"], G2=p["G2"], eta1=p["eta1"], eta2=p["eta2"], r=p["r"], area=area, thickness=thickness,
-                      strain_range=(low / 100.0, high / 100.0))
 
 
 # ------------------------------------------------------------ the printed closed forms: NOT the model

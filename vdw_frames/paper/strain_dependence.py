@@ -68,35 +68,21 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from itertools import pairwise
-from typing import Any
 
 import numpy as np
 from scipy.optimize import least_squares
 
+# The identified nodes and the wall they make live in the element's catalogue (a building file reads them
+# without this identification); their names here are the same objects.
+from ..element.catalogue import STRAIN_DEPENDENT as STRAIN_DEPENDENT
+from ..element.catalogue import STRAIN_DEPENDENT_COMMON as STRAIN_DEPENDENT_COMMON
+from ..element.catalogue import strain_dependent as strain_dependent
 from ..element.strain_dependent import PARAMETERS, StrainDependentDamper
 from .data import AREA, FREQUENCIES, RECOMMENDED_RESIDUAL, STRAINS, THICKNESS, table_moduli
 from .identification import R_MIN, identify
 
 INTERMEDIATE_STRAINS = 4  # interpolated target strains per interval between tested strains
 START_ORDERS = (0.3, 0.5, 0.7, 0.9)  # r pinned in the per-strain fits that start the joint search
-
-STRAIN_DEPENDENT = {  # identify_strain_dependent().nodes, to full precision; strains dimensionless
-    "strains": (2.25, 3.0, 4.5),
-    "G1": (0.0, 0.48474795816470173, 2.089158947418294),
-    "G2": (1.3164522510416001, 2.0540349707987264, 1.0221180408839328),
-    "eta1": (0.01779753897235117, 0.023724302048879913, 0.031172868351328663),
-    "eta2": (0.3121840162436633, 1.0428713796296716, 0.4900621894880103),
-    "r": (1.0, 0.6839119697160516, 0.5528706313617792),
-}
-
-STRAIN_DEPENDENT_COMMON = {  # identify_strain_dependent(common_order=True).nodes: one r for every amplitude
-    "strains": (2.25, 3.0, 4.5),
-    "G1": (0.0, 0.8969052081005391, 2.3590971351601246),
-    "G2": (1.3380785350046127, 1.6163068776846077, 0.6926273736286789),
-    "eta1": (0.032287150788946825, 0.01353131459927258, 0.01026816739961604),
-    "eta2": (0.44201165724089975, 0.5147667815855544, 0.16433035190061754),
-    "r": (0.8222114475469737, 0.8222114475469737, 0.8222114475469737),
-}
 
 COMMON_ORDER_COST = {  # objective of the common-r family / that of the free-r family, at the tested strains
     225: 1.2227, 300: 1.0450, 450: 1.0813,
@@ -246,19 +232,3 @@ def identify_strain_dependent(common_order: bool = False) -> StrainDependenceRes
     return StrainDependenceResult(nodes, strains, sse, best)
 
 
-def strain_dependent(area: float = AREA, thickness: float = THICKNESS, common_order: bool = True,
-                     **wall_options: Any) -> StrainDependentDamper:
-    """The paper's wall as a strain-dependent FDMK model over 225-450 %.
-
-    Parameters piecewise linear in log(strain) between the tested strains 225, 300 and 450 %, from the
-    joint identification of Tables 1-3 described in the module docstring.  ``common_order`` (default):
-    one r = 0.822 for every amplitude (``STRAIN_DEPENDENT_COMMON``), what a time-domain analysis that
-    follows the amplitude needs; its objective is 1.22 / 1.05 / 1.08 times the free-r family's at
-    225 / 300 / 450 % (``COMMON_ORDER_COST``).  ``common_order=False``: r free at each node
-    (``STRAIN_DEPENDENT``, r = 1.0 / 0.68 / 0.55; objective 1.013 / 1.032 / 1.021 times each strain's own
-    best fit, ``STRAIN_DEPENDENT_QUALITY``), for the strain-compatible (equivalent-linear) analysis only.
-    Shear area ``area`` (mm^2) and layer thickness ``thickness`` (mm) default to the paper's;
-    ``wall_options`` (``thermal``, ``limits``) go to the wall.  Amplitudes outside 225-450 % are clamped.
-    """
-    nodes = STRAIN_DEPENDENT_COMMON if common_order else STRAIN_DEPENDENT
-    return StrainDependentDamper.from_nodes(nodes, area=area, thickness=thickness, **wall_options)
