@@ -16,8 +16,12 @@ import warnings
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from .element.wall import Wall
 
 
 def _add_damper_options(parser: argparse.ArgumentParser) -> None:
@@ -331,43 +335,74 @@ def _design(args) -> int:
     if not walls:
         print("no walls in the building file: add a [[walls]] group to size them")
         return 0
-    # The template: the lowest walled story's walls as one (identical walls in parallel add their areas).
-    lowest = building.walls[min(building.walls)]
-    template = lowest[0].resized(len(lowest)) if all(wall == lowest[0] for wall in lowest) else lowest[0]
-    assert not isinstance(template, StrainDependentDamper)  # fixed at one amplitude above
     stories = sorted(building.walls)
-    curve = damping_curve(building, template, args.mode, args.distribution, stories)
-    area = template.area / 1e6
-    per = "per story" if args.distribution == "uniform" else "in the story with the largest weight"
-    print(f"\nsizing mode {args.mode}: the template wall (story {min(building.walls)}'s walls, A = {area:.4g} m^2) "
-          f"scaled, {args.distribution} over {story_text(tuple(stories))}")
     own = modal_analysis(building, args.mode)
-    print(f"  the file's walls: xi = {100 * own.damping_ratios[0]:.2f} %, T = {own.periods[0]:.3f} s")
+    own_ratio, own_period = float(own.damping_ratios[0]), float(own.periods[0])
+    existing = (args.distribution or "existing") == "existing"
+    template: Wall | None = None  # None: the file's own walls, every one's area scaled by the same factor
+    if existing:
+        print(f"\nsizing mode {args.mode}: the file's own walls, every wall's area scaled by one factor "
+              f"({story_text(tuple(stories))}; --distribution for another layout)")
+    else:  # a template (the lowest walled story's walls as one: identical walls in parallel add their areas)
+        lowest = building.walls[min(building.walls)]
+        first = lowest[0]
+        assert not isinstance(first, StrainDependentDamper)  # fixed at one amplitude above
+        template = first.resized(len(lowest)) if all(wall == first for wall in lowest) else first
+        print(f"\nsizing mode {args.mode}: walls like story {min(building.walls)}'s (A = {template.area / 1e6:.4g} "
+              f"m^2, t = {template.thickness:g} mm), {args.distribution} over {story_text(tuple(stories))}; the "
+              "file's walls are replaced")
+    distribution = "existing" if existing else args.distribution
+    curve = damping_curve(building, template, args.mode, distribution, stories)
+    print(f"  the file's walls: xi = {100 * own_ratio:.2f} %, T = {own_period:.3f} s")
+
+    total = sum(wall.area for _, wall in walls) / 1e6  # m^2, the file's walls in all stories
+
+    def size_text(factor: float) -> str:
+        """A size in plain words: the areas, and against what the factor is counted."""
+        if template is None:
+            return (f"the file's walls, every area x {factor:.3f} ({factor * total:.4g} m^2 in all stories "
+                    f"instead of {total:.4g})")
+        area, base = factor * template.area / 1e6, template.area / 1e6
+        if args.distribution == "uniform":
+            return f"{area:.4g} m^2 of wall in each story ({factor:.3g} x story {stories[0]}'s {base:.4g} m^2)"
+        return (f"{area:.4g} m^2 of wall in the story with the largest weight ({factor:.3g} x story {stories[0]}'s "
+                f"{base:.4g} m^2), the others in proportion to their {args.distribution}")
+
     if curve.best_factor >= SEARCH_FACTORS[1]:  # no maximum within the sizes searched: say so, not "largest"
-        largest = SEARCH_FACTORS[1]
-        print(f"  no largest damping ratio up to {largest:g} x the template ({largest * area:.4g} m^2 "
-              f"{per}): xi = {100 * curve.best_damping_ratio:.2f} % there, T = {curve.best_period:.3f} s (walls that "
-              "large lock the stories; the ratio still grows)")
+        print(f"  no largest damping ratio up to {size_text(SEARCH_FACTORS[1])}: xi = "
+              f"{100 * curve.best_damping_ratio:.2f} % there, T = {curve.best_period:.3f} s (walls that large lock the "
+              "stories; the ratio still grows)")
     else:
-        print(f"  largest achievable: xi = {100 * curve.best_damping_ratio:.2f} % at {curve.best_factor:.3g} x "
-              f"({curve.best_factor * area:.4g} m^2 {per}), T = {curve.best_period:.3f} s; larger walls stiffen the "
-              "frame more than they damp it")
-    # The file's walls lie on the uniform curve (at 1 x) when every walled story holds the same walls.
-    uniform_file = all(building.walls[story] == lowest for story in stories)
-    marks = {"file's walls": 1.0} if uniform_file and args.distribution == "uniform" else {}
+        print(f"  largest achievable: xi = {100 * curve.best_damping_ratio:.2f} % with {size_text(curve.best_factor)}, "
+              f"T = {curve.best_period:.3f} s; larger walls stiffen the frame more than they damp it")
+    # The file's walls lie on the curve (at 1 x) for the existing layout, or for a uniform one when every walled
+    # story holds the same walls; on any layout they are marked by their own damping ratio and period.
+    uniform_file = template is not None and all(building.walls[story] == building.walls[stories[0]]
+                                                for story in stories)
+    on_curve = existing or (uniform_file and args.distribution == "uniform")
+    marks: dict[str, float] = {}
     unreachable = None
     if args.target is not None:
         try:
-            sized = size_walls(building, template, args.target, args.mode, args.distribution, stories)
+            sized = size_walls(building, template, args.target, args.mode, distribution, stories)
         except ValueError as error:  # reported after the figure, as the command's error
             unreachable = error
         else:
             result = modal_analysis(sized, args.mode)
-            factor = max(wall.area for _, wall in sized.wall_list) / template.area
+            largest = max(wall.area for _, wall in sized.wall_list)
+            reference = max(wall.area for _, wall in building.wall_list) if template is None else template.area
+            factor = largest / reference
             marks["target"] = factor
-            print(f"  target {100 * args.target:g} %: {factor:.3g} x ({factor * area:.4g} m^2 {per}): xi = "
-                  f"{100 * result.damping_ratios[0]:.2f} %, T = {result.periods[0]:.3f} s")
+            verdict = ""
+            if template is None:  # the advice in words: keep the walls, or make them so much smaller or larger
+                change = abs(1.0 - factor)
+                verdict = f"; the file's walls give {100 * own_ratio:.2f} %: " + (
+                    "they meet the target as they are" if change < 0.005 else
+                    f"walls {100 * change:.0f} % {'smaller suffice' if factor < 1.0 else 'larger are needed'}")
+            print(f"  target {100 * args.target:g} %: {size_text(factor)}: xi = "
+                  f"{100 * result.damping_ratios[0]:.2f} %, T = {result.periods[0]:.3f} s{verdict}")
     path = plot_damping_curve(curve, out / "design_damping.png", target=args.target, marks=marks,
+                              own=(own_ratio, own_period, 1.0) if on_curve else (own_ratio, own_period),
                               title=f"{Path(args.building).name}: mode {args.mode} against the wall size")
     print(f"figure: {path}")
     if unreachable is not None:
@@ -578,8 +613,10 @@ def _add_design_command(commands) -> None:
     design.add_argument("building", help="building file, .toml or .json, with walls (format: vdw_frames.config)")
     design.add_argument("--target", type=float, help="target total damping ratio of the mode, e.g. 0.15")
     design.add_argument("--mode", type=int, default=1, help="mode to size the walls for (default 1)")
-    design.add_argument("--distribution", default="uniform", choices=("uniform", "stiffness", "drift"),
-                        help="wall area over the walled stories (default uniform)")
+    design.add_argument("--distribution", choices=("existing", "uniform", "stiffness", "drift"),
+                        help="the walls sized: existing (default): the file's own walls, every one's area scaled "
+                             "by one factor; uniform, stiffness or drift: story 1's walls as a template, their area "
+                             "the same in every walled story, or in proportion to the story stiffness or mode drift")
     design.add_argument("--modes", type=int, default=5, help="modes in the table (default 5)")
     design.add_argument("--strain", type=float,
                         help="amplitude, %%, at which strain-dependent walls are analysed (default: the centre, in "

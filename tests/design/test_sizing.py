@@ -3,6 +3,7 @@ the damping curve saturates, unreachable targets and bad requests are refused.  
 tests/integration/test_cli.py."""
 
 import dataclasses
+import re
 
 import numpy as np
 import pytest
@@ -47,6 +48,31 @@ def test_sized_r1_walls_meet_the_target_by_the_state_space_eigenvalues(distribut
     for story in (1, 2, 3):  # only the area changes
         wall = sized.walls[story][0]
         assert dataclasses.replace(wall, area=KELVIN_MAXWELL.area) == KELVIN_MAXWELL
+
+
+def test_the_existing_walls_scaled_meet_the_target_by_the_state_space_eigenvalues():
+    """distribution="existing": the building's own walls (areas and thicknesses that differ by story), every
+    area scaled by one factor, meet the target by the exact state-space eigenvalues (tests/reference.py)."""
+    own = {1: FDMKDamper(**CLASSICAL_KELVIN_MAXWELL, area=6e4, thickness=9.0),
+           2: FDMKDamper(**CLASSICAL_KELVIN_MAXWELL, area=4e4, thickness=7.0),
+           4: FDMKDamper(**CLASSICAL_KELVIN_MAXWELL, area=2e4, thickness=5.0)}
+    building = five_story(own)
+    sized = size_walls(building, None, 0.11, distribution="existing")
+    assert state_space_ratio(sized) == pytest.approx(0.11, abs=1e-6)
+    factors = {story: sized.walls[story][0].area / wall.area for story, wall in own.items()}
+    assert sorted(sized.walls) == [1, 2, 4]
+    np.testing.assert_allclose(list(factors.values()), factors[1], rtol=1e-12)
+    for story, wall in own.items():  # only the area changes
+        assert dataclasses.replace(sized.walls[story][0], area=wall.area) == wall
+    curve = damping_curve(building, None, distribution="existing", factors=[0.5, 1.0, 2.0])
+    np.testing.assert_allclose(curve.areas[1], [6e4, 4e4, 0.0, 2e4, 0.0], rtol=1e-15)
+    assert curve.damping_ratios[1] == pytest.approx(state_space_ratio(building), abs=1e-9)
+    for kwargs, message in ((dict(wall=KELVIN_MAXWELL), "give wall=None"),
+                            (dict(wall=None, stories=[1, 2]), "keeps the walled stories [1, 2, 4]")):
+        with pytest.raises(ValueError, match=re.escape(message)):
+            size_walls(building, target_damping=0.11, distribution="existing", **kwargs)
+    with pytest.raises(ValueError, match="scales the building's own walls, but it has none"):
+        size_walls(five_story(), None, 0.11, distribution="existing")
 
 
 @pytest.mark.slow

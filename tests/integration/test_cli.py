@@ -350,7 +350,7 @@ def test_design_command_on_the_example(tmp_path, capsys):
     path = EXAMPLE_BUILDING
     building = _example_at_the_range_centre()
     expected = modal_analysis(building, [1, 2, 3, 4, 5])
-    curve = damping_curve(building, building.wall_list[0][1])
+    curve = damping_curve(building, None, distribution="existing")  # the command's default: the file's walls scaled
     target = round(0.5 * (expected.damping_ratios[0] + curve.best_damping_ratio), 3)
     assert cli.main(["design", str(path), "--target", str(target), "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
@@ -400,11 +400,58 @@ def test_design_command_says_when_the_damping_still_grows_at_the_largest_size_se
     lowest = building.walls[min(building.walls)]
     curve = damping_curve(building, lowest[0].resized(len(lowest)))
     assert curve.best_factor == SEARCH_FACTORS[1]  # the case: the maximum is at the end of the search
-    assert cli.main(["design", str(path), "--out", str(tmp_path)]) == 0
+    assert cli.main(["design", str(path), "--distribution", "uniform", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert (f"no largest damping ratio up to 1000 x the template ({1000 * lowest[0].area * len(lowest) / 1e6:.4g} m^2 "
-            f"per story): xi = {100 * curve.best_damping_ratio:.2f} % there") in out
+    assert (f"no largest damping ratio up to {1000 * lowest[0].area * len(lowest) / 1e6:.4g} m^2 of wall in each "
+            f"story (1e+03 x story 1's {lowest[0].area * len(lowest) / 1e6:.4g} m^2): xi = "
+            f"{100 * curve.best_damping_ratio:.2f} % there") in out
     assert "largest achievable" not in out
+
+
+def test_design_command_scales_the_files_own_walls_by_default(tmp_path, capsys):
+    """The guide's four-story file, whose walls differ by story: by default the command scales every wall's
+    area by one factor (the layout kept), says the factor against the file's walls, and marks them."""
+    path = REPO / "docs" / "examples" / "four_story.toml"
+    building = load_building(path)
+    own = modal_analysis(building, 1)
+    target = round(float(own.damping_ratios[0]) + 0.01, 3)
+    assert cli.main(["design", str(path), "--target", str(target), "--modes", "1", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    sized = vdw.size_walls(building, None, target, distribution="existing")
+    factors = [sized.walls[story][0].area / building.walls[story][0].area for story in sorted(building.walls)]
+    np.testing.assert_allclose(factors, factors[0], rtol=1e-12)  # one factor, the layout kept
+    total = sum(wall.area for _, wall in building.wall_list) / 1e6
+    result = modal_analysis(sized, 1)
+    assert (f"target {100 * target:g} %: the file's walls, every area x {factors[0]:.3f} ({factors[0] * total:.4g} "
+            f"m^2 in all stories instead of {total:.4g}): xi = {100 * result.damping_ratios[0]:.2f} %, "
+            f"T = {result.periods[0]:.3f} s; the file's walls give {100 * own.damping_ratios[0]:.2f} %: walls "
+            f"{100 * (factors[0] - 1):.0f} % larger are needed") in out
+    assert "sizing mode 1: the file's own walls, every wall's area scaled by one factor (stories 1-4" in out
+
+
+def test_design_damping_figure_marks_the_files_walls(tmp_path, monkeypatch):
+    """The figure draws the file's walls: a point on the curves for the default layout, dotted lines at their
+    damping ratio and period for another layout (walls laid out otherwise lie off the curve)."""
+    import matplotlib.axes
+
+    drawn = []
+    original_plot, original_line = matplotlib.axes.Axes.plot, matplotlib.axes.Axes.axhline
+    monkeypatch.setattr(matplotlib.axes.Axes, "plot",
+                        lambda self, *a, **k: drawn.append(("point", a, k.get("label"))) or original_plot(self, *a,
+                                                                                                         **k))
+    monkeypatch.setattr(matplotlib.axes.Axes, "axhline",
+                        lambda self, *a, **k: drawn.append(("line", a, k.get("label"))) or original_line(self, *a, **k))
+    path = REPO / "docs" / "examples" / "four_story.toml"
+    own = modal_analysis(load_building(path), 1)
+    ratio, period = 100 * float(own.damping_ratios[0]), float(own.periods[0])
+    assert cli.main(["design", str(path), "--modes", "1", "--out", str(tmp_path)]) == 0
+    points = [(a, label) for kind, a, label in drawn if kind == "point" and label and label.startswith("its own")]
+    assert [label for _, label in points] == [f"its own walls: {ratio:.2f} %", f"its own walls: {period:.3f} s"]
+    assert points[0][0][0] == [1.0] and points[0][0][1] == [pytest.approx(ratio, rel=1e-12)]
+    drawn.clear()
+    assert cli.main(["design", str(path), "--modes", "1", "--distribution", "drift", "--out", str(tmp_path)]) == 0
+    lines = [(a, label) for kind, a, label in drawn if kind == "line" and label and label.startswith("its own")]
+    assert [a[0] for a, _ in lines] == [pytest.approx(ratio, rel=1e-12), pytest.approx(period, rel=1e-12)]
 
 
 def test_design_command_refuses_a_building_too_tall_to_size_before_any_work(tmp_path, capsys, monkeypatch):

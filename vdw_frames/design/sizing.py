@@ -5,9 +5,13 @@ The walls are one template wall per story, its shear area scaled by ``factor x w
 - ``distribution = "uniform"``: weight 1 on every walled story;
 - ``"stiffness"``: weight proportional to the story's initial stiffness k0 (largest 1);
 - ``"drift"``: weight proportional to the story's drift in the mode, from the bare frame's undamped
-  mode shape (largest 1).
+  mode shape (largest 1);
+- ``"existing"``: no template (``wall=None``): the building's own walls, every one's area scaled by the
+  same ``factor`` (1 = the building as it is), on the stories that have them; the layout the engineer
+  chose (areas and thicknesses that differ by story) is kept.
 
-So ``factor x wall.area`` is the wall area of the story with the largest weight.  A
+So ``factor x wall.area`` is the wall area of the story with the largest weight (``"existing"``: ``factor x``
+each wall's own area).  A
 :class:`~vdw_frames.SupportedDamper` scales with its support (``factor`` walls' worth, each with its
 own connection: k_s scales with the area), so the support's share of the deformation is unchanged.
 
@@ -42,7 +46,7 @@ from ..frame.modal import complex_modes, require_modal_size
 if TYPE_CHECKING:
     from ..element.wall import Wall
 
-DISTRIBUTIONS = ("uniform", "stiffness", "drift")
+DISTRIBUTIONS = ("uniform", "stiffness", "drift", "existing")
 MAX_STORIES = 30
 """Largest building (stories) :func:`size_walls` and :func:`damping_curve` take, refused before any work:
 they repeat the complex modal analysis some 50-100 times (:data:`vdw_frames.frame.modal.MAX_STORIES` is
@@ -61,17 +65,18 @@ class SizingCurve:
     """A mode's period and damping ratio against the wall size (:func:`damping_curve`).
 
     ``factors``: area factors (-); ``areas``: wall area per story (mm^2, shape (factors, stories), 0
-    where a story has no wall); ``damping_ratios`` (-) and ``periods`` (s) of mode ``mode`` (NaN where
-    that mode is no longer oscillatory); ``bare_damping_ratio`` and ``bare_period``: the frame without
-    walls; ``best_factor`` and ``best_damping_ratio``: the largest ratio over factors 1e-3 ... 1e3 and
+    where a story has no wall; all of a story's walls); ``damping_ratios`` (-) and ``periods`` (s) of mode
+    ``mode`` (NaN where that mode is no longer oscillatory); ``bare_damping_ratio`` and ``bare_period``: the
+    frame without walls; ``best_factor`` and ``best_damping_ratio``: the largest ratio over factors 1e-3 ... 1e3 and
     the factor that gives it (``best_factor`` = 1e3 means it was still growing there), with ``best_period`` (s).
-    ``weights``: the distribution over the stories (largest 1); ``wall``: the template.
+    ``weights``: the distribution over the stories (largest 1); ``wall``: the template (None for the
+    ``"existing"`` distribution, which scales the building's own walls).
     """
 
     mode: int
     distribution: str
     stories: tuple[int, ...]
-    wall: Wall
+    wall: Wall | None
     weights: np.ndarray
     factors: np.ndarray
     areas: np.ndarray
@@ -93,18 +98,29 @@ def _check_wall(wall: object) -> None:
 class _Sizer:
     """The mode's complex pole as a function of the area factor, for one building, wall and distribution."""
 
-    def __init__(self, building: ShearBuilding, wall: Wall, mode: int, distribution: str,
+    def __init__(self, building: ShearBuilding, wall: Wall | None, mode: int, distribution: str,
                  stories: int | Sequence[int] | str | None) -> None:
         if not isinstance(building, ShearBuilding):
             raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
         require_modal_size(building, "wall sizing (size_walls, damping_curve)", MAX_STORIES)
         require_fixed_walls(building, "wall sizing")
-        _check_wall(wall)
+        if not isinstance(distribution, str) or distribution not in DISTRIBUTIONS:
+            raise ValueError(f"distribution must be one of {DISTRIBUTIONS}, got {distribution!r}")
+        if distribution == "existing":
+            if wall is not None:
+                raise ValueError("the 'existing' distribution scales the building's own walls: give wall=None")
+            if not building.wall_list:
+                raise ValueError("the 'existing' distribution scales the building's own walls, but it has none")
+            if stories is not None and _stories(building, stories) != tuple(sorted(building.walls)):
+                raise ValueError(f"the 'existing' distribution keeps the walled stories {sorted(building.walls)}; "
+                                 f"got stories={stories!r}")
+            for _, existing in building.wall_list:
+                _check_wall(existing)
+        else:
+            _check_wall(wall)
         self.mode = whole_number("mode", mode, 1)
         if self.mode > building.stories:
             raise ValueError(f"mode must be a mode number in 1 ... {building.stories}, got {mode!r}")
-        if not isinstance(distribution, str) or distribution not in DISTRIBUTIONS:
-            raise ValueError(f"distribution must be one of {DISTRIBUTIONS}, got {distribution!r}")
         self.building, self.wall, self.distribution = building, wall, distribution
         self.stories = _stories(building, stories)
         self.weights = _weights(building, distribution, self.stories, self.mode)
@@ -113,8 +129,18 @@ class _Sizer:
         self._cache: dict[float, complex] = {}
 
     def building_for(self, factor: float) -> ShearBuilding:
+        if self.wall is None:  # "existing": every wall of the building scaled alike
+            return self.building.with_walls({story: tuple(wall.resized(factor) for wall in walls)
+                                             for story, walls in self.building.walls.items()})
         return self.building.with_walls({story: (self.wall.resized(factor * self.weights[story - 1]),)
                                          for story in self.stories if self.weights[story - 1] > 0.0})
+
+    def story_areas(self) -> np.ndarray:
+        """Wall area per story at factor 1 (mm^2; 0 where a story has no wall)."""
+        if self.wall is None:
+            return np.array([sum(wall.area for wall in self.building.walls.get(story, ()))
+                             for story in range(1, self.building.stories + 1)])
+        return self.weights * self.wall.area
 
     def pole(self, factor: float) -> complex:
         """The mode's pole with walls of ``factor`` (NaN when the mode is no longer oscillatory)."""
@@ -144,14 +170,16 @@ class _Sizer:
         return (factor, self.damping(factor)) if self.damping(factor) >= values[k] else (float(grid[k]), values[k])
 
     def describe(self, factor: float) -> str:
-        area = factor * self.wall.area
         stories = story_text(self.stories)
+        if self.wall is None:
+            return f"{factor:.3g} x the areas of the building's own walls (every wall alike, {stories})"
+        area = factor * self.wall.area
         per = "per story" if self.distribution == "uniform" else "in the story with the largest weight"
         return (f"{factor:.3g} x the wall's area ({area:.4g} mm^2 {per}; {self.distribution} distribution over "
                 f"{stories})")
 
 
-def damping_curve(building: ShearBuilding, wall: Wall, mode: int = 1, distribution: str = "uniform",
+def damping_curve(building: ShearBuilding, wall: Wall | None, mode: int = 1, distribution: str = "uniform",
                   stories: int | Sequence[int] | str | None = None, factors: ArrayLike | None = None) -> SizingCurve:
     """Period and damping ratio of ``mode`` against the walls' size (see the module docstring).
 
@@ -168,20 +196,21 @@ def damping_curve(building: ShearBuilding, wall: Wall, mode: int = 1, distributi
                          "is a complex modal analysis)")
     poles = np.array([sizer.pole(float(f)) for f in factors])
     best_factor, best_ratio = sizer.best()
-    areas = np.outer(factors, sizer.weights) * wall.area
+    areas = np.outer(factors, sizer.story_areas())
     return SizingCurve(sizer.mode, distribution, sizer.stories, wall, sizer.weights, factors, areas,
                        -poles.real / np.abs(poles), 2.0 * np.pi / np.abs(poles),
                        float(-sizer.bare.real / abs(sizer.bare)), float(2.0 * np.pi / abs(sizer.bare)),
                        best_factor, best_ratio, float(2.0 * np.pi / abs(sizer.pole(best_factor))))
 
 
-def size_walls(building: ShearBuilding, wall: Wall, target_damping: float, mode: int = 1, distribution: str = "uniform",
-               stories: int | Sequence[int] | str | None = None) -> ShearBuilding:
+def size_walls(building: ShearBuilding, wall: Wall | None, target_damping: float, mode: int = 1,
+               distribution: str = "uniform", stories: int | Sequence[int] | str | None = None) -> ShearBuilding:
     """A copy of ``building`` whose walls give ``mode`` the total damping ratio ``target_damping``.
 
     ``wall``: the template (:class:`~vdw_frames.FDMKDamper` or :class:`~vdw_frames.SupportedDamper`), its
     area scaled over the ``stories`` by ``distribution`` (module docstring); the building's own walls
-    are replaced.  The ratio is the complex-mode value -Re s / |s| (:func:`modal_analysis`),
+    are replaced.  ``distribution="existing"`` with ``wall=None`` scales the building's own walls instead,
+    every one by the same factor.  The ratio is the complex-mode value -Re s / |s| (:func:`modal_analysis`),
     inherent damping included, met to 1e-6 (the issue asks 1e-3).  The smallest walls that reach it
     are returned.  ValueError when the target is below the bare frame's ratio or above the largest
     achievable one (the message states that maximum and the wall size that gives it), and for buildings
@@ -228,7 +257,7 @@ def _stories(building: ShearBuilding, stories: int | Sequence[int] | str | None)
 def _weights(building: ShearBuilding, distribution: str, stories: tuple[int, ...], mode: int) -> np.ndarray:
     """Area weight of every story (0 for stories without walls; largest 1)."""
     index = np.array(stories) - 1
-    if distribution == "uniform":
+    if distribution in ("uniform", "existing"):
         raw = np.ones(building.stories)
     elif distribution == "stiffness":
         raw = np.asarray(building.stiffnesses, dtype=float)
