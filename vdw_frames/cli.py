@@ -30,18 +30,36 @@ def _add_damper_options(parser: argparse.ArgumentParser) -> None:
                        help="shear strain level in %% whose recommended parameters to use (225, 300, 450)")
     for name, unit in (("G1", "MPa"), ("G2", "MPa"), ("eta1", "MPa*s^r"), ("eta2", "MPa*s^r"), ("r", "-")):
         group.add_argument(f"--{name}", type=float, help=f"override {name} ({unit})")
-    group.add_argument("--area", type=float, default=1.0e6, help="shear area, mm^2 (default 1e6)")
-    group.add_argument("--thickness", type=float, default=10.0, help="layer thickness, mm (default 10)")
+    group.add_argument("--area", type=float, help="shear area, mm^2 (default 1e6, the paper's stated value: "
+                                                   "34-100 x the tested wall; give your wall's)")
+    group.add_argument("--thickness", type=float, help="layer thickness, mm (default 10, the paper's stated value)")
 
 
 def _damper_from(args):
-    from .element.catalogue import fitted
+    from .element import catalogue
     from .element.damper import FDMKDamper
 
-    base = fitted(args.strain)
+    base = catalogue.fitted(args.strain)
     values = {name: getattr(args, name) if getattr(args, name) is not None else getattr(base, name)
               for name in ("G1", "G2", "eta1", "eta2", "r")}
-    return FDMKDamper(**values, area=args.area, thickness=args.thickness)
+    area = args.area if args.area is not None else catalogue.AREA
+    thickness = args.thickness if args.thickness is not None else catalogue.THICKNESS
+    return FDMKDamper(**values, area=area, thickness=thickness)
+
+
+def _geometry_caution(damper) -> str:
+    """The caution of the README and the paper report for a damper of the paper's stated geometry: the paper's
+    own printed stiffnesses and loop areas imply an A/h 34-100 times smaller (computed here from its tables)."""
+    from .paper.errata import loop_area_scale, table_scale
+
+    loops, printed = loop_area_scale(), table_scale()  # mm: A/h of the tested wall, by two routes
+    implied = np.append(loops, printed)
+    scale = damper.area / damper.thickness
+    return (f"caution: A = {damper.area:g} mm^2 and h = {damper.thickness:g} mm are the paper's stated geometry "
+            f"(A/h = {scale:g} mm), but its printed K'_d / G' implies A/h = {printed:.0f} mm and its measured loop "
+            f"areas A/h = {loops.min():.0f}-{loops.max():.0f} mm: this damper is {scale / implied.max():.0f}-"
+            f"{scale / implied.min():.0f} x the tested wall; give --area and --thickness of your wall "
+            "(vdw-frames paper-report: cautions)")
 
 
 MAX_PGA = 100.0
@@ -77,6 +95,8 @@ def _sine_test(args) -> int:
     result = sine_test(damper, amplitude, args.frequency, cycles=args.cycles)
     print(f"FDMK damper: G1={damper.G1:g} MPa, G2={damper.G2:g} MPa, eta1={damper.eta1:g} MPa*s^r, "
           f"eta2={damper.eta2:g} MPa*s^r, r={damper.r:g}, A={damper.area:g} mm^2, h={damper.thickness:g} mm")
+    if args.area is None and args.thickness is None:  # the paper's stated geometry, by default
+        print(_geometry_caution(damper))
     print(f"sine test: U = {amplitude:g} mm, f = {args.frequency:g} Hz, {args.cycles} cycles, dt = {result.dt:.3g} s")
     print(f"  storage stiffness K'  = {result.storage_stiffness / 1e3:10.2f} kN/mm"
           f"   (frequency domain {damper.storage_stiffness(args.frequency) / 1e3:.2f})")

@@ -3,6 +3,7 @@ written, and every error as one plain line with exit status 2."""
 
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import re
@@ -338,6 +339,24 @@ def test_cli_sine_test_prints_stiffness_and_writes_the_loop(tmp_path, capsys):
     assert (tmp_path / "sine_test_loop.png").stat().st_size > 10_000
 
 
+def test_cli_sine_test_cautions_about_the_papers_stated_geometry(tmp_path, capsys):
+    """The README's caution: A = 1e6 mm^2, h = 10 mm make a wall 34-100 x the tested one.  Reference: the A/h
+    that Table 5's measured loop areas imply (pi G'' U^2 per unit A/h, U = strain x 10 mm) and that the printed
+    K'_d / G' implies (1000 mm, N/mm per MPa)."""
+    rows = paper.TABLE5
+    loss = np.array([paper.TABLES[row.strain]["loss_modulus"][list(paper.FREQUENCIES).index(row.frequency)]
+                     for row in rows])
+    implied = np.array([row.experimental for row in rows]) * 1e3 / (np.pi * loss * (np.array([row.strain for row in
+                                                                                              rows]) / 10.0) ** 2)
+    assert cli.main(["sine-test", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert (f"caution: A = 1e+06 mm^2 and h = 10 mm are the paper's stated geometry (A/h = 100000 mm), but its "
+            f"printed K'_d / G' implies A/h = 1000 mm and its measured loop areas A/h = {implied.min():.0f}-"
+            f"{implied.max():.0f} mm: this damper is 34-100 x the tested wall") in out
+    assert cli.main(["sine-test", "--area", "2e4", "--thickness", "10", "--out", str(tmp_path)]) == 0
+    assert "caution:" not in capsys.readouterr().out  # the user's own geometry
+
+
 @pytest.mark.parametrize("command", ["simulate", "sine-test", "paper-report"])
 def test_cli_help(command):
     run = subprocess.run([sys.executable, "-m", "vdw_frames.cli", command, "--help"], capture_output=True, text=True)
@@ -573,3 +592,18 @@ def test_simulate_states_its_limits_before_any_work():
     with pytest.raises(ValueError, match=r"^simulate's damping matrix \(20000 x 20000 floors\) needs 400,000,000 "
                                          r"entries, whose arrays would take 2.98 GiB \(limit 2 GiB\); fewer stories"):
         simulate(huge, default_record())
+
+
+def test_every_default_output_folder_is_ignored_by_git():
+    """The commands' and examples' default --out folders (run from the checkout's root) are in .gitignore,
+    anchored at the root so that the package's own design/ and verification/ stay tracked."""
+    ignored = set((REPO / ".gitignore").read_text().splitlines())
+    parser = cli.build_parser()
+    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction)).choices
+    defaults = {action.default for command in commands.values() for action in command._actions
+                if action.dest == "out" and action.default is not None}
+    for example in (REPO / "examples").glob("*.py"):
+        defaults |= set(re.findall(r'"--out",[^\n]*default=(?:Path\()?"([^"]+)"', example.read_text()))
+    assert {"design", "verification", "sine_test", "out"} <= defaults
+    assert all(f"/{name}/" in ignored or f"{name}/" in ignored for name in defaults), defaults
+    assert "design/" not in ignored and "verification/" not in ignored  # would hide vdw_frames/design/
