@@ -77,7 +77,10 @@ any of them, the rest default)::
 :func:`load_building` returns the building alone.
 
 Files are UTF-8 (a byte-order mark is allowed).  Story numbers are whole numbers (``2`` or ``2.0``),
-each at most once in a group.  Anything malformed is a ValueError naming the file and the key.
+each at most once in a group.  Anything malformed is a ValueError naming the file and the key: an unknown
+key in any table (``[site]`` and ``[verification]`` are checked whichever command reads the file), a key
+given twice in a JSON object (``json`` alone would keep the last), a per-story list whose length is not
+``masses``'.  A group's walls are built once per distinct size (a 10 000-story group is one wall object).
 """
 
 from __future__ import annotations

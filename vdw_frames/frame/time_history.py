@@ -47,7 +47,7 @@ MAX_MODAL_DAMPING_STORIES = 300
 """Largest building (stories) :func:`time_history` integrates with ``damping_model="modal"``, refused before any
 work: the modal damping matrix is dense (a full eigendecomposition), so every step solves a dense n x n system,
 O(n^3).  Measured on the development machine under load, 300 steps took 1.0 s at 100 stories, 7 s at 300 and
-234 s at 1 000.  Rayleigh damping is tridiagonal (O(n) a step; 300 steps of 10 000 stories in about 13 s), bounded
+234 s at 1 000.  Rayleigh damping is tridiagonal (O(n) a step; 300 steps of 10 000 stories in 2-13 s), bounded
 only by the memory of its damping matrix (n x n floats within the 2 GiB limit: at most 16 384 stories)."""
 
 
