@@ -79,8 +79,8 @@ any of them, the rest default)::
 Files are UTF-8 (a byte-order mark is allowed).  Story numbers are whole numbers (``2`` or ``2.0``),
 each at most once in a group.  Anything malformed is a ValueError naming the file and the key: an unknown
 key in any table (``[site]`` and ``[verification]`` are checked whichever command reads the file), a key
-given twice in a JSON object (``json`` alone would keep the last), a per-story list whose length is not
-``masses``'.  A group's walls are built once per distinct size (a 10 000-story group is one wall object).
+given twice in a JSON object (``json`` alone would keep the last), a per-story list of another length
+than ``masses``.  A group's walls are built once per distinct size (a 10 000-story group is one wall object).
 """
 
 from __future__ import annotations
