@@ -17,6 +17,9 @@ from .._validation import finite_scalar, show, whole_number
 from ._figure import figure_path, pyplot, save
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
     from ..frame.results import SimulationResult
 
 
@@ -33,7 +36,7 @@ def _wall_index(result: SimulationResult, wall: int) -> int:
     return number - 1
 
 
-def _finish_history(figure, axes, ylabel: str, title: str | None, path: Path) -> Path:
+def _finish_history(figure: Figure, axes: Axes, ylabel: str, title: str | None, path: Path) -> Path:
     """Label a history against time (s), grid, legend and title; save the figure to ``path``."""
     axes.set_xlabel("time (s)")
     axes.set_ylabel(ylabel)
