@@ -151,7 +151,7 @@ class FDMKDamper(StiffnessMethods):
             raise ValueError("at_ambient needs a wall with a thermal description (thermal=ThermalProperties(...))")
         return dataclasses.replace(self, thermal=self.thermal.at(temperature))
 
-    def property_factors(self, temperatures, frequency: float) -> PropertyFactors:
+    def property_factors(self, temperatures: ArrayLike, frequency: float) -> PropertyFactors:
         """Property-modification factors of K' and K'' (separately) at ``frequency`` (Hz) over ambient
         ``temperatures`` (degC), relative to the parameters as given (the shift law's reference): see
         :func:`vdw_frames.element.thermal.property_factors`."""
