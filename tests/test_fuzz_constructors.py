@@ -65,7 +65,7 @@ from vdw_frames.motion import RecordMetadata
 from vdw_frames.paper import strain_dependent
 from vdw_frames.verification import PropertyBounds, Site
 
-EXAMPLES = int(os.environ.get("VDW_FUZZ_EXAMPLES", 200))
+EXAMPLES = int(os.environ.get("VDW_FUZZ_EXAMPLES", "200"))
 # The deadline is per example and generous (a loaded 2-core machine): a constructor takes microseconds to
 # milliseconds, a reader a few milliseconds; what it catches is work that grows without bound.
 FUZZ = settings(max_examples=EXAMPLES, deadline=timedelta(seconds=5),
@@ -283,7 +283,7 @@ def assert_record_or_value_error(read, *arguments, **options) -> None:
 
 
 TOKENS = st.one_of(st.sampled_from(["0.1", "-2.5E-03", ".1D+01", "1e999", "-1e-999", "nan", "inf", "NaN", "1,5",
-                                    "0x10", "1_000", "--1", "+", "E", "1.2.3", "١", "½", "NPTS=", "DT=", "SEC"]),
+                                    "0x10", "1_000", "--1", "+", "E", "1.2.3", "\u0661", "½", "NPTS=", "DT=", "SEC"]),
                    st.floats().map(repr), st.integers(-(10**30), 10**30).map(str), st.text(max_size=4))
 HEADERS = st.sampled_from(["ACCELERATION TIME HISTORY IN UNITS OF G", "UNITS OF CM/S/S", "UNITS: M/S2",
                            "VELOCITY TIME HISTORY IN UNITS OF CM/S", "DISPLACEMENT IN CM", "IN/S/S", "",

@@ -96,7 +96,7 @@ def opensees_module(ops: Any = None) -> Any:
     """
     if ops is None:
         try:
-            import openseespy.opensees as opensees
+            from openseespy import opensees
         except (ImportError, RuntimeError) as error:  # RuntimeError: OpenSeesPy without its BLAS/LAPACK libraries
             raise ImportError(f"vdw_frames.interop.opensees needs OpenSeesPy ({error}): pip install "
                               "'vdw-frames[opensees]' (on Debian/Ubuntu it also needs the libblas3 and liblapack3 "
