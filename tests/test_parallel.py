@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import concurrent.futures
 import io
+import multiprocessing
 import os
 import signal
 import subprocess
@@ -113,6 +114,23 @@ def test_the_first_failure_names_its_task_and_cancels_the_rest():
         timer.cancel()
         release.set()
     assert len(started) < 20
+
+
+def fail_soon_or_sleep(n: int) -> int:
+    if n == 1:
+        time.sleep(0.5)
+        raise ValueError("task 1 is refused")
+    time.sleep(60)
+    return n
+
+
+def test_a_failure_on_the_default_pool_terminates_the_running_tasks_rather_than_wait_for_them():
+    began = time.monotonic()
+    with pytest.raises(ValueError, match="^task 1: task 1 is refused$"):
+        with _parallel.executor_for(None) as pool:
+            _parallel.fan_out(fail_soon_or_sleep, {n: n for n in range(4)}, pool, where=lambda n: f"task {n}")
+    assert time.monotonic() - began < 20  # the other tasks sleep 60 s
+    assert not [child for child in multiprocessing.active_children() if child.is_alive()]
 
 
 def test_keyboard_interrupt_cancels_the_rest_and_is_re_raised():

@@ -30,6 +30,7 @@ import os
 import signal
 import sys
 import threading
+import time
 from collections.abc import Callable, Hashable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -242,7 +243,7 @@ def _worker_start(owner: int) -> None:
 
 def _watch(parent: int, owner: int) -> None:
     while _parent_lives(parent, owner):
-        threading.Event().wait(WATCHDOG_INTERVAL)
+        time.sleep(WATCHDOG_INTERVAL)
     os._exit(1)
 
 

@@ -15,6 +15,7 @@ import dataclasses
 import io
 import os
 from collections.abc import Callable, Iterable, Sequence
+from contextlib import AbstractContextManager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -253,6 +254,17 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
                        **{name: stack(name).astype(bool) for name in OUTCOMES},
                        wall_stories=tuple(story for story, _ in building.wall_list), wall_failed=failed,
                        wall_failure_time=np.ma.masked_array(np.where(failed, failure_time, 0.0), mask=~failed))
+
+
+def worker_pool() -> AbstractContextManager[concurrent.futures.Executor]:
+    """``with worker_pool() as pool:`` the default executor of :func:`run_batch`,
+    :func:`~vdw_frames.incremental_dynamic_analysis`, :func:`~vdw_frames.verify` and
+    :func:`~vdw_frames.collapse_assessment` -- a process pool over all cores -- kept for several calls
+    (``executor=pool``), with the same care: its workers ignore Ctrl-C and die with this process (even
+    killed by SIGKILL), and an error, Ctrl-C or SIGTERM inside the block terminates them at once
+    (:mod:`vdw_frames._parallel`).  A plain ``ProcessPoolExecutor`` leaves its workers running when its
+    process is killed."""
+    return executor_for(None)
 
 
 def _label(motions: Sequence[GroundMotion], m: int) -> str:
