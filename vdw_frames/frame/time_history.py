@@ -29,6 +29,7 @@ from .integrator import (
     COLLAPSED,
     ENERGIES,
     FAILED,
+    Excitation,
     FrameArrays,
     Histories,
     NewtonRaphson,
@@ -137,7 +138,8 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         out.wall_parameter_loss[0] = bank.state(kernel.PARAMETER_LOSS).sum()
     if amplitudes:
         out.group_amplitude[0] = bank.state(kernel.AMPLITUDE)
-    filled = integrate(ground, dt, frame, stories, wall_arrays, newton.arrays(), out, start, work)
+    filled = integrate(Excitation(ground, float(dt), int(start)), frame, stories, wall_arrays, newton.arrays(), out,
+                       work)
     status, story_index, iterations = (int(x) for x in out.outcome)
     if status == FAILED:
         _warnings.warn(f"simulate: the step to t = {(start + filled) * dt:.6g} s did not converge "

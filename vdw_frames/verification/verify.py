@@ -40,15 +40,13 @@ from __future__ import annotations
 
 import concurrent.futures
 import math
-import os
-import sys
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from .. import _warnings
+from .._parallel import check_executor, executor_for, fan_out, reissue
 from .._validation import finite_scalar, positive, show, text
 from ..frame.building import ShearBuilding
 from ..frame.results import SimulationResult
@@ -341,12 +339,9 @@ class _Task:
     valid_drift_ratio: float | None
 
     def run(self) -> dict[str, Any]:
-        with _warnings.collect() as caught:
-            result = simulate(self.building, self.motion.scaled(self.factor),
-                              collapse_drift_ratio=self.collapse_drift_ratio)
-        summary = _summary(result, self.valid_drift_ratio)
-        summary["warnings"] = [(w.category, w.message) for w in caught]
-        return summary
+        result = simulate(self.building, self.motion.scaled(self.factor),
+                          collapse_drift_ratio=self.collapse_drift_ratio)
+        return _summary(result, self.valid_drift_ratio)  # its warnings: collected by _parallel.fan_out
 
 
 def _run(task: _Task) -> dict[str, Any]:
@@ -481,8 +476,7 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
 
         records = fema_p695_records("far-field")
     suite = scaled_suite(building, site, records, count)
-    if executor is not None and not callable(getattr(executor, "submit", None)):
-        raise ValueError(f"executor must be a concurrent.futures.Executor (or None), got {show(executor)}")
+    check_executor(executor)
 
     cases = bounds.cases
     variants = [bounds.building(building, case) for case, _ in cases]
@@ -528,37 +522,13 @@ def _wall_demands(building: ShearBuilding, peaks: dict[str, np.ndarray], cases: 
 
 def _run_all(tasks: dict[tuple[int, int], _Task], executor: concurrent.futures.Executor | None, progress: bool,
              cases: Sequence[tuple[str, float]], motions: Sequence[GroundMotion]) -> dict[tuple[int, int], dict]:
-    own = executor is None
-    pool = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1) if executor is None else executor
-    futures: dict[concurrent.futures.Future, tuple[int, int]] = {}
-    summaries = {}
-    show_bar = progress and sys.stderr.isatty()
-    try:
-        futures = {pool.submit(_run, task): key for key, task in tasks.items()}
-        for done, future in enumerate(concurrent.futures.as_completed(futures), 1):
-            c, r = futures[future]
-            try:
-                summaries[(c, r)] = future.result()
-            except ValueError as error:
-                raise ValueError(f"verify: the analysis of {motions[r].name or r} ({cases[c][0]}) failed: {error}") \
-                    from error
-            if show_bar:
-                filled = 30 * done // len(futures)
-                sys.stderr.write(f"\r[{'#' * filled}{'.' * (30 - filled)}] {done}/{len(futures)} analyses")
-                sys.stderr.write("\n" if done == len(futures) else "")
-                sys.stderr.flush()
-    except BaseException:
-        for future in futures:
-            future.cancel()
-        raise
-    finally:
-        if own:
-            pool.shutdown(cancel_futures=True)
-    reported = set()
-    for (c, r), summary in sorted(summaries.items()):
-        for category, message in summary["warnings"]:
-            text = f"{motions[r].name or r} ({cases[c][0]}): {message}"
-            if text not in reported:
-                reported.add(text)
-                _warnings.warn(text, category, stacklevel=3)
-    return summaries
+    """Every analysis on ``executor`` (:func:`vdw_frames._parallel.fan_out`); their warnings re-issued once
+    each, naming the record and the case."""
+    def label(key: tuple[int, int]) -> str:
+        return f"{motions[key[1]].name or key[1]} ({cases[key[0]][0]})"
+
+    with executor_for(executor) as pool:
+        collected = fan_out(_run, tasks, pool, progress=progress, unit="analyses",
+                            where=lambda key: f"verify: the analysis of {label(key)} failed")
+    reissue(collected, label, stacklevel=3)
+    return {key: each.value for key, each in collected.items()}
