@@ -156,7 +156,7 @@ def service_temperature(name: str, value: object) -> float:
     return temperature
 
 
-def held_temperature(law: ShiftLaw, temperature: object) -> float:
+def held_temperature(law: WLF | Arrhenius | LogLinear, temperature: object) -> float:
     """The temperature (degC) at which the frequency domain evaluates ``law`` for a wall at ``temperature``:
     ``temperature`` inside the law's valid range, the range's nearer end outside it, with a warning -- the
     rule of the time domain, whose update holds the law at the range's end too (kernel ``_shift_factor``).
@@ -171,7 +171,7 @@ def held_temperature(law: ShiftLaw, temperature: object) -> float:
     return held
 
 
-def shift_factor(law: ShiftLaw, temperature: object, r: float, warn: bool = True) -> float:
+def shift_factor(law: WLF | Arrhenius | LogLinear, temperature: object, r: float, warn: bool = True) -> float:
     """a_T^r (-) of ``law`` at ``temperature`` (degC), held at the law's valid range (:func:`held_temperature`;
     ``warn=False``: without the warning, for callers that report it themselves)."""
     if warn:
