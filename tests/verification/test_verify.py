@@ -402,3 +402,11 @@ def test_the_bounds_hold_a_temperature_beyond_the_law_s_range_at_its_end_as_the_
     nominal, held = _by_hand(wall, 21.2, frequency), _by_hand(wall, 70.0, frequency)
     np.testing.assert_allclose(factors[2, 0], [0.8 * held.real / nominal.real, 0.8 * held.imag / nominal.imag],
                                rtol=1e-10)
+
+
+def test_the_old_temperature_of_a_case_still_answers_with_a_deprecation_warning():
+    bounds = PropertyBounds(0.8, 1.2, ambient=(10.0, 30.0))
+    with pytest.warns(DeprecationWarning, match="ambient_end"):
+        assert (bounds.temperature("upper"), bounds.temperature("lower")) == (10.0, 30.0)
+    with pytest.raises(ValueError, match="needs the frequency"):
+        bounds.wall(_heated().wall_list[0][1], "upper")
