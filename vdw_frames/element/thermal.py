@@ -349,7 +349,9 @@ class ThermalProperties:
     layer of thickness h needs to pass its heat to the steel plates, h^2 / (pi^2 kappa) with kappa ~ 1e-7
     m^2/s for polymers: ~25 s for 5 mm, ~100 s for 10 mm, ~400 s for 20 mm.  It bounds the temperature rise
     from above (the plates, whose heat capacity is comparable, would take part of the heat).  For long records
-    or thin layers give ``cooling_time`` (the conduction time above is a fair first value).
+    or thin layers give ``cooling_time`` (the conduction time above is a fair first value:
+    :func:`conduction_time`; 5.7 s for 2.37 mm layers).  Temperatures are service temperatures
+    (:func:`service_temperature`: above absolute zero, at most 200 degC).
     """
 
     shift: WLF | Arrhenius | LogLinear
