@@ -136,10 +136,11 @@ class PropertyBounds:
     stiffness K'' (the energy a cycle dissipates, pi K'' d^2).  A temperature is not one factor: it shifts the
     wall along its own frequency curve, and K' and K'' move differently -- colder is always stiffer (K' and |K*|
     rise with frequency) but not always more damped: past the Maxwell branch's loss peak K'' falls with
-    frequency, so a cold wall can dissipate less (the paper's 300 % set at 318 % strain and 10 degC: K'' x 0.834
-    at the first mode).  Where the end of the smaller K'' is not that of the smaller K', no single end bounds
-    both; :func:`verify` warns then.  The nominal analyses keep the walls' own temperature.  Every wall needs a
-    thermal description with an ambient range.
+    frequency, so a cold wall can dissipate less (the paper's sets as one family, at 318 % and 10 degC: K' x 1.30
+    but K'' x 0.834 at 0.607 Hz, the example frame's first mode; at 30 degC x 0.77 and x 0.72).  Where the end
+    of the smaller K'' is not that of the smaller K', no single end bounds both; :func:`verify` warns then.  The
+    nominal analyses keep the walls' own temperature.  Every wall needs a thermal description with an ambient
+    range.
 
     ``lambda_includes_temperature``: whether lambda_min and lambda_max already include the effect of
     temperature (True), or not (False), or it is not stated (None, the default; the report says so).  With an
