@@ -134,8 +134,8 @@ class PropertyBounds:
     chosen per wall at the first mode's frequency (:meth:`ambient_end`): the upper bound (forces) at the end of
     the larger force per unit deformation |K*|, the lower bound (displacements) at the end of the smaller loss
     stiffness K'' (the energy a cycle dissipates, pi K'' d^2).  A temperature is not one factor: it shifts the
-    wall along its own frequency curve, and K' and K'' move differently -- colder is always stiffer (K' and |K*|
-    rise with frequency) but not always more damped: past the Maxwell branch's loss peak K'' falls with
+    wall along its own frequency curve, and K' and K'' move differently -- colder is always stiffer (an FDMK wall's
+    K' rises with frequency) but not always more damped: past the Maxwell branch's loss peak K'' falls with
     frequency, so a cold wall can dissipate less (the paper's sets as one family, at 318 % and 10 degC: K' x 1.30
     but K'' x 0.834 at 0.607 Hz, the example frame's first mode; at 30 degC x 0.77 and x 0.72).  Where the end
     of the smaller K'' is not that of the smaller K', no single end bounds both; :func:`verify` warns then.  The
