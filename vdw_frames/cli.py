@@ -489,6 +489,8 @@ def _verify(args) -> int:
                          "the building file's [verification] table)")
     if args.ambient is not None:
         bounds = dataclasses.replace(bounds, ambient=tuple(args.ambient))
+    if args.lambda_includes_temperature is not None:
+        bounds = dataclasses.replace(bounds, lambda_includes_temperature=args.lambda_includes_temperature == "yes")
     out = _output_folder(args.out)
     records = _verify_records(args.records)
     result = verify(building, site, records, bounds=bounds, count=args.count,
@@ -510,8 +512,8 @@ def _verify(args) -> int:
     frequency = 1.0 / result.first_period
     for c, (case, factor) in enumerate(result.cases[1:], 1):
         storage, loss = result.stiffness_factors[c, :, 0], result.stiffness_factors[c, :, 1]
-        at = result.bounds.temperature(case)
-        print(f"{case} bound: lambda {factor:g}{f', from {at:g} degC' if at is not None else ''}: K' x "
+        at = result.ambient_range(case)
+        print(f"{case} bound: lambda {factor:g}{f', walls from {at}' if at else ''}: K' x "
               f"{storage.min():.3f}-{storage.max():.3f}, K'' x {loss.min():.3f}-{loss.max():.3f} at {frequency:.3f} Hz")
     for criterion in result.criteria:
         print(f"{'pass' if criterion.passed else 'FAIL'}: {criterion.name}: {criterion.text}")
@@ -536,8 +538,12 @@ def _add_verify_command(commands) -> None:
     verify.add_argument("--bounds", type=float, nargs=2, metavar=("LAMBDA_MIN", "LAMBDA_MAX"),
                         help="property modification factors of the walls (Sec. 18.2.4.5)")
     verify.add_argument("--ambient", type=float, nargs=2, metavar=("COLDEST", "HOTTEST"),
-                        help="the walls' service temperatures, degC: the upper-bound walls start at the coldest, the "
-                             "lower-bound ones at the hottest (walls with a thermal description)")
+                        help="the walls' service temperatures, degC (walls with a thermal description): each bound "
+                             "starts a wall at the end that bounds its quantity (upper: the larger |K*|, for forces; "
+                             "lower: the smaller K'', for displacements)")
+    verify.add_argument("--lambda-includes-temperature", choices=("yes", "no"),
+                        help="whether the bounds' lambdas already include temperature (not with --ambient: it would "
+                             "be counted twice); the report states it")
     verify.add_argument("--records", default="far-field",
                         help="FEMA P695 set (far-field, near-field, ...; needs the [p695] extra) or a folder of .AT2 "
                              "files (default far-field)")

@@ -200,7 +200,7 @@ def test_a_wall_fails_at_the_first_committed_step_beyond_its_limit():
     (lambda: WallLimits(stress=0.0), "stress must be > 0, got 0.0"),
     (lambda: WallLimits(residual=1.0), r"residual must lie in \[0, 1\) .* got 1.0"),
     (lambda: WallLimits(residual=-0.1), r"residual must lie in \[0, 1\) .* got -0.1"),
-    (lambda: WallLimits(temperature=-300.0), "above absolute zero, got -300.0"),
+    (lambda: WallLimits(temperature=-300.0), r"temperature limit must be above absolute zero .* got -300.0"),
     (lambda: FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5, limits=8.5), "limits must be WallLimits"),
 ])
 def test_non_physical_limits_are_refused_naming_the_value(make, match):

@@ -270,7 +270,32 @@ def _section_tables(sets: Sequence[ParameterSet]) -> str:
                     for k, f in enumerate(FREQUENCIES)]
             text.append(f"\n### Table {number} ({strain} % strain): {title}\n\n"
                         + _md(["f (Hz)", "printed"] + [s.label for s in sets], rows))
+    text.append(_self_heating_note())
     return "".join(text)
+
+
+TEST_HEAT_CAPACITY = 1.8
+"""MPa/K = J/(cm^3 K): rho c assumed for the paper's layers (the middle of 1.5-2.0 for filled polymers; the
+examples' value, not the paper's) in the self-heating note of the report."""
+
+
+def _self_heating_note() -> str:
+    """The tests' own heating: the adiabatic rise of one cycle, pi G'' gamma^2 / (rho c), from the printed G''."""
+    rows = []
+    for strain in STRAINS:
+        rise = np.pi * TABLES[strain]["loss_modulus"] * (strain / 100.0) ** 2 / TEST_HEAT_CAPACITY
+        rows.append([f"{strain} %", f"{rise.min():.1f}-{rise.max():.1f}"])
+    return ("\n### The tests heated their own layers\n\nThe tables are \"at 21.2 degC\", the tests' stated "
+            "temperature (presumably their start). "
+            "One sinusoidal cycle of strain amplitude gamma dissipates pi G'' gamma^2 per unit volume "
+            "of the layers; with the printed G'' and rho c = "
+            f"{TEST_HEAT_CAPACITY:g} J/(cm^3 K) (assumed: the paper gives none) a cycle raises them adiabatically by "
+            "(K, over the six frequencies):\n\n" + _md(["strain", "rise per cycle (K)"], rows)
+            + "\nThe paper does not say how many cycles each test ran (its reference [29] has the details); over "
+              "several cycles the printed moduli are those of layers at some mean temperature above 21.2 degC, and a "
+              "model that takes them as 21.2 degC properties and heats them again counts part of the heating twice. "
+              "`examples/heating.py` shows the sensitivity: the parameters taken at the mean temperature of an "
+              "adiabatic test of 1 and 3 cycles at 300 % and 1 Hz.\n")
 
 
 def _section_table5(candidates: Sequence[Table5Candidate], errata_numbers: dict[str, Any]) -> str:
