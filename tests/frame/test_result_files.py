@@ -3,6 +3,7 @@ their thermal descriptions and limits, story models, P-Delta) come back equal, a
 quantity; files that are not saved results are refused."""
 
 import dataclasses
+import os
 import warnings
 
 import numpy as np
@@ -127,3 +128,28 @@ def test_walls_that_follow_their_amplitude_come_back_with_their_histories(tmp_pa
     assert loaded.building.wall_list == building.wall_list
     np.testing.assert_array_equal(loaded.wall_amplitude, result.wall_amplitude)
     np.testing.assert_array_equal(loaded.wall_time_outside_range, result.wall_time_outside_range)
+
+
+def test_save_refuses_a_link_a_folder_or_a_fifo_and_leaves_what_it_points_to(result, tmp_path):
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    victim = elsewhere / "passwd"  # no .npz suffix: before, a link named run.npz replaced it all the same
+    victim.write_text("keep me")
+    linked, dangling, folder = tmp_path / "linked.npz", tmp_path / "dangling.npz", tmp_path / "folder.npz"
+    linked.symlink_to(victim)
+    dangling.symlink_to(elsewhere / "new.npz")  # before: created elsewhere/new.npz
+    folder.mkdir()
+    for path, message in ((linked, "a symbolic link; the package writes no file through a link"),
+                          (dangling, "a symbolic link; the package writes no file through a link"),
+                          (folder, "is a folder; give a file name")):
+        with pytest.raises(ValueError, match=f"{path.name}: {message}"):
+            result.save(path)
+    if hasattr(os, "mkfifo"):
+        fifo = tmp_path / "pipe.npz"
+        os.mkfifo(fifo)
+        with pytest.raises(ValueError, match=r"pipe.npz: not a regular file \(a FIFO, socket or device\)"):
+            result.save(fifo)
+    assert victim.read_text() == "keep me" and [p.name for p in elsewhere.iterdir()] == ["passwd"]
+    assert linked.is_symlink() and dangling.is_symlink()
+    # A new path and a regular .npz file are written.
+    assert SimulationResult.load(result.save(tmp_path / "new.npz")).time.size == result.time.size
