@@ -141,7 +141,7 @@ CONSTRUCTORS = {
     "StrainCompatibleOptions": (StrainCompatibleOptions, dict(effective_strain_ratio=0.65, initial_strain=3.0,
                                                               tolerance=0.01, max_iterations=20)),
     "FrameState": (FrameState, frame_state()),
-    "Site": (Site, dict(sms=1.5, sm1=0.9, tl=8.0, risk_category="II", ss=1.0, s1=0.6, site_class="C", fa=1.2,
+    "Site": (Site, dict(sms=1.5, sm1=0.9, tl=8.0, risk_category="II", ss=1.25, s1=0.6, site_class="C", fa=1.2,
                         fv=1.5)),
     "PropertyBounds": (PropertyBounds, dict(lower=0.8, upper=1.2, source="a test")),
     "CollapseCriterion": (CollapseCriterion, dict(drift_ratio=0.1, non_convergence=True, wall_failure=False)),

@@ -113,8 +113,9 @@ def _simulate(args) -> int:
     except ValueError as error:
         raise ValueError(f"{flag}: {error}") from None
     if motion.pga > MAX_PGA * G:
-        raise ValueError(f"{flag}: the record's PGA becomes {motion.pga / G:.4g} g, beyond any earthquake (at most "
-                         f"{MAX_PGA:g} g here)")
+        where = f"{flag}: the record's PGA becomes" if flag is not None else \
+            f"{args.record}: the record's PGA, read in the units its header states (g when it states none), is"
+        raise ValueError(f"{where} {motion.pga / G:.4g} g, beyond any earthquake (at most {MAX_PGA:g} g here)")
     scaling = (f", scaled to PGA {args.pga:g} g" if args.pga is not None else
                f", x {args.factor:g}" if args.factor is not None else "")
     try:

@@ -131,6 +131,23 @@ def test_cli_pga_is_checked_in_g_and_factor_as_a_factor(capsys):
                                        "earthquake (at most 100 g here)\n")
 
 
+def test_cli_reads_a_record_in_the_units_its_header_names_and_names_the_file_when_it_is_too_strong(tmp_path, capsys):
+    spec = {"masses": [300.0, 250.0], "stiffnesses": [2e5, 1.5e5], "story_heights": [3500.0, 3500.0]}
+    building = write_file(tmp_path, "bare.json", json.dumps(spec))
+    rows = " ".join(["0.0", "30.0", "-20.0", "10.0", "0.0"])
+    # A 30-gal record: 30 cm/s^2 = 300 mm/s^2 = 300 / 9806.65 g = 0.0306 g (once run as 30 g)
+    gal = write_file(tmp_path, "gal.AT2", f"PEER RECORD\nACCELERATION IN CM/S/S\nNPTS= 5, DT= 0.01\n{rows}\n")
+    assert cli.main(["simulate", str(building), "--record", str(gal)]) == 0
+    assert "record gal: PGA = 0.031 g, dt = 0.01 s" in capsys.readouterr().out
+    # The same numbers in a file that names no unit are g: 30 g, refused naming the file (not "None:")
+    strong_rows = rows.replace("30.0", "3000.0")
+    strong = write_file(tmp_path, "strong.AT2", f"PEER RECORD\nNO UNIT STATED\nNPTS= 5, DT= 0.01\n{strong_rows}\n")
+    assert cli.main(["simulate", str(building), "--record", str(strong)]) == 2
+    assert capsys.readouterr().err == (f"vdw-frames: error: {strong}: the record's PGA, read in the units its header "
+                                       "states (g when it states none), is 3000 g, beyond any earthquake (at most "
+                                       "100 g here)\n")
+
+
 def test_cli_factor_multiplies_the_record_and_pga_scales_it_to_a_peak(tmp_path, capsys):
     spec = {"masses": [300.0, 250.0], "stiffnesses": [2e5, 1.5e5], "story_heights": [3500.0, 3500.0]}
     path = write_file(tmp_path, "bare.json", json.dumps(spec))

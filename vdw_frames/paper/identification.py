@@ -403,6 +403,8 @@ class _Problem:
     def polish(self, start: dict[str, float], pinned: Collection[str] = ()) -> dict[str, float]:
         """least_squares (trf, bounds) in the free parameters not in ``pinned`` from ``start``."""
         free = [name for name in self.free if name not in pinned]
+        if not free:  # a bound face pinning the only free parameter: nothing to polish (scipy 1.15 refuses x0 = [])
+            return dict(start)
         lower = np.array([R_MIN if name == "r" else 0.0 for name in free])
         upper = np.array([1.0 if name == "r" else np.inf for name in free])
         x0 = np.clip([start[name] for name in free], lower, upper)
