@@ -311,7 +311,8 @@ class _Path:
         value -= shear
         forward = value < 0.0
         low, high = (x, math.inf) if forward else (-math.inf, x)
-        tolerance = _FORCE_TOLERANCE * max(abs(shear), abs(float(self.shear[k])), 1.0)
+        # the rounding of a story force is about that of k0 d and of the shears themselves (1 N at least)
+        tolerance = _FORCE_TOLERANCE * max(abs(shear), abs(float(self.shear[k])), self.initial[k] * abs(x), 1.0)
         for _ in range(_SEARCH_ITERATIONS):
             if slope <= 0.0:  # beyond the branch's end (a peak) in the direction of motion
                 if forward:
@@ -325,6 +326,8 @@ class _Path:
             else:
                 high = x
             step = x - value / slope if slope > 0.0 else math.nan
+            if step == x:  # a correction below the resolution of x: the root, to rounding
+                return x, value + shear, slope
             if not low < step < high:
                 if _collapsed(low, high):
                     return None
@@ -367,6 +370,8 @@ class _Path:
         tolerance = _DISPLACEMENT_TOLERANCE * max(1.0, abs(roof))
         for _ in range(_SEARCH_ITERATIONS):
             step = load - value / slope if slope > 0.0 else math.nan
+            if step == load and not failed:  # a correction below the resolution of the load factor
+                return below if value < 0.0 or above is None else above
             if not low < step < high:
                 if _collapsed(low, high):
                     if failed:
@@ -423,6 +428,8 @@ class _Path:
                 raise _Stop(f"the capacity curve snaps back (story {c + 1} softens at {show(tangent_c)} N/mm, faster "
                             "than the stories in series with it unload); roof displacement control cannot follow it")
             step = x - value / slope
+            if step == x:  # a correction below the resolution of d_c: the root, to rounding
+                return trial
             if not low < step < high:
                 if _collapsed(low, high):
                     raise _Stop("the localising story's drift for this roof displacement was not found (the "
