@@ -152,7 +152,8 @@ def physical_path(k, yield_forces, hardening, gravity, h, pattern):
     V = (k - theta) d up to the yield drift F_y / k, i.e. V_y = F_y (1 - theta / k), then V_y + (b k - theta)
     (d - d_y).  A story whose post-yield tangent b k - theta is not positive peaks at its yield, at
     lambda_j = V_y / S_j; the first of them (smallest lambda_j) localises and follows its backbone down, every
-    other story unloads from its drift at lambda* along its elastic line minus P-Delta, slope k - theta."""
+    other story unloads from its drift at lambda* along its elastic line minus P-Delta, slope k - theta (until a
+    story that hardened before the peak yields in reverse)."""
     k, fy, b, theta, s = (np.asarray(a, dtype=float) for a in (k, yield_forces, hardening, np.asarray(gravity) / h,
                                                                 np.cumsum(pattern[::-1])[::-1] / np.sum(pattern)))
     elastic, plastic = k - theta, b * k - theta
@@ -169,6 +170,10 @@ def physical_path(k, yield_forces, hardening, gravity, h, pattern):
         if not past_peak:
             return loading(load * s)
         d = loading(peak * s) - (peak - load) * s / elastic
+        # Steel01's kinematic hardening: a story that yielded and hardened before the peak yields in reverse
+        # once its frame force F = V + theta d falls to b k d - (1 - b) F_y; then V = (b k - theta) d - (1 - b) F_y
+        reverse = load * s + theta * d < b * k * d - (1.0 - b) * fy
+        d = np.where(reverse, (load * s + (1.0 - b) * fy) / np.where(reverse, plastic, 1.0), d)
         d[c] = d_yield[c] + (load * s[c] - v_yield[c]) / plastic[c]
         return d
 
@@ -218,6 +223,11 @@ SEVERAL_SOFTENING = {
     "3 stories, a hardening story unloads": (dict(masses=[300.0, 300.0, 300.0], k=[50.0e3, 45.0e3, 40.0e3],
                                                   h=[4000.0, 3500.0, 3500.0], yield_forces=[2.0e6, 2.1e6, 0.5e6],
                                                   hardening=[0.0, 0.0, 0.3]), [1.0, 1.0, 1.0], 0),
+    # the same with story 3 hardening more, and yielding in reverse (kinematic hardening) as it unloads
+    "3 stories, a hardening story yields in reverse": (dict(masses=[300.0, 300.0, 300.0], k=[50.0e3, 45.0e3, 40.0e3],
+                                                            h=[4000.0, 3500.0, 3500.0],
+                                                            yield_forces=[2.0e6, 2.1e6, 0.3e6],
+                                                            hardening=[0.0, 0.0, 0.5]), [1.0, 1.0, 1.0], 0),
 }
 
 

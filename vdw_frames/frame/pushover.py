@@ -15,8 +15,9 @@ reaches its strength under the pattern -- the story with the smallest peak of V_
 backbone (for a Bilinear story with P-Delta whose post-yield tangent b k0 - P/h is not positive, at its
 yield: F_y (1 - P/(h k0)) / S_k); should several reach it at the same load factor to rounding, the
 lowest of them.  Past the limit point lambda falls, so every other story unloads from where it stood
-(elastically for a Bilinear story, with its walls and P-Delta) and cannot reach its strength again,
-while that one story localises: it follows its own backbone, and the path is controlled by its drift
+along its own law (a Bilinear story elastically, with its walls and P-Delta, until one that hardened
+before the peak meets its kinematic-hardening bound and yields in reverse) and cannot reach its strength
+again, while that one story localises: it follows its own backbone, and the path is controlled by its drift
 d_c (which only grows), lambda = V_c(d_c) / S_c, U = d_c + sum_{k != c} d_k(lambda).  Two stories
 softening at once is an equilibrium too, but not the one a loaded frame follows: the story that reaches
 its peak first sheds load, which unloads the others before they reach theirs.  The roof displacement
@@ -147,7 +148,8 @@ def pushover(building: ShearBuilding, pattern="modal", target_drift_ratio: float
     under the pattern -- the story k with the smallest peak of V_k(d) / S_k, S_k the share of the pattern
     above it (ties to rounding: the lowest such story); past that limit point that story alone follows its
     backbone (it localises; the path is controlled by its drift) and every other story unloads from its
-    state at the peak (elastically, with its walls and P-Delta).
+    state at the peak along its own law (a Bilinear story elastically, with its walls and P-Delta, until its
+    kinematic-hardening bound makes it yield in reverse).
 
     The analysis goes past the peak into the negative-stiffness branch, and ends at the target or at the
     first increment whose base shear is zero or less (after a peak: no lateral strength left).  ValueError,
@@ -411,8 +413,9 @@ class _Path:
             load = shear_c / share
             found = self._at_load(load, skip=c)
             if isinstance(found, list):
-                raise _Stop(f"story {found[0] + 1} reaches its strength too (a second limit point, after story "
-                            f"{c + 1}'s): the branch rule does not cover it")
+                raise _Stop(f"story {found[0] + 1} reaches a limit of its own too (its strength, or in reverse "
+                            f"yielding a tangent that is not positive): a second limit point after story {c + 1}'s, "
+                            "which the branch rule does not cover")
             drift, shear, tangent = found
             drift[c], shear[c], tangent[c] = x, shear_c, tangent_c
             trial = _Trial(drift, shear, tangent, load)
