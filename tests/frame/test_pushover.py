@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from pushover_reference import bilinear_frame, modal_pattern, physical_path
 
 import vdw_frames as vdw
 from vdw_frames.frame.pushover import pushover
@@ -138,65 +139,6 @@ def test_needs_story_heights_and_a_stable_frame():
 
 
 # ---------------------------------------------------------------------------------------------- several softening
-def bilinear_frame(masses, k, h, yield_forces, hardening, gravity):
-    return vdw.ShearBuilding(masses, k, story_heights=h, gravity_loads=gravity,
-                             hysteresis=[vdw.Bilinear(f, b) for f, b in zip(yield_forces, hardening, strict=True)])
-
-
-def physical_path(k, yield_forces, hardening, gravity, h, pattern):
-    """The closed-form capacity path of a shear building of Bilinear stories with P-Delta, written here without
-    the package: a function of (load factor lambda, past the peak or not) giving the story drifts, with lambda*
-    and the localising story.
-
-    Story j carries V_j = lambda S_j, S_j the pattern's share above it.  With theta = P/h its backbone is
-    V = (k - theta) d up to the yield drift F_y / k, i.e. V_y = F_y (1 - theta / k), then V_y + (b k - theta)
-    (d - d_y).  A story whose post-yield tangent b k - theta is not positive peaks at its yield, at
-    lambda_j = V_y / S_j; the first of them (smallest lambda_j) localises and follows its backbone down, every
-    other story unloads from its drift at lambda* along its elastic line minus P-Delta, slope k - theta (until a
-    story that hardened before the peak yields in reverse)."""
-    k, fy, b, theta, s = (np.asarray(a, dtype=float) for a in (k, yield_forces, hardening, np.asarray(gravity) / h,
-                                                                np.cumsum(pattern[::-1])[::-1] / np.sum(pattern)))
-    elastic, plastic = k - theta, b * k - theta
-    v_yield, d_yield = fy * (1.0 - theta / k), fy / k
-    peaks = np.where(plastic <= 0.0, v_yield / s, np.inf)
-    c = int(np.argmin(peaks))
-    peak = float(peaks[c])
-
-    def loading(shear):
-        hardening_slope = np.where(plastic > 0, plastic, 1.0)  # (a softening story is not loaded past its yield)
-        return np.where(shear <= v_yield, shear / elastic, d_yield + (shear - v_yield) / hardening_slope)
-
-    def drifts(load, past_peak):
-        if not past_peak:
-            return loading(load * s)
-        d = loading(peak * s) - (peak - load) * s / elastic
-        # Steel01's kinematic hardening: a story that yielded and hardened before the peak yields in reverse
-        # once its frame force F = V + theta d falls to b k d - (1 - b) F_y; then V = (b k - theta) d - (1 - b) F_y
-        reverse = load * s + theta * d < b * k * d - (1.0 - b) * fy
-        d = np.where(reverse, (load * s + (1.0 - b) * fy) / np.where(reverse, plastic, 1.0), d)
-        d[c] = d_yield[c] + (load * s[c] - v_yield[c]) / plastic[c]
-        return d
-
-    return drifts, peak, c
-
-
-def modal_pattern(masses, k, gravity, h):
-    """phi_1 (roof 1) and T1 of K + K_G (story stiffness k - P/h) and M by numpy's eigen-solver, loads m phi."""
-    stories = np.asarray(k, dtype=float) - np.asarray(gravity) / np.asarray(h)
-    n = stories.size
-    stiffness = np.zeros((n, n))
-    for j in range(n):  # story j joins floors j - 1 and j
-        stiffness[j, j] += stories[j]
-        if j:
-            stiffness[j - 1, j - 1] += stories[j]
-            stiffness[j - 1, j] -= stories[j]
-            stiffness[j, j - 1] -= stories[j]
-    values, vectors = np.linalg.eig(np.linalg.solve(np.diag(masses), stiffness))
-    first = int(np.argmin(values.real))
-    shape = vectors[:, first].real / vectors[-1, first].real
-    return shape, 2.0 * math.pi / math.sqrt(values[first].real)
-
-
 ISSUE_FRAME = dict(masses=[250.0, 250.0, 200.0], k=[60.0e3, 55.0e3, 40.0e3], h=[4000.0, 3500.0, 3500.0],
                    yield_forces=[c * 700.0 * G for c in (0.075, 0.065, 0.04)], hardening=[0.01, 0.02, 0.02])
 SEVERAL_SOFTENING = {

@@ -86,6 +86,8 @@ class PushoverResult:
     lose 20 % of its strength before the target); ``period_based_ductility`` mu_T (-, eq. 6-6; None
     with delta_u).  ``wall_stiffness`` (N/mm per story): the walls' static stiffness used.
     ``end``: "target" or "no strength left" (the base shear fell to zero or below before the target).
+    ``elastic_period`` (s): T1 of the elastic static model (:func:`elastic_mode`), the model of ``mode_shape``
+    and of the capacity curve's elastic branch; ``period`` is max(T, this) when a code period T is given.
     """
 
     roof_displacement: np.ndarray
@@ -104,6 +106,7 @@ class PushoverResult:
     ultimate_roof_displacement: float | None
     period_based_ductility: float | None
     end: str = "target"
+    elastic_period: float | None = None
 
     @property
     def roof_drift_ratio(self) -> np.ndarray:
@@ -137,12 +140,13 @@ def pushover(building: ShearBuilding, pattern="modal", target_drift_ratio: float
     static model), "triangular" (m_x h_x, h_x the floor's elevation: ASCE 7-16 Sec. 12.8.3 with k = 1) or
     an array with one non-negative load per floor (not all zero); normalised to sum 1.
     ``target_drift_ratio`` (-, > 0, at most 1): roof displacement / height at the end.  ``period`` (s):
-    the period of eq. (6-7), max(T, T1) with T = C_u T_a (Sec. 5.2.5) and T1 the analytical one; default
-    the elastic static model's T1 (:func:`elastic_mode`).  ``steps``: equal roof-displacement increments
-    (1 ... 100 000); an increment over which a story's tangent jumps (a Bilinear story yielding or
-    unloading) is cut so that the curve has a point just past the corner (within 1e-9 of an increment),
-    and the peak (the limit point) is a point of the curve, so V_max is exact.  The building needs
-    ``story_heights``.
+    the period of eq. (6-7), max(T, T1) with T = C_u T_a (Sec. 5.2.5); default the elastic static model's T1
+    (:func:`elastic_mode`), the T1 consistent with this curve and with C0 (eq. 6-8), which comes from that
+    model's phi_1 (:attr:`PushoverResult.elastic_period`; module docstring).  ``steps``: equal
+    roof-displacement increments (1 ... 100 000); an increment over which a story's tangent jumps (a
+    Bilinear story yielding or unloading) is cut so that the curve has a point just past the corner
+    (within 1e-9 of an increment), and the peak (the limit point) is a point of the curve, so V_max is
+    exact.  The building needs ``story_heights``.
 
     Branch rule (the module docstring): the load factor rises until the first story reaches its strength
     under the pattern -- the story k with the smallest peak of V_k(d) / S_k, S_k the share of the pattern
@@ -200,7 +204,7 @@ def pushover(building: ShearBuilding, pattern="modal", target_drift_ratio: float
         shear.append(path.load)
         drift.append(path.drift.copy())
     return _result(np.array(roof), np.array(shear), np.array(drift), loads, height, weight, period, c0, shape, walls,
-                   end)
+                   end, t1)
 
 
 def _land_on_kink(path: _Path, trial: _Trial, precision: float) -> _Trial:
@@ -462,7 +466,7 @@ class _Path:
                                      for k in range(self.drift.size)])
 
 
-def _result(roof, shear, drift, loads, height, weight, period, c0, shape, walls, end) -> PushoverResult:
+def _result(roof, shear, drift, loads, height, weight, period, c0, shape, walls, end, t1) -> PushoverResult:
     peak = int(np.argmax(shear))
     max_shear = float(shear[peak])
     if not max_shear > 0.0:
@@ -478,4 +482,4 @@ def _result(roof, shear, drift, loads, height, weight, period, c0, shape, walls,
         ultimate = float(roof[j - 1] + fraction * (roof[j] - roof[j - 1]))
     return PushoverResult(roof, shear, drift, loads, height, weight, float(period), c0, shape, walls, max_shear,
                           float(roof[peak]), float(yield_roof), ultimate,
-                          None if ultimate is None else ultimate / float(yield_roof), end)
+                          None if ultimate is None else ultimate / float(yield_roof), end, float(t1))
