@@ -260,3 +260,22 @@ def test_smooth_peak_of_bouc_wen_stories():
         / (k[other] - theta[other])
     np.testing.assert_allclose(result.story_drift[after, other], unloading, rtol=1e-9, atol=1e-9 * d_y[other])
     assert np.all(np.diff(localised) > 0) and result.ultimate_roof_displacement is not None
+
+
+@pytest.mark.parametrize("hardening", [1e-6, 1e-12, 1e-15])
+def test_a_near_plateau_is_followed_to_the_target(hardening):
+    """Story 2 of the first test with a hardening so small that one unit in the last place of the load factor
+    moves the roof by up to a third of a millimetre (b = 1e-15: a tangent of 1e-10 N/mm): the path still
+    reaches the target, every point in equilibrium.  Story 1 carries V = lambda elastically (d_1 = V / k),
+    story 2 carries share x V on its post-yield line F = b k d + (1 - b) F_y."""
+    k, fy = 1.0e5, 1.6e5
+    result = pushover(two_story(hardening=hardening), "modal", 0.02)
+    share = GOLDEN / (1.0 + GOLDEN)
+    assert result.end == "target" and result.roof_displacement[-1] == pytest.approx(0.02 * 6000.0, rel=1e-12)
+    assert np.all(np.diff(result.roof_displacement) > 0)
+    np.testing.assert_allclose(result.story_drift[:, 0], result.base_shear / k, rtol=1e-12, atol=1e-12)
+    yielded = result.story_drift[:, 1] > fy / k * (1.0 + 1e-9)
+    assert yielded.sum() > 400
+    drift = result.story_drift[yielded, 1]
+    np.testing.assert_allclose(result.base_shear[yielded] * share, hardening * k * drift + (1.0 - hardening) * fy,
+                               rtol=1e-12)

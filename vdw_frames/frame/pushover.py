@@ -23,9 +23,11 @@ softening at once is an equilibrium too, but not the one a loaded frame follows:
 its peak first sheds load, which unloads the others before they reach theirs.  The roof displacement
 moves forward only while dU/dd_c = 1 + (k_t,c / S_c) sum_{k != c} S_k / k_t,k > 0; where the localising
 story softens faster than the stories in series with it unload, the curve snaps back, which roof
-displacement cannot describe, and the analysis stops saying so.  The analysis ends at the target, or
-earlier where the base shear has fallen to zero: the building has lost all its lateral strength to
-P-Delta and would need pulling back to stand (static collapse).
+displacement cannot describe, and the analysis stops saying so.  (A story whose tangent is positive but so
+small that one unit in the last place of lambda moves the roof by more than an increment, a near plateau,
+is followed the same way, by its drift: the path is unique there, whatever controls it.)  The analysis
+ends at the target, or earlier where the base shear has fallen to zero: the building has lost all its
+lateral strength to P-Delta and would need pulling back to stand (static collapse).
 
 A wall's static stiffness is its stiffness K(s) at s = 0: G1 A / h for an :class:`~vdw_frames.FDMKDamper`
 (eqs. (3)-(5) of the paper: the Kelvin branch's spring; the Maxwell branch relaxes to zero), zero for a
@@ -199,7 +201,10 @@ def pushover(building: ShearBuilding, pattern="modal", target_drift_ratio: float
             raise ValueError(f"pushover stopped at a roof displacement of {path.roof:.6g} mm (roof drift ratio "
                              f"{path.roof / height:.4g}, base shear {path.load / 1e3:.6g} kN) short of the target "
                              f"{target:.6g} mm: {stop}") from None
+        moved = trial.roof != path.roof or trial.load != path.load
         path.commit(trial)
+        if not moved:  # a turn to drift control where the path stood (a limit point at the last point)
+            continue
         roof.append(path.roof)
         shear.append(path.load)
         drift.append(path.drift.copy())
@@ -252,7 +257,8 @@ class _Stop(Exception):
 @dataclass(frozen=True)
 class _Trial:
     """An equilibrium point not yet committed: story drifts (mm), story shears and tangents (N, N/mm: frame,
-    walls, P-Delta), load factor (N) and whether it is the limit point (and of which story)."""
+    walls, P-Delta), load factor (N) and whether the path turns to the drift control of story ``localising``
+    there (``peak``: the limit point, or a plateau that the load factor cannot resolve)."""
 
     drift: np.ndarray
     shear: np.ndarray
@@ -264,6 +270,13 @@ class _Trial:
     @property
     def roof(self) -> float:
         return float(np.sum(self.drift))
+
+
+def _bracketed(step: float, low: float, high: float, iteration: int) -> bool:
+    """Whether a Newton step may be taken: inside the bracket, and not on every third iteration of a finite
+    bracket, which is bisected instead (near a corner Newton may creep by units in the last place; this
+    bounds the search by bisection's)."""
+    return low < step < high and not (iteration % 3 == 2 and math.isfinite(high - low))
 
 
 def _collapsed(low: float, high: float) -> bool:
@@ -319,7 +332,7 @@ class _Path:
         low, high = (x, math.inf) if forward else (-math.inf, x)
         # the rounding of a story force is about that of k0 d and of the shears themselves (1 N at least)
         tolerance = _FORCE_TOLERANCE * max(abs(shear), abs(float(self.shear[k])), self.initial[k] * abs(x), 1.0)
-        for _ in range(_SEARCH_ITERATIONS):
+        for iteration in range(_SEARCH_ITERATIONS):
             if slope <= 0.0:  # beyond the branch's end (a peak) in the direction of motion
                 if forward:
                     high = x
@@ -334,7 +347,7 @@ class _Path:
             step = x - value / slope if slope > 0.0 else math.nan
             if step == x:  # a correction below the resolution of x: the root, to rounding
                 return x, value + shear, slope
-            if not low < step < high:
+            if not _bracketed(step, low, high, iteration):
                 if _collapsed(low, high):
                     return None
                 step = 0.5 * (low + high)
@@ -372,20 +385,26 @@ class _Path:
         failed: list[int] = []  # the stories that cannot carry the load factor high
         value = self.roof - roof
         slope = float(np.sum(self.above / self.tangent))
+        tangent = self.tangent  # of the last equilibrium found
         load = self.load
         tolerance = _DISPLACEMENT_TOLERANCE * max(1.0, abs(roof))
-        for _ in range(_SEARCH_ITERATIONS):
+        for iteration in range(_SEARCH_ITERATIONS):
             step = load - value / slope if slope > 0.0 else math.nan
-            if step == load and not failed:  # a correction below the resolution of the load factor
-                return below if value < 0.0 or above is None else above
-            if not low < step < high:
-                if _collapsed(low, high):
-                    if failed:
-                        # The limit point: no larger load factor can be carried; the first story that cannot
-                        # carry one is the one that localises (the lowest, should several at once).
-                        return _Trial(below.drift, below.shear, below.tangent, below.load, True, failed[0])
-                    assert above is not None
-                    return below if roof - below.roof <= above.roof - roof else above  # to rounding
+            if step == load or (not _bracketed(step, low, high, iteration) and _collapsed(low, high)):
+                if failed:
+                    # The limit point: no larger load factor can be carried; the first story that cannot carry
+                    # one is the one that localises (the lowest, should several at once).
+                    return _Trial(below.drift, below.shear, below.tangent, below.load, True, failed[0])
+                # No load factor resolves the roof displacement to the tolerance: a story's tangent is so
+                # small (a near plateau, or a corner into one) that one unit in the last place of lambda
+                # moves the roof by more.  The nearer equilibrium is the point, if the roof moves forward;
+                # if not, the path (unique here) is followed by that story's drift from now on.
+                nearest = below if above is None or roof - below.roof <= above.roof - roof else above
+                if nearest.roof > self.roof:
+                    return nearest
+                flexible = int(np.argmax(self.above / np.where(tangent > 0.0, tangent, np.inf)))
+                return _Trial(below.drift, below.shear, below.tangent, below.load, True, flexible)
+            if not _bracketed(step, low, high, iteration):
                 step = 0.5 * (low + high)
             load = step
             found = self._at_load(load)
@@ -393,6 +412,7 @@ class _Path:
                 failed, high, above, slope = found, load, None, math.nan
                 continue
             trial = _Trial(*found, load)
+            tangent = trial.tangent
             value = trial.roof - roof
             if abs(value) <= tolerance:
                 return trial
@@ -412,7 +432,7 @@ class _Path:
         low, high = float(self.drift[c]), math.inf
         x = low
         tolerance = _DISPLACEMENT_TOLERANCE * max(1.0, abs(roof))
-        for _ in range(_SEARCH_ITERATIONS):
+        for iteration in range(_SEARCH_ITERATIONS):
             shear_c, tangent_c = self._story(c, x)
             load = shear_c / share
             found = self._at_load(load, skip=c)
@@ -437,7 +457,7 @@ class _Path:
             step = x - value / slope
             if step == x:  # a correction below the resolution of d_c: the root, to rounding
                 return trial
-            if not low < step < high:
+            if not _bracketed(step, low, high, iteration):
                 if _collapsed(low, high):
                     raise _Stop("the localising story's drift for this roof displacement was not found (the "
                                 "bracket closed)")
