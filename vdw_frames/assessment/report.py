@@ -103,7 +103,9 @@ def markdown(assessments: Mapping[str, CollapseAssessment], title: str = "FEMA P
         lines.append(f"| {name} | " + " | ".join(values) + " |")
 
     items = list(assessments.values())
-    row("analytical T1 (s)", [f"{a.analytical_period:.3f}" for a in items])
+    row("analytical T1 (s; walls at the mode's frequency)", [f"{a.analytical_period:.3f}" for a in items])
+    row("pushover model's T1 (s; walls' static stiffness)", [f"{a.pushover.elastic_period:.3f}" for a in items])
+    row("period of eq. 6-7, max(T, pushover T1) (s)", [f"{a.pushover.period:.3f}" for a in items])
     row("V_max / W (pushover)", [f"{a.pushover.max_base_shear / a.pushover.weight:.4f}" for a in items])
     row("delta_y,eff (mm, eq. 6-7)", [f"{a.pushover.yield_roof_displacement:.1f}" for a in items])
     row("delta_u (mm, 0.8 V_max)", ["-" if a.pushover.ultimate_roof_displacement is None else
