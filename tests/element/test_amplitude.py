@@ -52,19 +52,20 @@ def test_a_steady_sine_gives_the_loop_of_the_wall_at_that_amplitude(family):
 
 
 @pytest.mark.parametrize("family", FAMILIES, ids=list(FAMILIES))
-def test_a_stepped_sine_reaches_the_other_level_loop_within_two_cycles(family):
-    # Measured on the paper's family (225 -> 450 -> 225 %): loop area off by -8.5 / -2.4 / -0.08 % in the
-    # first three cycles after the step up (a fixed 450 % wall under the same history: -6.0 / -0.09 / -0.01 %:
-    # the following wall's Maxwell memory was built under the other level's parameters), +40 / -0.05 / -0.01 %
-    # after the step down.
+def test_a_stepped_sine_reaches_the_other_level_loop_within_three_cycles(family):
+    # A step up is followed at once; the loop is the new level's after two cycles (the Maxwell memory was
+    # built under the other level's parameters).  A step down is followed by the envelope rule only once the
+    # smaller motion has persisted: a fall to half the amplitude or less within one half-cycle looks, at
+    # first, like a higher mode's ripple at a peak (kernel.track_amplitude, decay release): the synthetic
+    # family's 400 -> 100 % is the new level's after three cycles.
     wall = FAMILIES[family]
     low, high = wall.strains[0], wall.strains[-1]
     displacement, force, dt = loops(wall, [low, high, low], 6)
-    for level, amplitude in enumerate([high, low], start=1):
+    for level, amplitude, after in ((1, high, 2), (2, low, 3)):
         start = level * 6
         steady_displacement, steady_force, _ = loops(wall.at(amplitude), [amplitude], 6)
         steady = cycle_measures(steady_displacement, steady_force, 5)
-        reached = cycle_measures(displacement, force, start + 2)  # the cycle after two at the new level
+        reached = cycle_measures(displacement, force, start + after)  # the cycle after those at the new level
         assert reached[0] == pytest.approx(steady[0], rel=0.02)
         assert reached[1] == pytest.approx(steady[1], rel=0.02)
 
