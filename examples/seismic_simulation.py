@@ -236,7 +236,7 @@ def print_figures(results: dict[str, vdw.SimulationResult], out: Path) -> None:
                                       title=f"most loaded story ({story}): walls, {MODELS[0]}"),
         plotting.plot_wall_amplitude({MODELS[0]: model}, wall, out / "wall_amplitude.png",
                                      strain_range=model.building.wall_list[wall - 1][1].strain_range,
-                                     title=f"story {story} wall: strain and the amplitude it follows"),
+                                     title=f"wall {wall} (story {story}): strain and the amplitude it follows"),
         plotting.plot_wall_temperature({MODELS[0]: model}, hottest, out / "wall_temperature.png",
                                        title=f"hottest wall (story {model.building.wall_list[hottest - 1][0]})"),
         plotting.plot_energy(model, out / "energy.png", title=f"energy, walls ({MODELS[0]})"),

@@ -248,19 +248,27 @@ def _print_wall_assumptions(building) -> None:
 
 
 def _print_wall_states(result) -> None:
-    """Per wall, when the walls follow their amplitude, heat or can fail: the largest amplitude followed,
-    the temperature rise and how and when the wall failed ('-' where the wall has no such state)."""
+    """Per wall, when the walls follow their amplitude, heat or can fail: the largest amplitude followed and
+    the seconds it spent below and above the tested amplitudes, the temperature rise and how and when the wall
+    failed ('-' where the wall has no such state)."""
     amplitude, rise, failed = result.wall_amplitude, result.peak_temperature_rise, result.wall_failed
     if amplitude is None and rise is None and not failed.any():
         return
-    print(f"{'wall':>5s} {'story':>5s} {'amplitude %':>11s} {'dT K':>6s} {'failed':>20s}")
+    below, above = result.wall_time_below_range, result.wall_time_above_range
+    print(f"{'wall':>5s} {'story':>5s} {'amplitude %':>11s} {'below s':>8s} {'above s':>8s} {'dT K':>6s} "
+          f"{'failed':>20s}")
     times, modes = result.wall_failure_time, result.wall_failure_mode
     for w, (story, _) in enumerate(result.building.wall_list):
         followed = amplitude[:, w].max() if amplitude is not None else 0.0
         heated = rise[w] if rise is not None and math.isfinite(rise[w]) else None
-        print(f"{w + 1:5d} {story:5d} {f'{100 * followed:11.0f}' if followed > 0.0 else '-':>11s} "
+        outside = (f"{below[w]:8.2f} {above[w]:8.2f}" if followed > 0.0 and below is not None and above is not None
+                   else f"{'-':>8s} {'-':>8s}")
+        print(f"{w + 1:5d} {story:5d} {f'{100 * followed:11.0f}' if followed > 0.0 else '-':>11s} {outside} "
               f"{f'{heated:6.1f}' if heated is not None else '-':>6s} "
               f"{f'{modes[w]} at {times[w]:.2f} s' if failed[w] else 'no':>20s}")
+    if amplitude is not None:
+        print("below/above s: time the followed amplitude spent below/above the tested amplitudes, where the "
+              "parameters are those of the nearest tested set")
 
 
 def _design(args) -> int:

@@ -12,14 +12,19 @@ Between two nodes every parameter is a convex combination of two valid values, s
 eta2 >= 0 and 0 < r <= 1 hold at every amplitude of the range by construction; with them every term
 of G' and G'' (see :mod:`vdw_frames.element.damper`) is non-negative: the wall is passive at every
 (f, gamma).  Outside [gamma_1, gamma_n] (``strain_range``) nothing is known: the parameters are
-clamped to the nearest end and a ``UserWarning`` names the amplitude reached.
+clamped to the nearest end and a ``UserWarning`` names the amplitude reached.  The clamp is the rule below
+the range too, not the family's trend: for the paper's sets that trend falls to G1 = 0 at 225 % (continued,
+G1 < 0: an active wall) while the Payne effect stiffens a filled elastomer at small amplitudes; the time an
+analysis spends below the range is reported (``SimulationResult.wall_time_below_range``; docs/theory.rst).
 
 This is a model of *amplitude* dependence for steady harmonic cycles, the way the tests measured it.
-In a time-history analysis (:func:`vdw_frames.simulate`) such a wall follows its own running half-cycle
-amplitude at every committed step, with one fractional order r for the whole wall (the convolution weights
-depend on r: a family with different r per node is refused there; :func:`vdw_frames.paper.strain_dependent`
-is the paper's sets with one common r); the coefficients at the amplitude come from the same interpolation
-(:func:`vdw_frames.element.kernel.track_amplitude`, :func:`vdw_frames.element.kernel.set_coefficients`).
+In a time-history analysis (:func:`vdw_frames.simulate`) such a wall follows the amplitude of the envelope
+of its own total strain at every committed step (a higher mode's ripple does not end a half-cycle: the Payne
+effect is governed by the total strain amplitude), with one fractional order r for the whole wall (the
+convolution weights depend on r: a family with different r per node is refused there;
+:func:`vdw_frames.paper.strain_dependent` is the paper's sets with one common r); the coefficients at the
+amplitude come from the same interpolation (:func:`vdw_frames.element.kernel.track_amplitude`,
+:func:`vdw_frames.element.kernel.set_coefficients`).
 ``simulate(..., strain_compatible=True)`` instead runs the equivalent-linear iteration of
 :mod:`vdw_frames.frame.strain_compatible`, which gives each wall one fixed parameter set per analysis.
 

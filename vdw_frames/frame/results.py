@@ -291,6 +291,24 @@ class SimulationResult:
         return self.group_outside_range[self.wall_group]
 
     @property
+    def wall_time_below_range(self) -> np.ndarray | None:
+        """Seconds (walls,) each amplitude-following wall followed an amplitude below its lowest identified one,
+        where its parameters are clamped to that set's (for :func:`vdw_frames.paper.strain_dependent` the 225 %
+        set, G1 = 0: a viscoelastic fluid; the rule and its reasons: docs/theory.rst); 0 for walls of fixed
+        parameters; None without amplitude-following walls.  Column 0 of :attr:`wall_time_outside_range`."""
+        outside = self.wall_time_outside_range
+        return None if outside is None else outside[:, 0]
+
+    @property
+    def wall_time_above_range(self) -> np.ndarray | None:
+        """Seconds (walls,) each amplitude-following wall followed an amplitude above its highest identified one
+        (parameters clamped to that set's, with a warning); 0 for walls of fixed parameters; None without
+        amplitude-following walls.  Column 1 of :attr:`wall_time_outside_range`.  A peak *strain* above the range
+        warns for every wall model (:func:`vdw_frames.frame.time_history.peak_strain_warning`)."""
+        outside = self.wall_time_outside_range
+        return None if outside is None else outside[:, 1]
+
+    @property
     def wall_failed(self) -> np.ndarray:
         """Whether each wall failed (a limit of its :class:`~vdw_frames.element.limits.WallLimits` exceeded),
         (walls,) bool in ``building.wall_list`` order."""
