@@ -47,6 +47,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import itertools
 import json
 import math
 import os
@@ -231,7 +232,7 @@ def opensees_time(building, acceleration, dt, repeats, **options):
     return (seconds, opensees_frame.drifts(displacement)), None
 
 
-def part_c(building, motion, source, fast, timings, quick, repeats):
+def part_c(building, motion, source, fast, timings, *, quick, repeats):
     steps = motion.acceleration.size
     memory = FAST if fast else "exact"
     label = "fast" if fast else "exact"
@@ -272,7 +273,7 @@ def part_c(building, motion, source, fast, timings, quick, repeats):
     if fast:
         fast_times = timings["fast"]
         ordered = sorted(fast_times)
-        for low, high in zip(ordered, ordered[1:], strict=False):
+        for low, high in itertools.pairwise(ordered):
             growth = fast_times[high] / fast_times[low]
             verdict = "meets" if growth <= 11.0 * high / low / 10.0 else "misses"
             print(f"    fast memory, {high / low:.0f}x the steps ({low} -> {high}): {growth:.2f}x the time "
@@ -572,7 +573,7 @@ def main(argv=None) -> int:
 
     timings = part_a(building, motion, fast, args.quick, repeats)
     part_b(timings)
-    opensees_seconds = part_c(building, motion, source, fast, timings, args.quick, repeats)
+    opensees_seconds = part_c(building, motion, source, fast, timings, quick=args.quick, repeats=repeats)
     part_walls(motion, source, opensees_seconds, repeats)
     part_d()
     part_bridge(building, motion, source, args.quick, repeats)

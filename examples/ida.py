@@ -32,11 +32,9 @@ from __future__ import annotations
 import argparse
 import csv
 import dataclasses
-import os
 import sys
 import time
 import warnings
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -89,7 +87,7 @@ def run(args) -> int:
     print(f"walls fail at {100 * limits.strain:.0f} % shear strain ({limits.source})")
 
     results = {}
-    with ProcessPoolExecutor(os.cpu_count() or 1) as pool, warnings.catch_warnings():
+    with vdw.frame.worker_pool() as pool, warnings.catch_warnings():  # its workers die with this process
         # Counted below: a wall beyond the amplitudes its parameters were identified for.
         warnings.simplefilter("ignore", UserWarning)
         for label, building in buildings.items():

@@ -30,6 +30,7 @@ is from the exact bridge; writes drift_envelope.png and wall_hysteresis.png to -
 from __future__ import annotations
 
 import argparse
+import itertools
 import sys
 import time
 from pathlib import Path
@@ -110,7 +111,7 @@ def build_frame(ops) -> np.ndarray:
             ends = [joint(floor, bay), joint(floor, bay + 1)]
             if bay == WALL_BAY:
                 ends.insert(1, midspan(floor))
-            for start, end in zip(ends, ends[1:], strict=False):
+            for start, end in itertools.pairwise(ends):
                 tag = 2000 + 100 * floor + len(beams)
                 ops.element("forceBeamColumn", tag, start, end, 2, 2)
                 beams.append(tag)
@@ -242,7 +243,7 @@ def load_motion(record, pga=None, duration=None, factor=None):
     except ValueError as error:
         raise ValueError(f"--pga {pga:g}: {error}" if pga is not None else f"--factor {factor:g}: {error}") from None
     if duration is not None:
-        points = min(motion.acceleration.size, int(round(duration / motion.dt)) + 1)
+        points = min(motion.acceleration.size, round(duration / motion.dt) + 1)
         motion = ground_motion.GroundMotion(motion.acceleration[:points], motion.dt, motion.name)
     return motion
 

@@ -63,9 +63,8 @@ def main(argv: list[str] | None = None) -> int:
     frequency = 1.0 / result.first_period
     for c, (case, factor) in enumerate(result.cases):
         storage, loss = result.stiffness_factors[c, :, 0], result.stiffness_factors[c, :, 1]
-        at = BOUNDS.temperature(case)
-        initial = at if at is not None else building.wall_list[0][1].thermal.temperature
-        print(f"{case}: lambda {factor:g}, walls from {initial:g} degC: K' x {storage.min():.3f}-{storage.max():.3f}, "
+        at = result.ambient_range(case) or f"{building.wall_list[0][1].thermal.temperature:g} degC"
+        print(f"{case}: lambda {factor:g}, walls from {at}: K' x {storage.min():.3f}-{storage.max():.3f}, "
               f"K'' x {loss.min():.3f}-{loss.max():.3f} at {frequency:.3f} Hz")
     for criterion in result.criteria:
         print(f"{'pass' if criterion.passed else 'FAIL'}: {criterion.name}: {criterion.text}")

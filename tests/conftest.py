@@ -2,10 +2,10 @@
 
 The test folders mirror the package (tests/element, tests/motion, tests/frame, tests/design, tests/paper,
 tests/interop, tests/assessment, tests/plotting; tests/integration for the README, the examples, the installed
-wheel and the command line; tests/test_config.py, test_files.py and test_validation.py for the top-level
-modules).  pytest runs in importlib mode with tests/ on sys.path (pyproject.toml): test files of the same name
-may sit in different folders, test modules never import each other, and the shared modules are imported by
-name from any folder: ``builders`` (parameter sets, frames, motions, files), ``reference`` (independent
+wheel and the command line; tests/test_config.py, test_files.py, test_parallel.py and test_validation.py for
+the top-level modules).  pytest runs in importlib mode with tests/ on sys.path (pyproject.toml): test files of
+the same name may sit in different folders, test modules never import each other, and the shared modules are
+imported by name from any folder: ``builders`` (parameter sets, frames, motions, files), ``reference`` (independent
 solutions and measures of agreement), ``shared_data`` (the repository and ../shared) and ``opensees_frame``
 (the OpenSeesPy models, also used by examples/benchmark.py).
 

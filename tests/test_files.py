@@ -44,7 +44,7 @@ def test_readers_name_compressed_utf16_binary_missing_and_folder_inputs(tmp_path
                 reader(bad)
 
 
-def test_a_write_keeps_permissions_and_follows_links(tmp_path):
+def test_a_write_keeps_permissions(tmp_path):
     motion = GroundMotion([1.0, 2.0, 3.0], 0.01, "x")
     kept = write_file(tmp_path, "kept.AT2", "OLD")
     kept.chmod(0o640)
@@ -54,10 +54,6 @@ def test_a_write_keeps_permissions_and_follows_links(tmp_path):
     os.umask(umask)
     fresh = write_at2(motion, tmp_path / "fresh.AT2")
     assert stat.S_IMODE(fresh.stat().st_mode) == 0o666 & ~umask
-    link = tmp_path / "link.AT2"
-    link.symlink_to(kept)
-    write_at2(GroundMotion([4.0, 5.0], 0.02, "y"), link)
-    assert link.is_symlink() and read_at2(kept).dt == 0.02
     for bad, match in ((tmp_path, "is a folder"), (tmp_path / "missing" / "x.AT2", "does not exist"),
                        ("", "must be a path"), (None, "must be a path")):
         with pytest.raises(ValueError, match=match):
@@ -126,14 +122,53 @@ def test_a_killed_writers_temporary_file_is_removed_by_the_next_write(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([target.name, live.name, other.name])
 
 
-def test_a_symlink_loop_is_one_clear_error(tmp_path):
-    first, second = tmp_path / "a.AT2", tmp_path / "b.AT2"
+LINK_REFUSED = "a symbolic link; the package writes no file through a link"
+
+
+def test_no_writer_writes_through_a_symbolic_link(tmp_path):
+    """A link to a file elsewhere (before: replaced wherever it pointed), a dangling one (before: created a
+    file in another folder) and a loop are refused by every writer; the linked file and the folders stay."""
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    victim = write_file(elsewhere, "system.conf", "keep me")
+    live, dangling, first, second = (tmp_path / name for name in ("live.AT2", "dangling.AT2", "a.AT2", "b.AT2"))
+    live.symlink_to(victim)
+    dangling.symlink_to(elsewhere / "new.AT2")
     first.symlink_to(second)
     second.symlink_to(first)
-    with pytest.raises(ValueError, match="a.AT2: a symbolic link that loops"):
-        write_at2(motion(), first)
-    with pytest.raises(ValueError, match="a.AT2: a symbolic link that loops"):
-        _files.write_text(first, "text")
+    for link in (live, dangling, first):
+        with pytest.raises(ValueError, match=rf"{link.name}: {LINK_REFUSED}"):
+            write_at2(motion(), link)
+        with pytest.raises(ValueError, match=rf"{link.name}: {LINK_REFUSED}"):
+            _files.write_text(link, "text")
+        with pytest.raises(ValueError, match=rf"{link.name}: {LINK_REFUSED}"):
+            _files.write_via(link, lambda temporary: temporary.write_text("text"))
+        assert link.is_symlink()
+    assert victim.read_text() == "keep me" and sorted(p.name for p in elsewhere.iterdir()) == ["system.conf"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.AT2", "b.AT2", "dangling.AT2", "elsewhere", "live.AT2"]
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs on this platform")
+def test_no_writer_replaces_a_fifo(tmp_path):
+    fifo = tmp_path / "pipe.csv"
+    os.mkfifo(fifo)
+    with pytest.raises(ValueError, match=r"pipe.csv: not a regular file \(a FIFO, socket or device\)"):
+        _files.write_text(fifo, "a,b\n")
+    assert stat.S_ISFIFO(fifo.lstat().st_mode)
+
+
+def test_the_rename_replaces_a_link_planted_after_the_check_not_its_target(tmp_path, monkeypatch):
+    """Between the check and the rename a link may appear at the target's name: os.replace renames over the
+    name itself, so the link goes and the file it points to stays."""
+    victim = write_file(tmp_path, "victim.txt", "keep me")
+    target = tmp_path / "table.csv"
+
+    def write(temporary):
+        temporary.write_text("new")
+        target.symlink_to(victim)
+
+    _files.write_via(target, write)
+    assert not target.is_symlink() and target.read_text() == "new" and victim.read_text() == "keep me"
 
 
 def failing_replace(source, target):

@@ -65,7 +65,7 @@ from vdw_frames.motion import RecordMetadata
 from vdw_frames.paper import strain_dependent
 from vdw_frames.verification import PropertyBounds, Site
 
-EXAMPLES = int(os.environ.get("VDW_FUZZ_EXAMPLES", 200))
+EXAMPLES = int(os.environ.get("VDW_FUZZ_EXAMPLES", "200"))
 # The deadline is per example and generous (a loaded 2-core machine): a constructor takes microseconds to
 # milliseconds, a reader a few milliseconds; what it catches is work that grows without bound.
 FUZZ = settings(max_examples=EXAMPLES, deadline=timedelta(seconds=5),
@@ -141,7 +141,7 @@ CONSTRUCTORS = {
     "StrainCompatibleOptions": (StrainCompatibleOptions, dict(effective_strain_ratio=0.65, initial_strain=3.0,
                                                               tolerance=0.01, max_iterations=20)),
     "FrameState": (FrameState, frame_state()),
-    "Site": (Site, dict(sms=1.5, sm1=0.9, tl=8.0, risk_category="II", ss=1.0, s1=0.6, site_class="C", fa=1.2,
+    "Site": (Site, dict(sms=1.5, sm1=0.9, tl=8.0, risk_category="II", ss=1.25, s1=0.6, site_class="C", fa=1.2,
                         fv=1.5)),
     "PropertyBounds": (PropertyBounds, dict(lower=0.8, upper=1.2, source="a test")),
     "CollapseCriterion": (CollapseCriterion, dict(drift_ratio=0.1, non_convergence=True, wall_failure=False)),
@@ -283,7 +283,7 @@ def assert_record_or_value_error(read, *arguments, **options) -> None:
 
 
 TOKENS = st.one_of(st.sampled_from(["0.1", "-2.5E-03", ".1D+01", "1e999", "-1e-999", "nan", "inf", "NaN", "1,5",
-                                    "0x10", "1_000", "--1", "+", "E", "1.2.3", "١", "½", "NPTS=", "DT=", "SEC"]),
+                                    "0x10", "1_000", "--1", "+", "E", "1.2.3", "\u0661", "½", "NPTS=", "DT=", "SEC"]),
                    st.floats().map(repr), st.integers(-(10**30), 10**30).map(str), st.text(max_size=4))
 HEADERS = st.sampled_from(["ACCELERATION TIME HISTORY IN UNITS OF G", "UNITS OF CM/S/S", "UNITS: M/S2",
                            "VELOCITY TIME HISTORY IN UNITS OF CM/S", "DISPLACEMENT IN CM", "IN/S/S", "",

@@ -8,6 +8,8 @@ Writing (:func:`replace_file`, :func:`write_text`, :func:`write_via`): every fil
 (records, figures, CSV tables, reports, result archives) goes to a temporary file beside the target,
 named ``.<name>.vdw-tmp-<pid>-<token>``, and is renamed over the target only when complete (atomic on
 POSIX and Windows), so a failed write (a full disk, an interrupted process) never destroys the old file.
+A target must be a new path or a regular file: a symbolic link (which would have the write replace whatever
+it points to, or create a file in another folder), a folder, a FIFO or a device is refused.
 A temporary file left by a process that was killed (its pid no longer runs) is removed by the next write
 of the same target.  Every failure is one ``ValueError`` naming the path.
 """
@@ -16,7 +18,6 @@ from __future__ import annotations
 
 import os
 import secrets
-import shutil
 import stat
 from collections.abc import Callable
 from pathlib import Path
@@ -135,7 +136,8 @@ def write_via(path: Path, write: Callable[[Path], object]) -> None:
         temporary = folder / f".{target.name}{_TEMPORARY}{os.getpid()}-{secrets.token_hex(4)}{target.suffix}"
         try:
             # 0o666 minus the umask: the permissions a plainly created file would get.
-            os.close(os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
+            # O_EXCL: never through a link (nor over a file) planted at the temporary's name.
+            os.close(os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0), 0o666))
             break
         except FileExistsError:
             continue
@@ -143,9 +145,8 @@ def write_via(path: Path, write: Callable[[Path], object]) -> None:
             raise ValueError(f"{path}: cannot write in {folder} ({error.strerror or error})") from None
     try:
         write(temporary)
-        if target.exists():
-            shutil.copymode(target, temporary)
-        os.replace(temporary, target)
+        _keep_mode(target, temporary)
+        os.replace(temporary, target)  # over the name itself: a link put there meanwhile is replaced, not followed
     except BaseException as error:
         temporary.unlink(missing_ok=True)
         if isinstance(error, OSError):
@@ -154,21 +155,40 @@ def write_via(path: Path, write: Callable[[Path], object]) -> None:
 
 
 def _target(path: Path) -> Path:
-    """The file a write replaces (a link's target, not the link), checked writable."""
+    """``path``, checked to be a new path or a regular writable file in an existing folder: a symbolic link
+    (followed or dangling, it would have the write land wherever it points), a folder, a FIFO or device is
+    refused."""
     try:
-        target = path.resolve() if path.is_symlink() else path
-    except (OSError, RuntimeError):  # a symlink loop: RuntimeError before Python 3.13, OSError after
-        raise ValueError(f"{path}: a symbolic link that loops (or cannot be followed); give another path") from None
+        info = path.lstat()
+    except FileNotFoundError:
+        info = None
+    except OSError as error:
+        raise ValueError(f"{path}: cannot write ({error.strerror or error})") from None
     try:
-        if target.is_dir():
+        if info is not None and stat.S_ISLNK(info.st_mode):
+            raise ValueError(f"{path}: a symbolic link; the package writes no file through a link (it would replace "
+                             "whatever the link points to): give the file's own path")
+        if info is not None and stat.S_ISDIR(info.st_mode):
             raise ValueError(f"{path}: is a folder; give a file name")
-        if not target.parent.is_dir():
-            raise ValueError(f"{path}: folder {target.parent} does not exist")
-        if target.exists() and not os.access(target, os.W_OK):
+        if info is not None and not stat.S_ISREG(info.st_mode):
+            raise ValueError(f"{path}: not a regular file (a FIFO, socket or device); give a file name")
+        if not path.parent.is_dir():
+            raise ValueError(f"{path}: folder {path.parent} does not exist")
+        if info is not None and not os.access(path, os.W_OK):
             raise ValueError(f"{path}: not writable")
     except OSError as error:
         raise ValueError(f"{path}: cannot write ({error.strerror or error})") from None
-    return target
+    return path
+
+
+def _keep_mode(target: Path, temporary: Path) -> None:
+    """Give the new file the permissions of the regular file it replaces (none for a new path)."""
+    try:
+        info = target.lstat()
+    except FileNotFoundError:
+        return
+    if stat.S_ISREG(info.st_mode):
+        os.chmod(temporary, stat.S_IMODE(info.st_mode))
 
 
 def _remove_stale(folder: Path, name: str) -> None:

@@ -18,6 +18,7 @@ where none can be written.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import os
 import shutil
@@ -30,7 +31,9 @@ from numba import njit as _numba_njit
 from numba.core import caching
 
 _PACKAGE = Path(__file__).resolve().parent
-_warned = False
+# What has been said or found once: a kind of warning given, or "unwritable" once a cache write failed (no
+# later write is tried).
+_said: set[str] = set()
 
 
 def _fingerprint() -> str:
@@ -90,14 +93,13 @@ def _install_locators() -> None:
 _install_locators()
 
 _FunctionCache: Any = getattr(caching, "FunctionCache", None)
-_unwritable = False  # set once a cache write failed: no later write is tried
-_said: set[str] = set()
 
 
-def _warn_once(kind: str, message: str) -> None:
+def _warn_once(kind: str, message: str, stacklevel: int = 1) -> None:
+    """Warn of ``kind`` once a process; ``stacklevel`` counts from the caller, as in ``warnings.warn``."""
     if kind not in _said:
         _said.add(kind)
-        warnings.warn(message, RuntimeWarning, stacklevel=2)
+        warnings.warn(message, RuntimeWarning, stacklevel=stacklevel + 1)
 
 
 if _FunctionCache is not None:
@@ -112,20 +114,18 @@ if _FunctionCache is not None:
             except Exception as error:  # any unreadable cache file: compiling instead is always correct
                 _warn_once("load", f"vdw_frames: numba's compilation cache in {self.cache_path} could not be read "
                            f"({type(error).__name__}: {error}); recompiling and replacing it")
-                try:  # the index names the data files: without it the next save starts afresh
+                # The index names the data files: without it the next save starts afresh.
+                with contextlib.suppress(OSError):
                     os.remove(self._cache_file._index_path)
-                except OSError:
-                    pass
                 return None
 
         def save_overload(self, sig: Any, data: Any) -> None:
-            global _unwritable
-            if _unwritable:
+            if "unwritable" in _said:
                 return
             try:
                 super().save_overload(sig, data)
             except OSError as error:
-                _unwritable = True
+                _said.add("unwritable")
                 _warn_once("save", f"vdw_frames: numba's compilation cache could not be written in {self.cache_path} "
                            f"({error.strerror or error}); going on without it (compiled code is not kept between "
                            "runs; set NUMBA_CACHE_DIR to a folder with space)")
@@ -160,18 +160,15 @@ def njit(*args: Any, cache: bool = False, allocates: bool = True, **options: Any
         options["_nrt"] = False  # numba's (underscored) target option; tests/test_jit.py checks it still works
 
     def compile_(function: Callable[..., Any]) -> Any:
-        global _warned
         if cache:
             try:
                 return _guard(_numba_njit(cache=True, **options)(function))
             except RuntimeError as error:
                 if "cannot cache" not in str(error):
                     raise
-                if not _warned:
-                    _warned = True
-                    warnings.warn(f"vdw_frames: numba cannot write a compilation cache here ({error}); "
-                                  "compiling without one (set NUMBA_CACHE_DIR to a writable folder to keep "
-                                  "compiled code between runs)", RuntimeWarning, stacklevel=3)
+                _warn_once("no cache", f"vdw_frames: numba cannot write a compilation cache here ({error}); "
+                           "compiling without one (set NUMBA_CACHE_DIR to a writable folder to keep "
+                           "compiled code between runs)", stacklevel=3)
         return _numba_njit(**options)(function)
 
     if args and callable(args[0]):

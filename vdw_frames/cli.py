@@ -140,8 +140,9 @@ def _simulate(args) -> int:
     except ValueError as error:
         raise ValueError(f"{flag}: {error}") from None
     if motion.pga > MAX_PGA * G:
-        raise ValueError(f"{flag}: the record's PGA becomes {motion.pga / G:.4g} g, beyond any earthquake (at most "
-                         f"{MAX_PGA:g} g here)")
+        where = f"{flag}: the record's PGA becomes" if flag is not None else \
+            f"{args.record}: the record's PGA, read in the units its header states (g when it states none), is"
+        raise ValueError(f"{where} {motion.pga / G:.4g} g, beyond any earthquake (at most {MAX_PGA:g} g here)")
     scaling = (f", scaled to PGA {args.pga:g} g" if args.pga is not None else
                f", x {args.factor:g}" if args.factor is not None else "")
     try:
@@ -195,7 +196,7 @@ def _steps(motion, dt: float, free_vibration: float = 0.0) -> int:
     """The steps an analysis of ``motion`` at ``dt`` takes (the record's duration, rest included), with
     ``free_vibration`` s of rest after it (as :func:`~vdw_frames.frame.time_history.integrate` rounds it up)."""
     rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0
-    return int(round(motion.duration / dt)) + 1 + rest
+    return round(motion.duration / dt) + 1 + rest
 
 
 def _outcome(result) -> str:
@@ -282,31 +283,36 @@ def _print_wall_assumptions(building) -> None:
 
 
 def _print_wall_states(result) -> None:
-    """Per wall, when the walls follow their amplitude, heat or can fail: the largest amplitude followed,
-    the temperature rise and how and when the wall failed ('-' where the wall has no such state)."""
+    """Per wall, when the walls follow their amplitude, heat or can fail: the largest amplitude followed and
+    the seconds it spent below and above the tested amplitudes, the temperature rise and how and when the wall
+    failed ('-' where the wall has no such state)."""
     amplitude, rise, failed = result.wall_amplitude, result.peak_temperature_rise, result.wall_failed
     if amplitude is None and rise is None and not failed.any():
         return
-    print(f"{'wall':>5s} {'story':>5s} {'amplitude %':>11s} {'dT K':>6s} {'failed':>20s}")
+    below, above = result.wall_time_below_range, result.wall_time_above_range
+    print(f"{'wall':>5s} {'story':>5s} {'amplitude %':>11s} {'below s':>8s} {'above s':>8s} {'dT K':>6s} "
+          f"{'failed':>20s}")
     times, modes = result.wall_failure_time, result.wall_failure_mode
     for w, (story, _) in enumerate(result.building.wall_list):
         followed = amplitude[:, w].max() if amplitude is not None else 0.0
         heated = rise[w] if rise is not None and math.isfinite(rise[w]) else None
-        print(f"{w + 1:5d} {story:5d} {f'{100 * followed:11.0f}' if followed > 0.0 else '-':>11s} "
+        outside = (f"{below[w]:8.2f} {above[w]:8.2f}" if followed > 0.0 and below is not None and above is not None
+                   else f"{'-':>8s} {'-':>8s}")
+        print(f"{w + 1:5d} {story:5d} {f'{100 * followed:11.0f}' if followed > 0.0 else '-':>11s} {outside} "
               f"{f'{heated:6.1f}' if heated is not None else '-':>6s} "
               f"{f'{modes[w]} at {times[w]:.2f} s' if failed[w] else 'no':>20s}")
+    if amplitude is not None:
+        print("below/above s: time the followed amplitude spent below/above the tested amplitudes, where the "
+              "parameters are those of the nearest tested set")
 
 
 def _design(args) -> int:
     """The ``design`` command: modal table with and without walls, sizing, damping-versus-size figure."""
     from .config import load_building
-    from .design import damping_curve, size_walls
     from .design.sizing import MAX_STORIES as SIZING_MAX_STORIES
-    from .design.sizing import SEARCH_FACTORS, story_text
     from .element.strain_dependent import StrainDependentDamper
     from .frame.modal import MAX_STORIES as MODAL_MAX_STORIES
     from .frame.modal import modal_analysis, require_modal_size
-    from .plotting import plot_damping_curve
 
     # Every argument checked before any work (a modal search of a large building takes seconds).
     if args.modes < 1:
@@ -355,6 +361,18 @@ def _design(args) -> int:
     if not walls:
         print("no walls in the building file: add a [[walls]] group to size them")
         return 0
+    return _design_sizing(args, building, out)
+
+
+def _design_sizing(args, building, out: Path) -> int:
+    """The ``design`` command's sizing of the walls of ``building`` (fixed parameters), its advice and figure."""
+    from .design import damping_curve, size_walls
+    from .design.sizing import SEARCH_FACTORS, story_text
+    from .element.strain_dependent import StrainDependentDamper
+    from .frame.modal import modal_analysis
+    from .plotting import plot_damping_curve
+
+    walls = building.wall_list
     stories = sorted(building.walls)
     own = modal_analysis(building, args.mode)
     own_ratio, own_period = float(own.damping_ratios[0]), float(own.periods[0])
@@ -558,6 +576,8 @@ def _verify(args) -> int:
                          "the building file's [verification] table)")
     if args.ambient is not None:
         bounds = dataclasses.replace(bounds, ambient=tuple(args.ambient))
+    if args.lambda_includes_temperature is not None:
+        bounds = dataclasses.replace(bounds, lambda_includes_temperature=args.lambda_includes_temperature == "yes")
     out = _output_folder(args.out)
     records = _verify_records(args.records)
     result = verify(building, site, records, bounds=bounds, count=args.count,
@@ -579,8 +599,8 @@ def _verify(args) -> int:
     frequency = 1.0 / result.first_period
     for c, (case, factor) in enumerate(result.cases[1:], 1):
         storage, loss = result.stiffness_factors[c, :, 0], result.stiffness_factors[c, :, 1]
-        at = result.bounds.temperature(case)
-        print(f"{case} bound: lambda {factor:g}{f', from {at:g} degC' if at is not None else ''}: K' x "
+        at = result.ambient_range(case)
+        print(f"{case} bound: lambda {factor:g}{f', walls from {at}' if at else ''}: K' x "
               f"{storage.min():.3f}-{storage.max():.3f}, K'' x {loss.min():.3f}-{loss.max():.3f} at {frequency:.3f} Hz")
     for criterion in result.criteria:
         print(f"{'pass' if criterion.passed else 'FAIL'}: {criterion.name}: {criterion.text}")
@@ -605,8 +625,12 @@ def _add_verify_command(commands) -> None:
     verify.add_argument("--bounds", type=float, nargs=2, metavar=("LAMBDA_MIN", "LAMBDA_MAX"),
                         help="property modification factors of the walls (Sec. 18.2.4.5)")
     verify.add_argument("--ambient", type=float, nargs=2, metavar=("COLDEST", "HOTTEST"),
-                        help="the walls' service temperatures, degC: the upper-bound walls start at the coldest, the "
-                             "lower-bound ones at the hottest (walls with a thermal description)")
+                        help="the walls' service temperatures, degC (walls with a thermal description): each bound "
+                             "starts a wall at the end that bounds its quantity (upper: the larger |K*|, for forces; "
+                             "lower: the smaller K'', for displacements)")
+    verify.add_argument("--lambda-includes-temperature", choices=("yes", "no"),
+                        help="whether the bounds' lambdas already include temperature (not with --ambient: it would "
+                             "be counted twice); the report states it")
     verify.add_argument("--records", default="far-field",
                         help="FEMA P695 set (far-field, near-field, ...; needs the [p695] extra) or a folder of .AT2 "
                              "files (default far-field)")

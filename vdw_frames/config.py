@@ -21,6 +21,7 @@ Keys (units N-mm-s-tonne)::
     bounds = [0.8, 1.2]                 # the walls' lambda_min, lambda_max (ASCE 7-16 Sec. 18.2.4.5)
     bounds_source = "..."               # where they come from (optional)
     ambient = [0.0, 40.0]               # degC, the walls' service temperatures (optional; walls with thermal)
+    lambda_includes_temperature = false # whether bounds already include temperature (optional; not with ambient)
 
     [hysteresis]                        # optional: yielding stories (default: all linear)
     model = "bilinear"                  # "bilinear" (Steel01-like) or "bouc-wen"
@@ -44,7 +45,7 @@ Keys (units N-mm-s-tonne)::
     # shift = {law = "log-linear", degrees_per_decade = 19.45, reference = 21.2, valid = [0, 70], source = "..."}
     heat_capacity = 1.8                 # MPa/K = J/(cm^3 K), volumetric
     temperature = 21.2                  # degC, initial and ambient (optional: the law's reference)
-    cooling_time = 600.0                # s, optional (default: adiabatic)
+    cooling_time = 600.0                # s, or "conduction" (each wall's h^2 / (pi^2 kappa)); optional (adiabatic)
 
     [walls.limits]                      # optional: walls that fail (vdw_frames.element.limits); any subset
     strain = 8.5                        # -, shear strain of rupture or debonding (8.5 = 850 %)
@@ -102,7 +103,7 @@ from .element.catalogue import fitted, strain_dependent
 from .element.damper import FDMKDamper
 from .element.limits import WallLimits
 from .element.strain_dependent import StrainDependentDamper
-from .element.thermal import ISD110_LOSS_PEAK, WLF, Arrhenius, LogLinear, ThermalProperties
+from .element.thermal import ISD110_LOSS_PEAK, WLF, Arrhenius, LogLinear, ThermalProperties, conduction_time
 from .frame.building import ShearBuilding
 from .frame.hysteresis import Bilinear, BoucWen
 from .frame.strain_compatible import StrainCompatibleOptions
@@ -111,7 +112,7 @@ from .verification.verify import PropertyBounds
 
 _BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "damping_model",
                   "gravity_loads", "hysteresis", "walls", "strain_compatible", "site", "verification"}
-_VERIFICATION_KEYS = {"ambient", "bounds", "bounds_source"}
+_VERIFICATION_KEYS = {"ambient", "bounds", "bounds_source", "lambda_includes_temperature"}
 _HYSTERESIS_KEYS = {"bilinear": {"model", "yield_forces", "hardening"},
                     "bouc-wen": {"model", "yield_forces", "hardening", "exponent", "beta", "gamma"}}
 _STRAIN_COMPATIBLE_KEYS = {"effective_strain_ratio", "initial_strain", "tolerance", "max_iterations"}
@@ -176,7 +177,12 @@ def site_and_bounds(data: dict[str, Any]) -> tuple[Site | None, PropertyBounds |
         ambient = table.get("ambient")
         if ambient is not None and (not isinstance(ambient, list) or len(ambient) != 2):
             raise ValueError(f"verification ambient must be [coldest, hottest] in degC, got {show(ambient)}")
-        bounds = PropertyBounds(values[0], values[1], source, None if ambient is None else tuple(ambient))
+        included = table.get("lambda_includes_temperature")
+        if included is not None and not isinstance(included, bool):
+            raise ValueError(f"verification lambda_includes_temperature must be true or false, got "
+                             f"{show(included)}")
+        bounds = PropertyBounds(values[0], values[1], source, None if ambient is None else tuple(ambient),
+                                included)
     return site, bounds
 
 
@@ -339,7 +345,7 @@ def _wall(group: dict[str, Any]) -> FDMKDamper | StrainDependentDamper:
                          f"or a table with exactly {sorted(_PARAMETER_KEYS)}, got {parameters!r}")
     extras: dict[str, Any] = {}
     if "thermal" in group:
-        extras["thermal"] = _thermal(group["thermal"])
+        extras["thermal"] = _thermal(group["thermal"], wall.thickness)
     if "limits" in group:
         extras["limits"] = _limits(group["limits"])
     if extras:
@@ -379,8 +385,9 @@ def _table(name: str, value: object, keys: set[str]) -> dict[str, Any]:
     return value
 
 
-def _thermal(value: object) -> ThermalProperties:
-    """The :class:`ThermalProperties` of a ``[walls.thermal]`` table (module docstring)."""
+def _thermal(value: object, thickness: float) -> ThermalProperties:
+    """The :class:`ThermalProperties` of a ``[walls.thermal]`` table (module docstring) for walls of layers
+    ``thickness`` mm thick (``cooling_time = "conduction"``: their conduction time)."""
     table = _table("walls thermal", value, _THERMAL_KEYS)
     if "shift" not in table or "heat_capacity" not in table:
         raise ValueError("walls thermal needs shift and heat_capacity (MPa/K = J/(cm^3 K))")
@@ -406,6 +413,11 @@ def _thermal(value: object) -> ThermalProperties:
         arguments = {key: item for key, item in fields.items() if key != "law"}
         law = kind(**{**arguments, "valid": tuple(valid)})
     options = {key: table[key] for key in ("temperature", "cooling_time") if key in table}
+    if isinstance(options.get("cooling_time"), str):
+        if options["cooling_time"] != "conduction":
+            raise ValueError(f"walls thermal cooling_time must be a time in s or \"conduction\", got "
+                             f"{show(options['cooling_time'])}")
+        options["cooling_time"] = conduction_time(thickness)
     return ThermalProperties(law, table["heat_capacity"], **options)
 
 

@@ -52,5 +52,5 @@ def test_size_layers_needs_amplitude_following_walls_and_a_suite():
     walled = three_story({1: [vdw.paper.strain_dependent()]})
     with pytest.raises(ValueError, match="motions must be a non-empty sequence"):
         size_layers(walled, [])
-    with pytest.raises(ValueError, match="tolerance must be below 0.5"):
+    with pytest.raises(ValueError, match=r"tolerance must be below 0\.5"):
         size_layers(walled, SUITE, tolerance=0.7)

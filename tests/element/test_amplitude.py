@@ -52,19 +52,20 @@ def test_a_steady_sine_gives_the_loop_of_the_wall_at_that_amplitude(family):
 
 
 @pytest.mark.parametrize("family", FAMILIES, ids=list(FAMILIES))
-def test_a_stepped_sine_reaches_the_other_level_loop_within_two_cycles(family):
-    # Measured on the paper's family (225 -> 450 -> 225 %): loop area off by -8.5 / -2.4 / -0.08 % in the
-    # first three cycles after the step up (a fixed 450 % wall under the same history: -6.0 / -0.09 / -0.01 %:
-    # the following wall's Maxwell memory was built under the other level's parameters), +40 / -0.05 / -0.01 %
-    # after the step down.
+def test_a_stepped_sine_reaches_the_other_level_loop_within_three_cycles(family):
+    # A step up is followed at once; the loop is the new level's after two cycles (the Maxwell memory was
+    # built under the other level's parameters).  A step down is followed by the envelope rule only once the
+    # smaller motion has persisted: a fall to half the amplitude or less within one half-cycle looks, at
+    # first, like a higher mode's ripple at a peak (kernel.track_amplitude, decay release): the synthetic
+    # family's 400 -> 100 % is the new level's after three cycles.
     wall = FAMILIES[family]
     low, high = wall.strains[0], wall.strains[-1]
     displacement, force, dt = loops(wall, [low, high, low], 6)
-    for level, amplitude in enumerate([high, low], start=1):
+    for level, amplitude, after in ((1, high, 2), (2, low, 3)):
         start = level * 6
         steady_displacement, steady_force, _ = loops(wall.at(amplitude), [amplitude], 6)
         steady = cycle_measures(steady_displacement, steady_force, 5)
-        reached = cycle_measures(displacement, force, start + 2)  # the cycle after two at the new level
+        reached = cycle_measures(displacement, force, start + after)  # the cycle after those at the new level
         assert reached[0] == pytest.approx(steady[0], rel=0.02)
         assert reached[1] == pytest.approx(steady[1], rel=0.02)
 
@@ -77,7 +78,87 @@ def test_the_followed_amplitude_of_a_sine_is_its_amplitude():
         state.trial(2.5 * THICKNESS * np.sin(2 * np.pi * n / PER_CYCLE))
         state.commit()
         amplitudes.append(state.amplitude)
-    np.testing.assert_allclose(amplitudes[PER_CYCLE:], 2.5, rtol=1e-12)  # after the first half-cycle
+    # From the first peak on (the quarter cycle from rest), at every step: the envelope rule holds A through
+    # each reversal (it confirms at the centre, where the completed half-cycle's amplitude is A again).
+    np.testing.assert_allclose(amplitudes[PER_CYCLE // 4 - 1:], 2.5, rtol=1e-12)
+
+
+def followed(wall, strain, dt):
+    """The amplitude (-) ``wall`` follows at each step of a strain history (-) from rest, step by step."""
+    state = wall.new_state(dt)
+    amplitude = []
+    for value in strain[1:]:
+        state.trial(value * wall.thickness)
+        state.commit()
+        amplitude.append(state.amplitude)
+    return np.array([0.0, *amplitude])
+
+
+TWO_HARMONICS = [  # (a1, f1 Hz, a2, f2 Hz): a slow motion and a faster, smaller one (a higher mode's ripple)
+    (3.0, 0.6, 0.8, 2.5),  # the issue's: peak 379 %
+    (3.0, 0.6, 0.4, 2.5), (3.0, 0.6, 1.2, 2.5), (3.0, 0.6, 0.8, 4.1), (2.5, 1.0, 0.5, 3.7), (3.0, 0.6, 0.3, 6.3),
+]
+
+
+@pytest.mark.parametrize("a1, f1, a2, f2", TWO_HARMONICS)
+def test_two_harmonics_are_followed_by_their_envelope_not_their_ripples(a1, f1, a2, f2):
+    # Reference: the closed form of the strain itself.  The envelope of a1 sin(2 pi f1 t) + a2 sin(2 pi f2 t)
+    # (half its peak-to-peak over a slow cycle) lies between a1 and the peak |strain|; the half-cycles between
+    # the fast component's reversals (what was followed before, down to 5 % on the first case) do not.
+    dt = 0.004
+    time = np.arange(0.0, 12.0 / f1, dt)
+    strain = a1 * np.sin(2 * np.pi * f1 * time) + a2 * np.sin(2 * np.pi * f2 * time)
+    amplitude = followed(SYNTHETIC, strain, dt)[time >= 1.0 / f1]  # after the first slow cycle
+    assert amplitude.min() >= a1 and amplitude.max() <= np.abs(strain).max() + 1e-12
+
+
+def test_a_growing_motion_is_followed_at_once():
+    # A sine whose amplitude grows 1 % a step at 400 steps a cycle, then jumps from 1.0 to 4.0: at every step
+    # the followed amplitude is at least the half-cycle's so far, |strain - last extreme| / 2, found from the
+    # strain history alone (its extremes), and at the jump's first peak it is the new half-cycle's, 2.5.
+    dt = 1.0 / PER_CYCLE
+    time = np.arange(6 * PER_CYCLE + 1) * dt
+    growing = np.minimum(0.2 * 1.01 ** np.arange(time.size), 3.0) * np.sin(2 * np.pi * time)
+    jump = np.where(time < 3.0, 1.0, 4.0) * np.sin(2 * np.pi * time)
+    for strain in (growing, jump):
+        amplitude = followed(SYNTHETIC, strain, dt)
+        last_extreme = np.zeros_like(strain)
+        peaks = extrema(strain)
+        for start, end in zip(peaks, [*peaks[1:], strain.size], strict=True):
+            last_extreme[start + 1:end + 1] = strain[start]
+        so_far = 0.5 * np.abs(strain - last_extreme)
+        assert np.all(amplitude[peaks[0]:] >= so_far[peaks[0]:] - 1e-12)
+    first_new = int(3.25 * PER_CYCLE)  # the first peak at 4.0: the half-cycle from -1.0
+    assert amplitude[first_new] == pytest.approx(2.5, rel=1e-12)
+
+
+@pytest.mark.parametrize("decay", [0.3, 0.8])
+def test_a_decaying_motion_is_followed_within_about_a_cycle(decay):
+    # A free decay a0 exp(-decay t) sin(2 pi t) (0.86 and 0.67 of the amplitude a half-cycle): after the first
+    # cycle the followed amplitude lies between the envelope now and the envelope 1.25 cycles earlier (the
+    # half-cycle's reversal is confirmed at its centre, a quarter cycle late, and the followed amplitude moves
+    # to it over a half-cycle).
+    dt = 1.0 / PER_CYCLE
+    time = np.arange(5 * PER_CYCLE + 1) * dt
+    envelope = 4.0 * np.exp(-decay * time)
+    amplitude = followed(SYNTHETIC, envelope * np.sin(2 * np.pi * time), dt)
+    later = time >= 1.25
+    assert np.all(amplitude[later] >= envelope[later])
+    assert np.all(amplitude[later] <= 4.0 * np.exp(-decay * (time[later] - 1.25)))
+
+
+@pytest.mark.parametrize("low", [0.3, 1.0])
+def test_a_sudden_drop_is_followed_once_it_persists(low):
+    # 400 % then 30 % or 100 %: a fall to less than half within one half-cycle is what a ripple at a peak
+    # looks like at first, so the half-cycle stalls; the decay release ends it once its extreme has stood
+    # longer than the last half-cycle lasted (0.5 s here), and four cycles after the drop the wall follows
+    # the new amplitude (measured: from 6.4 s and 7.0 s on).
+    dt = 1.0 / PER_CYCLE
+    time = np.arange(9 * PER_CYCLE + 1) * dt
+    amplitude = followed(SYNTHETIC, np.where(time < 3.0, 4.0, low) * np.sin(2 * np.pi * time), dt)
+    held = (time >= 1.0) & (time < 4.0)
+    assert amplitude[held].min() == pytest.approx(4.0, rel=1e-9)  # 400 % held through the first cycle after it
+    np.testing.assert_allclose(amplitude[time >= 7.1], low, rtol=1e-9)
 
 
 def free_vibration(wall, initial_velocity, spring, mass, dt=0.002, steps=4000):
@@ -200,7 +281,7 @@ def test_a_wall_fails_at_the_first_committed_step_beyond_its_limit():
     (lambda: WallLimits(stress=0.0), "stress must be > 0, got 0.0"),
     (lambda: WallLimits(residual=1.0), r"residual must lie in \[0, 1\) .* got 1.0"),
     (lambda: WallLimits(residual=-0.1), r"residual must lie in \[0, 1\) .* got -0.1"),
-    (lambda: WallLimits(temperature=-300.0), "above absolute zero, got -300.0"),
+    (lambda: WallLimits(temperature=-300.0), r"temperature limit must be above absolute zero .* got -300.0"),
     (lambda: FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5, limits=8.5), "limits must be WallLimits"),
 ])
 def test_non_physical_limits_are_refused_naming_the_value(make, match):

@@ -105,7 +105,7 @@ def test_a_stable_and_damped_at_nyquist():
     phi = np.linspace(0.0, np.pi, 20001)
     assert scheme.generating_function(np.exp(1j * phi)).real.min() >= -1e-15  # A-stable
     # rho_infinity = b1 / b0: the parasitic root of the method at infinity.
-    a0, a1, b0, b1 = scheme.coefficients
+    _a0, a1, b0, b1 = scheme.coefficients
     assert b1 / b0 == pytest.approx(0.5) and a1 == pytest.approx(-1.0 / 6.0)
     assert scheme.generating_function(-1.0) == pytest.approx(8.0)  # finite at Nyquist (BDF2: 4)
 

@@ -142,7 +142,7 @@ def test_invalid_parameters_are_refused_by_name(name, value, match):
 
 def test_invalid_displacements_steps_methods_memories_and_frequencies_are_refused():
     damper = FDMKDamper(**TABLE4)
-    with pytest.raises(ValueError, match="displacement must be finite.*index 2"):
+    with pytest.raises(ValueError, match=r"displacement must be finite.*index 2"):
         damper.force([0.0, 1.0, math.nan], 0.01)
     with pytest.raises(ValueError, match="dt must be > 0"):
         damper.force([0.0, 1.0], 0.0)

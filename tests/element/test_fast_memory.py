@@ -181,7 +181,7 @@ def test_damped_family_any_rho_infinity(rho, r):
     # Branch points 1, -a0/a1 and -1/rho (the last absent at rho = 0, where the method is BDF2).
     method = DampedTwoStep(rho_infinity=rho)
     steps = 20_000
-    mode_ratio, mode_weight = tail_modes(method, r, 0.01, max_steps=steps)
+    mode_ratio, _mode_weight = tail_modes(method, r, 0.01, max_steps=steps)
     assert np.all(np.abs(mode_ratio) < 1.0)
     l1, _ = tail_errors(method, r, 0.01, steps, max_steps=steps)
     assert l1 <= 2e-10

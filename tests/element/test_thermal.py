@@ -63,6 +63,8 @@ def test_time_temperature_superposition_is_exact_for_the_fdmk_model(law):
     wall = FDMKDamper(**TABLE4)
     frequencies = np.geomspace(0.01, 100.0, 61)
     for temperature in (-10.0, 0.0, 10.0, 21.2, 35.0, 60.0):
+        if not law.valid[0] <= temperature <= law.valid[1]:
+            continue  # beyond the range the law is held at its end (test_beyond_its_range_...)
         shift = 10.0 ** float(law.log10_shift(temperature))
         at_temperature = wall.at_temperature(temperature, law).complex_modulus(frequencies)
         shifted_frequency = wall.complex_modulus(shift * frequencies)
@@ -496,7 +498,77 @@ def test_the_coupled_problem_of_a_fractional_wall_matches_a_dense_diffusive_refe
     (lambda: FDMKDamper(**TABLE4).at_temperature(30.0), "needs a shift law"),
     (lambda: FDMKDamper(**TABLE4).property_factors([30.0], 1.0), "thermal description"),
     (lambda: thermal_wall().property_factors([-300.0], 1.0), "above absolute zero"),
+    # Below absolute zero every law refuses, the log-linear one too (it gave K* = 6e12 N/mm at -300 degC).
+    (lambda: LogLinear(19.45, 21.2, (0.0, 70.0)).log10_shift(-300.0), "at or below absolute zero"),
+    (lambda: thermal_wall().at_temperature(-300.0), "above absolute zero"),
+    (lambda: FDMKDamper(**TABLE4).at_temperature(-300.0, ISD110_LOSS_PEAK), "above absolute zero"),
+    # Kelvin typed where degC is meant: above 200 degC, with the degC value suggested.
+    (lambda: ThermalProperties(ISD110_LOSS_PEAK, 1.8, 294.15), r"temperature 294.15 degC is above 200 .*21 degC"),
+    (lambda: Arrhenius(1.0e5, 294.15, (273.15, 313.15)), r"reference 294.15 degC is above 200 degC.*kelvin"),
+    (lambda: LogLinear(19.45, 21.2, (0.0, 350.0)), "valid high end 350.0 degC is above 200"),
+    (lambda: thermal_wall().at_ambient(303.15), "subtract 273.15"),
+    (lambda: thermal_wall().at_temperature(283.15), "subtract 273.15"),
+    (lambda: thermal_wall().property_factors([283.15], 1.0), "above 200 degC"),
+    (lambda: WallLimits(temperature=353.15), "temperature limit 353.15 degC is above 200"),
+    # A WLF law with C1 <= 0 would make the wall stiffen as it heats.
+    (lambda: WLF(-8.86, 101.6, 21.2, (0.0, 40.0)), "C1 must be > 0"),
+    (lambda: WLF(0.0, 101.6, 21.2, (0.0, 40.0)), "C1 must be > 0"),
+    # A temperature limit on a wall that never heats could never be reached.
+    (lambda: FDMKDamper(**TABLE4, limits=WallLimits(temperature=80.0)), "needs a wall with a thermal description"),
+    (lambda: dataclasses.replace(thermal_wall(), thermal=None, limits=WallLimits(temperature=80.0)),
+     "never heats"),
 ])
 def test_non_physical_thermal_data_is_refused_naming_the_value(make, match):
     with pytest.raises(ValueError, match=match):
         make()
+
+
+# ------------------------------------------------------------------------------- one rule beyond the range
+def test_beyond_its_range_every_frequency_domain_path_holds_the_law_at_the_range_s_end_as_the_time_domain_does():
+    # References: the law's printed formula evaluated here at the range's end, log10 a_T = -(T - T_ref) / 19.45
+    # (ISD110_LOSS_PEAK, range 0 ... 70 degC), and the force of the time domain's update, which holds its law there.
+    r = TABLE4["r"]
+    held = 10.0 ** (r * -(70.0 - 21.2) / ((65.6 - 26.7) / 2.0))
+    plain = FDMKDamper(**dict(TABLE4, area=1e5, thickness=10.0))
+    at_end = dataclasses.replace(plain, eta1=plain.eta1 * held, eta2=plain.eta2 * held)
+    frequencies = np.array([0.2, 0.6, 2.0])
+    with pytest.warns(UserWarning, match=r"temperature 100 degC is outside the shift law's range 0 \.\.\. 70 degC"):
+        hot = thermal_wall(temperature=100.0, heat_capacity=ENORMOUS)
+        stiffness = hot.complex_stiffness(frequencies)
+    np.testing.assert_allclose(stiffness, at_end.complex_stiffness(frequencies), rtol=1e-13)
+    with pytest.warns(UserWarning, match="evaluated at 70 degC, the range's end"):
+        np.testing.assert_allclose(thermal_wall().at_temperature(200.0).complex_stiffness(frequencies),
+                                   at_end.complex_stiffness(frequencies), rtol=1e-13)
+    with pytest.warns(UserWarning, match="outside the shift law's range"):
+        factors = thermal_wall().property_factors([150.0, 70.0], 0.6)
+    np.testing.assert_array_equal(factors.storage[0], factors.storage[1])
+    np.testing.assert_array_equal(factors.loss[0], factors.loss[1])
+    nominal = plain.complex_stiffness(0.6)
+    assert factors.loss[0] == pytest.approx(at_end.loss_stiffness(0.6) / nominal.imag, rel=1e-12)
+    # The time domain, from rest at 100 degC (a heat capacity that keeps it there), steps as the held wall.
+    time = np.arange(2001) * 0.005
+    displacement = 12.0 * np.sin(2 * np.pi * 0.9 * time)
+    reference = at_end.force(displacement, 0.005)
+    np.testing.assert_allclose(hot.force(displacement, 0.005), reference, atol=1e-9 * np.abs(reference).max())
+    # Below the range alike: the lower end.
+    cold_factor = 10.0 ** (r * -(0.0 - 21.2) / ((65.6 - 26.7) / 2.0))
+    with pytest.warns(UserWarning, match="evaluated at 0 degC"):
+        cold = thermal_wall().at_temperature(-40.0)
+    assert cold.eta1 == pytest.approx(plain.eta1 * cold_factor, rel=1e-13)
+
+
+def test_an_isothermal_wall_drops_its_temperature_limit_and_keeps_the_others():
+    wall = dataclasses.replace(thermal_wall(), limits=WallLimits(strain=8.5, temperature=80.0, source="s"))
+    assert wall.at_temperature(30.0).limits == WallLimits(strain=8.5, source="s")
+    only_heat = dataclasses.replace(thermal_wall(), limits=WallLimits(temperature=80.0))
+    assert only_heat.at_temperature(30.0).limits is None
+
+
+def test_the_conduction_time_is_the_slowest_mode_of_a_layer_between_plates():
+    # Reference: h^2 / (pi^2 kappa) by hand for the example roof wall's 2.37 mm layers, kappa = 1e-7 m^2/s.
+    from vdw_frames.element.thermal import conduction_time
+
+    assert conduction_time(2.37) == pytest.approx(2.37**2 / (math.pi**2 * 0.1), rel=1e-14)
+    assert conduction_time(2.37) == pytest.approx(5.69, abs=0.005)
+    with pytest.raises(ValueError, match="thickness must be > 0"):
+        conduction_time(0.0)

@@ -60,7 +60,7 @@ def test_observed_order_of_convergence(method, order, params):
     if order == 2:
         assert ratios.min() >= 3.5, (errors, ratios)
     else:
-        assert 1.7 <= ratios.min() and ratios.max() <= 2.3, (errors, ratios)
+        assert ratios.min() >= 1.7 and ratios.max() <= 2.3, (errors, ratios)
 
 
 def test_trapezoidal_is_four_times_more_accurate_than_bdf2_on_smooth_input():

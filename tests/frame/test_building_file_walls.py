@@ -87,7 +87,25 @@ def base(**wall):
     ({"limits": {"strain": 0.0}}, r"strain must be > 0, got 0.0"),
     ({"limits": {"residual": 1.0}}, r"residual must lie in \[0, 1\)"),
     ({"limits": {"rupture": 8.5}}, r"unknown walls limits keys \['rupture'\]"),
+    # Kelvin typed where degC is meant; a temperature limit on a wall that never heats; cooling by a word unknown.
+    ({"thermal": {"shift": "isd110-loss-peak", "heat_capacity": 1.8, "temperature": 294.15}},
+     r"temperature 294.15 degC is above 200 degC.*subtract 273.15"),
+    ({"thermal": {"shift": {"law": "arrhenius", "activation_energy": 2e5, "reference": 294.15,
+                            "valid": [273.15, 323.15]}, "heat_capacity": 1.8}}, r"reference 294.15 degC is above 200"),
+    ({"limits": {"temperature": 80.0}}, r"needs a wall with a thermal description"),
+    ({"thermal": {"shift": "isd110-loss-peak", "heat_capacity": 1.8, "cooling_time": "fast"}},
+     r"cooling_time must be a time in s or \"conduction\""),
 ])
 def test_malformed_wall_tables_are_refused_naming_the_key(wall, match):
     with pytest.raises(ValueError, match=match):
         building_from_dict(base(**wall))
+
+
+def test_conduction_cooling_is_each_wall_s_own_conduction_time():
+    # Reference: h^2 / (pi^2 kappa), kappa = 0.1 mm^2/s, by hand for each wall's layer thickness.
+    data = {"masses": [100.0, 100.0], "stiffnesses": [1e5, 1e5], "walls": [{
+        "stories": "all", "parameters": "fitted-300", "thickness": [8.29, 2.37],
+        "thermal": {"shift": "isd110-loss-peak", "heat_capacity": 1.8, "cooling_time": "conduction"}}]}
+    walls = building_from_dict(data).wall_list
+    for (_, wall), thickness in zip(walls, (8.29, 2.37), strict=True):
+        assert wall.thermal.cooling_time == pytest.approx(thickness**2 / (math.pi**2 * 0.1), rel=1e-14)

@@ -18,7 +18,7 @@ from vdw_frames.frame.integrator import NewtonRaphson
 DAMPING_MODELS = ("rayleigh", "modal")
 
 
-def reference_newmark(masses, damping, k0, yield_force, hardening, geometric, ground, dt):
+def reference_newmark(masses, damping, k0, yield_force, hardening, geometric, *, ground, dt):
     """Newmark (gamma 1/2, beta 1/4) with Newton on dense matrices; stories elastoplastic with kinematic
     hardening (yield_force inf: linear) and a P-Delta stiffness ``geometric`` per story.  Returns drifts."""
     n = masses.size
@@ -80,7 +80,7 @@ def run_reference(building, ground, dt):
         hardening = np.array([m.hardening for m in building.hysteresis])
     return reference_newmark(np.asarray(building.masses), np.asarray(building.damping_matrix),
                              np.asarray(building.stiffnesses), yield_force, hardening,
-                             np.asarray(building.geometric_stiffness), ground, dt)
+                             np.asarray(building.geometric_stiffness), ground=ground, dt=dt)
 
 
 def sine_motion(frequency=1.0, amplitude=3000.0, duration=12.0, dt=0.01):

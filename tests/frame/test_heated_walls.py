@@ -173,3 +173,16 @@ def test_a_warning_names_each_wall_whose_temperature_left_its_law_s_range_and_wh
     assert named.keys() == expected.keys()
     for story, time in expected.items():
         assert named[story] == pytest.approx(time, rel=1e-3)
+
+
+def test_the_modes_of_walls_at_rest_beyond_their_law_s_range_take_the_law_at_the_range_s_end():
+    # The measurement: walls at rest at 100 degC gave mode-1 damping 5.20 % (the law extrapolated) against
+    # 6.45 % in the time domain (the law held at 70 degC).  Reference: walls written out with eta x a_T^r at the
+    # range's end, a_T = 10^(-(70 - 21.2) / 19.45) by the law's printed formula.
+    held = 10.0 ** (WALL.r * -(70.0 - 21.2) / ((65.6 - 26.7) / 2.0))
+    at_end = dataclasses.replace(WALL, eta1=WALL.eta1 * held, eta2=WALL.eta2 * held)
+    with pytest.warns(UserWarning, match="temperature 100 degC is outside the shift law's range 0 ... 70 degC"):
+        hot = vdw.modal_analysis(five_story([heated(WALL, temperature=100.0)]))
+    reference = vdw.modal_analysis(five_story([at_end]))
+    np.testing.assert_allclose(hot.damping_ratios, reference.damping_ratios, rtol=1e-10)
+    np.testing.assert_allclose(hot.periods, reference.periods, rtol=1e-10)

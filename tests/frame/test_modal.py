@@ -10,9 +10,8 @@ from reference import state_space_eigenvalues
 from scipy.linalg import eigh
 from scipy.optimize import brentq, minimize_scalar
 
-import vdw_frames.frame.modal as modal
 from vdw_frames import FDMKDamper, ShearBuilding, SupportedDamper
-from vdw_frames.frame import ModalResult, modal_analysis
+from vdw_frames.frame import ModalResult, modal, modal_analysis
 from vdw_frames.paper import fitted, strain_dependent
 
 KELVIN_MAXWELL = FDMKDamper(**CLASSICAL_KELVIN_MAXWELL, area=1.5e5)

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from pushover_reference import bilinear_frame, modal_pattern, physical_path
 
 import vdw_frames as vdw
 from vdw_frames.frame.pushover import pushover
@@ -135,3 +136,146 @@ def test_needs_story_heights_and_a_stable_frame():
     unstable = vdw.ShearBuilding([100.0], [1.0e3], story_heights=[3000.0], gravity_loads=[1.0e7])
     with pytest.raises(ValueError, match="unstable under its gravity loads"):
         pushover(unstable)
+
+
+# ---------------------------------------------------------------------------------------------- several softening
+ISSUE_FRAME = dict(masses=[250.0, 250.0, 200.0], k=[60.0e3, 55.0e3, 40.0e3], h=[4000.0, 3500.0, 3500.0],
+                   yield_forces=[c * 700.0 * G for c in (0.075, 0.065, 0.04)], hardening=[0.01, 0.02, 0.02])
+SEVERAL_SOFTENING = {
+    # issue 29 A.1: stories 1 and 2 soften past yield (story 3 would harden); story 1 localises; modal loads
+    "issue frame": (ISSUE_FRAME, "modal", 0),
+    # two stories both softening past yield; story 2 is the weaker under the pattern and localises
+    "2 stories, story 2 localises": (dict(masses=[300.0, 300.0], k=[50.0e3, 45.0e3], h=[4000.0, 4000.0],
+                                          yield_forces=[2.2e6, 1.0e6], hardening=[0.0, 0.01]), [1.0, 1.0], 1),
+    # three stories all softening past yield; story 2 localises, stories 1 and 3 unload
+    "3 stories, all soften": (dict(masses=[300.0, 300.0, 300.0], k=[50.0e3, 45.0e3, 40.0e3],
+                                   h=[4000.0, 3500.0, 3500.0], yield_forces=[2.6e6, 1.9e6, 1.5e6],
+                                   hardening=[0.0, 0.0, 0.005]), [1.0, 2.0, 3.0], 1),
+    # frames on which the Newton iteration of version 0.2 converged to two stories going opposite ways (drifts
+    # +500 / -473 mm; +249 / -238 mm) and gave mu_T 2.17 and 1.19 without a word; the physical path: 12.5, 7.05
+    "2 stories, once a wrong branch": (dict(masses=[250.0, 300.0], k=[60.0e3, 58.0e3], h=[4300.0, 4100.0],
+                                            yield_forces=[c * 550.0 * G for c in (0.085, 0.055)],
+                                            hardening=[0.001, 0.005]), "modal", 1),
+    "3 stories, once a wrong branch": (dict(masses=[160.0, 200.0, 235.0], k=[64.0e3, 67.0e3, 31.0e3],
+                                            h=[3700.0, 4000.0, 4100.0],
+                                            yield_forces=[c * 595.0 * G for c in (0.040, 0.030, 0.045)],
+                                            hardening=[0.0094, 0.0056, 0.0066]), "modal", 1),
+    # story 3 yields first and hardens (tangent b k - P/h > 0), then story 1 peaks: story 3 unloads from its
+    # yielded state along its elastic line, story 2 (softening past yield, but stronger) never yields
+    "3 stories, a hardening story unloads": (dict(masses=[300.0, 300.0, 300.0], k=[50.0e3, 45.0e3, 40.0e3],
+                                                  h=[4000.0, 3500.0, 3500.0], yield_forces=[2.0e6, 2.1e6, 0.5e6],
+                                                  hardening=[0.0, 0.0, 0.3]), [1.0, 1.0, 1.0], 0),
+    # the same with story 3 hardening more, and yielding in reverse (kinematic hardening) as it unloads
+    "3 stories, a hardening story yields in reverse": (dict(masses=[300.0, 300.0, 300.0], k=[50.0e3, 45.0e3, 40.0e3],
+                                                            h=[4000.0, 3500.0, 3500.0],
+                                                            yield_forces=[2.0e6, 2.1e6, 0.3e6],
+                                                            hardening=[0.0, 0.0, 0.5]), [1.0, 1.0, 1.0], 0),
+}
+
+
+@pytest.mark.parametrize("name", list(SEVERAL_SOFTENING))
+def test_several_softening_stories_follow_the_physical_branch(name):
+    """Issue 29 A.1: with two or three stories whose post-yield tangent is negative, the whole capacity path
+    (drifts of every story, at every point, before and after the peak) against the closed form of
+    :func:`physical_path`, to 1e-6; V_max, delta_u and mu_T (eqs. 6-6 to 6-8 with phi_1, T1 from numpy)."""
+    frame, pattern, localising = SEVERAL_SOFTENING[name]
+    masses = np.asarray(frame["masses"])
+    gravity = np.cumsum((masses * G)[::-1])[::-1]  # the weight above each story
+    building = bilinear_frame(**frame, gravity=gravity)
+    shape, t1 = modal_pattern(masses, frame["k"], gravity, frame["h"])
+    loads = masses * shape if pattern == "modal" else np.asarray(pattern, dtype=float)
+    drifts, peak, c = physical_path(frame["k"], frame["yield_forces"], frame["hardening"], gravity,
+                                    np.asarray(frame["h"]), loads)
+    assert c == localising
+    assert sum(np.asarray(frame["hardening"]) * frame["k"] < gravity / frame["h"]) >= 2  # several would soften
+    result = pushover(building, pattern, 0.10)
+    np.testing.assert_allclose(result.pattern, loads / loads.sum(), rtol=1e-12)
+    assert result.max_base_shear == pytest.approx(peak, rel=1e-9)
+    top = int(np.argmax(result.base_shear))
+    assert result.ultimate_roof_displacement is not None and top < result.base_shear.size - 2
+    scale = float(np.max(np.abs(result.story_drift)))
+    for j, (load, measured) in enumerate(zip(result.base_shear, result.story_drift, strict=True)):
+        np.testing.assert_allclose(measured, drifts(load, j > top), rtol=1e-6, atol=1e-6 * scale, err_msg=f"point {j}")
+    past = result.story_drift[top + 1:]
+    assert np.all(np.diff(past[:, c]) > 0)  # the localising story's drift only grows
+    others = np.delete(past, c, axis=1)
+    assert np.all(np.diff(others, axis=0) < 0)  # every other story unloads
+    # FEMA P695 eqs. (6-6)-(6-8) by hand: C0 from phi_1, delta_y,eff at T1, delta_u where V = 0.8 V_max (a
+    # straight descending branch: the roof displacement is the sum of the closed-form drifts there).
+    c0 = shape[-1] * np.sum(masses * shape) / np.sum(masses * shape**2)
+    delta_y = c0 * peak / (masses.sum() * G) * G / (4.0 * math.pi**2) * t1**2
+    delta_u = float(np.sum(drifts(0.8 * peak, True)))
+    assert result.period == pytest.approx(t1, rel=1e-9)
+    assert result.yield_roof_displacement == pytest.approx(delta_y, rel=1e-9)
+    assert result.ultimate_roof_displacement == pytest.approx(delta_u, rel=1e-6)
+    assert result.period_based_ductility == pytest.approx(delta_u / delta_y, rel=1e-6)
+
+
+def test_equal_strengths_the_lowest_story_localises():
+    """The tie of the branch rule: two identical elastic-perfectly-plastic stories both carrying the whole base
+    shear (the load on the roof) reach F_y at once; the lower one takes the plateau, the upper one stays at F_y / k."""
+    k, fy = 1.0e5, 2.0e5
+    building = vdw.ShearBuilding([100.0, 100.0], [k, k], story_heights=[3000.0, 3000.0],
+                                 hysteresis=[vdw.Bilinear(fy), vdw.Bilinear(fy)])
+    result = pushover(building, [0.0, 1.0], 0.02)
+    plateau = result.base_shear >= fy * (1.0 - 1e-12)
+    assert plateau.sum() > 10 and np.all(result.base_shear[plateau] == pytest.approx(fy, rel=1e-12))
+    np.testing.assert_allclose(result.story_drift[plateau, 1], fy / k, rtol=1e-12)
+    np.testing.assert_allclose(result.story_drift[plateau, 0], result.roof_displacement[plateau] - fy / k, rtol=1e-12)
+
+
+def test_smooth_peak_of_bouc_wen_stories():
+    """Bouc-Wen stories (n = 1, beta = gamma = 1/2) with P-Delta: on loading from rest z = 1 - exp(-d/d_y), so
+    V(d) = b k d + (1 - b) F_y (1 - exp(-d/d_y)) - P/h d, with its peak where b k - P/h + (1 - b) k exp(-d/d_y) = 0;
+    on unloading dz/dd = 1/d_y exactly (while z > 0), an elastic line of slope k - P/h.  Two stories soften past
+    their peaks; the one whose peak of V / S comes first localises, the other unloads.  Story shears against the
+    backbone to 1e-3 of F_y (the accuracy of the package's TR-BDF2 update over 0.1 d_y sub-increments, about
+    4e-4 of the force), the unloading story's drift against its elastic line to 1e-9."""
+    masses = np.array([250.0, 250.0])
+    k, fy, b, h = np.array([60.0e3, 50.0e3]), np.array([0.08, 0.04]) * 500.0 * G, np.array([0.01, 0.005]), 4000.0
+    gravity = np.cumsum((masses * G)[::-1])[::-1]
+    theta = gravity / h
+    building = vdw.ShearBuilding(masses, k, story_heights=[h, h], gravity_loads=gravity,
+                                 hysteresis=[vdw.BoucWen(f, bb) for f, bb in zip(fy, b, strict=True)])
+    share = np.array([1.0, 0.5])  # loads (1, 1): story 2 carries half the base shear
+    d_y = fy / k
+
+    def backbone(j, d):
+        return b[j] * k[j] * d + (1.0 - b[j]) * fy[j] * (1.0 - np.exp(-d / d_y[j])) - theta[j] * d
+
+    d_peak = -d_y * np.log((theta - b * k) / ((1.0 - b) * k))
+    peaks = np.array([backbone(j, d_peak[j]) for j in range(2)]) / share
+    c = int(np.argmin(peaks))
+    result = pushover(building, [1.0, 1.0], 0.08, steps=400)
+    assert result.max_base_shear == pytest.approx(peaks[c], rel=1e-3)
+    top = int(np.argmax(result.base_shear))
+    # every story on its backbone up to the peak, and story c past it: its shear lambda S_j against V(d) there
+    for j, points in ((0, slice(0, top + 1)), (1, slice(0, top + 1)), (c, slice(top, None))):
+        np.testing.assert_allclose(result.base_shear[points] * share[j], backbone(j, result.story_drift[points, j]),
+                                   rtol=1e-3, atol=1e-3 * fy[j])
+    after = slice(top + 1, None)
+    localised = result.story_drift[after, c]
+    other = 1 - c
+    unloading = result.story_drift[top, other] - (result.base_shear[top] - result.base_shear[after]) * share[other] \
+        / (k[other] - theta[other])
+    np.testing.assert_allclose(result.story_drift[after, other], unloading, rtol=1e-9, atol=1e-9 * d_y[other])
+    assert np.all(np.diff(localised) > 0) and result.ultimate_roof_displacement is not None
+
+
+@pytest.mark.parametrize("hardening", [1e-6, 1e-12, 1e-15])
+def test_a_near_plateau_is_followed_to_the_target(hardening):
+    """Story 2 of the first test with a hardening so small that one unit in the last place of the load factor
+    moves the roof by up to a third of a millimetre (b = 1e-15: a tangent of 1e-10 N/mm): the path still
+    reaches the target, every point in equilibrium.  Story 1 carries V = lambda elastically (d_1 = V / k),
+    story 2 carries share x V on its post-yield line F = b k d + (1 - b) F_y."""
+    k, fy = 1.0e5, 1.6e5
+    result = pushover(two_story(hardening=hardening), "modal", 0.02)
+    share = GOLDEN / (1.0 + GOLDEN)
+    assert result.end == "target" and result.roof_displacement[-1] == pytest.approx(0.02 * 6000.0, rel=1e-12)
+    assert np.all(np.diff(result.roof_displacement) > 0)
+    np.testing.assert_allclose(result.story_drift[:, 0], result.base_shear / k, rtol=1e-12, atol=1e-12)
+    yielded = result.story_drift[:, 1] > fy / k * (1.0 + 1e-9)
+    assert yielded.sum() > 400
+    drift = result.story_drift[yielded, 1]
+    np.testing.assert_allclose(result.base_shear[yielded] * share, hardening * k * drift + (1.0 - hardening) * fy,
+                               rtol=1e-12)

@@ -3,7 +3,10 @@ their thermal descriptions and limits, story models, P-Delta) come back equal, a
 quantity; files that are not saved results are refused."""
 
 import dataclasses
+import json
+import os
 import warnings
+import zipfile
 
 import numpy as np
 import pytest
@@ -127,3 +130,160 @@ def test_walls_that_follow_their_amplitude_come_back_with_their_histories(tmp_pa
     assert loaded.building.wall_list == building.wall_list
     np.testing.assert_array_equal(loaded.wall_amplitude, result.wall_amplitude)
     np.testing.assert_array_equal(loaded.wall_time_outside_range, result.wall_time_outside_range)
+
+
+def test_save_refuses_a_link_a_folder_or_a_fifo_and_leaves_what_it_points_to(result, tmp_path):
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    victim = elsewhere / "passwd"  # no .npz suffix: before, a link named run.npz replaced it all the same
+    victim.write_text("keep me")
+    linked, dangling, folder = tmp_path / "linked.npz", tmp_path / "dangling.npz", tmp_path / "folder.npz"
+    linked.symlink_to(victim)
+    dangling.symlink_to(elsewhere / "new.npz")  # before: created elsewhere/new.npz
+    folder.mkdir()
+    for path, message in ((linked, "a symbolic link; the package writes no file through a link"),
+                          (dangling, "a symbolic link; the package writes no file through a link"),
+                          (folder, "is a folder; give a file name")):
+        with pytest.raises(ValueError, match=f"{path.name}: {message}"):
+            result.save(path)
+    if hasattr(os, "mkfifo"):
+        fifo = tmp_path / "pipe.npz"
+        os.mkfifo(fifo)
+        with pytest.raises(ValueError, match=r"pipe.npz: not a regular file \(a FIFO, socket or device\)"):
+            result.save(fifo)
+    assert victim.read_text() == "keep me" and [p.name for p in elsewhere.iterdir()] == ["passwd"]
+    assert linked.is_symlink() and dangling.is_symlink()
+    # A new path and a regular .npz file are written.
+    assert SimulationResult.load(result.save(tmp_path / "new.npz")).time.size == result.time.size
+
+
+# ------------------------------------------------------------------------------------- hostile files
+def rewrite(source, target, arrays=None, metadata=None, building=None):
+    """``source`` (a saved result) written again to ``target`` with some arrays, metadata entries or building
+    arguments replaced, as a hostile or broken writer would (numpy and json only, no package code)."""
+    with np.load(source) as data:
+        contents = {name: data[name] for name in data.files}
+    meta = json.loads(str(contents["metadata"]))
+    meta.update(metadata or {})
+    meta["building"]["arguments"].update(building or {})
+    contents.update(arrays or {})
+    contents["metadata"] = np.array(json.dumps(meta))
+    np.savez(target, **contents)
+    return target
+
+
+@pytest.fixture(scope="module")
+def saved(result, tmp_path_factory):
+    return result.save(tmp_path_factory.mktemp("saved") / "run.npz")
+
+
+HEIGHTS_X1000 = {"story_heights": {"tuple": [1000.0 * h for h in TEN_STORY_HEIGHTS]}}
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"metadata": {"converged": "yes"}}, "converged must be True or False, got 'yes'"),
+    ({"metadata": {"newton_iterations": -5}}, "newton_iterations must be a whole number >= 0, got -5"),
+    ({"metadata": {"newton_iterations": "many"}}, "newton_iterations must be a whole number >= 0, got 'many'"),
+    ({"metadata": {"collapse_time": {"array": [1.0], "dtype": "|O"}}},
+     r"collapse_time: an entry that cannot be read \(an array of dtype object\)"),
+    ({"metadata": {"collapse_time": float("nan")}}, "collapse_time must be the last time, .* got nan"),
+    ({"arrays": {"result.time": np.arange(3).astype("datetime64[s]")}}, "time must be a float64 array, got datetime64"),
+    ({"arrays": {"result.displacement": np.zeros(5)}}, r"displacement must have shape \(\d+, 10\), got \(5,\)"),
+    ({"arrays": {"result.group_strain": np.zeros((3, 2))}}, r"group_strain must have shape \(\d+, 4\), got \(3, 2\)"),
+    ({"arrays": {"result.group_failure": np.array([[10**9, 1], [-1, 0], [-1, 0], [-1, 0]])}},
+     r"group_failure must hold, per wall group, a failure step in 0 ... \d+ \(-1: intact\)"),
+    ({"arrays": {"result.wall_group": np.array([0, 1, 2, 7])}},
+     r"wall_group must give each of the building's 4 walls one of the 4 wall groups"),
+    ({"arrays": {"result.wall_share": np.array([1.0, 1.0, 1.0, 0.5])}}, "wall_share must give each wall a share"),
+    ({"building": HEIGHTS_X1000}, r"base_shear disagrees with story 1's frame, wall, P-Delta and damping forces"),
+    ({"building": {"masses": {"tuple": [600.0] * 9 + [451.0]}}},
+     "energy.kinetic disagrees with v\\^T M v / 2 with the building's masses"),
+    ({"building": {"stiffnesses": {"tuple": [3e5] * 10}}}, "energy.frame_strain disagrees with sum F_s"),
+])
+def test_load_refuses_a_file_whose_entries_are_wrong_naming_the_entry(saved, tmp_path, change, message):
+    path = rewrite(saved, tmp_path / "bad.npz", **change)
+    with pytest.raises(ValueError, match=f"bad.npz: {message}"):
+        SimulationResult.load(path)
+
+
+def test_load_refuses_a_reversed_time_non_finite_histories_and_a_drift_not_of_the_displacements(result, saved,
+                                                                                                 tmp_path):
+    velocity = result.velocity.copy()
+    velocity[5, 3] = np.nan
+    cases = [({"result.time": result.time[::-1].copy()}, r"time must be \(first step \+ k\) dt"),
+             ({"result.velocity": velocity}, r"velocity must be finite, got nan at index \(5, 3\)"),
+             ({"energy.input": np.full(result.time.size, np.inf)},
+              r"energy.input must be finite, got inf at index \(0,\)"),
+             ({"result.drift": result.drift * 1.001}, "drift disagrees with the displacement differences")]
+    for arrays, message in cases:
+        path = rewrite(saved, tmp_path / "bad.npz", arrays=arrays)
+        with pytest.raises(ValueError, match=f"bad.npz: {message}"):
+            SimulationResult.load(path)
+
+
+def test_load_refuses_raw_members_deep_metadata_and_a_fifo(saved, tmp_path):
+    raw = tmp_path / "raw.npz"
+    raw.write_bytes(saved.read_bytes())
+    with zipfile.ZipFile(raw, "a") as archive:
+        archive.writestr("notes.txt", "not an array")
+    with pytest.raises(ValueError, match=r"raw.npz: entries \['notes.txt'\] are not numpy arrays"):
+        SimulationResult.load(raw)
+    nested: object = 0.0
+    for _ in range(800):
+        nested = [nested]
+    deep = rewrite(saved, tmp_path / "deep.npz", metadata={"collapse_time": nested})
+    with pytest.raises(ValueError, match=r"deep.npz: metadata nested more than 32 deep"):
+        SimulationResult.load(deep)
+    if hasattr(os, "mkfifo"):
+        fifo = tmp_path / "pipe.npz"
+        os.mkfifo(fifo)  # np.load would wait for a writer forever
+        with pytest.raises(ValueError, match=r"pipe.npz: not a regular file"):
+            SimulationResult.load(fifo)
+
+
+def test_the_checks_pass_a_file_as_saved_and_hold_the_analysis_identities(result, saved, tmp_path):
+    """The untouched file loads bit-exact (above); rewritten by numpy without a change it loads too; and the
+    identities are those of the analysis: the P-Delta energy is -sum P d^2 / (2 h) computed here."""
+    same = SimulationResult.load(rewrite(saved, tmp_path / "same.npz"))
+    np.testing.assert_array_equal(same.drift, result.drift)
+    heights, loads = np.array(TEN_STORY_HEIGHTS), np.array(TEN_STORY_GRAVITY)
+    np.testing.assert_allclose(result.energy.p_delta, -(result.drift**2 * loads / (2 * heights)).sum(axis=1),
+                               rtol=1e-9, atol=1e-9 * np.abs(result.energy.p_delta).max())
+
+
+def _variants():
+    frame = vdw.ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES)  # no heights, no walls
+    walled = vdw.ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES, story_heights=TEN_STORY_HEIGHTS,
+                               walls={1: vdw.paper.fitted(300, area=0.4e6), 3: vdw.paper.fitted(450, area=0.2e6)})
+    strain_dependent = vdw.paper.strain_dependent(area=0.5e6, thickness=10.0, common_order=False)
+    return {
+        "bare frame without heights": (frame, {}),
+        "modal damping and walls": (dataclasses.replace(walled, damping_model="modal"), {}),
+        "P-Delta, Bilinear stories, a collapse": (
+            dataclasses.replace(walled, gravity_loads=tuple(TEN_STORY_GRAVITY),
+                                hysteresis=[vdw.Bilinear(0.02 * TEN_STORY_GRAVITY[0], 0.0)] * 10),
+            {"collapse_drift_ratio": 0.002}),
+        "strain-compatible walls": (dataclasses.replace(frame, walls={1: strain_dependent, 2: strain_dependent}),
+                                    {"strain_compatible": True}),
+    }
+
+
+@pytest.mark.parametrize("name", list(_variants()))
+def test_every_kind_of_result_loads_back_bit_exact_through_the_checks(name, tmp_path):
+    building, options = _variants()[name]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = vdw.simulate(building, tapered_pulse().scaled(3.0), **options)
+    assert name != "P-Delta, Bilinear stories, a collapse" or result.collapsed  # the case the file must hold
+    loaded = SimulationResult.load(result.save(tmp_path / "variant.npz"))
+    for item in dataclasses.fields(SimulationResult):
+        saved = getattr(result, item.name)
+        if isinstance(saved, np.ndarray):
+            assert getattr(loaded, item.name).dtype == saved.dtype
+            np.testing.assert_array_equal(getattr(loaded, item.name), saved)
+        elif item.name not in ("building", "energy", "initial_state"):
+            assert getattr(loaded, item.name) == saved, item.name
+    for item in dataclasses.fields(result.energy):
+        _same(getattr(loaded.energy, item.name), getattr(result.energy, item.name))
+    for name in ("masses", "stiffnesses", "story_heights", "gravity_loads", "hysteresis", "wall_list", "damping_model"):
+        assert getattr(loaded.building, name) == getattr(result.building, name), name

@@ -122,9 +122,19 @@ def test_result_fields_and_the_equivalent_linear_building():
 @pytest.mark.records
 def test_no_convergence_is_reported():
     motion = read_at2(shared_record("ARL360.at2")).scaled_to_pga(0.8 * G)
-    with pytest.warns(UserWarning, match="did not converge in 2 analyses"):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
         result = simulate(ten_story(), motion, strain_compatible=StrainCompatibleOptions(max_iterations=2))
     assert result.strain_iterations == 2 and result.strain_converged is False
+    messages = [str(w.message) for w in caught if issubclass(w.category, UserWarning)]
+    assert any("did not converge in 2 analyses" in m for m in messages), messages
+    # At 0.8 g the upper stories' effective strains fall below the identified range: said, not hidden.
+    below = [m for m in messages if "outside 225-450 %: parameters of 225 % used" in m]
+    assert len(below) == 1 and "wall 2 (story 3)" in below[0], messages
+    # And the peak strains above the range, naming the model.
+    above = [m for m in messages if "wall peak strain outside the range" in m]
+    assert len(above) == 1 and "StrainDependentDamper, equivalent-linear" in above[0], messages
+    assert len(messages) == 3, messages
 
 
 def test_fixed_parameter_analyses_refuse_strain_dependent_walls():

@@ -66,7 +66,7 @@ def test_after_a_failure_the_frame_moves_as_the_frame_without_that_wall(thermal)
     intact = quiet_simulate(limited_frame(1e9, thermal=thermal), MOTION)
     limit = 0.5 * np.abs(intact.wall_strain[:, 0]).max()
     result = quiet_simulate(limited_frame(limit, thermal=thermal), MOTION)
-    failure = int(round(result.wall_failure_time[0] / (result.time[1] - result.time[0])))
+    failure = round(result.wall_failure_time[0] / (result.time[1] - result.time[0]))
     without = five_story({2: [WALL.resized(2.9e5)], 3: [WALL], 4: [WALL], 5: [WALL]})
     restart = quiet_simulate(without, MOTION, initial_state=result.state_at(failure))
     assert restart.time[0] == pytest.approx(result.time[failure], abs=1e-12)
@@ -99,7 +99,7 @@ def test_the_energy_balance_closes_with_the_energy_released_at_failure(thermal):
     # the walls' heat balance does not jump at a failure (before: 2.3e5 N*mm, 19 times the walls' heat).
     dt = result.time[1] - result.time[0]
     for wall in np.flatnonzero(result.wall_failed):
-        row = int(round(result.wall_failure_time[wall] / dt))
+        row = round(result.wall_failure_time[wall] / dt)
         force_work = 0.5 * result.wall_force[row, wall] * (result.drift[row + 1, wall] - result.drift[row, wall])
         step_release = energy.wall_released[row + 1] - energy.wall_released[row]
         assert step_release == pytest.approx(force_work, rel=1e-9)
@@ -154,7 +154,7 @@ def test_a_state_that_does_not_fit_the_analysis_is_refused():
     building = five_story({1: [WALL]})
     result = quiet_simulate(building, MOTION)
     state = result.state_at(100)
-    with pytest.raises(ValueError, match="dt = .* a fractional wall's memory is built for one step"):
+    with pytest.raises(ValueError, match=r"dt = .* a fractional wall's memory is built for one step"):
         quiet_simulate(building, MOTION, dt=MOTION.dt / 2, initial_state=state)
     three = vdw.ShearBuilding(masses=[100.0] * 3, stiffnesses=[1e5] * 3)
     with pytest.raises(ValueError, match="initial_state holds 5 stories, the building has 3"):

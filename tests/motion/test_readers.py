@@ -308,6 +308,39 @@ def test_read_at2_converts_the_units_its_header_states(tmp_path, header_line, fa
     np.testing.assert_allclose(motion.acceleration, np.array(VALUES_G) * factor, rtol=1e-15)
 
 
+@pytest.mark.parametrize("header_line, expected_mm_s2", [
+    # Spellings without the word UNITS, each read once as g (x 9806.65 or x 980.665 too large); the values in
+    # the file are 30, -12.5 and 0.25 of the unit the header names, converted here by hand.
+    ("ACCELERATION IN CM/S/S", [300.0, -125.0, 2.5]),
+    ("ACCELERATION (cm/s2)", [300.0, -125.0, 2.5]),
+    ("Acceleration [m/s^2]", [30000.0, -12500.0, 250.0]),
+    ("ACCEL. CM/SEC/SEC", [300.0, -125.0, 2.5]),
+    ("acceleration (gal)", [300.0, -125.0, 2.5]),
+    ("ACCELERATION, cm s-2", [300.0, -125.0, 2.5]),
+    ("ACCELERATION IN MM / S / S", [30.0, -12.5, 0.25]),
+    ("ACCELERATION [in/sec\u00b2]", [762.0, -317.5, 6.35]),  # 1 in = 25.4 mm
+    ("ACCELERATION IN G", [294199.5, -122583.125, 2451.6625]),  # g = 9806.65 mm/s^2
+    ("ACCELERATION [g]", [294199.5, -122583.125, 2451.6625]),
+    ("CHI-CHI 09/20/99, HWA002, N/S (CWB)", [294199.5, -122583.125, 2451.6625]),  # no unit named: g
+])
+def test_read_at2_reads_units_named_without_the_word_units(tmp_path, header_line, expected_mm_s2):
+    text = peer_at2("NPTS= 3, DT= 0.01", ["30.0 -12.5 0.25"], header=("PEER RECORD", header_line))
+    motion = read_at2(write_file(tmp_path, "spelled.AT2", text.encode("utf-8")))
+    np.testing.assert_allclose(motion.acceleration, expected_mm_s2, rtol=1e-15)
+
+
+@pytest.mark.parametrize("header_line, problem", [
+    ("ACCELERATION [mg]", r"line 2 states units 'mg' .*unknown header unit 'mg'"),
+    ("ACCELERATION IN FT/S2", r"line 2 states units 'FT/S2' .*unknown header unit 'FT/S2'"),
+    ("Acceleration (ft/sec^2)", r"line 2 states units 'ft/sec\^2' .*unknown header unit"),
+    ("ACCELERATION IN CM/S", r"line 2 states units 'CM/S' .*is a unit of velocity"),
+    ("ACCELERATION (cm/s2), PEAK 0.3 (g)", r"the header states two units, 'cm/s2' on line 2 and 'g' on line 2"),
+])
+def test_read_at2_refuses_a_named_unit_it_cannot_read_rather_than_reading_g(tmp_path, header_line, problem):
+    text = peer_at2("NPTS= 3, DT= 0.01", ["30.0 -12.5 0.25"], header=("PEER RECORD", header_line))
+    assert_rejected(read_at2, write_file(tmp_path, "unread.AT2", text), problem)
+
+
 @pytest.mark.parametrize("header_line, problem", [
     ("VELOCITY TIME HISTORY IN UNITS OF CM/SEC", "line 2 says this is a velocity history"),
     ("DISPLACEMENT TIME SERIES IN UNITS OF CM", "line 2 says this is a displacement history"),
@@ -353,7 +386,8 @@ def test_read_two_column_refuses_units_that_are_not_accelerations(tmp_path, unit
         read_two_column(write_file(tmp_path, "two.txt", "0 0.5\n0.01 -0.25\n"), unit=unit)
 
 
-@pytest.mark.parametrize("header", [["ACCELERATION IN UNITS OF CM/S2"], ["VELOCITY TIME HISTORY"]])
+@pytest.mark.parametrize("header", [["ACCELERATION IN UNITS OF CM/S2"], ["VELOCITY TIME HISTORY"],
+                                    ["ACCELERATION (cm/s2)"], ["PEAK 0.3 (g)"]])
 def test_write_at2_refuses_a_header_line_that_would_be_read_as_units(tmp_path, header):
     motion = GroundMotion(np.array(VALUES_G) * G, 0.01, "rt")
     with pytest.raises(ValueError, match="would be read as a statement of the file's units or quantity"):

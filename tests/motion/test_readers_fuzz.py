@@ -89,6 +89,8 @@ def at2_files(draw):
     dt_text = draw(steps)
     count = draw(st.sampled_from(COUNT_LINES)).format(n=len(values), dt=dt_text)
     header = draw(st.lists(HEADER_TEXT, min_size=0, max_size=3))
+    # Free text that names no unit (the files are in g): no ratio, brackets, "IN ...", gal or UNITS statement.
+    assume(not any(re.search(r"/|[(\[]|\bIN\b|\bGALS?\b|UNIT|\bS\W*2", line, re.I) for line in header))
     if draw(st.booleans()):
         header.insert(0, "SAMPLED AT DT= 0.5 SEC (a decoy: DT is read from the NPTS line only)")
     header = [line for line in header if line.strip()]

@@ -23,7 +23,7 @@ def test_synthetic_ground_motion_is_seeded():
     assert first.acceleration.size == 501 and first.duration == pytest.approx(5.0)
     assert first.pga == pytest.approx(0.2 * G, rel=1e-12)
     assert first.acceleration[0] == 0.0  # the envelope starts at 0
-    with pytest.raises(ValueError, match="ground_frequency = 60.0 Hz must be below the Nyquist frequency 50.0 Hz"):
+    with pytest.raises(ValueError, match=r"ground_frequency = 60\.0 Hz must be below the Nyquist frequency 50\.0 Hz"):
         gm.synthetic_ground_motion(ground_frequency=60.0)
 
 

@@ -345,6 +345,22 @@ def test_identify_with_four_or_five_parameters_fixed_finds_the_free_ones_optimum
     assert result.sse == pytest.approx(reference, rel=1e-6)
 
 
+@pytest.mark.parametrize("residual", ["absolute", "relative"])
+def test_only_g1_free_is_the_closed_form_linear_least_squares(residual):
+    """G1 enters G' alone and linearly (eq. (3)), so with the rest fixed the optimum is a weighted mean:
+    G1 = sum w (G'_measured - G'_rest) / sum w with w = 1 (absolute) or 1 / G'_measured^2 (relative).
+    (Under scipy 1.15 the bound-face step polished zero parameters and crashed.)"""
+    f, storage, loss = paper.data.table_moduli(300)
+    start = paper.fitted(300)
+    fixed = {name: getattr(start, name) for name in ("G2", "eta1", "eta2", "r")}
+    rest = fdmk_modulus(dict(fixed, G1=0.0), f).real
+    weight = np.ones_like(storage) if residual == "absolute" else 1.0 / storage**2
+    expected = max(float(np.sum(weight * (storage - rest)) / np.sum(weight)), 0.0)
+    result = identify(f, storage, loss, residual=residual, fixed=fixed)
+    assert result.params["G1"] == pytest.approx(expected, rel=1e-9, abs=1e-12)
+    assert {name: result.params[name] for name in fixed} == fixed
+
+
 @pytest.mark.parametrize("which", ["storage_modulus", "loss_modulus"])
 def test_negative_moduli_are_refused_as_non_physical(which):
     # Before: G' = -1 MPa everywhere was fitted (G1 = G2 = 0, a dashpot) with no word.

@@ -65,3 +65,32 @@ def test_response_figures_of_a_run_at_rest_or_stopped_at_its_first_step(tmp_path
                                 (plot_drift_envelope, (runs,)), (plot_roof_displacement, (runs,))):
             path = plot(*arguments, tmp_path / f"{plot.__name__}.png")
             assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_the_wall_amplitude_figure_names_its_traces_and_the_wall_and_story(tmp_path, monkeypatch):
+    # The wall of story 2 is wall 1 (the first story has none): the axis says so, and the |strain| trace is in
+    # the legend with the followed amplitude and the identified range.
+    import warnings
+
+    import numpy as np
+
+    import vdw_frames as vdw
+    from vdw_frames.motion import default_record
+    from vdw_frames.plotting import plot_wall_amplitude, walls
+
+    building = vdw.ShearBuilding(masses=[400.0, 380.0], stiffnesses=[3.0e5, 2.7e5],
+                                 walls={2: [vdw.paper.strain_dependent(area=0.3e6, thickness=8.0)]})
+    with warnings.catch_warnings():  # (whether the wall leaves its tested range is not this test's subject)
+        warnings.simplefilter("ignore", UserWarning)
+        result = vdw.simulate(building, default_record())
+    figures = []
+    real_save = walls.save
+    monkeypatch.setattr(walls, "save", lambda figure, path: (figures.append(figure), real_save(figure, path))[1])
+    path = plot_wall_amplitude({"model": result}, 1, tmp_path / "amplitude.png", strain_range=(2.25, 4.5))
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    axes = figures[0].axes[0]
+    assert axes.get_ylabel() == "wall 1 (story 2) strain (%)"
+    assert [text.get_text() for text in axes.get_legend().get_texts()] == [
+        "model: |strain|", "model: followed amplitude", "identified range"]
+    strain_line = axes.get_lines()[0]
+    np.testing.assert_array_equal(strain_line.get_ydata(), 100.0 * np.abs(result.wall_strain[:, 0]))

@@ -90,3 +90,27 @@ def test_site_table_errors_name_the_key():
         site_from_values({"sms": 1.5, "sm1": 0.9, "tl": 8, "sds": 1.0})
     with pytest.raises(ValueError, match="not both"):
         site_from_values({"sms": 1.5, "sm1": 0.9, "tl": 8, "ss": 1.0})
+
+
+@pytest.mark.parametrize("changes, message", [
+    ({"ss": -5}, r"ss \(S_S, g\) must be > 0, got -5"),
+    ({"s1": 0.0}, r"s1 \(S_1, g\) must be > 0, got 0"),
+    ({"fa": -1}, r"fa \(F_a, -\) must be > 0, got -1"),
+    ({"fv": float("inf")}, r"fv \(F_v, -\) must be finite, got inf"),
+    # 1.5 g x 1.0 is S_MS; 1.2 x 1.5 g = 1.8 g is not (1.8 is 20 % above 1.5)
+    ({"ss": 1.5, "fa": 1.2}, r"sms = 1.5 g disagrees with fa x ss = 1.2 x 1.5 = 1.8 g \(ASCE 7-16 Eq. 11.4-1; "
+                             r"tolerance 0.5% of sms\)"),
+    ({"s1": 0.6, "fv": 1.4}, r"sm1 = 0.9 g disagrees with fv x s1 = 1.4 x 0.6 = 0.84 g \(ASCE 7-16 Eq. 11.4-2"),
+])
+def test_site_refuses_impossible_or_inconsistent_mapped_values(changes, message):
+    with pytest.raises(ValueError, match=message):
+        Site(1.5, 0.9, 8.0, **changes)
+
+
+def test_site_accepts_mapped_values_within_the_rounding_tolerance():
+    # S_MS printed to three figures: 1.0 x 1.504 = 1.504 against 1.50 (0.27 %) is accepted, 1.51 (0.67 %) is not
+    assert Site(1.50, 0.9, 8.0, ss=1.504, fa=1.0, s1=0.6, fv=1.5).fa == 1.0
+    with pytest.raises(ValueError, match="sms = 1.5 g disagrees with fa x ss = 1.0 x 1.51 = 1.51 g"):
+        Site(1.50, 0.9, 8.0, ss=1.51, fa=1.0)
+    mapped = Site.from_mapped(1.0, 0.15, "D", 8.0)  # F_a S_S = S_MS exactly: still accepted
+    assert mapped.sms == pytest.approx(1.1)

@@ -44,7 +44,7 @@ def test_period_range_from_state_space_periods(building):
     bounds = period_range(building)
     np.testing.assert_allclose(bounds.periods[:3], periods, rtol=1e-8)
     # the 90 %-mass mode from the bare frame's real modes, computed here
-    w2, phi = eigh(building.stiffness_matrix, building.mass_matrix)
+    _w2, phi = eigh(building.stiffness_matrix, building.mass_matrix)
     masses = np.array(building.masses)
     effective = (phi.T @ masses) ** 2 / np.einsum("ij,ij->j", phi, masses[:, None] * phi)
     cumulative = np.cumsum(effective) / masses.sum()
@@ -102,7 +102,7 @@ def test_bad_suites_are_refused(building, records):
     with pytest.raises(ValueError, match="count = 10"):
         scaled_suite(building, SITE, records, count=10)
     short = GroundMotion(records[0].acceleration[:150], 0.01, name="short one")
-    with pytest.raises(ValueError, match="'short one' lasts 1.49 s.*too short for the period range"):
-        scaled_suite(building, SITE, [short] + records[:11])
+    with pytest.raises(ValueError, match=r"'short one' lasts 1\.49 s.*too short for the period range"):
+        scaled_suite(building, SITE, [short, *records[:11]])
     with pytest.raises(ValueError, match="no story heights"):
         scaled_suite(three_story(heights=False), SITE, records)

@@ -8,13 +8,14 @@ import numpy as np
 import pytest
 from verification_cases import r1_wall, synthetic_records, three_story
 
-from vdw_frames import ShearBuilding, simulate
+from vdw_frames import FDMKDamper, ShearBuilding, simulate
 from vdw_frames.element import ThermalProperties, WallLimits
 from vdw_frames.element.thermal import ISD110_LOSS_PEAK
 from vdw_frames.verification import Site
 from vdw_frames.verification.verify import (
     PropertyBounds,
     acceptance,
+    composed_factors,
     cycle_energies,
     stiffness_factors,
     unacceptable_reasons,
@@ -305,3 +306,107 @@ def test_ambient_bounds_are_checked():
         PropertyBounds(0.8, 1.2, ambient=(0.0, float("nan")))
     with pytest.raises(ValueError, match="need walls with a thermal description"):
         PropertyBounds(0.8, 1.2, ambient=(0.0, 40.0)).building(three_story(), "upper")
+
+
+# ---------------------------------------------------------------------------------------------- per-quantity ends
+def _past_the_loss_peak(temperature: float = 21.2) -> ShearBuilding:
+    """A frame whose walls work past their Maxwell branch's loss peak at the first mode (eta2 omega > G2): colder
+    they are stiffer but dissipate less."""
+    thermal = ThermalProperties(ISD110_LOSS_PEAK, 1.8, temperature)
+    wall = FDMKDamper(G1=0.5, G2=1.0, eta1=0.0, eta2=1.0, r=1.0, area=2.0e5, thickness=10.0, thermal=thermal)
+    return ShearBuilding(masses=(100.0, 100.0, 80.0), stiffnesses=(1.2e5, 1.0e5, 0.8e5), damping_ratio=0.03,
+                         walls={1: wall, 2: wall, 3: wall}, story_heights=(3500.0, 3200.0, 3200.0))
+
+
+def _by_hand(wall, temperature, frequency):
+    """K* (N/mm) of ``wall`` at ``temperature`` from the closed form at eta x a_T^r, a_T = 10^(-(T - 21.2) / 19.45)."""
+    from reference import wall_stiffness
+
+    shift = 10.0 ** (-(temperature - 21.2) / ((65.6 - 26.7) / 2.0) * wall.r)
+    params = {"G1": wall.G1, "G2": wall.G2, "eta1": wall.eta1 * shift, "eta2": wall.eta2 * shift, "r": wall.r}
+    return wall_stiffness(params, wall.area, wall.thickness, 2 * np.pi * frequency)
+
+
+@pytest.mark.parametrize("make", [_heated, _past_the_loss_peak], ids=["below the loss peak", "past the loss peak"])
+def test_each_bound_takes_the_ambient_end_that_bounds_its_quantity(make):
+    # Reference: K* at both ends from the closed form, written here; the upper bound (forces) takes the end of the
+    # larger |K*|, the lower bound (displacements) the end of the smaller K''.
+    building, frequency, ambient = make(), 0.8, (0.0, 40.0)
+    bounds = PropertyBounds(0.8, 1.25, ambient=ambient)
+    for _, wall in building.wall_list:
+        cold, hot = (_by_hand(wall, t, frequency) for t in ambient)
+        assert bounds.ambient_end(wall, "upper", frequency) == (0.0 if abs(cold) >= abs(hot) else 40.0)
+        assert bounds.ambient_end(wall, "lower", frequency) == (40.0 if hot.imag < cold.imag else 0.0)
+        assert bounds.ambient_end(wall, "nominal", frequency) is None
+        assert bounds.discordant(wall, frequency) == ((hot.imag < cold.imag) != (hot.real < cold.real))
+        factors = stiffness_factors(building, bounds, frequency)
+        nominal = _by_hand(wall, 21.2, frequency)
+        lower = _by_hand(wall, bounds.ambient_end(wall, "lower", frequency), frequency)
+        np.testing.assert_allclose(factors[2, 0], [0.8 * lower.real / nominal.real, 0.8 * lower.imag / nominal.imag],
+                                   rtol=1e-10)
+    past = _past_the_loss_peak().wall_list[0][1]
+    if make is _past_the_loss_peak:  # colder is stiffer but less damped: both bounds start cold
+        assert bounds.ambient_end(past, "upper", frequency) == bounds.ambient_end(past, "lower", frequency) == 0.0
+        assert bounds.discordant(past, frequency)
+        assert factors[1, 0, 0] > 1.25 and factors[2, 0, 1] < 0.8 * 0.9 and factors[2, 0, 0] > 0.8
+    else:  # below the loss peak colder is stiffer and more damped: upper cold, lower hot
+        assert [bounds.ambient_end(w, c, frequency) for c in ("upper", "lower") for _, w in building.wall_list[:1]] \
+            == [0.0, 40.0]
+
+
+def test_verify_warns_where_no_one_end_bounds_both_k_storage_and_k_loss(verified):
+    result, _ = verified
+    motions = list(result.suite.motions)
+    with concurrent.futures.ThreadPoolExecutor(2) as executor, \
+            pytest.warns(UserWarning, match="no one end of the ambient range"):
+        verify(_past_the_loss_peak(), SITE, motions, bounds=PropertyBounds(0.8, 1.25, ambient=(0.0, 40.0)),
+               executor=executor, progress=False)
+
+
+def test_lambda_composed_from_its_parts_as_asce_7_16_eqs_18_2_1_and_18_2_2():
+    # Hand products: (1 + 0.75 x 0.2) x 1.1 x 1.15 = 1.45475; (1 - 0.75 x 0.1) x 0.95 x 0.85 = 0.7469375.
+    lower, upper = composed_factors((0.9, 1.2), (0.95, 1.1), (0.85, 1.15))
+    assert upper == pytest.approx(1.45475, rel=1e-14) and lower == pytest.approx(0.7469375, rel=1e-14)
+    assert composed_factors() == (1.0, 1.0)
+    bounds = PropertyBounds.from_parts((0.9, 1.2), (0.95, 1.1), (0.85, 1.15), source="tests", ambient=(10.0, 30.0),
+                                       lambda_includes_temperature=False)
+    assert (bounds.lower, bounds.upper) == (lower, upper)
+    assert bounds.source.startswith("tests; lambda_ae (0.9, 1.2)") and "18.2-1" in bounds.source
+    with pytest.raises(ValueError, match=r"testing must be \(lambda_min <= 1, lambda_max >= 1\), got \(1.1, 1.2\)"):
+        composed_factors(testing=(1.1, 1.2))
+    with pytest.raises(ValueError, match="aging_environment must be"):
+        composed_factors(aging_environment=1.2)
+
+
+def test_temperature_is_not_counted_twice_and_kelvin_is_not_taken_for_degc():
+    with pytest.raises(ValueError, match="would count temperature twice"):
+        PropertyBounds(0.8, 1.2, ambient=(10.0, 30.0), lambda_includes_temperature=True)
+    assert PropertyBounds(0.8, 1.2, lambda_includes_temperature=True).lambda_includes_temperature
+    with pytest.raises(ValueError, match="lambda_includes_temperature must be True, False or None"):
+        PropertyBounds(0.8, 1.2, lambda_includes_temperature="yes")
+    with pytest.raises(ValueError, match=r"ambient temperature 283.15 degC is above 200 degC.*subtract 273.15 "
+                                         r"\(10 degC\)"):
+        PropertyBounds(0.8, 1.2, ambient=(283.15, 303.15))
+    with pytest.raises(ValueError, match="ambient temperature must be above absolute zero"):
+        PropertyBounds(0.8, 1.2, ambient=(-300.0, 20.0))
+
+
+def test_the_bounds_hold_a_temperature_beyond_the_law_s_range_at_its_end_as_the_analyses_do():
+    # The issue's measurement: verify printed a lower-bound K' x 0.00025 at 150 degC while its analyses used the
+    # law held at 70 degC.  Reference: the closed form at the range's end.
+    building, frequency = _heated(), 0.8
+    bounds = PropertyBounds(0.8, 1.25, ambient=(0.0, 150.0))
+    with pytest.warns(UserWarning, match="evaluated at 70 degC, the range's end"):
+        factors = stiffness_factors(building, bounds, frequency)
+    wall = building.wall_list[0][1]
+    nominal, held = _by_hand(wall, 21.2, frequency), _by_hand(wall, 70.0, frequency)
+    np.testing.assert_allclose(factors[2, 0], [0.8 * held.real / nominal.real, 0.8 * held.imag / nominal.imag],
+                               rtol=1e-10)
+
+
+def test_the_old_temperature_of_a_case_still_answers_with_a_deprecation_warning():
+    bounds = PropertyBounds(0.8, 1.2, ambient=(10.0, 30.0))
+    with pytest.warns(DeprecationWarning, match="ambient_end"):
+        assert (bounds.temperature("upper"), bounds.temperature("lower")) == (10.0, 30.0)
+    with pytest.raises(ValueError, match="needs the frequency"):
+        bounds.wall(_heated().wall_list[0][1], "upper")

@@ -122,6 +122,11 @@ bounds_source = "manufacturer's data sheet (example)"
     ("[verification]\nbounds = [0.8]\n", "bounds must be [lambda_min, lambda_max]"),
     ("[verification]\nbounds = [0.8, 1.2]\nsource = 'x'\n", "unknown verification keys"),
     ("[verification]\nbounds = [0.8, 1.2]\nambient = [40.0]\n", "ambient must be [coldest, hottest] in degC"),
+    # Kelvin typed where degC is meant, and temperature counted twice.
+    ("[verification]\nbounds = [0.8, 1.2]\nambient = [283.15, 303.15]\n", "subtract 273.15 (10 degC)"),
+    ("[verification]\nbounds = [0.8, 1.2]\nambient = [10.0, 30.0]\nlambda_includes_temperature = true\n",
+     "count temperature twice"),
+    ("[verification]\nbounds = [0.8, 1.2]\nlambda_includes_temperature = 'yes'\n", "must be true or false"),
     ("[site]\nsms = 1.5\ntl = 8.0\n", "only ['sms']"),
     ("[site]\nsms = 1.5\nsm1 = 0.9\n", "the site needs tl"),
 ])
@@ -154,19 +159,31 @@ def test_ambient_bounds_from_the_file_and_the_command_line(inputs, capsys):
         expected = verify(building, Site(1.5, 0.9, 8.0), records, executor=executor, progress=False,
                           bounds=PropertyBounds(0.8, 1.25, ambient=(0.0, 40.0)))
     frequency = 1.0 / expected.first_period
+    assert expected.ambient_ends == ((None,) * 3, (0.0,) * 3, (40.0,) * 3)  # walls below their loss peak
     for c, case, at in ((1, "upper", 0.0), (2, "lower", 40.0)):
         storage, loss = expected.stiffness_factors[c, :, 0], expected.stiffness_factors[c, :, 1]
-        assert (f"{case} bound: lambda {expected.cases[c][1]:g}, from {at:g} degC: K' x {storage.min():.3f}-"
+        assert (f"{case} bound: lambda {expected.cases[c][1]:g}, walls from {at:g} degC: K' x {storage.min():.3f}-"
                 f"{storage.max():.3f}, K'' x {loss.min():.3f}-{loss.max():.3f} at {frequency:.3f} Hz") in printed
     with open(out / "drifts.csv", newline="") as handle:
         drifts = np.array([float(row["peak_drift_ratio"]) for row in csv.DictReader(handle)])
     np.testing.assert_allclose(drifts, expected.peak_drift_ratio.ravel(), rtol=1e-12)
-    assert "the upper-bound walls start at 0 degC, the lower-bound ones at 40 degC" in (out / "report.md").read_text()
+    report = (out / "report.md").read_text()
+    assert "the upper bound (forces) at the larger |K*|, here 0 degC; the lower bound (displacements) at the " \
+           "smaller K'', here 40 degC" in report
+    assert "the lambdas are not stated to include or exclude the effect of temperature" in report
     # --ambient overrides the file's range.
     code = main(["verify", str(path), "--sms", "1.5", "--sm1", "0.9", "--tl", "8", "--ambient", "10", "30",
                  "--records", str(inputs / "records"), "--out", str(inputs / "out_heated_cli")])
     printed = capsys.readouterr().out
-    assert code == 0 and "upper bound: lambda 1.25, from 10 degC" in printed and "from 30 degC" in printed
+    assert code == 0 and "upper bound: lambda 1.25, walls from 10 degC" in printed and "from 30 degC" in printed
+
+
+def test_kelvin_on_the_command_line_is_refused_in_one_line(inputs, capsys):
+    code = main(["verify", str(inputs / "building.toml"), "--sms", "1.5", "--sm1", "0.9", "--tl", "8", "--bounds",
+                 "0.8", "1.2", "--ambient", "283.15", "303.15", "--records", str(inputs / "records"), "--out",
+                 str(inputs / "bad4")])
+    error = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(error) == 1 and "ambient temperature 283.15 degC is above 200 degC" in error[0]
 
 
 def test_ambient_bounds_need_walls_that_heat(inputs, capsys):

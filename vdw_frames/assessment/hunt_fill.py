@@ -26,10 +26,11 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .._validation import positive, show, whole_number
 
@@ -56,7 +57,7 @@ class HuntAndFill:
     fill_ratio: float = 1.1
     max_runs: int = 12
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.start is not None:
             object.__setattr__(self, "start", positive("start", self.start))
         if self.cap is not None:
@@ -120,7 +121,7 @@ class SearchResult:
     the bracket (1.0 when there are fewer than two).
     """
 
-    runs: tuple
+    runs: tuple[Run, ...]
     standing: float
     collapsing: float | None
     resolution: float = 1.0
@@ -133,7 +134,7 @@ class SearchResult:
     def censored(self) -> bool:
         return self.collapsing is None
 
-    def curve(self):
+    def curve(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
         """(intensity, peak drift ratio, collapsed) of every run, sorted by intensity: the IDA curve."""
         order = sorted(range(len(self.runs)), key=lambda k: self.runs[k].intensity)
         runs = [self.runs[k] for k in order]
@@ -146,18 +147,17 @@ def hunt_and_fill(run: Callable[[float], Run], settings: HuntAndFill, label: str
     ``start`` and ``cap`` set.  ValueError when the record collapses even at start / growth^12."""
     if settings.start is None or settings.cap is None:
         raise ValueError("hunt_and_fill needs settings with start and cap")
-    runs = []
+    runs: list[Run] = []
 
-    def analyse(intensity):
+    def analyse(intensity: float) -> bool:
         runs.append(run(intensity))
         return runs[-1].collapsed
 
-    def bracket():
-        """(highest standing intensity below the lowest collapse, lowest collapse or None)."""
-        collapses = [r.intensity for r in runs if r.collapsed]
-        lowest = min(collapses) if collapses else None
-        standing = [r.intensity for r in runs if not r.collapsed and (lowest is None or r.intensity < lowest)]
-        return (max(standing) if standing else None), lowest
+    def bracket() -> tuple[float, float]:
+        """(highest standing intensity below the lowest collapse, lowest collapse).  Called only once the
+        hunt has found both, and every later run keeps a standing one below the lowest collapse."""
+        lowest = min(r.intensity for r in runs if r.collapsed)
+        return max(r.intensity for r in runs if not r.collapsed and r.intensity < lowest), lowest
 
     growth = settings.growth
     intensity = settings.start
@@ -193,6 +193,6 @@ def hunt_and_fill(run: Callable[[float], Run], settings: HuntAndFill, label: str
     return SearchResult(tuple(runs), standing, collapsing, _widest_gap(runs, standing))
 
 
-def _widest_gap(runs, top: float) -> float:
+def _widest_gap(runs: Sequence[Run], top: float) -> float:
     below = sorted(r.intensity for r in runs if not r.collapsed and r.intensity <= top)
     return max((high / low for low, high in itertools.pairwise(below)), default=1.0)

@@ -9,8 +9,11 @@ from __future__ import annotations
 
 import csv
 import io
+import os
 import re
+from collections.abc import Callable, Mapping
 from pathlib import Path
+from typing import TypeVar
 
 import numpy as np
 
@@ -29,7 +32,10 @@ def _write_text(path: Path, text: str) -> Path:
     return write_text(path, text, "report file")  # atomic: a temporary file renamed over the target
 
 
-def _figure(function, argument, path: Path) -> Path:
+_Plotted = TypeVar("_Plotted")
+
+
+def _figure(function: Callable[[_Plotted, Path], Path], argument: _Plotted, path: Path) -> Path:
     return function(argument, path)  # the plotting functions write atomically (vdw_frames._files)
 
 
@@ -67,11 +73,11 @@ def analyses_csv(assessment: CollapseAssessment) -> str:
     return out.getvalue()
 
 
-def _g(value) -> str:
+def _g(value: float | None) -> str:
     return "-" if value is None else f"{value / G:.3f}"
 
 
-def markdown(assessments: dict, title: str = "FEMA P695 collapse assessment") -> str:
+def markdown(assessments: Mapping[str, CollapseAssessment], title: str = "FEMA P695 collapse assessment") -> str:
     """The report's Markdown: the set and its scaling, the P695 summary table, uncertainty, acceptance."""
     first = next(iter(assessments.values()))
     labels = list(assessments)
@@ -93,11 +99,13 @@ def markdown(assessments: dict, title: str = "FEMA P695 collapse assessment") ->
     lines += ["## Summary (FEMA P695 Chapters 6-7)", "",
               "| quantity | " + " | ".join(labels) + " |", "|---|" + "---:|" * len(labels)]
 
-    def row(name, values):
+    def row(name: str, values: list[str]) -> None:
         lines.append(f"| {name} | " + " | ".join(values) + " |")
 
     items = list(assessments.values())
-    row("analytical T1 (s)", [f"{a.analytical_period:.3f}" for a in items])
+    row("analytical T1 (s; walls at the mode's frequency)", [f"{a.analytical_period:.3f}" for a in items])
+    row("pushover model's T1 (s; walls' static stiffness)", [f"{a.pushover.elastic_period:.3f}" for a in items])
+    row("period of eq. 6-7, max(T, pushover T1) (s)", [f"{a.pushover.period:.3f}" for a in items])
     row("V_max / W (pushover)", [f"{a.pushover.max_base_shear / a.pushover.weight:.4f}" for a in items])
     row("delta_y,eff (mm, eq. 6-7)", [f"{a.pushover.yield_roof_displacement:.1f}" for a in items])
     row("delta_u (mm, 0.8 V_max)", ["-" if a.pushover.ultimate_roof_displacement is None else
@@ -106,7 +114,8 @@ def markdown(assessments: dict, title: str = "FEMA P695 collapse assessment") ->
     row("records standing at the cap", [str(int(a.censored.sum())) for a in items])
     row("analyses (mean / max per record)", [f"{a.total_analyses} ({a.analyses.mean():.1f} / {a.analyses.max()})"
                                              for a in items])
-    row("widest unfilled gap below collapse (median / max)", [f"{np.median(a.resolution):.3f} / "
+    row("widest unfilled gap below collapse (median / max)", ["-" if a.resolution is None else
+                                                              f"{np.median(a.resolution):.3f} / "
                                                               f"{np.max(a.resolution):.3f}" for a in items])
     row("Ŝ_CT (g)", [_g(a.median_collapse_intensity) for a in items])
     row("Ŝ_CT 90 % bootstrap interval (g)",
@@ -138,7 +147,8 @@ def markdown(assessments: dict, title: str = "FEMA P695 collapse assessment") ->
     return "\n".join(lines)
 
 
-def write_collapse_report(assessments: dict, out, title: str = "FEMA P695 collapse assessment") -> Path:
+def write_collapse_report(assessments: Mapping[str, CollapseAssessment], out: str | os.PathLike[str],
+                          title: str = "FEMA P695 collapse assessment") -> Path:
     """Write ``report.md``, the CSV files and the figures for ``assessments`` (label -> CollapseAssessment)
     into the folder ``out`` (created); returns the report's path."""
     if not assessments or not all(isinstance(a, CollapseAssessment) for a in assessments.values()):

@@ -114,8 +114,10 @@ def _relayered(building: ShearBuilding, walls: tuple[int, ...], scale: np.ndarra
     for index, (story, wall) in enumerate(building.wall_list):
         if index in factors and isinstance(wall, StrainDependentDamper):
             factor = factors[index]
-            wall = dataclasses.replace(wall, thickness=wall.thickness * factor, area=wall.area * factor)
-        by_story.setdefault(story, []).append(wall)
+            by_story.setdefault(story, []).append(
+                dataclasses.replace(wall, thickness=wall.thickness * factor, area=wall.area * factor))
+        else:
+            by_story.setdefault(story, []).append(wall)
     return building.with_walls({story: tuple(group) for story, group in by_story.items()})
 
 

@@ -212,7 +212,9 @@ class WallBank:
         for w, wall in enumerate(self.walls):  # the coefficients at the temperature at rest
             wall_thermal = getattr(wall, "thermal", None)
             if wall_thermal is not None:
-                constants[w, 2:4] *= wall_thermal.viscosity_factor(wall_thermal.temperature, wall_order(wall))
+                # held at the law's range, as every step is; the analysis warns of it itself (OUTSIDE)
+                constants[w, 2:4] *= wall_thermal.viscosity_factor(wall_thermal.temperature, wall_order(wall),
+                                                                   warn=False)
         memory = kernel.MemoryArrays(
             w0=np.array([m.w0 for m in memories]), window_weights=window_weights, window=np.zeros((count, 2, 2 * size)),
             mode_weight=mode_weight, mode_ratio=mode_ratio, mode_state=np.zeros((count, 2, modes)),

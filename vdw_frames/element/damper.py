@@ -35,7 +35,6 @@ from numpy.typing import ArrayLike
 from .._validation import (
     finite_array,
     finite_complex_array,
-    finite_scalar,
     fractional_order,
     non_negative,
     positive,
@@ -49,9 +48,9 @@ from .bank import DEFAULT_MEMORY, MEMORY_STRATEGIES, WallBank, kernel_constants,
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, Discretisation, get_method
 from .kernel import AMPLITUDE, FAILURE_MODE, FAILURE_MODES, FAILURE_STEP, HEAT, TEMPERATURE
-from .limits import WallLimits
+from .limits import WallLimits, check_temperature_limit
 from .prony import PronySeries, fit_prony
-from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, property_factors
+from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, property_factors, shift_factor
 from .wall import SteppedWall, StiffnessMethods
 
 __all__ = ["DEFAULT_MEMORY", "MEMORY_STRATEGIES", "WallState", "FDMKDamper", "driven_force"]
@@ -116,6 +115,7 @@ class FDMKDamper(StiffnessMethods):
             raise ValueError(f"thermal must be ThermalProperties (or None), got {type(self.thermal).__name__}")
         if self.limits is not None and not isinstance(self.limits, WallLimits):
             raise ValueError(f"limits must be WallLimits (or None), got {type(self.limits).__name__}")
+        check_temperature_limit(self.limits, self.thermal)
 
     # ------------------------------------------------------------------ temperature
     @cached_property
@@ -125,24 +125,28 @@ class FDMKDamper(StiffnessMethods):
         found (the wall is frozen): an analysis asks for it several times a wall."""
         if self.thermal is None:
             return self.eta1, self.eta2
-        factor = self.thermal.viscosity_factor(self.thermal.temperature, self.r)
+        factor = self.thermal.viscosity_factor(self.thermal.temperature, self.r)  # held at the law's range
         return self.eta1 * factor, self.eta2 * factor
 
     def at_temperature(self, temperature: float, shift: ShiftLaw | None = None) -> FDMKDamper:
         """The isothermal wall at ``temperature`` (degC): eta1 and eta2 times a_T(temperature)^r, G1, G2, r
         kept -- exact time-temperature superposition for this model (:mod:`vdw_frames.element.thermal`).
+        Outside the law's valid range the law is held at the range's end, with a warning, as the time domain
+        does (:func:`~vdw_frames.element.thermal.held_temperature`); ``temperature`` must be a service
+        temperature (above absolute zero, at most 200 degC).
 
         ``shift``: the law to use (default: this wall's ``thermal.shift``; one of them is needed).  The
-        result has no thermal description: its parameters hold at every temperature."""
+        result has no thermal description: its parameters hold at every temperature, and a temperature limit
+        (``limits.temperature``) is dropped with it (the isothermal wall does not heat)."""
         law = shift if shift is not None else (self.thermal.shift if self.thermal is not None else None)
         if law is None:
             raise ValueError("at_temperature needs a shift law: give shift=..., or a wall with a thermal description")
         if not isinstance(law, SHIFT_LAWS):
             raise ValueError(f"shift must be a WLF, Arrhenius or LogLinear law, got {type(law).__name__}")
-        temperature = finite_scalar("temperature", temperature)
-        factor = float(10.0 ** (self.r * law.log10_shift(temperature)))
+        factor = shift_factor(law, temperature, self.r)
         return dataclasses.replace(self, eta1=scaled_value("eta1", self.eta1, factor, "a_T^r"),
-                                   eta2=scaled_value("eta2", self.eta2, factor, "a_T^r"), thermal=None)
+                                   eta2=scaled_value("eta2", self.eta2, factor, "a_T^r"), thermal=None,
+                                   limits=self.limits.without_temperature() if self.limits is not None else None)
 
     def at_ambient(self, temperature: float) -> FDMKDamper:
         """This wall starting at, and cooling towards, ``temperature`` (degC), its heating kept; a ValueError
@@ -151,7 +155,7 @@ class FDMKDamper(StiffnessMethods):
             raise ValueError("at_ambient needs a wall with a thermal description (thermal=ThermalProperties(...))")
         return dataclasses.replace(self, thermal=self.thermal.at(temperature))
 
-    def property_factors(self, temperatures, frequency: float) -> PropertyFactors:
+    def property_factors(self, temperatures: ArrayLike, frequency: float) -> PropertyFactors:
         """Property-modification factors of K' and K'' (separately) at ``frequency`` (Hz) over ambient
         ``temperatures`` (degC), relative to the parameters as given (the shift law's reference): see
         :func:`vdw_frames.element.thermal.property_factors`."""

@@ -106,14 +106,16 @@ slowest modes are only moment-matched), so pass ``max_steps`` >= the record leng
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+from numpy.typing import NDArray
 from scipy import linalg
 
 from .._validation import fractional_order, positive, show, whole_number
-from .fractional import Discretisation, get_method
+from .fractional import DampedTwoStep, Discretisation, get_method
 
 DEFAULT_WINDOW = 16
 DEFAULT_TOLERANCE = 1e-10
@@ -130,20 +132,24 @@ _NEGLIGIBLE = 1e-20  # fine modes with |residue| below this (relative to |w_0|) 
 _EXACT_LAGS = 64  # the time grid of the compression: lags 0..63 exactly, then Gauss points
 _GAUSS_PER_OCTAVE = 8
 
+_Tail = Callable[[float, float], tuple[float, float]]
+"""(t0, h) -> (mass, first moment) of a segment's sinc nodes left of t0 (see :class:`_Segment`)."""
+_Modes = tuple[NDArray[np.float64], NDArray[np.float64]]
+
 
 # ----------------------------------------------------------------------------- densities
-def _sin_pi(r):
+def _sin_pi(r: float) -> float:
     """sin(pi r) for 0 < r <= 1, exact zero at r = 1."""
     return math.sin(math.pi * min(r, 1.0 - r))
 
 
-def _sin_2pi(r):
+def _sin_2pi(r: float) -> float:
     """sin(2 pi r) for 0 < r <= 1, exact zeros at r = 1/2 and r = 1."""
     x = r if r <= 0.5 else r - 1.0
     return math.sin(2.0 * math.pi * x)
 
 
-def _phi(x):
+def _phi(x: float) -> float:
     """x / (1 - exp(-x)), with phi(0) = 1."""
     return 1.0 if x == 0.0 else x / -math.expm1(-x)
 
@@ -151,7 +157,8 @@ def _phi(x):
 class _Segment:
     """One piece of a branch cut: w_j gets sigma^j \\int e^{-j u} F(u) du over the segment."""
 
-    def __init__(self, sigma, density, kind, end=0.0, small=None):
+    def __init__(self, sigma: int, density: Callable[..., NDArray[np.float64]], kind: str, end: float = 0.0,
+                 small: _Tail | None = None) -> None:
         self.sigma = sigma  # +1: ratio rho = e^-u, -1: rho = -e^-u
         self.density = density  # F(u), vectorised; F(u, u - end) for kind 'shift'
         self.kind = kind  # 'log' (0, oo), 'logistic' (0, end), 'shift' (end, oo)
@@ -161,10 +168,10 @@ class _Segment:
         self.small = small
 
 
-def _power_tail(scale, alpha, length=1.0):
+def _power_tail(scale: float, alpha: float, length: float = 1.0) -> _Tail:
     """Closed-form sums h sum_{t_k <= t0} C (length e^t_k)^(alpha+1) (and alpha+2) over t_k = t0 - m h."""
 
-    def tail(t0, h):
+    def tail(t0: float, h: float) -> tuple[float, float]:
         a1, a2 = alpha + 1.0, alpha + 2.0
         u0 = length * math.exp(t0)
         m0 = scale * h * u0**a1 / -math.expm1(-a1 * h)
@@ -174,19 +181,19 @@ def _power_tail(scale, alpha, length=1.0):
     return tail
 
 
-def _segments(method, r):
+def _segments(method: Discretisation, r: float) -> list[_Segment]:
     name = method.name
     s = _sin_pi(r)
     if name == "trapezoidal":
         k = 2.0**r * s / math.pi
 
-        def positive_density(u):
+        def positive_density(u: NDArray[np.float64]) -> NDArray[np.float64]:
             return -k * np.tanh(0.5 * u) ** r
 
-        def alternating_density(u):
+        def alternating_density(u: NDArray[np.float64]) -> NDArray[np.float64]:
             return k / np.tanh(0.5 * u) ** r
 
-        def alternating_tail(t0, h):
+        def alternating_tail(t0: float, h: float) -> tuple[float, float]:
             # C u^(-r) with C = 4^r s / pi; s / (1 - r) = pi sinc(1 - r) keeps r -> 1 finite (mass -> 4).
             u0 = math.exp(t0)
             m0 = 4.0**r * float(np.sinc(1.0 - r)) * u0 ** (1.0 - r) * _phi((1.0 - r) * h)
@@ -199,7 +206,7 @@ def _segments(method, r):
         ]
     if name == "grunwald":
 
-        def density(u):
+        def density(u: NDArray[np.float64]) -> NDArray[np.float64]:
             return -(s / math.pi) * np.expm1(u) ** r
 
         return [_Segment(+1, density, "log", small=_power_tail(-s / math.pi, r))]
@@ -207,10 +214,10 @@ def _segments(method, r):
         s2 = _sin_2pi(r)
         k = 2.0**-r / math.pi
 
-        def inner(u):  # (0, ln 3): (e^u - 1)(3 - e^u) >= 0
+        def inner(u: NDArray[np.float64]) -> NDArray[np.float64]:  # (0, ln 3): (e^u - 1)(3 - e^u) >= 0
             return -k * s * np.maximum(np.expm1(u) * (3.0 - np.exp(u)), 0.0) ** r
 
-        def outer(u, delta):  # (ln 3, oo)
+        def outer(u: NDArray[np.float64], delta: NDArray[np.float64]) -> NDArray[np.float64]:  # (ln 3, oo)
             return -k * s2 * np.maximum(np.expm1(u) * (np.exp(u) - 3.0), 0.0) ** r
 
         # inner ~ -k s (2u)^r = -(s / pi) u^r as u -> 0
@@ -218,12 +225,12 @@ def _segments(method, r):
             _Segment(+1, inner, "logistic", end=_LN3, small=_power_tail(-s / math.pi, r, _LN3)),
             _Segment(+1, outer, "shift", end=_LN3),
         ]
-    if name == "damped":
+    if name == "damped" and isinstance(method, DampedTwoStep):
         return _damped_segments(method, r, s)
     raise ValueError(f"unknown method {name!r}")
 
 
-def _damped_segments(method, r, s):
+def _damped_segments(method: DampedTwoStep, r: float, s: float) -> list[_Segment]:
     # W = (1 - zeta)^r P^r Q^-r, P = a0 + a1 zeta, Q = b0 + b1 zeta; branch points 1 and z_a = -a0/a1 > 1
     # (exponent r, cut (1, oo) as for BDF2) and z_b = -b0/b1 = -1/rho_infinity (exponent -r, cut
     # (-oo, z_b)); |W| grows like |zeta|^r, so the cut integrals hold for j >= 1.
@@ -231,11 +238,12 @@ def _damped_segments(method, r, s):
     s2 = _sin_2pi(r)
     log_za = math.log(-a0 / a1)
 
-    def inner(u):  # (0, ln z_a): (e^u - 1)(a0 + a1 e^u) >= 0
+    def inner(u: NDArray[np.float64]) -> NDArray[np.float64]:  # (0, ln z_a): (e^u - 1)(a0 + a1 e^u) >= 0
         x = np.exp(u)
         return -(s / math.pi) * (np.maximum(np.expm1(u) * (a0 + a1 * x), 0.0) / (b0 + b1 * x)) ** r
 
-    def outer(u, delta):  # (ln z_a, oo): both factors of (1 - x)(a0 + a1 x) negative, phase exp(-2 pi i r)
+    # (ln z_a, oo): both factors of (1 - x)(a0 + a1 x) negative, phase exp(-2 pi i r)
+    def outer(u: NDArray[np.float64], delta: NDArray[np.float64]) -> NDArray[np.float64]:
         x = np.exp(u)
         return -(s2 / math.pi) * (np.maximum(np.expm1(u) * (-a1 * x - a0), 0.0) / (b0 + b1 * x)) ** r
 
@@ -249,11 +257,12 @@ def _damped_segments(method, r, s):
         log_zb = -math.log(rho)  # zeta = -e^u, u > ln|z_b|; b1 e^u - b0 = b0 expm1(u - ln|z_b|)
         scale = ((1.0 + 1.0 / rho) * (a0 - a1 / rho) / b0) ** r  # |W| ~ scale * (u - ln|z_b|)^-r
 
-        def alternating(u, delta):  # delta = u - ln|z_b|, passed separately: u loses it below ~1e-16
+        # delta = u - ln|z_b|, passed separately: u loses it below ~1e-16
+        def alternating(u: NDArray[np.float64], delta: NDArray[np.float64]) -> NDArray[np.float64]:
             x = np.exp(u)
             return (s / math.pi) * ((1.0 + x) * (a0 - a1 * x) / (b0 * np.expm1(delta))) ** r
 
-        def alternating_tail(t0, h):
+        def alternating_tail(t0: float, h: float) -> tuple[float, float]:
             # (s / pi) scale delta^-r summed over delta_k = e^{t_k}, t_k <= t0; s / (pi (1 - r)) = sinc(1 - r)
             # keeps r -> 1 finite: at r = 1 the cut is the simple pole, one mode (-rho)^j of mass `scale`.
             d0 = math.exp(t0)
@@ -265,7 +274,8 @@ def _damped_segments(method, r, s):
     return segments
 
 
-def _fine_modes(method, r, window, max_steps, tolerance):
+def _fine_modes(method: Discretisation, r: float, window: int, max_steps: int,
+                tolerance: float) -> list[tuple[int, float, float]]:
     """Sinc-quadrature modes: list of (sigma, u, g) with w_{L+1+i} ~= sum g sigma^i e^{-i u}."""
     h = _STEP
     first = window + 1  # smallest lag represented by the modes
@@ -311,7 +321,7 @@ def _fine_modes(method, r, window, max_steps, tolerance):
 
 
 # ----------------------------------------------------------------------------- compression
-def _time_grid(horizon):
+def _time_grid(horizon: int) -> _Modes:
     """Points i and weights approximating sum_{i=0}^{horizon-1} f(i) for smooth f (lags beyond L+1)."""
     if horizon <= _EXACT_LAGS:
         return np.arange(horizon, dtype=float), np.ones(horizon)
@@ -327,7 +337,7 @@ def _time_grid(horizon):
     return np.concatenate(points), np.concatenate(weights)
 
 
-def _reduce(u, g, horizon, budget, alternating):
+def _reduce(u: NDArray[np.float64], g: NDArray[np.float64], horizon: int, budget: float, alternating: bool) -> _Modes:
     """Balanced truncation of the one-signed geometric sum h_i = sum g e^{-i u}, 0 <= i < horizon.
 
     Returns (u_r, g_r) of the smallest order whose error over the horizon, estimated on the time grid,
@@ -340,12 +350,12 @@ def _reduce(u, g, horizon, budget, alternating):
     basis = np.exp(-np.outer(u, lags))
     decay = -np.expm1(-u)  # 1 - e^{-u}, accurate for slow modes
 
-    def error(u_r, g_r):
+    def error(u_r: NDArray[np.float64], g_r: NDArray[np.float64]) -> float:
         basis_r = np.exp(-np.outer(u_r, lags))
         if not alternating:
-            return lag_weights @ np.abs(g_r @ basis_r - g @ basis)
+            return float(lag_weights @ np.abs(g_r @ basis_r - g @ basis))
         step = (g_r * -np.expm1(-u_r)) @ basis_r - (g * decay) @ basis
-        return 0.5 * abs(g_r.sum() - g.sum()) + 0.5 * (lag_weights @ np.abs(step))
+        return float(0.5 * abs(g_r.sum() - g.sum()) + 0.5 * (lag_weights @ np.abs(step)))
 
     sign = 1.0 if g[0] > 0 else -1.0
     b = np.sqrt(np.abs(g))
@@ -355,7 +365,7 @@ def _reduce(u, g, horizon, budget, alternating):
     projected_b = vectors.T @ b
     projected_decay = vectors.T @ (decay[:, None] * vectors)
 
-    def reduced(order):
+    def reduced(order: int) -> _Modes:
         block = projected_decay[:order, :order]
         d, rotation = linalg.eigh(0.5 * (block + block.T))
         u_r = -np.log1p(-np.clip(d, 0.0, 1.0 - 1e-16))
@@ -380,12 +390,12 @@ def _reduce(u, g, horizon, budget, alternating):
 
 
 @lru_cache(maxsize=256)
-def _dimensionless_modes(method, r, window, tolerance, max_steps):
+def _dimensionless_modes(method: Discretisation, r: float, window: int, tolerance: float, max_steps: int) -> _Modes:
     w0 = abs(method.weights(r, 1)[0])
     fine = _fine_modes(method, r, window, max_steps, tolerance)
     groups: dict[tuple[int, bool], list[tuple[float, float]]] = {}
-    for sigma, u, g in fine:
-        groups.setdefault((sigma, g > 0), []).append((u, g))
+    for sigma, rate, residue in fine:
+        groups.setdefault((sigma, residue > 0), []).append((rate, residue))
     horizon = max_steps - window
     budget = tolerance * w0 / max(len(groups), 1)
     ratios, weights = [], []

@@ -71,8 +71,8 @@ _FAST = {"reassoc", "contract"}
  NODE_WORK_SUM, FOLLOWED_AT_TURN, CONFIRMED_AT, ENERGY, AMPLITUDE_LOW, AMPLITUDE_HIGH,
  AMPLITUDE_USED, AT_G1, AT_G2, AT_ETA1, AT_ETA2, SHIFT_ANCHOR, SHIFT_FACTOR, NODE_SQUARE_1, NODE_SQUARE_2,
  FAILURE_FORCE, FAILURE_DEFORMATION, RELEASED_WORK, SPRINGPOT_HEAT_1, SPRINGPOT_HEAT_2, SPRINGPOT_STORED_1,
- SPRINGPOT_STORED_2, NODE_SET, SHIFT_RATE, LIMITED, HEATING_ONLY) = range(67)
-STATE_FIELDS = 67
+ SPRINGPOT_STORED_2, NODE_SET, SHIFT_RATE, LIMITED, HEATING_ONLY, HALF_STEPS, EXTENDED_AT) = range(69)
+STATE_FIELDS = 69
 """TRACKED: 1 when the wall's state is followed (a thermal description, limits or amplitude following);
 ENERGY: 1 when its heat and stored energy are (a thermal description or limits: the diffusive nodes);
 BASE_*: G1, G2 (MPa), eta1, eta2 (MPa s^r) at the reference temperature (fixed walls); ORDER: r;
@@ -92,10 +92,11 @@ DIRECTION (+1, -1, 0 at rest), LAST_AMPLITUDE (of the last completed half-cycle)
 parameters follow), BELOW_RANGE and ABOVE_RANGE (steps spent outside the table's range); NODE_WORK_SUM:
 sum_k c_k D_k of the diffusive nodes (WallStates.nodes), NODE_SQUARE_1 and NODE_SQUARE_2: sum_k c_k phi_k^2
 of the Kelvin and the Maxwell springpot at the last commit; FOLLOWED_AT_TURN and CONFIRMED_AT: the amplitude
-followed, and the strain, when the last reversal was confirmed; AMPLITUDE_LOW and AMPLITUDE_HIGH: the
-amplitude table's range (-); AMPLITUDE_USED and AT_*: the amplitude the coefficients were last
-interpolated at and G1, G2, eta1, eta2 there (reused while the amplitude stays); SHIFT_ANCHOR and
-SHIFT_FACTOR: an exponent ln a_T^r and its exp (NaN: none yet), from which nearby factors are found;
+followed, and the step, when the last reversal was confirmed; HALF_STEPS: the steps between the last two
+confirmed reversals (0: none yet); EXTENDED_AT: the step the current half-cycle's extreme was last reached;
+AMPLITUDE_LOW and AMPLITUDE_HIGH: the amplitude table's range (-); AMPLITUDE_USED and AT_*: the amplitude
+the coefficients were last interpolated at and G1, G2, eta1, eta2 there (reused while the amplitude stays);
+SHIFT_ANCHOR and SHIFT_FACTOR: an exponent ln a_T^r and its exp (NaN: none yet), from which nearby factors are found;
 FAILURE_FORCE (N) and FAILURE_DEFORMATION (mm): the wall's force and deformation at its failing commit;
 RELEASED_WORK (N*mm): the work done on its failing share over the next step, as its force fell to the
 residual (booked at that step: :func:`update_walls`); SPRINGPOT_HEAT_1 and SPRINGPOT_HEAT_2, SPRINGPOT_STORED_1
@@ -365,50 +366,75 @@ def set_coefficients(table, amplitude_table, constants, w, count):
 
 
 REVERSAL_GATE = 0.05
-"""A half-cycle ends when the strain has come back by this share of the amplitude from its extreme: a
-ripple at a peak (a higher mode's) is not a reversal."""
+"""The smallest return, as a share of the half-cycle's amplitude, that can end a half-cycle (the floor of the
+decay release in :func:`track_amplitude`): smaller wiggles of the strain are never reversals."""
 
 
 @njit(cache=True, inline="always")
-def track_amplitude(table, w, strain):
-    """Follow wall ``w``'s strain amplitude after a commit (``strain`` -).
+def track_amplitude(table, w, strain, count):
+    """Follow wall ``w``'s strain amplitude after commit ``count`` (``strain`` -): the ENVELOPE of the total
+    strain, not its ripples.
 
-    Half-cycles run between reversals, a = |extreme - turn| / 2 (an offset of the strain, a residual
-    drift, is not amplitude); the first excursion from rest is a quarter cycle, a = |extreme|.  The wall
-    follows the larger of the current half-cycle's amplitude so far and that of the last completed one,
-    reached continuously: where a reversal is confirmed (once the strain has come back by REVERSAL_GATE of
-    the amplitude) the followed amplitude starts from where it was and moves to the completed
-    half-cycle's as the new half-cycle's extreme covers the rest of its span, 2 a, a monotone progress.
-    So a steady sine of amplitude A gives A at every step (the parameters are those of the test at A), a
-    growing motion is followed at once, a decaying one within a half-cycle, and the parameters never jump
-    (a jump would make the force jump: a spurious oscillation)."""
+    Half-cycles run between reversals, a = |extreme - turn| / 2 (an offset of the strain, a residual drift,
+    is not amplitude); the first excursion from rest is a quarter cycle, a = |extreme|.  A reversal is
+    confirmed only when the strain has come back across the centre of the half-cycle in progress, by more
+    than a = |extreme - turn| / 2 from its extreme: the reversals of a faster component riding on a slower
+    one (a higher mode's ripple, smaller than the slow motion's amplitude) do not end half-cycles, so the
+    amplitude followed is that of the total strain's envelope, half its peak-to-peak over the slow cycle.
+    Decay release: once the extreme has stood longer than the last half-cycle lasted (``held`` steps against
+    HALF_STEPS), the return needed shrinks as HALF_STEPS / held, to REVERSAL_GATE a at the least, so a
+    motion that loses more than half its amplitude within a half-cycle is still followed down.
+
+    The wall follows the larger of the current half-cycle's amplitude so far and that of the last completed
+    one, reached continuously: from the confirmed reversal on, the followed amplitude moves from where it
+    was to the completed half-cycle's linearly in time, over as many steps as that half-cycle's confirmation
+    took after the one before (HALF_STEPS).  So a steady sine of amplitude A gives A at every step after
+    its first quarter cycle (the parameters are those of the test at A), a growing motion is followed at
+    once, a decaying one about a cycle late, and the parameters never jump (a jump would make the force
+    jump: a spurious oscillation).
+
+    Physical reading: the amplitude dependence of a filled elastomer (the Payne effect: the filler network
+    breaks down with strain) is governed by the total strain amplitude of the cycle, not by the components
+    of a spectral decomposition of the strain; the paper's sets were measured under single sines, where
+    the two coincide."""
     direction, turn, extreme = table[w, DIRECTION], table[w, TURN], table[w, EXTREME]
     if direction == 0.0:
         if strain != turn:
             direction = 1.0 if strain > turn else -1.0
             extreme = strain
+            table[w, EXTENDED_AT] = count
     elif direction * (strain - extreme) > 0.0:
         extreme = strain
-    elif direction * (extreme - strain) > REVERSAL_GATE * table[w, AMPLITUDE]:
-        table[w, LAST_AMPLITUDE] = 0.5 * abs(extreme - turn)
-        table[w, FOLLOWED_AT_TURN] = table[w, AMPLITUDE]
-        table[w, CONFIRMED_AT] = strain
-        turn, extreme, direction = extreme, strain, -direction
+        table[w, EXTENDED_AT] = count
+    else:
+        span = 0.5 * abs(extreme - turn)  # the half-cycle's amplitude so far: the return that confirms it
+        gate = span
+        held, duration = count - table[w, EXTENDED_AT], table[w, HALF_STEPS]
+        if held > duration > 0.0:  # the extreme has stood longer than the last half-cycle lasted: a decay
+            gate *= max(duration / held, REVERSAL_GATE)
+        if direction * (extreme - strain) > gate:
+            first = table[w, LAST_AMPLITUDE] == 0.0  # the excursion from rest: a quarter cycle
+            table[w, LAST_AMPLITUDE] = 2.0 * span if first else span
+            table[w, FOLLOWED_AT_TURN] = table[w, AMPLITUDE]
+            table[w, HALF_STEPS] = count - table[w, CONFIRMED_AT]  # >= 1: the turn was set at an earlier step
+            table[w, CONFIRMED_AT] = count
+            table[w, EXTENDED_AT] = count
+            turn, extreme, direction = extreme, strain, -direction
     table[w, DIRECTION], table[w, TURN], table[w, EXTREME] = direction, turn, extreme
-    completed, before, origin = table[w, LAST_AMPLITUDE], table[w, FOLLOWED_AT_TURN], table[w, CONFIRMED_AT]
+    completed, before = table[w, LAST_AMPLITUDE], table[w, FOLLOWED_AT_TURN]
     if completed == 0.0:  # no reversal yet: a quarter cycle from rest
         table[w, AMPLITUDE] = abs(extreme)
         return
-    remaining = 2.0 * completed - abs(origin - turn)  # of the span, what the new half-cycle still has to cover
-    progress = min(abs(extreme - origin) / remaining, 1.0) if remaining > 0.0 else 1.0
+    progress = min((count - table[w, CONFIRMED_AT]) / table[w, HALF_STEPS], 1.0)
     table[w, AMPLITUDE] = max(0.5 * abs(extreme - turn), before + (completed - before) * progress)
 
 
 @njit(cache=True, inline="always")
-def _follow_amplitude(table, w, strain):
-    """The amplitude of an amplitude-following wall ``w`` after a commit, and its steps outside its range."""
+def _follow_amplitude(table, w, strain, count):
+    """The amplitude of an amplitude-following wall ``w`` after commit ``count``, and its steps outside its
+    range."""
     if table[w, AMPLITUDE_NODES] > 0.0:
-        track_amplitude(table, w, strain)
+        track_amplitude(table, w, strain, count)
         if table[w, AMPLITUDE] < table[w, AMPLITUDE_LOW]:
             table[w, BELOW_RANGE] += 1.0
         elif table[w, AMPLITUDE] > table[w, AMPLITUDE_HIGH]:
@@ -497,7 +523,7 @@ def update_walls(states, constants, values, force, deformation, count):
             table[w, RELEASED_WORK] = (0.5 * (1.0 - table[w, RESIDUAL]) * table[w, FAILURE_FORCE]
                                        * (deformation[w] - table[w, FAILURE_DEFORMATION]))
         if table[w, ENERGY] == 0.0:  # a wall that only follows its amplitude: no heat, no energy split
-            _follow_amplitude(table, w, strain)
+            _follow_amplitude(table, w, strain, count)
             set_coefficients(table, amplitude_table, constants, w, count)
             continue
         springs, heat_1, heat_2, stored_1, stored_2 = _energies(table, w, G1, G2, eta2, strain, maxwell)
@@ -524,7 +550,7 @@ def update_walls(states, constants, values, force, deformation, count):
                 table[w, FAILURE_DEFORMATION] = deformation[w]
                 table[w, SCALE] = table[w, RESIDUAL]
                 stored *= table[w, RESIDUAL]
-        _follow_amplitude(table, w, strain)
+        _follow_amplitude(table, w, strain, count)
         if not set_coefficients(table, amplitude_table, constants, w, count):  # limits only: parameters stay,
             table[w, STORED] = stored                                          # and so does the stored energy
             continue

@@ -16,10 +16,12 @@ Units: strain dimensionless (8.5 = 850 %), stress MPa, temperature degC.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
 from .._validation import finite_scalar, positive, show
+from .thermal import ThermalProperties, service_temperature
 
 
 @dataclass(frozen=True)
@@ -27,9 +29,12 @@ class WallLimits:
     """Limits of a wall (any subset; None: no limit of that kind).
 
     ``strain`` (-, > 0): the shear strain of rupture or debonding of the layers; ``stress`` (MPa, > 0): the
-    shear stress (force / area) of the bond; ``temperature`` (degC): the material's temperature limit
-    (walls with a thermal description only); ``residual`` (-, in [0, 1)): the share of its force a failed
-    wall keeps (0: none).  ``source``: where the limits come from (printed by the examples and reports).
+    shear stress (force / area) of the bond; ``temperature`` (degC, a service temperature: above absolute
+    zero, at most 200 degC, :func:`~vdw_frames.element.thermal.service_temperature`): the material's
+    temperature limit -- walls with a thermal description only (a wall without one never heats, so the limit
+    could never be reached: the wall constructors refuse it, :func:`check_temperature_limit`); ``residual``
+    (-, in [0, 1)): the share of its force a failed wall keeps (0: none).  ``source``: where the limits come from
+    (printed by the examples and reports).
     """
 
     strain: float | None = None
@@ -44,10 +49,7 @@ class WallLimits:
             if value is not None:
                 object.__setattr__(self, name, positive(name, value))
         if self.temperature is not None:
-            temperature = finite_scalar("temperature", self.temperature)
-            if temperature <= -273.15:
-                raise ValueError(f"temperature limit must be above absolute zero, got {show(self.temperature)}")
-            object.__setattr__(self, "temperature", temperature)
+            object.__setattr__(self, "temperature", service_temperature("temperature limit", self.temperature))
         residual = finite_scalar("residual", self.residual)
         if not 0.0 <= residual < 1.0:
             raise ValueError(f"residual must lie in [0, 1) (the share of its force a failed wall keeps), got "
@@ -56,7 +58,23 @@ class WallLimits:
         if not isinstance(self.source, str):
             raise ValueError(f"source must be a string, got {show(self.source)}")
 
+    def without_temperature(self) -> WallLimits | None:
+        """These limits without the temperature limit (None when no strain or stress limit is left): for a wall
+        taken isothermal, which does not heat."""
+        if self.strain is None and self.stress is None:
+            return None
+        return dataclasses.replace(self, temperature=None)
+
     def kernel_row(self) -> tuple[float, float, float, float]:
         """(strain, stress MPa, temperature degC, residual) for the kernel; inf where there is no limit."""
         return (math.inf if self.strain is None else self.strain, math.inf if self.stress is None else self.stress,
                 math.inf if self.temperature is None else self.temperature, self.residual)
+
+
+def check_temperature_limit(limits: WallLimits | None, thermal: ThermalProperties | None) -> None:
+    """A ValueError when ``limits`` has a temperature limit and the wall has no thermal description
+    (``thermal`` None): such a wall never heats, so it could never reach the limit and would never fail."""
+    if limits is not None and limits.temperature is not None and thermal is None:
+        raise ValueError(f"limits.temperature = {limits.temperature:g} degC needs a wall with a thermal description "
+                         "(thermal=ThermalProperties(...)): without one the wall never heats and could never reach "
+                         "its temperature limit")

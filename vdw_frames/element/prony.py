@@ -184,7 +184,7 @@ def _relative_error(omega: np.ndarray, target: np.ndarray, tau: np.ndarray, stif
 
 
 def _fit_branches(count: int, omega: np.ndarray, target: np.ndarray, check_omega: np.ndarray, check_target: np.ndarray,
-                  tolerance: float, bounds: tuple[float, float]) -> _Fit:
+                  *, tolerance: float, bounds: tuple[float, float]) -> _Fit:
     """(dense max error, tau, stiffness) of the best fit with ``count`` branches found; stops early once
     the tolerance is met."""
     from scipy.optimize import least_squares
@@ -245,7 +245,8 @@ def fit_prony(wall: Wall, f_min: float, f_max: float, tolerance: float = 0.01, m
     bounds = (np.log(_SHORTEST / omega[-1]), np.log(_LONGEST / omega[0]))
     best: _Fit = (np.inf, None, None)
     for count in range(1, max_branches + 1):
-        error, tau, stiffness = _fit_branches(count, omega, target, check_omega, check_target, tolerance, bounds)
+        error, tau, stiffness = _fit_branches(count, omega, target, check_omega, check_target, tolerance=tolerance,
+                                              bounds=bounds)
         if error < best[0]:
             best = (error, tau, stiffness)
         if error <= tolerance:

@@ -12,14 +12,19 @@ Between two nodes every parameter is a convex combination of two valid values, s
 eta2 >= 0 and 0 < r <= 1 hold at every amplitude of the range by construction; with them every term
 of G' and G'' (see :mod:`vdw_frames.element.damper`) is non-negative: the wall is passive at every
 (f, gamma).  Outside [gamma_1, gamma_n] (``strain_range``) nothing is known: the parameters are
-clamped to the nearest end and a ``UserWarning`` names the amplitude reached.
+clamped to the nearest end and a ``UserWarning`` names the amplitude reached.  The clamp is the rule below
+the range too, not the family's trend: for the paper's sets that trend falls to G1 = 0 at 225 % (continued,
+G1 < 0: an active wall) while the Payne effect stiffens a filled elastomer at small amplitudes; the time an
+analysis spends below the range is reported (``SimulationResult.wall_time_below_range``; docs/theory.rst).
 
 This is a model of *amplitude* dependence for steady harmonic cycles, the way the tests measured it.
-In a time-history analysis (:func:`vdw_frames.simulate`) such a wall follows its own running half-cycle
-amplitude at every committed step, with one fractional order r for the whole wall (the convolution weights
-depend on r: a family with different r per node is refused there; :func:`vdw_frames.paper.strain_dependent`
-is the paper's sets with one common r); the coefficients at the amplitude come from the same interpolation
-(:func:`vdw_frames.element.kernel.track_amplitude`, :func:`vdw_frames.element.kernel.set_coefficients`).
+In a time-history analysis (:func:`vdw_frames.simulate`) such a wall follows the amplitude of the envelope
+of its own total strain at every committed step (a higher mode's ripple does not end a half-cycle: the Payne
+effect is governed by the total strain amplitude), with one fractional order r for the whole wall (the
+convolution weights depend on r: a family with different r per node is refused there;
+:func:`vdw_frames.paper.strain_dependent` is the paper's sets with one common r); the coefficients at the
+amplitude come from the same interpolation (:func:`vdw_frames.element.kernel.track_amplitude`,
+:func:`vdw_frames.element.kernel.set_coefficients`).
 ``simulate(..., strain_compatible=True)`` instead runs the equivalent-linear iteration of
 :mod:`vdw_frames.frame.strain_compatible`, which gives each wall one fixed parameter set per analysis.
 
@@ -41,7 +46,6 @@ from numpy.typing import ArrayLike
 from .. import _warnings
 from .._validation import (
     finite_array,
-    finite_scalar,
     fractional_order,
     non_negative,
     positive,
@@ -53,8 +57,8 @@ from .._validation import (
 from .damper import DEFAULT_MEMORY, FDMKDamper, WallState, driven_force
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, Discretisation
-from .limits import WallLimits
-from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, property_factors
+from .limits import WallLimits, check_temperature_limit
+from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, held_temperature, property_factors
 
 PARAMETERS = ("G1", "G2", "eta1", "eta2", "r")
 
@@ -130,6 +134,7 @@ class StrainDependentDamper:
             raise ValueError(f"thermal must be ThermalProperties (or None), got {type(self.thermal).__name__}")
         if self.limits is not None and not isinstance(self.limits, WallLimits):
             raise ValueError(f"limits must be WallLimits (or None), got {type(self.limits).__name__}")
+        check_temperature_limit(self.limits, self.thermal)
 
     # ------------------------------------------------------------------ time domain (amplitude followed)
     @property
@@ -204,20 +209,22 @@ class StrainDependentDamper:
 
     def at_temperature(self, temperature: float, shift: ShiftLaw | None = None) -> StrainDependentDamper:
         """The isothermal wall at ``temperature`` (degC): at every node amplitude eta1 and eta2 times
-        a_T(temperature)^r, G1, G2, r kept (:meth:`FDMKDamper.at_temperature`, node by node).  ``shift``:
-        the law (default: this wall's ``thermal.shift``).  The result has no thermal description."""
+        a_T(temperature)^r, G1, G2, r kept (:meth:`FDMKDamper.at_temperature`, node by node: the law held at
+        its valid range's end beyond it, with a warning).  ``shift``: the law (default: this wall's
+        ``thermal.shift``).  The result has no thermal description and no temperature limit."""
         law = shift if shift is not None else (self.thermal.shift if self.thermal is not None else None)
         if law is None:
             raise ValueError("at_temperature needs a shift law: give shift=..., or a wall with a thermal description")
         if not isinstance(law, SHIFT_LAWS):
             raise ValueError(f"shift must be a WLF, Arrhenius or LogLinear law, got {type(law).__name__}")
-        log10_shift = law.log10_shift(finite_scalar("temperature", temperature))
+        log10_shift = float(law.log10_shift(held_temperature(law, temperature)))
         factors = [float(10.0 ** (r * log10_shift)) for r in self.r]
 
         def times(name: str, values: tuple[float, ...]) -> tuple[float, ...]:
             return tuple(scaled_value(name, v, f, "a_T^r") for v, f in zip(values, factors, strict=True))
 
-        return dataclasses.replace(self, eta1=times("eta1", self.eta1), eta2=times("eta2", self.eta2), thermal=None)
+        return dataclasses.replace(self, eta1=times("eta1", self.eta1), eta2=times("eta2", self.eta2), thermal=None,
+                                   limits=self.limits.without_temperature() if self.limits is not None else None)
 
     def at_ambient(self, temperature: float) -> StrainDependentDamper:
         """This wall starting at, and cooling towards, ``temperature`` (degC), its heating kept; a ValueError

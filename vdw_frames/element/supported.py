@@ -122,7 +122,7 @@ class SupportedDamper(StiffnessMethods):
     # ------------------------------------------------------------------ time domain
     def kernel_constants(self) -> tuple[float, ...]:
         """The wall's kernel constants with the support's flexibility 1 / k_s (mm/N)."""
-        return self.damper.kernel_constants()[:6] + (1.0 / self.support_stiffness,)
+        return (*self.damper.kernel_constants()[:6], 1.0 / self.support_stiffness)
 
     def new_state(self, dt: float, method: str | Discretisation = DEFAULT_METHOD,
                   memory: str | FastMemory = DEFAULT_MEMORY) -> WallState:

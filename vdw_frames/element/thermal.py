@@ -21,10 +21,13 @@ Shift laws
 ----------
 :class:`WLF` (Williams, Landel & Ferry 1955): log10 a_T = -C1 (T - T_ref) / (C2 + T - T_ref), undefined at
 T <= T_ref - C2.  :class:`Arrhenius`: ln a_T = (E_a / R) (1 / T - 1 / T_ref), T in kelvin.  Each carries
-the temperature range of the data it was fitted to; outside it the time domain warns and evaluates the
-law at the nearest end of the range.  The paper (Xu, Li & Shen 2016) gives no temperature data -- its
-Tables 1-3 are at 21.2 degC -- so the package ships no shift law as the paper's; the examples use a
-published law for a viscoelastic damper polymer and name its source.
+the temperature range of the data it was fitted to; outside it every path -- the time domain's update and
+the frequency domain's ``at_temperature``, ``complex_stiffness`` of a wall at rest there, ``property_factors``
+and the property bounds -- evaluates the law at the nearest end of the range and warns (:func:`held_temperature`).
+Temperatures are degC; below absolute zero or above :data:`MAX_SERVICE_TEMPERATURE` (200 degC) they are
+refused (:func:`service_temperature`: a kelvin value typed as degC lands above it).  The paper (Xu, Li &
+Shen 2016) gives no temperature data -- its Tables 1-3 are at 21.2 degC -- so the package ships no shift
+law as the paper's; the examples use a published law for a viscoelastic damper polymer and name its source.
 
 Self-heating: the dissipated energy, not the absorbed work
 ----------------------------------------------------------
@@ -78,10 +81,24 @@ from typing import Protocol, cast, runtime_checkable
 
 import numpy as np
 
+from .. import _warnings
 from .._validation import finite_scalar, positive, show, text
 
 ABSOLUTE_ZERO = -273.15
 """degC."""
+
+MAX_SERVICE_TEMPERATURE = 200.0
+"""degC: the highest temperature the package takes for a viscoelastic damper's layers, an initial or ambient
+temperature, a shift law's reference or range, or a temperature limit.  Above it is no service temperature
+of a viscoelastic polymer: the acrylic and rubber-like damper polymers soften into flow or decompose well
+below it (the ISD-110 law the examples use is measured to 65.6 degC).  Its purpose is to catch kelvin typed
+where degC is meant (294.15 for 21 degC): any plausible kelvin value lies above it.  This package's bound,
+not a code's."""
+
+THERMAL_DIFFUSIVITY = 0.1
+"""mm^2/s (1e-7 m^2/s): the thermal diffusivity kappa the package takes for the viscoelastic layers, the order
+of unfilled and filled polymers (about 0.08-0.15 mm^2/s; an assumption for the paper's material, which the
+paper does not characterise).  Used by :func:`conduction_time`."""
 
 GAS_CONSTANT = 8.314462618
 """J/(mol K) (CODATA 2018)."""
@@ -121,16 +138,67 @@ def _check_range(name: str, valid, reference: float, lowest: float) -> tuple[flo
     if not lowest < low <= reference <= high:
         raise ValueError(f"{name} must hold the reference temperature {reference:g} degC and lie above "
                          f"{lowest:g} degC, with low <= high; got {show(valid)}")
+    service_temperature(f"{name} high end", high)
     return low, high
+
+
+def service_temperature(name: str, value: object) -> float:
+    """``value`` (degC) as a float if it can be a viscoelastic layer's temperature: finite, above absolute
+    zero and at most :data:`MAX_SERVICE_TEMPERATURE`; a ValueError naming it (and, above the bound, the
+    value less 273.15, in case kelvin was typed) otherwise."""
+    temperature = finite_scalar(name, value)
+    if temperature <= ABSOLUTE_ZERO:
+        raise ValueError(f"{name} must be above absolute zero ({ABSOLUTE_ZERO} degC), got {show(value)}")
+    if temperature > MAX_SERVICE_TEMPERATURE:
+        raise ValueError(f"{name} {show(value)} degC is above {MAX_SERVICE_TEMPERATURE:g} degC, no service "
+                         "temperature of a viscoelastic damper polymer; temperatures are in degC -- if this is "
+                         f"kelvin, subtract 273.15 ({temperature - 273.15:.4g} degC)")
+    return temperature
+
+
+def held_temperature(law: WLF | Arrhenius | LogLinear, temperature: object) -> float:
+    """The temperature (degC) at which the frequency domain evaluates ``law`` for a wall at ``temperature``:
+    ``temperature`` inside the law's valid range, the range's nearer end outside it, with a warning -- the
+    rule of the time domain, whose update holds the law at the range's end too (kernel ``_shift_factor``).
+    ``temperature`` must be a service temperature (:func:`service_temperature`)."""
+    value = service_temperature("temperature", temperature)
+    low, high = law.valid
+    held = min(max(value, low), high)
+    if held != value:
+        _warnings.warn(f"temperature {value:g} degC is outside the shift law's range {low:g} ... {high:g} degC: "
+                       f"the law is evaluated at {held:g} degC, the range's end (as the time domain does)",
+                       UserWarning, stacklevel=3)
+    return held
+
+
+def shift_factor(law: WLF | Arrhenius | LogLinear, temperature: object, r: float, warn: bool = True) -> float:
+    """a_T^r (-) of ``law`` at ``temperature`` (degC), held at the law's valid range (:func:`held_temperature`;
+    ``warn=False``: without the warning, for callers that report it themselves)."""
+    if warn:
+        held = held_temperature(law, temperature)
+    else:
+        low, high = law.valid
+        held = min(max(service_temperature("temperature", temperature), low), high)
+    return float(10.0 ** (r * float(law.log10_shift(held))))
+
+
+def conduction_time(thickness: float, diffusivity: float = THERMAL_DIFFUSIVITY) -> float:
+    """h^2 / (pi^2 kappa) (s): the time constant of the slowest mode of heat conduction across a layer of
+    ``thickness`` h (mm) whose faces are held at the steel plates' temperature, ``diffusivity`` kappa in mm^2/s
+    (default :data:`THERMAL_DIFFUSIVITY`): the layer's excess temperature sin(pi x / h) decays as
+    exp(-pi^2 kappa t / h^2).  A first value of :attr:`ThermalProperties.cooling_time`; it takes the plates
+    as staying at ambient (they warm too, so the layer cools more slowly than this)."""
+    return positive("thickness", thickness) ** 2 / (math.pi**2 * positive("diffusivity", diffusivity))
 
 
 @dataclass(frozen=True)
 class WLF:
     """The Williams-Landel-Ferry shift law log10 a_T = -C1 (T - T_ref) / (C2 + T - T_ref).
 
-    ``C1`` (-) and ``C2`` (K, > 0), ``reference`` T_ref (degC), ``valid`` (low, high) degC: the range of
-    the data the constants were fitted to (it must hold T_ref and lie above T_ref - C2, where the law is
-    undefined).  ``source``: where the constants come from (printed by the examples and reports).
+    ``C1`` (-, > 0: the wall softens as it heats) and ``C2`` (K, > 0), ``reference`` T_ref (degC), ``valid``
+    (low, high) degC: the range of the data the constants were fitted to (it must hold T_ref and lie above
+    T_ref - C2, where the law is undefined).  ``source``: where the constants come from (printed by the
+    examples and reports).
     """
 
     C1: float
@@ -140,11 +208,12 @@ class WLF:
     source: str = ""
 
     def __post_init__(self):
+        if finite_scalar("C1", self.C1) <= 0.0:
+            raise ValueError(f"C1 must be > 0 (with C1 <= 0 the wall would stiffen, its relaxation slow down, as "
+                             f"it heats), got {show(self.C1)}")
         object.__setattr__(self, "C1", finite_scalar("C1", self.C1))
         object.__setattr__(self, "C2", positive("C2", self.C2))
-        reference = finite_scalar("reference", self.reference)
-        if reference <= ABSOLUTE_ZERO:
-            raise ValueError(f"reference must be above absolute zero ({ABSOLUTE_ZERO} degC), got {show(reference)}")
+        reference = service_temperature("reference", self.reference)
         object.__setattr__(self, "reference", reference)
         text("source", self.source)
         object.__setattr__(self, "valid", _check_range("valid", self.valid, reference,
@@ -183,9 +252,7 @@ class Arrhenius:
 
     def __post_init__(self):
         object.__setattr__(self, "activation_energy", positive("activation_energy", self.activation_energy))
-        reference = finite_scalar("reference", self.reference)
-        if reference <= ABSOLUTE_ZERO:
-            raise ValueError(f"reference must be above absolute zero ({ABSOLUTE_ZERO} degC), got {show(reference)}")
+        reference = service_temperature("reference", self.reference)
         object.__setattr__(self, "reference", reference)
         text("source", self.source)
         object.__setattr__(self, "valid", _check_range("valid", self.valid, reference, ABSOLUTE_ZERO))
@@ -222,16 +289,18 @@ class LogLinear:
 
     def __post_init__(self):
         object.__setattr__(self, "degrees_per_decade", positive("degrees_per_decade", self.degrees_per_decade))
-        reference = finite_scalar("reference", self.reference)
-        if reference <= ABSOLUTE_ZERO:
-            raise ValueError(f"reference must be above absolute zero ({ABSOLUTE_ZERO} degC), got {show(reference)}")
+        reference = service_temperature("reference", self.reference)
         object.__setattr__(self, "reference", reference)
         text("source", self.source)
         object.__setattr__(self, "valid", _check_range("valid", self.valid, reference, ABSOLUTE_ZERO))
 
     def log10_shift(self, temperature) -> np.ndarray:
-        """log10 a_T at ``temperature`` (degC)."""
+        """log10 a_T at ``temperature`` (degC, above absolute zero: a ValueError naming it otherwise, as
+        :class:`WLF` and :class:`Arrhenius` give)."""
         temperature = np.asarray(temperature, dtype=float)
+        if not np.all(np.isfinite(temperature)) or np.any(temperature <= ABSOLUTE_ZERO):
+            bad = temperature[~(np.isfinite(temperature) & (temperature > ABSOLUTE_ZERO))].flat[0]
+            raise ValueError(f"temperature {show(bad)} degC is at or below absolute zero")
         return -(temperature - self.reference) / self.degrees_per_decade
 
     def kernel_row(self) -> tuple[float, float, float, float]:
@@ -280,7 +349,9 @@ class ThermalProperties:
     layer of thickness h needs to pass its heat to the steel plates, h^2 / (pi^2 kappa) with kappa ~ 1e-7
     m^2/s for polymers: ~25 s for 5 mm, ~100 s for 10 mm, ~400 s for 20 mm.  It bounds the temperature rise
     from above (the plates, whose heat capacity is comparable, would take part of the heat).  For long records
-    or thin layers give ``cooling_time`` (the conduction time above is a fair first value).
+    or thin layers give ``cooling_time`` (the conduction time above is a fair first value:
+    :func:`conduction_time`; 5.7 s for 2.37 mm layers).  Temperatures are service temperatures
+    (:func:`service_temperature`: above absolute zero, at most 200 degC).
     """
 
     shift: WLF | Arrhenius | LogLinear
@@ -292,10 +363,8 @@ class ThermalProperties:
         if not isinstance(self.shift, SHIFT_LAWS):
             raise ValueError(f"shift must be a WLF, Arrhenius or LogLinear law, got {type(self.shift).__name__}")
         object.__setattr__(self, "heat_capacity", positive("heat_capacity", self.heat_capacity))
-        temperature = self.shift.reference if self.temperature is None else finite_scalar("temperature",
-                                                                                          self.temperature)
-        if temperature <= ABSOLUTE_ZERO:
-            raise ValueError(f"temperature must be above absolute zero ({ABSOLUTE_ZERO} degC), got {show(temperature)}")
+        temperature = self.shift.reference if self.temperature is None else service_temperature("temperature",
+                                                                                                self.temperature)
         if isinstance(self.shift, WLF) and temperature <= self.shift.lowest:
             raise ValueError(f"temperature {show(temperature)} degC is at or below T_ref - C2 = "
                              f"{self.shift.lowest:g} degC, where the WLF law is undefined")
@@ -306,9 +375,10 @@ class ThermalProperties:
                                                                                           self.cooling_time)
         object.__setattr__(self, "cooling_time", cooling)
 
-    def viscosity_factor(self, temperature: float, r: float) -> float:
-        """a_T(temperature)^r (-): the factor on eta1 and eta2 at ``temperature`` (degC)."""
-        return float(10.0 ** (r * self.shift.log10_shift(temperature)))
+    def viscosity_factor(self, temperature: float, r: float, warn: bool = True) -> float:
+        """a_T(temperature)^r (-): the factor on eta1 and eta2 at ``temperature`` (degC), the law held at its
+        valid range's end beyond it, with a warning (:func:`shift_factor`; ``warn=False``: without it)."""
+        return shift_factor(self.shift, temperature, r, warn)
 
     def at(self, temperature: float) -> ThermalProperties:
         """The same properties at rest at ``temperature`` (degC)."""
@@ -406,7 +476,9 @@ class PropertyFactors:
 
 def property_factors(wall, temperatures, frequency: float) -> PropertyFactors:
     """:class:`PropertyFactors` of ``wall`` (any wall with ``at_temperature`` and a thermal description)
-    at ``frequency`` (Hz, > 0) over ``temperatures`` (degC, finite, above absolute zero)."""
+    at ``frequency`` (Hz, > 0) over ``temperatures`` (degC, service temperatures: :func:`service_temperature`);
+    outside the shift law's range the law is held at the range's end, with a warning (:func:`held_temperature`,
+    as the time domain does)."""
     if getattr(wall, "thermal", None) is None:
         raise ValueError("property factors from temperature need a wall with a thermal description "
                          "(thermal=ThermalProperties(...))")
@@ -414,6 +486,8 @@ def property_factors(wall, temperatures, frequency: float) -> PropertyFactors:
     if values.ndim != 1 or values.size == 0 or not np.all(np.isfinite(values)) or np.any(values <= ABSOLUTE_ZERO):
         raise ValueError(f"temperatures must be one or more finite temperatures above absolute zero (degC), "
                          f"got {show(temperatures)}")
+    for value in values:
+        service_temperature("temperature", value)
     frequency = positive("frequency", frequency)
     nominal = wall.at_temperature(wall.thermal.shift.reference).complex_stiffness(frequency)
     shifted = np.array([complex(wall.at_temperature(t).complex_stiffness(frequency)) for t in values])

@@ -7,13 +7,20 @@
 - :mod:`.simulation`: :func:`simulate`, the one entry to a time-history analysis, dispatching to
   :mod:`.time_history` (walls of fixed parameters; the compiled loop in :mod:`.integrator`, the results
   in :mod:`.results`) or :mod:`.strain_compatible` (the equivalent-linear iteration);
-- :mod:`.batch`: :func:`run_batch`, many analyses on any ``concurrent.futures`` executor;
+- :mod:`.batch`: :func:`run_batch`, many analyses on any ``concurrent.futures`` executor, and
+  :func:`worker_pool`, the default process pool kept for several calls;
 - :mod:`.ida`: :func:`incremental_dynamic_analysis` and its lognormal collapse fragility.
 
 Units: N, mm, s, tonne.
 """
 
-from .batch import BatchResult, run_batch, scale_factors_to_pga, scale_factors_to_spectral_acceleration
+from .batch import (
+    BatchResult,
+    run_batch,
+    scale_factors_to_pga,
+    scale_factors_to_spectral_acceleration,
+    worker_pool,
+)
 from .building import ShearBuilding
 from .hysteresis import Bilinear, BoucWen, StoryState
 from .ida import Fragility, IDAResult, incremental_dynamic_analysis
@@ -26,4 +33,4 @@ from .strain_compatible import StrainCompatibleOptions, energy_weighted_amplitud
 __all__ = ["BatchResult", "Bilinear", "BoucWen", "EnergyHistory", "Fragility", "IDAResult", "ModalResult",
            "NewtonRaphson", "ShearBuilding", "SimulationResult", "StoryState", "StrainCompatibleOptions",
            "energy_weighted_amplitude", "incremental_dynamic_analysis", "modal_analysis", "run_batch",
-           "scale_factors_to_pga", "scale_factors_to_spectral_acceleration", "simulate"]
+           "scale_factors_to_pga", "scale_factors_to_spectral_acceleration", "simulate", "worker_pool"]

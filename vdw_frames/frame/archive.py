@@ -12,6 +12,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import os
+import stat
 import zipfile
 from collections.abc import Iterable, Mapping
 from pathlib import Path
@@ -20,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from .._files import file_path, write_via
+from .._validation import MEMORY_LIMIT_BYTES
 from ..element.damper import FDMKDamper
 from ..element.limits import WallLimits
 from ..element.strain_dependent import StrainDependentDamper
@@ -60,18 +62,59 @@ def read_archive(path: str | os.PathLike[str], kind: str,
     """The arrays and the decoded metadata of a file :func:`write_archive` wrote with this ``kind``."""
     target = file_path(path, "file")
     try:
+        info = target.stat()
+    except OSError as error:
+        raise ValueError(f"{path}: cannot read the {kind} file ({error.strerror or error})") from None
+    if not stat.S_ISREG(info.st_mode):  # a FIFO would block np.load forever
+        raise ValueError(f"{path}: not a regular file (a folder, FIFO, socket or device); give a saved result")
+    try:
+        with zipfile.ZipFile(target) as archive:
+            members = archive.infolist()
+        size = sum(member.file_size for member in members)
+        if size > MEMORY_LIMIT_BYTES:
+            raise ValueError(f"{path}: its arrays would take {size:,} bytes, above the {MEMORY_LIMIT_BYTES:,} bytes "
+                             "a saved result is read to")
+        raw = sorted(member.filename for member in members if not member.filename.endswith(".npy"))
+        if raw:
+            raise ValueError(f"{path}: entries {raw} are not numpy arrays; not a {kind} file")
         with np.load(target, allow_pickle=False) as data:
             arrays = {name: data[name] for name in data.files}
         metadata = json.loads(str(arrays.pop("metadata")))
-    except (OSError, ValueError, KeyError, zipfile.BadZipFile, EOFError):
+    except ValueError as error:
+        if str(error).startswith(f"{path}: "):
+            raise
+        raise ValueError(f"{path}: not a {kind} file (a saved result)") from None
+    except (OSError, KeyError, zipfile.BadZipFile, EOFError, RecursionError):
         raise ValueError(f"{path}: not a {kind} file (a saved result)") from None
     if not isinstance(metadata, dict) or metadata.pop("format", None) != kind:
         raise ValueError(f"{path}: not a {kind} file (written by another version, or not a saved result)")
+    if _depth(metadata) > MAX_DEPTH:
+        raise ValueError(f"{path}: metadata nested more than {MAX_DEPTH} deep, beyond what a saved result needs")
     known = _known(classes)
-    try:
-        return arrays, {name: _decode(value, known) for name, value in metadata.items()}
-    except (TypeError, KeyError) as error:
-        raise ValueError(f"{path}: an entry that cannot be read ({error})") from None
+    decoded = {}
+    for name, value in metadata.items():
+        try:
+            decoded[name] = _decode(value, known)
+        except (TypeError, KeyError, ValueError) as error:
+            raise ValueError(f"{path}: {name}: an entry that cannot be read ({error})") from None
+    return arrays, decoded
+
+
+MAX_DEPTH = 32
+"""Deepest nesting of a saved result's JSON metadata read (a building with walls, their thermal description
+and limits is ~8 deep); deeper is refused before it is decoded (it would exhaust Python's recursion)."""
+
+
+def _depth(value: Any) -> int:
+    """How deep ``value`` (decoded JSON) nests dicts and lists (counted without recursion, up to MAX_DEPTH + 1)."""
+    deepest, stack = 0, [(value, 1)]
+    while stack:
+        item, level = stack.pop()
+        if isinstance(item, (dict, list)):
+            deepest = max(deepest, level)
+            if level <= MAX_DEPTH:
+                stack.extend((child, level + 1) for child in (item.values() if isinstance(item, dict) else item))
+    return deepest
 
 
 def _known(classes: Iterable[type]) -> dict[str, type]:
@@ -114,5 +157,8 @@ def _decode(value: Any, known: dict[str, type]) -> Any:
     if set(value) == {"tuple"}:
         return tuple(_decode(item, known) for item in value["tuple"])
     if set(value) == {"array", "dtype"}:
-        return np.array(value["array"], dtype=np.dtype(value["dtype"]))
+        dtype = np.dtype(value["dtype"])
+        if dtype.kind not in "biuf":  # no object, datetime, text or structured arrays
+            raise TypeError(f"an array of dtype {dtype}")
+        return np.array(value["array"], dtype=dtype)
     raise KeyError(f"entry {sorted(value)}")

@@ -2,8 +2,9 @@
 
 Every (motion, scale) pair is one small picklable task -- the building, the record and the factor --
 run by :func:`vdw_frames.simulate` in whichever process the executor chooses, returning only the peak
-responses.  The default executor is a process pool over all cores; a Dask cluster works through
-``distributed.Client(...).get_executor()`` (install the ``dask`` extra).
+responses.  The default executor is a process pool over all cores whose workers never outlive the call; a
+Dask cluster works through a ``distributed.Client`` (install the ``dask`` extra).  The fan-out, its
+cancellation, warnings and progress bar are :mod:`vdw_frames._parallel`'s.
 """
 
 from __future__ import annotations
@@ -13,8 +14,8 @@ import csv
 import dataclasses
 import io
 import os
-import sys
 from collections.abc import Callable, Iterable, Sequence
+from contextlib import AbstractContextManager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -22,8 +23,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .. import _warnings
 from .._files import write_text
+from .._parallel import check_executor, executor_for, fan_out, reissue
 from .._validation import finite_array, show
 from ..element.bank import wall_order
 from ..element.damper import DEFAULT_MEMORY
@@ -51,19 +52,16 @@ class BatchTask:
     def run(self) -> dict[str, Any]:
         """Peak responses of this analysis (units of :class:`~vdw_frames.frame.simulation.SimulationResult`).
 
-        The package's warnings raised by the analysis (e.g. strain outside the identified range) travel
-        back as (category, text) under "warnings", since a worker process cannot warn the caller.  They
-        are collected per task with :func:`vdw_frames._warnings.collect` (a context variable), which is
-        safe with any number of threads and leaves ``warnings.filters`` alone.
+        The package's warnings raised by the analysis (e.g. strain outside the identified range) are
+        collected per task by :func:`vdw_frames._parallel.fan_out` and re-issued by :func:`run_batch`,
+        since a worker process cannot warn the caller.
         """
-        with _warnings.collect() as caught:
-            result = simulate(self.building, self.motion.scaled(self.scale), method=self.method, memory=self.memory,
-                              strain_compatible=self.strain_compatible, **dict(self.options))
+        result = simulate(self.building, self.motion.scaled(self.scale), method=self.method, memory=self.memory,
+                          strain_compatible=self.strain_compatible, **dict(self.options))
         return {
             "collapsed": result.collapsed,
             "converged": result.converged,
             "residual_drift": result.residual_drift,
-            "warnings": [(w.category, w.message) for w in caught],
             "peak_drift": result.peak_drift,
             "peak_drift_ratio": result.peak_drift_ratio,
             "peak_absolute_acceleration": result.peak_absolute_acceleration,
@@ -175,8 +173,9 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
     ``motions``: GroundMotion objects (mm/s^2).  ``scales``: factors (dimensionless) applied as
     :meth:`GroundMotion.scaled` does, either one sequence for all motions (shape (scales,)) or one row
     per motion (shape (motions, scales)), e.g. from :func:`scale_factors_to_pga`.  ``executor``: any
-    :class:`concurrent.futures.Executor` (default: a process pool over all cores, shut down after).
-    ``progress``: a progress bar on standard error, only when it is a terminal.  The peaks equal those
+    :class:`concurrent.futures.Executor` or Dask ``distributed.Client`` (default: a process pool over all
+    cores, shut down after; its workers are terminated on an error, Ctrl-C or SIGTERM and die with the
+    process).  ``progress``: a progress bar (tqdm) on standard error, only when it is a terminal.  The peaks equal those
     of :func:`simulate` for the same run; the package's warnings of every analysis are re-issued here,
     once per message, naming the motion and scale (collected per task, safe with thread executors).
     The first failing analysis cancels the rest and raises, its message naming the motion and scale.
@@ -217,9 +216,7 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
         bad = next((m for m in motions if not isinstance(m, GroundMotion)), None)
         raise ValueError("motions must be a non-empty sequence of GroundMotion objects"
                          + (f", got {type(bad).__name__} {show(bad)}" if motions else ", got none"))
-    if executor is not None and not (isinstance(executor, concurrent.futures.Executor)
-                                     or callable(getattr(executor, "submit", None))):
-        raise ValueError(f"executor must be a concurrent.futures.Executor (or None), got {show(executor)}")
+    check_executor(executor)
     get_method(method)
     memory_strategy(memory)
     factors = finite_array("scales", scales, ndim=None)
@@ -236,41 +233,12 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
     tasks = {(m, s): BatchTask(building, motion, float(factors[m, s]), memory, method, strain_compatible, options)
              for m, motion in enumerate(motions) for s in range(factors.shape[1])}
 
-    own_executor = executor is None
-    if executor is None:
-        executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
-    futures = {}
-    try:
-        futures = {executor.submit(_run, task): key for key, task in tasks.items()}
-        peaks = {}
-        bar = _ProgressBar(len(futures)) if progress and sys.stderr.isatty() else None
-        for future in concurrent.futures.as_completed(futures):
-            m, s = futures[future]
-            try:
-                peaks[(m, s)] = future.result()
-            except Exception as error:
-                run = f"run_batch: the analysis of {_label(motions, m)} x {factors[m, s]:g} failed"
-                if isinstance(error, ValueError):
-                    raise ValueError(f"{run}: {error}") from error
-                if hasattr(error, "add_note"):  # Python >= 3.11
-                    error.add_note(run)
-                raise
-            if bar:
-                bar.advance()
-    except BaseException:
-        for future in futures:
-            future.cancel()
-        raise
-    finally:
-        if own_executor:
-            executor.shutdown(cancel_futures=True)
-    reported = set()
-    for (m, s), peak in sorted(peaks.items()):
-        for category, message in peak["warnings"]:
-            text = f"{_label(motions, m)} x {factors[m, s]:g}: {message}"
-            if text not in reported:
-                reported.add(text)
-                _warnings.warn(text, category, stacklevel=2)
+    with executor_for(executor) as pool:
+        collected = fan_out(_run, tasks, pool, progress=progress, unit="analyses",
+                            where=lambda key: f"run_batch: the analysis of {_label(motions, key[0])} x "
+                                              f"{factors[key]:g} failed")
+    reissue(collected, lambda key: f"{_label(motions, key[0])} x {factors[key]:g}", stacklevel=2)
+    peaks = {key: each.value for key, each in collected.items()}
 
     def stack(name):
         if peaks[(0, 0)][name] is None:
@@ -286,6 +254,17 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
                        **{name: stack(name).astype(bool) for name in OUTCOMES},
                        wall_stories=tuple(story for story, _ in building.wall_list), wall_failed=failed,
                        wall_failure_time=np.ma.masked_array(np.where(failed, failure_time, 0.0), mask=~failed))
+
+
+def worker_pool() -> AbstractContextManager[concurrent.futures.Executor]:
+    """``with worker_pool() as pool:`` the default executor of :func:`run_batch`,
+    :func:`~vdw_frames.incremental_dynamic_analysis`, :func:`~vdw_frames.verify` and
+    :func:`~vdw_frames.collapse_assessment` -- a process pool over all cores -- kept for several calls
+    (``executor=pool``), with the same care: its workers ignore Ctrl-C and die with this process (even
+    killed by SIGKILL), and an error, Ctrl-C or SIGTERM inside the block terminates them at once
+    (:mod:`vdw_frames._parallel`).  A plain ``ProcessPoolExecutor`` leaves its workers running when its
+    process is killed."""
+    return executor_for(None)
 
 
 def _label(motions: Sequence[GroundMotion], m: int) -> str:
@@ -319,14 +298,8 @@ def _property_envelope(building: ShearBuilding, property_factors: ArrayLike | No
 
     combinations = [(float(f), t) for f in factors for t in temperatures]
     variants = [variant(f, t) for f, t in combinations]
-    own_executor = executor is None
-    if executor is None:
-        executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
-    try:
-        results = [run(each, executor) for each in variants]
-    finally:
-        if own_executor:
-            executor.shutdown(cancel_futures=True)
+    with executor_for(executor) as pool:  # one pool for every variant
+        results = [run(each, pool) for each in variants]
     envelope: dict[str, Any] = {}
     by_factor: dict[str, np.ndarray] = {}
     by_temperature: dict[str, np.ndarray] = {}
@@ -371,19 +344,3 @@ def scale_factors_to_spectral_acceleration(motions: Iterable[GroundMotion], targ
     unit = np.array([motion.scale_factor_to_spectral_acceleration(1.0, period, damping_ratio) for motion in motions])
     return unit[:, None] * targets
 
-
-class _ProgressBar:
-    def __init__(self, total: int) -> None:
-        self.total, self.done = total, 0
-        self._draw()
-
-    def advance(self) -> None:
-        self.done += 1
-        self._draw()
-        if self.done == self.total:
-            sys.stderr.write("\n")
-
-    def _draw(self) -> None:
-        filled = int(30 * self.done / self.total)
-        sys.stderr.write(f"\r[{'#' * filled}{'.' * (30 - filled)}] {self.done}/{self.total} analyses")
-        sys.stderr.flush()

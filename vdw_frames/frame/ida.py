@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .._parallel import executor_for
 from .._validation import finite_array, positive, show
 from ..motion.record import G, GroundMotion
 from .batch import run_batch, scale_factors_to_spectral_acceleration
@@ -127,7 +128,7 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[Grou
     of ``step`` up to ``cap`` (mm/s^2) or collapse, record by record (module docstring).
 
     ``period`` (s): the intensity measure's period, default the bare elastic frame's T1.  ``executor``:
-    as for :func:`run_batch` (one pool for the whole analysis is much faster than one per level).
+    as for :func:`run_batch` (the default process pool serves every level).
     ``options`` go to :func:`run_batch` and :func:`simulate` (``collapse_drift_ratio`` (default 0.10, needs
     story heights), ``method``, ``memory``, ``strain_compatible``, ...).  ``wall_failure_collapse``: count
     the failure of any wall as collapse (default False: a failed wall leaves the frame standing).
@@ -158,21 +159,22 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[Grou
     wall_failed: list[list[bool]] = [[] for _ in motions]
     messages: list[str] = []
     standing = list(range(len(motions)))
-    for index, level in enumerate(levels):
-        if not standing:
-            break
-        with _warnings.collect() as caught:  # run_batch's re-issued warnings, per thread
-            batch = run_batch(building, [motions[m] for m in standing], factors[standing, index][:, None],
-                              executor=executor, progress=False, **options)
-        messages.extend(w.message for w in caught)
-        assert batch.peak_drift_ratio is not None  # the building has story heights (checked above)
-        for row, m in enumerate(standing):
-            intensities[m].append(level)
-            drift[m].append(float(batch.peak_drift_ratio[row, 0].max()))
-            wall_failed[m].append(bool(batch.wall_failed[row, 0].any()))
-            collapsed[m].append(bool(batch.collapsed[row, 0] or not batch.converged[row, 0]
-                                     or (wall_failure_collapse and wall_failed[m][-1])))
-        standing = [m for m in standing if not collapsed[m][-1]]
+    with executor_for(executor) as pool:  # one pool for every level (default: a process pool)
+        for index, level in enumerate(levels):
+            if not standing:
+                break
+            with _warnings.collect() as caught:  # run_batch's re-issued warnings, per thread
+                batch = run_batch(building, [motions[m] for m in standing], factors[standing, index][:, None],
+                                  executor=pool, progress=False, **options)
+            messages.extend(w.message for w in caught)
+            assert batch.peak_drift_ratio is not None  # the building has story heights (checked above)
+            for row, m in enumerate(standing):
+                intensities[m].append(level)
+                drift[m].append(float(batch.peak_drift_ratio[row, 0].max()))
+                wall_failed[m].append(bool(batch.wall_failed[row, 0].any()))
+                collapsed[m].append(bool(batch.collapsed[row, 0] or not batch.converged[row, 0]
+                                         or (wall_failure_collapse and wall_failed[m][-1])))
+            standing = [m for m in standing if not collapsed[m][-1]]
     limit_states = COLLAPSE_LIMIT_STATES + (", or the failure of any wall" if wall_failure_collapse else
                                             " (wall failure not included: a failed wall leaves the frame standing)")
     return IDAResult(tuple(m.name for m in motions), float(period), levels,

@@ -30,7 +30,7 @@ Energies (N*mm) are accumulated in the same pass with trapezoidal work increment
 average acceleration balances energy to the iteration tolerance.
 
 The compiled functions take their arrays as named tuples (:class:`FrameArrays`, :class:`StoryArrays`,
-:class:`~vdw_frames.element.kernel.BankArrays`, :class:`Histories`, :class:`Scratch`), whose fields
+:class:`~vdw_frames.element.kernel.BankArrays`, :class:`Excitation`, :class:`Histories`, :class:`Scratch`), whose fields
 give every array's shape; nothing here imports the drivers above it
 (:mod:`vdw_frames.frame.time_history`, :mod:`vdw_frames.frame.simulation`).  The step loops allocate
 nothing (their work arrays come from :func:`scratch`): they are compiled without numba's reference
@@ -102,6 +102,15 @@ class NewtonSettings(NamedTuple):
     force_tolerance: float  # -
     max_iterations: int
     fallback_iterations: int
+
+
+class Excitation(NamedTuple):
+    """The ground motion as the integrator takes it, and its time axis: row i of the histories is at
+    t = (first_step + i) dt."""
+
+    acceleration: np.ndarray  # (N,) mm/s^2, one value a row of the histories
+    dt: float  # s
+    first_step: int  # the steps the walls have committed before row 0 (0 from rest; a restart: replay's k)
 
 
 class FrameArrays(NamedTuple):
@@ -330,17 +339,18 @@ def _solve(frame, dt, work):
 
 
 @njit(cache=True, allocates=False)
-def integrate(ground, dt, frame, stories, walls, newton, out, start, work):
+def integrate(excitation, frame, stories, walls, newton, out, work):
     """Newmark average acceleration with Newton-Raphson, rows 1 .. N-1 from the state in row 0, in place.
 
-    ``ground`` (N,) mm/s^2; ``dt`` s; ``frame`` :class:`FrameArrays`; ``stories`` :class:`StoryArrays`
-    (its committed state advances); ``walls`` :class:`WallArrays` (its bank's memory advances);
-    ``newton`` :class:`NewtonSettings`; ``out`` :class:`Histories`, whose row 0 holds the starting state
-    (rest, or a state the stories and walls were brought to by :func:`replay`); ``start``: the number of
-    steps the walls have committed before row 0 (0 from rest); ``work`` :class:`Scratch` of the building
-    (:func:`scratch`).  Returns the number of rows filled; ``out.outcome`` receives (status, failed or
-    collapsed story, Newton corrections).
+    ``excitation`` :class:`Excitation` (the ground acceleration (N,) mm/s^2, dt s, and the number of
+    steps the walls have committed before row 0: 0 from rest); ``frame`` :class:`FrameArrays`;
+    ``stories`` :class:`StoryArrays` (its committed state advances); ``walls`` :class:`WallArrays` (its
+    bank's memory advances); ``newton`` :class:`NewtonSettings`; ``out`` :class:`Histories`, whose row 0
+    holds the starting state (rest, or a state the stories and walls were brought to by :func:`replay`);
+    ``work`` :class:`Scratch` of the building (:func:`scratch`).  Returns the number of rows filled;
+    ``out.outcome`` receives (status, failed or collapsed story, Newton corrections).
     """
+    ground, dt, start = excitation.acceleration, excitation.dt, excitation.first_step
     steps, n = out.displacement.shape
     bank = walls.bank
     groups = walls.group_story.shape[0]

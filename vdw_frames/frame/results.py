@@ -249,15 +249,29 @@ class SimulationResult:
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> SimulationResult:
-        """The result :meth:`save` wrote to ``path``; a file that is not one is refused (ValueError)."""
+        """The result :meth:`save` wrote to ``path``; a file that is not one is refused (ValueError).
+
+        The file is not trusted: every entry is checked before a result is made of it, and a ValueError
+        names the file and the first entry that fails (:func:`check_saved_result`): its type, dtype, shape
+        and finiteness, its range (a wall's group, a failure step, a time that increases uniformly), and the
+        histories' agreement with each other and with the building they were computed for."""
         arrays, metadata = read_archive(path, _ARCHIVE, classes=(FrameState,))
         energy = {name.removeprefix("energy."): value for name, value in arrays.items() if name.startswith("energy.")}
         arguments: dict[str, Any] = {name.removeprefix("result."): value for name, value in arrays.items()
                                      if name.startswith("result.")}
+        names = {item.name for item in dataclasses.fields(cls)}
+        unknown = sorted({*arguments, *metadata} - names) + sorted(set(energy) - set(_ENERGY_FIELDS))
+        missing = sorted(name for name in _REQUIRED if name not in arguments and name not in metadata) + \
+            sorted(name for name in _ENERGY_FIELDS[:7] if name not in energy)
+        if unknown or missing or len(arrays) != len(energy) + len(arguments):
+            stray = sorted(name for name in arrays if not name.startswith(("energy.", "result.")))
+            raise ValueError(f"{path}: a saved result with missing or unknown entries (missing {missing}, unknown "
+                             f"{unknown + stray})")
         try:
-            return cls(energy=EnergyHistory(**energy), **arguments, **metadata)
-        except TypeError as error:
-            raise ValueError(f"{path}: a saved result with missing or unknown entries ({error})") from None
+            check_saved_result({**arguments, **metadata}, energy)
+        except ValueError as error:
+            raise ValueError(f"{path}: {error}") from None
+        return cls(energy=EnergyHistory(**energy), **arguments, **metadata)
 
     @cached_property
     def wall_amplitude(self) -> np.ndarray | None:
@@ -275,6 +289,24 @@ class SimulationResult:
         if self.group_amplitude.shape[0] == 0:
             return None
         return self.group_outside_range[self.wall_group]
+
+    @property
+    def wall_time_below_range(self) -> np.ndarray | None:
+        """Seconds (walls,) each amplitude-following wall followed an amplitude below its lowest identified one,
+        where its parameters are clamped to that set's (for :func:`vdw_frames.paper.strain_dependent` the 225 %
+        set, G1 = 0: a viscoelastic fluid; the rule and its reasons: docs/theory.rst); 0 for walls of fixed
+        parameters; None without amplitude-following walls.  Column 0 of :attr:`wall_time_outside_range`."""
+        outside = self.wall_time_outside_range
+        return None if outside is None else outside[:, 0]
+
+    @property
+    def wall_time_above_range(self) -> np.ndarray | None:
+        """Seconds (walls,) each amplitude-following wall followed an amplitude above its highest identified one
+        (parameters clamped to that set's, with a warning); 0 for walls of fixed parameters; None without
+        amplitude-following walls.  Column 1 of :attr:`wall_time_outside_range`.  A peak *strain* above the range
+        warns for every wall model (:func:`vdw_frames.frame.time_history.peak_strain_warning`)."""
+        outside = self.wall_time_outside_range
+        return None if outside is None else outside[:, 1]
 
     @property
     def wall_failed(self) -> np.ndarray:
@@ -412,6 +444,175 @@ class SimulationResult:
     def peak_wall_strain(self) -> np.ndarray:
         """max |strain| of every wall (-), in ``building.wall_list`` order."""
         return np.abs(self.group_strain).max(axis=0, initial=0.0)[self.wall_group]
+
+
+_ENERGY_FIELDS = ("input", "kinetic", "frame_strain", "hysteretic", "inherent_damping", "wall_work", "p_delta",
+                  "wall_heat", "wall_stored", "wall_released", "wall_parameter_loss")
+_REQUIRED = ("building", "time", "ground_acceleration", "displacement", "velocity", "acceleration", "drift",
+             "story_shear", "story_wall_force", "base_shear", "group_force", "group_strain", "wall_group", "wall_share")
+CONSISTENCY_TOLERANCE = 1e-9
+"""Relative tolerance (of each quantity's largest magnitude) of the identities :func:`check_saved_result`
+checks between a loaded result's histories; :func:`simulate` meets them to rounding (~1e-15), a P-Delta
+energy summed over the steps to ~1e-12."""
+
+
+def check_saved_result(fields: dict[str, Any], energy: dict[str, Any]) -> None:
+    """Check the entries of a saved :class:`SimulationResult` (``fields``: its constructor arguments but
+    ``energy``; ``energy``: the :class:`EnergyHistory` arguments); a ValueError naming the first entry that
+    fails.
+
+    Checked: every history is a float64 numpy array (no object, datetime, raw or other array) of the shape
+    the building and the number of rows give, finite (a group temperature may be NaN throughout, for a wall
+    without a thermal description); ``time`` is (first step + k) dt, dt > 0; ``wall_group`` maps every wall
+    to a group (each group used, its walls on one story) and ``wall_share`` gives each group's walls shares
+    that sum to 1; a failure step lies in the result's steps (or is -1) with a known mode; the outcome's
+    flags are bools, counts whole numbers >= 0, ``collapse_time`` the last time exactly when ``collapsed``.
+    Identities of the analysis (:func:`~vdw_frames.frame.integrator` and :func:`simulate`), within
+    :data:`CONSISTENCY_TOLERANCE`: drift = displacement differences; kinetic energy = v^T M v / 2 (the masses);
+    frame strain energy = sum F_s^2 / (2 k0) (the stiffnesses); base shear = story 1's frame, wall, P-Delta
+    (-P/h d) and damping forces (the gravity loads, the story heights and the damping); P-Delta energy =
+    -sum P d^2 / (2 h).  Story heights enter the histories only through P-Delta: without gravity loads they
+    cannot be checked against them.
+    """
+    building = fields.get("building")
+    if not isinstance(building, ShearBuilding):
+        raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
+    floors, walls = building.stories, len(building.wall_list)
+    for name in ("converged", "collapsed"):
+        if not isinstance(fields.get(name, False), bool):
+            raise ValueError(f"{name} must be True or False, got {show(fields[name])}")
+    for name, least in (("newton_iterations", 0), ("strain_iterations", 1)):
+        value = fields.get(name, 0)
+        if (value is not None or name == "newton_iterations") and \
+                (isinstance(value, bool) or not isinstance(value, int) or value < least):
+            raise ValueError(f"{name} must be a whole number >= {least}, got {show(value)}")
+    if fields.get("strain_converged") is not None and not isinstance(fields["strain_converged"], bool):
+        raise ValueError(f"strain_converged must be True, False or None, got {show(fields['strain_converged'])}")
+    state = fields.get("initial_state")
+    if state is not None and (not isinstance(state, FrameState) or state.stories != floors):
+        raise ValueError(f"initial_state must be a FrameState of {floors} stories, got {show(state)}")
+
+    def array(name: str, value: object, kind: str = "f") -> np.ndarray:
+        if not isinstance(value, np.ndarray) or value.dtype.kind != kind or value.dtype.itemsize != 8:
+            wanted = "float64" if kind == "f" else "int64"
+            got = value.dtype if isinstance(value, np.ndarray) else type(value).__name__
+            raise ValueError(f"{name} must be a {wanted} array, got {got}")
+        return value
+
+    def history(name: str, value: object, shape: tuple[int, ...], nan_columns: bool = False) -> np.ndarray:
+        values = array(name, value)
+        if values.shape != shape:
+            raise ValueError(f"{name} must have shape {shape}, got {values.shape}")
+        bad = ~np.isfinite(values)
+        if nan_columns and values.ndim == 2:  # a column that is NaN throughout: a wall without a temperature
+            bad &= ~np.all(np.isnan(values), axis=0)
+        if bad.any():
+            index = tuple(int(i) for i in np.argwhere(bad)[0])
+            raise ValueError(f"{name} must be finite, got {show(values[index])} at index {index}")
+        return values
+
+    time = array("time", fields.get("time"))
+    rows = time.size
+    if time.ndim != 1 or rows == 0:
+        raise ValueError(f"time must be a 1-D array of at least one step, got shape {time.shape}")
+    first = 0 if state is None else state.step
+    dt = state.dt if state is not None else float(time[1]) if rows > 1 else 1.0
+    # simulate writes (first + k) dt exactly; a restart's dt may differ from its state's by 1e-9 (_check_state)
+    if not (np.isfinite(dt) and dt > 0.0) or np.any(np.diff(time) <= 0.0) or \
+            np.any(np.abs(time - np.arange(first, first + rows) * dt) > 1e-8 * (first + rows) * dt):
+        raise ValueError(f"time must be (first step + k) dt, increasing uniformly from {first} dt (dt > 0), got "
+                         f"{show(time[:3].tolist())} ...")
+    histories = {name: history(name, fields.get(name), (rows, floors))
+                 for name in ("displacement", "velocity", "acceleration", "drift", "story_shear", "story_wall_force")}
+    for name in ("ground_acceleration", "base_shear"):
+        histories[name] = history(name, fields.get(name), (rows,))
+    group_force = array("group_force", fields.get("group_force"))
+    groups = group_force.shape[1] if group_force.ndim == 2 else -1
+    for name in ("group_force", "group_strain"):
+        history(name, fields.get(name), (rows, max(groups, 0)))
+    wall_group = array("wall_group", fields.get("wall_group"), "i")
+    if wall_group.shape != (walls,) or np.any(wall_group < 0) or np.any(wall_group >= groups) or \
+            np.unique(wall_group).size != groups:
+        raise ValueError(f"wall_group must give each of the building's {walls} walls one of the {groups} wall groups "
+                         f"(each group used), got {show(wall_group.tolist())}")
+    stories = np.array([story for story, _ in building.wall_list], dtype=np.int64)
+    for group in range(groups):
+        if np.unique(stories[wall_group == group]).size != 1:
+            raise ValueError(f"wall_group {group} holds walls of stories {sorted(set(stories[wall_group == group]))}: "
+                             "a group is walls of one story")
+    share = history("wall_share", fields.get("wall_share"), (walls,))
+    if np.any(share <= 0.0) or np.any(share > 1.0) or \
+            np.any(np.abs(np.bincount(wall_group, share, groups) - 1.0) > CONSISTENCY_TOLERANCE):
+        raise ValueError(f"wall_share must give each wall a share in (0, 1] of its group, the shares of a group "
+                         f"summing to 1, got {show(share.tolist())}")
+    for name in ("group_temperature", "group_heat", "group_amplitude"):
+        value = array(name, fields.get(name, np.zeros((0, 0))))
+        shape = value.shape if value.shape in ((0, 0), (0, groups)) else (rows, groups)
+        values = history(name, value, shape, nan_columns=name == "group_temperature")
+        if name == "group_amplitude" and np.any(values < 0.0):
+            raise ValueError("group_amplitude must be >= 0")
+    terms = array("group_heat_terms", fields.get("group_heat_terms", np.zeros((0, 4))))
+    terms = history("group_heat_terms", terms, terms.shape if terms.shape == (0, 4) else (groups, 4))
+    if np.any(terms[:, 2] < 0.0) or np.any(terms[:, 2] > 1.0) or np.any(terms[:, 3] < 0.0):
+        raise ValueError("group_heat_terms must hold decays in [0, 1] and gains >= 0 (columns 3 and 4)")
+    failure = array("group_failure", fields.get("group_failure", np.zeros((0, 2), dtype=np.int64)), "i")
+    step, mode = (failure[:, 0], failure[:, 1]) if failure.ndim == 2 and failure.shape[1] == 2 else (None, None)
+    if step is None or mode is None or failure.shape[0] not in (0, groups) or np.any(step < -1) or \
+            np.any(step >= first + rows) or np.any((mode < 0) | (mode >= len(FAILURE_MODES))) or \
+            np.any((step < 0) != (mode == 0)):
+        raise ValueError(f"group_failure must hold, per wall group, a failure step in {first} ... {first + rows - 1} "
+                         f"(-1: intact) and a mode of 1 ... {len(FAILURE_MODES) - 1} (0: intact), got "
+                         f"{show(failure.tolist())}")
+    outside = array("group_outside_range", fields.get("group_outside_range", np.zeros((0, 2))))
+    outside = history("group_outside_range", outside, outside.shape if outside.shape == (0, 2) else (groups, 2))
+    if np.any(outside < 0.0) or np.any(outside > (first + rows) * dt):
+        raise ValueError(f"group_outside_range must hold times in 0 ... {(first + rows) * dt:.6g} s, got "
+                         f"{show(outside.tolist())}")
+    effective, equivalent = fields.get("wall_effective_strain"), fields.get("equivalent_walls")
+    strained = (effective, equivalent, fields.get("strain_iterations"), fields.get("strain_converged"))
+    if any(item is None for item in strained) and any(item is not None for item in strained):
+        raise ValueError("wall_effective_strain, equivalent_walls, strain_iterations and strain_converged must all be "
+                         "given (a strain-compatible analysis) or all be None")
+    if effective is not None and np.any(history("wall_effective_strain", effective, (walls,)) < 0.0):
+        raise ValueError("wall_effective_strain must be >= 0")
+    if equivalent is not None and (not isinstance(equivalent, tuple) or len(equivalent) != walls):
+        raise ValueError(f"equivalent_walls must be a tuple of the building's {walls} walls, got {show(equivalent)}")
+    collapse_time = fields.get("collapse_time")
+    if fields.get("collapsed", False) != (collapse_time is not None) or \
+            (collapse_time is not None and collapse_time != float(time[-1])):
+        raise ValueError(f"collapse_time must be the last time, {float(time[-1])!r} s, when collapsed and None "
+                         f"otherwise, got {show(collapse_time)}")
+    for name in _ENERGY_FIELDS:
+        if name in energy:
+            history(f"energy.{name}", energy[name], (rows,))
+    _check_identities(building, histories, energy)
+
+
+def _check_identities(building: ShearBuilding, histories: dict[str, np.ndarray], energy: dict[str, np.ndarray]) -> None:
+    """The identities :func:`check_saved_result` lists, each within CONSISTENCY_TOLERANCE of its scale."""
+    displacement, velocity, drift = histories["displacement"], histories["velocity"], histories["drift"]
+    shear, walls = histories["story_shear"], histories["story_wall_force"]
+    geometric = np.asarray(building.geometric_stiffness)
+    damping = velocity @ np.asarray(building.story_damping_matrix).sum(axis=0)
+    checks = (
+        ("drift", drift, np.diff(displacement, axis=1, prepend=0.0), "the displacement differences"),
+        ("energy.kinetic", energy["kinetic"], 0.5 * (velocity**2) @ np.asarray(building.masses),
+         "v^T M v / 2 with the building's masses"),
+        ("energy.frame_strain", energy["frame_strain"], 0.5 * (shear**2) @ (1.0 / np.asarray(building.stiffnesses)),
+         "sum F_s^2 / (2 k0) with the building's stiffnesses"),
+        ("base_shear", histories["base_shear"], shear[:, 0] + walls[:, 0] + geometric[0] * drift[:, 0] + damping,
+         "story 1's frame, wall, P-Delta and damping forces with the building's gravity loads, heights and damping"),
+        ("energy.p_delta", energy["p_delta"], 0.5 * (drift**2) @ geometric,
+         "-sum P d^2 / (2 h) with the building's gravity loads and story heights"),
+    )
+    for name, stored, expected, what in checks:
+        scale = max(float(np.abs(stored).max(initial=0.0)), float(np.abs(expected).max(initial=0.0)))
+        gap = np.abs(stored - expected)
+        if gap.max(initial=0.0) > CONSISTENCY_TOLERANCE * scale:
+            row = int(np.argmax(gap.max(axis=1) if gap.ndim == 2 else gap))
+            raise ValueError(f"{name} disagrees with {what}: off by {float(gap.max()):.3g} at row {row} (tolerance "
+                             f"{CONSISTENCY_TOLERANCE:g} of {scale:.3g}); the file's histories and building do not "
+                             "belong together")
 
 
 def _heat_from_temperature(temperature: np.ndarray, terms: np.ndarray) -> np.ndarray:

@@ -65,7 +65,9 @@ def simulate(building: ShearBuilding, ground_motion: GroundMotion, dt: float | N
     ``result.converged = False`` and a ``RuntimeWarning`` naming the time and story; never NaN.  A run
     whose energy balance misses by more than ``vdw_frames.frame.results.ENERGY_BALANCE_TOLERANCE`` (1e-4)
     of its peak input energy warns (``RuntimeWarning``, a self-check: the equations were not solved).  Warns
-    (``UserWarning``) when a wall's peak strain leaves its ``strain_range``.  Returns a
+    (``UserWarning``) when a wall's peak strain lies above its ``strain_range`` (every wall model, naming the
+    story and the model; a fixed-parameter wall's also below it), and when an amplitude-following wall's
+    amplitude lies above its range or never reaches it.  Returns a
     :class:`SimulationResult`.
     """
     options: dict[str, Any] = dict(dt=dt, method=method, memory=memory, collapse_drift_ratio=collapse_drift_ratio,

@@ -85,7 +85,7 @@ from ..element.strain_dependent import StrainDependentDamper
 from ..motion.record import GroundMotion
 from .building import ShearBuilding
 from .results import SimulationResult
-from .time_history import time_history
+from .time_history import peak_strain_warning, time_history
 
 if TYPE_CHECKING:
     from ..element.wall import Wall
@@ -192,6 +192,15 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion: GroundM
     for message in caught:
         _warnings.warn(message.message, message.category, stacklevel=3)
     _warn_clamped(building, walls, strain, effective / options.effective_strain_ratio)
+    # The equivalent walls ran without a range (judged above by their effective strain); their peak strain
+    # beyond the tested range is warned about as for every wall model.
+    peaks = result.peak_wall_strain
+    tested = [(index, entry) for index, (entry, flag) in enumerate(zip(building.wall_list, dependent, strict=True))
+              if flag]
+    peak_warning = peak_strain_warning([entry for _, entry in tested], peaks[[index for index, _ in tested]],
+                                       "StrainDependentDamper, equivalent-linear")
+    if peak_warning is not None:
+        _warnings.warn(peak_warning, UserWarning, stacklevel=3)
     if not converged:
         change = np.max((np.abs(effective - strain) / np.where(strain > 0.0, strain, 1.0))[dependent])
         _warnings.warn(f"strain-compatible analysis did not converge in {options.max_iterations} analyses: the "

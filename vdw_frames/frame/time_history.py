@@ -29,6 +29,7 @@ from .integrator import (
     COLLAPSED,
     ENERGIES,
     FAILED,
+    Excitation,
     FrameArrays,
     Histories,
     NewtonRaphson,
@@ -51,6 +52,19 @@ O(n^3).  Measured on the development machine under load, 300 steps took 1.0 s at
 only by the memory of its damping matrix (n x n floats within the 2 GiB limit: at most 16 384 stories)."""
 
 
+def _require_size(building: ShearBuilding) -> None:
+    """ValueError, before any work, for a building beyond :data:`MAX_MODAL_DAMPING_STORIES` with modal damping or
+    whose damping matrix exceeds the memory limit."""
+    floors = building.stories
+    if building.damping_model == "modal" and floors > MAX_MODAL_DAMPING_STORIES:
+        raise ValueError(f"simulate takes buildings of at most {MAX_MODAL_DAMPING_STORIES} stories with modal damping, "
+                         f"got {floors} stories: its dense damping matrix makes every step a dense solve, O(n^3); "
+                         "use damping_model='rayleigh' (O(n) a step)")
+    # The integrator takes C as an n x n array (only its band is read with Rayleigh damping).
+    check_memory(f"simulate's damping matrix ({floors} x {floors} floors)", float(floors) ** 2, 8.0,
+                 "fewer stories", unit="entries")
+
+
 def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float | None = None,
                  method: str | Discretisation = DEFAULT_METHOD, memory: str | FastMemory = DEFAULT_MEMORY, *,
                  collapse_drift_ratio: float | None = 0.10, free_vibration: float = 0.0,
@@ -68,14 +82,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         wall_order(wall)
     if not isinstance(ground_motion, GroundMotion):
         raise ValueError(f"ground_motion must be a GroundMotion (see read_at2), got {type(ground_motion).__name__}")
-    floors = building.stories
-    if building.damping_model == "modal" and floors > MAX_MODAL_DAMPING_STORIES:
-        raise ValueError(f"simulate takes buildings of at most {MAX_MODAL_DAMPING_STORIES} stories with modal damping, "
-                         f"got {floors} stories: its dense damping matrix makes every step a dense solve, O(n^3); "
-                         "use damping_model='rayleigh' (O(n) a step)")
-    # The integrator takes C as an n x n array (only its band is read with Rayleigh damping).
-    check_memory(f"simulate's damping matrix ({floors} x {floors} floors)", float(floors) ** 2, 8.0,
-                 "fewer stories", unit="entries")
+    _require_size(building)
     require_stable_under_gravity(building, "simulate")
     method = get_method(method)
     memory_strategy(memory)
@@ -152,7 +159,8 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         out.wall_parameter_loss[0] = bank.state(kernel.PARAMETER_LOSS).sum()
     if amplitudes:
         out.group_amplitude[0] = bank.state(kernel.AMPLITUDE)
-    filled = integrate(ground, dt, frame, stories, wall_arrays, newton.arrays(), out, start, work)
+    filled = integrate(Excitation(ground, float(dt), int(start)), frame, stories, wall_arrays, newton.arrays(), out,
+                       work)
     status, story_index, iterations = (int(x) for x in out.outcome)
     if status == FAILED:
         _warnings.warn(f"simulate: the step to t = {(start + filled) * dt:.6g} s did not converge "
@@ -270,34 +278,56 @@ def is_strain_range_warning(message: str) -> bool:
     return _PEAK_OUTSIDE in message or _AMPLITUDE_OUTSIDE in message
 
 
+def wall_model(wall: object) -> str:
+    """A wall's model as the warnings name it: its class, and whether it follows its amplitude."""
+    name = type(wall).__name__
+    return f"{name}, amplitude followed" if hasattr(wall, "amplitude_table") else name
+
+
+def peak_strain_warning(walls: Sequence[tuple[int, object]], peak_wall_strain: np.ndarray,
+                        model: str | None = None) -> str | None:
+    """The warning (None: none) for the walls whose peak strain (-, in ``walls`` order) lies above the range
+    their parameters were identified at (``strain_range``), each named by story and model (``model``, or
+    :func:`wall_model`).  For every wall model: the peak strain is what a test would have to reach, whatever
+    amplitude the parameters follow.  A wall of fixed parameters whose peak stays below the range warns too
+    (its parameters were identified at larger strains); an amplitude-following wall's time below the range is
+    counted instead (``SimulationResult.wall_time_below_range``)."""
+    outside = []
+    for index, (story, wall) in enumerate(walls):
+        strain_range = getattr(wall, "strain_range", None)
+        if strain_range is None:
+            continue
+        low, high = strain_range
+        peak = float(peak_wall_strain[index])
+        if peak > high or (peak < low and not hasattr(wall, "amplitude_table")):
+            outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %), "
+                           f"{model or wall_model(wall)}")
+    return _PEAK_OUTSIDE + "; ".join(dict.fromkeys(outside)) if outside else None
+
+
 def _warn_strain_range(walls: Sequence[tuple[int, Wall]], peak_wall_strain: np.ndarray, above_seconds: np.ndarray,
                        peak_amplitude: np.ndarray | None) -> None:
-    """Warn when a wall of fixed parameters strains beyond the range they were identified for, or an
-    amplitude-following wall follows an amplitude above its identified ones, or never reaches them (its
-    parameters are then those of the nearest end: an extrapolation).  The time an amplitude-following wall
-    spends below the range as a record builds up and dies out is counted, not warned about
-    (``result.wall_time_outside_range``); its peak strain may exceed its amplitude by a drift offset,
-    which is not amplitude."""
-    outside, beyond = [], []
+    """Warn when a wall's peak strain lies beyond the range its parameters were identified for
+    (:func:`peak_strain_warning`, every wall model), or an amplitude-following wall follows an amplitude above
+    its identified ones, or never reaches them (its parameters are then those of the nearest end: an
+    extrapolation).  The time an amplitude-following wall spends below the range as a record builds up and
+    dies out is counted, not warned about (``result.wall_time_below_range``)."""
+    beyond = []
     for index, (story, wall) in enumerate(walls):
-        if wall.strain_range is None:
+        if wall.strain_range is None or not hasattr(wall, "amplitude_table"):
             continue
         low, high = wall.strain_range
-        if hasattr(wall, "amplitude_table"):
-            if peak_amplitude is None:  # pragma: no cover - amplitude-following walls are followed
-                continue
-            if above_seconds[index] > 0.0:
-                beyond.append(f"story {story}: up to {100 * peak_amplitude[index]:.0f} % for "
-                              f"{above_seconds[index]:.3g} s (range {100 * low:.0f}-{100 * high:.0f} %)")
-            elif peak_amplitude[index] < low:
-                beyond.append(f"story {story}: at most {100 * peak_amplitude[index]:.0f} %, below the range "
-                              f"{100 * low:.0f}-{100 * high:.0f} % throughout")
+        if peak_amplitude is None:  # pragma: no cover - amplitude-following walls are followed
             continue
-        peak = float(peak_wall_strain[index])
-        if not low <= peak <= high:
-            outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %)")
-    if outside:
-        _warnings.warn(_PEAK_OUTSIDE + "; ".join(dict.fromkeys(outside)), UserWarning, stacklevel=4)
+        if above_seconds[index] > 0.0:
+            beyond.append(f"story {story}: up to {100 * peak_amplitude[index]:.0f} % for "
+                          f"{above_seconds[index]:.3g} s (range {100 * low:.0f}-{100 * high:.0f} %)")
+        elif peak_amplitude[index] < low:
+            beyond.append(f"story {story}: at most {100 * peak_amplitude[index]:.0f} %, below the range "
+                          f"{100 * low:.0f}-{100 * high:.0f} % throughout")
+    peak = peak_strain_warning(walls, peak_wall_strain)
+    if peak is not None:
+        _warnings.warn(peak, UserWarning, stacklevel=4)
     if beyond:
         _warnings.warn(_AMPLITUDE_OUTSIDE + " (those of the nearest are used): " + "; ".join(dict.fromkeys(beyond)),
                        UserWarning, stacklevel=4)

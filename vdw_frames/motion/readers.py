@@ -41,6 +41,24 @@ _TIME_UNITS = {**dict.fromkeys(("s", "sec", "secs", "second", "seconds"), 1.0),
                **dict.fromkeys(("ms", "msec", "msecs", "millisecond", "milliseconds"), 1e-3)}
 # An AT2 header's unit statement: "IN UNITS OF G", "UNITS OF CM/S/S.", "The units are (g)", "UNITS: gal".
 _UNIT_STATEMENT = re.compile(r"\bUNITS?\s*(?:\b(?:OF|ARE|IS|IN)\b|[:=])\s*[:=]?\s*\(?\s*([^\s,;()]*)", re.IGNORECASE)
+# A unit written anywhere in a header line without "UNITS": a length over a time (squared, or over a time
+# again), "ACCELERATION IN CM/S/S", "(cm/s2)", "[m/s^2]", "ACCEL. CM/SEC/SEC", "ft/s2" (found, then refused),
+# "cm/s" (found, then refused as a velocity); a length times a time to the power -2, "cm s-2", "m·s⁻²"; gal;
+# g in brackets or after "IN": "(g)", "[G]", "ACCELERATION IN G".  Dates (09/20/99) and "N/S" are not units.
+_LENGTH = r"(?:mm|cm|m|km|in|inch|inches|ft|feet|foot)"
+_TIME = r"(?:s|secs?|seconds?)"
+_SLASH_UNIT = re.compile(rf"(?<![A-Za-z_/])({_LENGTH}\s*/\s*{_TIME}(?:\s*/\s*{_TIME}|\s*(?:\^|\*\*)?\s*2|\u00b2)?)"
+                         r"(?![\w/])", re.IGNORECASE)
+_NEGATIVE_POWER_UNIT = re.compile(rf"(?<![A-Za-z_/])({_LENGTH})\s*[\s.*\u00b7]\s*{_TIME}\s*(?:\^|\*\*)?\s*"
+                                  r"(?:[-\u2212]\s*2|\u207b\u00b2)(?![\w/])", re.IGNORECASE)
+_GAL = re.compile(r"(?<![\w/])(gals?)(?![\w/])", re.IGNORECASE)
+# A short word or a ratio in brackets after "ACCELERATION", or after "ACCELERATION IN", is a unit too, even one
+# not read here ("ACCELERATION [mg]", "ACCEL. IN FT/S2"): refused, never read as g.
+_UNIT_WORD = r"(?:[A-Za-z]{1,4}|[^\s()\[\],;]*/[^\s()\[\],;]*)"
+_ACCELERATION_UNIT = re.compile(r"\bACCEL(?:ERATIONS?|\.)?\s*(?:(?:TIME\s+)?(?:HISTORY|SERIES)\s*)?"
+                                rf"(?:IN\s+(?!UNITS?\b)({_UNIT_WORD})(?![\w/]|\s*/)|[(\[]\s*({_UNIT_WORD})\s*[)\]])",
+                                re.IGNORECASE)
+_G = re.compile(r"[(\[]\s*(g)\s*[)\]]|\bIN\s+(g)\b(?![/-])", re.IGNORECASE)
 # A header naming another quantity: "VELOCITY TIME HISTORY", "DISPLACEMENT TIME SERIES".
 _OTHER_HISTORY = re.compile(r"\b(VELOCITY|DISPLACEMENT)\s+(?:TIME\s+)?(?:HISTORY|SERIES)\b", re.IGNORECASE)
 
@@ -133,20 +151,31 @@ def acceleration_unit(unit: object, name: str = "unit") -> float:
     raise ValueError(f"unknown {name} {unit!r}; use one of {accepted}")
 
 
+def _stated_units(line: str) -> list[str]:
+    """The units ``line`` names, as written (see the patterns above), in the order they appear."""
+    found: list[tuple[int, str]] = []
+    for match in _UNIT_STATEMENT.finditer(line):
+        found.append((match.start(1), match.group(1).rstrip(".")))
+    for pattern in (_SLASH_UNIT, _GAL, _G, _ACCELERATION_UNIT):
+        found.extend((match.start(), next(group for group in match.groups() if group is not None))
+                     for match in pattern.finditer(line))
+    found.extend((match.start(), f"{match.group(1)}/s2") for match in _NEGATIVE_POWER_UNIT.finditer(line))
+    return [unit for _, unit in sorted(set(found))]  # one unit found by two patterns counts once
+
+
 def _header_unit(header: list[tuple[int, str]], path: Path) -> tuple[float, str]:
-    """(factor to mm/s^2, unit) of the values of an AT2 file, from the unit statements of its header
-    lines (g when there is none); a ValueError for a header that names a velocity or displacement
-    history, states a unit that is not an acceleration unit, or states two different units."""
+    """(factor to mm/s^2, unit) of the values of an AT2 file, from the units its header lines name
+    (:func:`_stated_units`; g when they name none); a ValueError for a header that names a velocity or
+    displacement history, names a unit that is not an acceleration unit read here, or two different units."""
     stated: list[tuple[int, str, float]] = []
     for number, line in header:
         other = _OTHER_HISTORY.search(line)
         if other:
             raise ValueError(f"{path}: line {number} says this is a {other.group(1).lower()} history "
                              f"({line.strip()!r}); read_at2 reads acceleration histories (.AT2)")
-        for match in _UNIT_STATEMENT.finditer(line):
-            unit = match.group(1).rstrip(".")
+        for unit in _stated_units(line):
             try:
-                stated.append((number, unit, acceleration_unit(unit, "header unit")))
+                stated.append((number, unit, acceleration_unit(re.sub(r"\s+", "", unit), "header unit")))
             except ValueError as error:
                 raise ValueError(f"{path}: line {number} states units {unit!r} ({line.strip()!r}), which read_at2 "
                                  f"cannot read as an acceleration: {error}") from None
@@ -160,10 +189,13 @@ def _header_unit(header: list[tuple[int, str]], path: Path) -> tuple[float, str]
 def read_at2(path: str | os.PathLike[str]) -> GroundMotion:
     """Read a PEER ``.AT2`` acceleration file into a :class:`GroundMotion` (mm/s^2, s).
 
-    Units: the header's unit statement (``IN UNITS OF G``, ``UNITS OF CM/S/S``, ``The units are (g)``,
-    ``UNITS: gal``; any unit of :data:`UNITS`), g when the header states none (PEER's convention).  A
-    header that names a velocity or displacement history (``VELOCITY TIME HISTORY``), states a unit that
-    is not an acceleration unit, or states two different units is a ValueError naming the line.
+    Units: the unit the header names (``IN UNITS OF G``, ``UNITS OF CM/S/S``, ``The units are (g)``,
+    ``UNITS: gal``, and without the word: ``ACCELERATION IN CM/S/S``, ``ACCELERATION (cm/s2)``,
+    ``Acceleration [m/s^2]``, ``ACCEL. CM/SEC/SEC``, ``cm s-2``; any unit of :data:`UNITS`); g only when
+    the header names g or no unit at all (PEER's convention).  A header that names a velocity or
+    displacement history (``VELOCITY TIME HISTORY``), names a unit that is not an acceleration unit read
+    here (``ft/s2``, ``ACCELERATION [mg]``, ``cm/s``), or names two different units is a ValueError naming
+    the line: such a file is never read as g.
 
     The header is free text; the count line is the first line (among the first 10 non-blank ones) that
     is either
@@ -335,7 +367,7 @@ def write_at2(motion: GroundMotion, path: str | os.PathLike[str], header: str | 
         if _NPTS.search(line) or _DT.search(line) or _LEGACY_COUNT.match(line):
             raise ValueError(f"{what} would be read as the NPTS/DT line (it contains 'NPTS=', 'DT=' or "
                              f"'n dt NPTS, DT'); rename the record or pass other header lines")
-        if _UNIT_STATEMENT.search(line) or _OTHER_HISTORY.search(line):
+        if _stated_units(line) or _OTHER_HISTORY.search(line):
             raise ValueError(f"{what} would be read as a statement of the file's units or quantity (it contains "
                              "'UNITS OF ...', 'VELOCITY TIME HISTORY' or the like); the file states its units "
                              "(g) itself: rename the record or pass other header lines")

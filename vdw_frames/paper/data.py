@@ -76,13 +76,15 @@ from numpy.typing import ArrayLike
 
 # The recommended sets live in the element's catalogue (a building file reads them without the identification);
 # their names here are the same objects.
-from ..element.catalogue import AREA as AREA
-from ..element.catalogue import FIT_RANGE as FIT_RANGE
-from ..element.catalogue import FITTED as FITTED
-from ..element.catalogue import STRAINS as STRAINS
-from ..element.catalogue import THICKNESS as THICKNESS
-from ..element.catalogue import fitted as fitted
+from ..element.catalogue import AREA, FIT_RANGE, FITTED, STRAINS, THICKNESS, fitted
 from ..element.catalogue import strain_key as _strain_key
+
+__all__ = [
+    "AREA", "COLUMN_UNITS", "FITTED", "FIT_QUALITY", "FIT_RANGE", "FREQUENCIES", "RECOMMENDED_RESIDUAL", "STRAINS",
+    "TABLE4", "TABLE5", "TABLES", "TEMPERATURE", "THICKNESS", "Table5Row", "fitted", "printed_eq7_modulus",
+    "printed_eq8_moduli", "printed_eq9_loss_factor", "printed_eq10_stiffness", "printed_eq11_damping_coefficient",
+    "table_moduli",
+]
 
 FREQUENCIES = np.array([0.5, 1.0, 1.5, 2.0, 5.0, 10.0])  # Hz
 TEMPERATURE = 21.2  # degC

@@ -103,7 +103,7 @@ def loop_area_scale() -> np.ndarray:
     """A/h (mm) that Table 5's measured loop areas imply, per row: area [N*mm] / (pi G'' [MPa] U^2), U = strain x h
     with the paper's h (only the force's first harmonic dissipates over a sinusoidal cycle, so any loop has area
     pi K'' U^2)."""
-    printed_g2 = np.array([TABLES[row.strain]["loss_modulus"][FREQUENCIES == row.frequency][0] for row in TABLE5])
+    printed_g2 = np.array([TABLES[row.strain]["loss_modulus"][row.frequency == FREQUENCIES][0] for row in TABLE5])
     amplitude = np.array([row.strain / 100.0 * paper.THICKNESS for row in TABLE5])
     experimental = np.array([row.experimental for row in TABLE5])
     return experimental * N_PER_KN / (np.pi * printed_g2 * amplitude**2)
@@ -209,7 +209,7 @@ def errata() -> dict[str, Any]:
     # Measured areas against pi K''_d U^2 of the printed loss stiffness (U = strain x h, h = 10 mm): only the
     # first harmonic of the force dissipates over a sinusoidal cycle, so any loop, nonlinear or not, has
     # area pi K'' U^2 with K'' its first-harmonic loss stiffness.
-    printed_loss = np.array([TABLES[row.strain]["loss_stiffness"][FREQUENCIES == row.frequency][0] for row in TABLE5])
+    printed_loss = np.array([TABLES[row.strain]["loss_stiffness"][row.frequency == FREQUENCIES][0] for row in TABLE5])
     amplitude = np.array([row.strain / 100.0 * paper.THICKNESS for row in TABLE5])
     out["table5_experimental_over_pi_k_u2"] = experimental / (np.pi * printed_loss * amplitude**2)
     out["table5_implied_area_over_thickness"] = loop_area_scale()

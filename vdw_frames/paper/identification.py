@@ -41,10 +41,11 @@ G2 = eta2 = 0.
 from __future__ import annotations
 
 import itertools
+from collections.abc import Callable, Collection
 from dataclasses import dataclass, field
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import least_squares
 
 from .._validation import check_memory, finite_array, finite_scalar, show, whole_number
@@ -153,7 +154,7 @@ def identify(frequency: ArrayLike, storage_modulus: ArrayLike, loss_modulus: Arr
 
 
 # ---------------------------------------------------------------------------------------------- internals
-def _grid_size(grid):
+def _grid_size(grid: object) -> tuple[int, int]:
     message = f"grid must be two whole numbers >= 3 (orders, log lambda values), got {show(grid)}"
     if isinstance(grid, (str, bytes)) or not isinstance(grid, (tuple, list, np.ndarray)) or len(grid) != 2:
         raise ValueError(message)
@@ -164,7 +165,8 @@ def _grid_size(grid):
     return n_r, n_u
 
 
-def _nonnegative_least_squares(columns, target):
+def _nonnegative_least_squares(columns: NDArray[np.float64],
+                               target: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Exact NNLS for up to three columns, batched over leading axes of ``columns`` (..., m, k).
 
     The minimiser is the unconstrained least-squares solution on its support; enumerating every
@@ -186,7 +188,8 @@ def _nonnegative_least_squares(columns, target):
     return best, coefficients
 
 
-def _golden_section(function, low, high, steps=_GOLDEN_STEPS):
+def _golden_section(function: Callable[[NDArray[np.float64]], NDArray[np.float64]], low: ArrayLike, high: ArrayLike,
+                    steps: int = _GOLDEN_STEPS) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Vectorised golden-section minimisation of ``function`` (array -> array) on [low, high] elementwise.
 
     Returns (argmin, min) per element, the better of the two final interior points.
@@ -209,7 +212,8 @@ def _golden_section(function, low, high, steps=_GOLDEN_STEPS):
 class _Problem:
     """Validated data, weights and pinned parameters of one identification."""
 
-    def __init__(self, frequency, storage_modulus, loss_modulus, residual, fixed):
+    def __init__(self, frequency: ArrayLike, storage_modulus: ArrayLike, loss_modulus: ArrayLike, residual: str,
+                 fixed: dict[str, float] | None) -> None:
         f = finite_array("frequency", frequency)
         storage = finite_array("storage_modulus", storage_modulus)
         loss = finite_array("loss_modulus", loss_modulus)
@@ -250,7 +254,7 @@ class _Problem:
                        and not (name == "G2" and (fixed_eta2 is not None or self.maxwell_off))]
 
     @staticmethod
-    def _check_fixed(fixed):
+    def _check_fixed(fixed: dict[str, float] | None) -> dict[str, float]:
         if fixed is None:
             return {}
         if not isinstance(fixed, dict):
@@ -268,21 +272,22 @@ class _Problem:
         return checked
 
     # -- the model, through FDMKDamper -------------------------------------------------------------
-    def weighted_residuals(self, params) -> np.ndarray:
-        modulus = FDMKDamper(**params).complex_modulus(self.frequency)
+    def weighted_residuals(self, params: dict[str, float]) -> NDArray[np.float64]:
+        modulus = FDMKDamper(G1=params["G1"], G2=params["G2"], eta1=params["eta1"], eta2=params["eta2"],
+                             r=params["r"]).complex_modulus(self.frequency)
         return np.concatenate([modulus.real, modulus.imag]) * self.weights - self.target
 
-    def sse(self, params) -> float:
+    def sse(self, params: dict[str, float]) -> float:
         return float(np.sum(self.weighted_residuals(params) ** 2))
 
-    def _lambda(self, r, u):
+    def _lambda(self, r: NDArray[np.float64] | float, u: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """eta2 / G2 (s^r) for the search variable u = log10 |lambda (i omega_ref)^r| (arrays broadcast)."""
         if not self.searches_lambda:
             g2, eta2 = self.fixed.get("G2", 0.0), self.fixed.get("eta2", 0.0)
             return np.broadcast_to(eta2 / g2 if g2 > 0.0 else 0.0, np.shape(u)).astype(float)
         return 10.0**u * np.exp(-r * self.log_reference)
 
-    def projected_points(self, r, u):
+    def projected_points(self, r: ArrayLike, u: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Variable projection at the points (r[k], u[k]): (sse of shape (n,), linear coefficients (n, k)).
 
         For each point the coefficients in ``self.linear`` (among G1, eta1, G2) are the exact
@@ -308,13 +313,15 @@ class _Problem:
                            for name in self.linear], axis=-1) * self.weights[:, None]
         return _nonnegative_least_squares(design, rest)
 
-    def projected(self, r_values, u_values):
+    def projected(self, r_values: NDArray[np.float64],
+                  u_values: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Variable projection on the grid: (sse, linear coefficients) of shape (len(r), len(u)[, k])."""
         r_grid, u_grid = np.meshgrid(r_values, u_values, indexing="ij")
         sse, coefficients = self.projected_points(r_grid, u_grid)
         return sse.reshape(r_grid.shape), coefficients.reshape(r_grid.shape + (len(self.linear),))
 
-    def starts(self, r_values, u_values):
+    def starts(self, r_values: NDArray[np.float64],
+               u_values: NDArray[np.float64]) -> list[tuple[float, float, NDArray[np.float64]]]:
         """Starting points (r, u, linear coefficients) for the local polish, from the grid.
 
         1. The projected sum on the (r, u) grid.
@@ -376,7 +383,7 @@ class _Problem:
         chosen_sse, coefficients = self.projected_points(r[chosen], u[chosen])
         return [(float(r[k]), float(u[k]), coefficients[n]) for n, k in enumerate(chosen)]
 
-    def full_parameters(self, r, u, coefficients) -> dict:
+    def full_parameters(self, r: float, u: float, coefficients: NDArray[np.float64]) -> dict[str, float]:
         """All five parameters from a grid point (r, u) and its linear coefficients."""
         params = dict(self.fixed)
         params.update(zip(self.linear, (float(c) for c in coefficients), strict=True))
@@ -393,14 +400,16 @@ class _Problem:
         return {name: params[name] for name in PARAMETERS}
 
     # -- local polishing ----------------------------------------------------------------------------
-    def polish(self, start: dict, pinned=()) -> dict:
+    def polish(self, start: dict[str, float], pinned: Collection[str] = ()) -> dict[str, float]:
         """least_squares (trf, bounds) in the free parameters not in ``pinned`` from ``start``."""
         free = [name for name in self.free if name not in pinned]
+        if not free:  # a bound face pinning the only free parameter: nothing to polish (scipy 1.15 refuses x0 = [])
+            return dict(start)
         lower = np.array([R_MIN if name == "r" else 0.0 for name in free])
         upper = np.array([1.0 if name == "r" else np.inf for name in free])
         x0 = np.clip([start[name] for name in free], lower, upper)
 
-        def params_of(x):
+        def params_of(x: NDArray[np.float64]) -> dict[str, float]:
             params = dict(start)
             params.update(zip(free, np.clip(x, lower, upper), strict=True))
             return params
@@ -409,7 +418,7 @@ class _Problem:
                                  method="trf", x_scale="jac", ftol=1e-14, xtol=1e-14, gtol=1e-14, max_nfev=3000)
         return params_of(solution.x)
 
-    def snap(self, params: dict) -> dict:
+    def snap(self, params: dict[str, float]) -> dict[str, float]:
         """Put parameters within round-off of a bound onto it (kept only if the sum does not rise)."""
         params = dict(params)
         scale = float(np.max(np.abs(np.concatenate([self.storage, self.loss]))))
@@ -424,7 +433,7 @@ class _Problem:
             params["r"] = 1.0
         return params
 
-    def result(self, params: dict) -> IdentificationResult:
+    def result(self, params: dict[str, float]) -> IdentificationResult:
         params = {name: float(value) for name, value in params.items()}
         residuals = self.weighted_residuals(params)
         at_bound = tuple(name for name in PARAMETERS if
@@ -434,7 +443,7 @@ class _Problem:
             standard_errors=self._standard_errors(params, at_bound), residual=self.residual,
             fixed=dict(self.fixed), frequency=self.frequency, storage_modulus=self.storage, loss_modulus=self.loss)
 
-    def _standard_errors(self, params, at_bound) -> dict:
+    def _standard_errors(self, params: dict[str, float], at_bound: tuple[str, ...]) -> dict[str, float | None]:
         errors: dict[str, float | None] = {name: None for name in PARAMETERS}
         names = [name for name in self.free if name not in at_bound]
         dof = self.target.size - len(names)

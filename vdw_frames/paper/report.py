@@ -10,11 +10,15 @@ from __future__ import annotations
 import dataclasses
 import os
 import time
+from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .._files import output_folder, write_text, write_via
+from ..element.damper import FDMKDamper
 from ..element.sine import sine_test
 from ..element.strain_dependent import PARAMETERS
 from ..plotting import plot_loops
@@ -24,6 +28,8 @@ from . import strain_dependence
 from .data import FREQUENCIES, STRAINS, TABLE5, TABLES
 from .errata import (
     N_PER_KN,
+    ParameterSet,
+    Table5Candidate,
     errata,
     fit_measures,
     fixed_sets,
@@ -34,8 +40,13 @@ from .errata import (
     table_scale,
 )
 
+_Column = Callable[[int], NDArray[np.float64]]
+"""A printed column of Tables 1-3 as a function of the table's strain (%)."""
 
-def _frequency_figure(path, sets, quantity, ylabel, title, data=None, extra=None):
+
+def _frequency_figure(path: Path, sets: Sequence[ParameterSet],
+                      quantity: Callable[[FDMKDamper, NDArray[np.float64]], NDArray[np.float64]], ylabel: str,
+                      title: str, data: _Column | None = None, extra: tuple[str, _Column] | None = None) -> Path:
     """Data (markers) and model curves of ``quantity(damper, f)`` against f, one panel per strain."""
     plt = pyplot()
     f = np.geomspace(0.4, 12.0, 200)
@@ -65,7 +76,7 @@ def _frequency_figure(path, sets, quantity, ylabel, title, data=None, extra=None
     return path
 
 
-def _figures(out, sets) -> list:
+def _figures(out: Path, sets: Sequence[ParameterSet]) -> list[Path]:
     by_key = {s.key: s for s in sets}
     paths = []
     for strain in STRAINS:
@@ -80,10 +91,10 @@ def _figures(out, sets) -> list:
                                           f"U = {strain / 100 * paper.THICKNESS:g} mm"))
     scale = table_scale()
 
-    def attable_scale(damper):
+    def attable_scale(damper: FDMKDamper) -> FDMKDamper:
         return dataclasses.replace(damper, area=scale * damper.thickness)
 
-    def column(name):
+    def column(name: str) -> _Column:
         return lambda strain: TABLES[strain][name]
 
     paths.append(_frequency_figure(out / "fig6_storage_modulus.png", sets, lambda d, f: d.storage_modulus(f),
@@ -100,7 +111,7 @@ def _figures(out, sets) -> list:
     return paths
 
 
-def _strain_figure(path):
+def _strain_figure(path: Path) -> Path:
     """G' and G'' against strain at each frequency: data, per-strain fits over their ranges, the model."""
     plt = pyplot()
     model, naive = strain_dependence.strain_dependent(common_order=False), interpolated_optima()
@@ -142,7 +153,7 @@ def _strain_figure(path):
     return path
 
 
-def _section_strain_dependence(numbers, figure) -> str:
+def _section_strain_dependence(numbers: dict[str, NDArray[np.float64]], figure: Path | None) -> str:
     model = strain_dependence.strain_dependent(common_order=False)
     nodes = strain_dependence.STRAIN_DEPENDENT
     node_rows = [[f"{100 * g:g} %"] + [f"{nodes[name][k]:.4g}" for name in PARAMETERS]
@@ -203,22 +214,22 @@ neighbours at a boundary), and the strain-dependent model:
       "G'' model"], rows)}"""
 
 
-def _md(headers, rows) -> str:
+def _md(headers: Sequence[str], rows: Sequence[Sequence[object]]) -> str:
     lines = ["| " + " | ".join(headers) + " |", "|" + "---|" * len(headers)]
     lines += ["| " + " | ".join(str(cell) for cell in row) + " |" for row in rows]
     return "\n".join(lines) + "\n"
 
 
-def _pct(x) -> str:
+def _pct(x: float) -> str:
     return f"{100.0 * x:+.1f} %"
 
 
-def _params_text(damper) -> str:
+def _params_text(damper: FDMKDamper) -> str:
     return (f"G1 = {damper.G1:.4g}, G2 = {damper.G2:.4g}, eta1 = {damper.eta1:.4g}, eta2 = {damper.eta2:.4g}, "
             f"r = {damper.r:.4g}")
 
 
-def _section_sets(sets) -> str:
+def _section_sets(sets: Sequence[ParameterSet]) -> str:
     rows = []
     for s in sets:
         for strain in STRAINS:
@@ -238,7 +249,7 @@ def _section_sets(sets) -> str:
                    "on bound", "std. errors"], rows))
 
 
-def _section_tables(sets) -> str:
+def _section_tables(sets: Sequence[ParameterSet]) -> str:
     scale = table_scale()
     text = ["## 2. Tables 1-3 against the model\n\nEach cell: model value (error relative to the printed value). "
             "The model is the complex modulus of eqs. (3)-(5) (never the printed (8)). K'_d and K''_d are "
@@ -259,10 +270,35 @@ def _section_tables(sets) -> str:
                     for k, f in enumerate(FREQUENCIES)]
             text.append(f"\n### Table {number} ({strain} % strain): {title}\n\n"
                         + _md(["f (Hz)", "printed"] + [s.label for s in sets], rows))
+    text.append(_self_heating_note())
     return "".join(text)
 
 
-def _section_table5(candidates, errata_numbers) -> str:
+TEST_HEAT_CAPACITY = 1.8
+"""MPa/K = J/(cm^3 K): rho c assumed for the paper's layers (the middle of 1.5-2.0 for filled polymers; the
+examples' value, not the paper's) in the self-heating note of the report."""
+
+
+def _self_heating_note() -> str:
+    """The tests' own heating: the adiabatic rise of one cycle, pi G'' gamma^2 / (rho c), from the printed G''."""
+    rows = []
+    for strain in STRAINS:
+        rise = np.pi * TABLES[strain]["loss_modulus"] * (strain / 100.0) ** 2 / TEST_HEAT_CAPACITY
+        rows.append([f"{strain} %", f"{rise.min():.1f}-{rise.max():.1f}"])
+    return ("\n### The tests heated their own layers\n\nThe tables are \"at 21.2 degC\", the tests' stated "
+            "temperature (presumably their start). "
+            "One sinusoidal cycle of strain amplitude gamma dissipates pi G'' gamma^2 per unit volume "
+            "of the layers; with the printed G'' and rho c = "
+            f"{TEST_HEAT_CAPACITY:g} J/(cm^3 K) (assumed: the paper gives none) a cycle raises them adiabatically by "
+            "(K, over the six frequencies):\n\n" + _md(["strain", "rise per cycle (K)"], rows)
+            + "\nThe paper does not say how many cycles each test ran (its reference [29] has the details); over "
+              "several cycles the printed moduli are those of layers at some mean temperature above 21.2 degC, and a "
+              "model that takes them as 21.2 degC properties and heats them again counts part of the heating twice. "
+              "`examples/heating.py` shows the sensitivity: the parameters taken at the mean temperature of an "
+              "adiabatic test of 1 and 3 cycles at 300 % and 1 Hz.\n")
+
+
+def _section_table5(candidates: Sequence[Table5Candidate], errata_numbers: dict[str, Any]) -> str:
     rows = [[f"{row.frequency:g}", f"{row.strain}", f"{row.strain / 100 * paper.THICKNESS:g}", f"{row.theoretical:g}",
              f"{row.experimental:g}", f"{row.delta:.1f} %", f"{errata_numbers['table5_delta_recomputed'][k]:.2f} %"]
             for k, row in enumerate(TABLE5)]
@@ -300,7 +336,7 @@ def _section_table5(candidates, errata_numbers) -> str:
     return text
 
 
-def _section_errata(e, sets) -> str:
+def _section_errata(e: dict[str, Any], sets: Sequence[ParameterSet]) -> str:
     f = FREQUENCIES
     model, eq7, eq8 = e["model_table4"], e["eq7_table4"], e["eq8_table4"]
     rows = [[f"{f[k]:g}", f"{model[k].real:.3f}", f"{model[k].imag:.3f}", f"{eq7[k].real:.4g}", f"{eq7[k].imag:.4g}",
@@ -424,7 +460,7 @@ stated
 """
 
 
-def _cd_text(e) -> str:
+def _cd_text(e: dict[str, Any]) -> str:
     c = e["consistency"]
     cd_f = np.concatenate([c[s]["cd_times_f_over_k"] for s in STRAINS])
     cd_w = np.concatenate([c[s]["cd_times_omega_over_k"] for s in STRAINS])

@@ -74,12 +74,16 @@ from scipy.optimize import least_squares
 
 # The identified nodes and the wall they make live in the element's catalogue (a building file reads them
 # without this identification); their names here are the same objects.
-from ..element.catalogue import STRAIN_DEPENDENT as STRAIN_DEPENDENT
-from ..element.catalogue import STRAIN_DEPENDENT_COMMON as STRAIN_DEPENDENT_COMMON
-from ..element.catalogue import strain_dependent as strain_dependent
+from ..element.catalogue import STRAIN_DEPENDENT, STRAIN_DEPENDENT_COMMON, strain_dependent
 from ..element.strain_dependent import PARAMETERS, StrainDependentDamper
 from .data import AREA, FREQUENCIES, RECOMMENDED_RESIDUAL, STRAINS, THICKNESS, table_moduli
 from .identification import R_MIN, identify
+
+__all__ = [
+    "COMMON_ORDER_COST", "INTERMEDIATE_STRAINS", "START_ORDERS", "STRAIN_DEPENDENT", "STRAIN_DEPENDENT_COMMON",
+    "STRAIN_DEPENDENT_QUALITY", "StrainDependenceResult", "identification_strains", "identify_strain_dependent",
+    "interpolated_moduli", "relative_errors", "strain_dependent",
+]
 
 INTERMEDIATE_STRAINS = 4  # interpolated target strains per interval between tested strains
 START_ORDERS = (0.3, 0.5, 0.7, 0.9)  # r pinned in the per-strain fits that start the joint search

@@ -2,20 +2,28 @@
 delta_y,eff and delta_u, empirical and P695 collapse fragilities.  Intensities in g, drifts in %.
 
 The functions take :class:`~vdw_frames.assessment.CollapseAssessment` objects (read by attribute:
-plotting sits beside the assessment layer and does not import it).
+plotting sits beside the assessment layer and imports it for type checking only).
 """
 
 from __future__ import annotations
 
+import os
+from collections.abc import Mapping
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..motion.record import G
 from ._figure import figure_path, pyplot, save
 
+if TYPE_CHECKING:
+    from ..assessment.collapse import CollapseAssessment
+    from ..frame.pushover import PushoverResult
 
-def plot_collapse_ida(assessments: dict, path, title=None) -> Path:
+
+def plot_collapse_ida(assessments: Mapping[str, CollapseAssessment], path: str | os.PathLike[str],
+                      title: str | None = None) -> Path:
     """IDA curves of every record: the set's intensity S_T (g) against the largest story drift ratio (%), one
     panel per assessment (``assessments`` maps a label to a CollapseAssessment); each record's first
     collapsing run is marked x at the collapse drift limit, S_MT and Ŝ_CT are drawn as lines."""
@@ -51,7 +59,8 @@ def plot_collapse_ida(assessments: dict, path, title=None) -> Path:
     return save(figure, path)
 
 
-def plot_pushover(pushovers: dict, path, title=None) -> Path:
+def plot_pushover(pushovers: Mapping[str, PushoverResult], path: str | os.PathLike[str],
+                  title: str | None = None) -> Path:
     """Capacity curves V/W against roof drift ratio (%) with V_max, 0.8 V_max, delta_y,eff (eq. 6-7) and
     delta_u marked; ``pushovers`` maps a label to a PushoverResult."""
     path = figure_path(path, "pushover.png")
@@ -87,7 +96,8 @@ def plot_pushover(pushovers: dict, path, title=None) -> Path:
     return save(figure, path)
 
 
-def plot_collapse_fragility(assessments: dict, path, title=None) -> Path:
+def plot_collapse_fragility(assessments: Mapping[str, CollapseAssessment], path: str | os.PathLike[str],
+                            title: str | None = None) -> Path:
     """Collapse fragilities against S_T (g): the empirical one (fraction of records collapsed) as steps and
     FEMA P695's lognormal one (median Ŝ_CT, dispersion beta_TOT) as a line, with S_MT marked."""
     path = figure_path(path, "collapse_fragility.png")

@@ -64,11 +64,12 @@ def plot_roof_displacement(results: Mapping[str, SimulationResult], path: str | 
 def plot_wall_hysteresis(result: SimulationResult, story: int, path: str | os.PathLike[str],
                          title: str | None = None) -> Path:
     """Total damper force (kN) against drift (mm) of one story (1-based) of a simulation result."""
-    return _story_loop(result, story, path, "damper_hysteresis.png", result.story_wall_force, "damper force", title)
+    return _story_loop(result, story, path, "damper_hysteresis.png", result.story_wall_force, "damper force",
+                       title=title)
 
 
 def _story_loop(result: SimulationResult, story: int, path: str | os.PathLike[str], default_name: str,
-                force: np.ndarray, what: str, title: str | None) -> Path:
+                force: np.ndarray, what: str, *, title: str | None) -> Path:
     """``force`` (N, steps x stories) of one story (1-based) against its drift (mm), drawn in kN."""
     story = story_number(result, story)
     path = figure_path(path, default_name)
@@ -88,7 +89,7 @@ def _story_loop(result: SimulationResult, story: int, path: str | os.PathLike[st
 def plot_story_hysteresis(result: SimulationResult, story: int, path: str | os.PathLike[str],
                           title: str | None = None) -> Path:
     """Story-spring force (kN) against drift (mm) of one story (1-based): the frame's own hysteresis."""
-    return _story_loop(result, story, path, "story_hysteresis.png", result.story_shear, "frame shear", title)
+    return _story_loop(result, story, path, "story_hysteresis.png", result.story_shear, "frame shear", title=title)
 
 
 def plot_energy(result: SimulationResult, path: str | os.PathLike[str], title: str | None = None) -> Path:

@@ -3,20 +3,25 @@ scaled suite's spectra with the period range, and the story drift ratios per rec
 Accelerations in g, drift ratios in %.
 
 The functions take a :class:`~vdw_frames.verification.VerificationResult` read by attribute (plotting sits beside
-the verification layer and does not import it).
+the verification layer and imports it for type checking only).
 """
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..motion.record import G
 from ._figure import figure_path, pyplot, save
 
+if TYPE_CHECKING:
+    from ..verification.verify import VerificationResult
 
-def plot_suite_spectra(result, path, title=None) -> Path:
+
+def plot_suite_spectra(result: VerificationResult, path: str | os.PathLike[str], title: str | None = None) -> Path:
     """The MCE_R target, 90 % of it, every scaled record's 5 %-damped spectrum (thin) and the suite's mean over
     the period range T_lower ... T_upper (shaded), with T_1 marked; periods s (log), S_a g (log)."""
     path = figure_path(path, "suite_spectra.png")
@@ -41,7 +46,7 @@ def plot_suite_spectra(result, path, title=None) -> Path:
     return save(figure, path)
 
 
-def plot_story_drifts(result, path, title=None) -> Path:
+def plot_story_drifts(result: VerificationResult, path: str | os.PathLike[str], title: str | None = None) -> Path:
     """Peak story drift ratio (%) of every record (thin lines) and the suite statistic (thick) against the story,
     one panel per case (nominal, upper, lower bound), with the limit 2 x Table 12.12-1 dashed; collapsed or
     otherwise unacceptable records drawn dotted in red."""

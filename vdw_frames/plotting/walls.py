@@ -17,6 +17,9 @@ from .._validation import finite_scalar, show, whole_number
 from ._figure import figure_path, pyplot, save
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
     from ..frame.results import SimulationResult
 
 
@@ -33,7 +36,12 @@ def _wall_index(result: SimulationResult, wall: int) -> int:
     return number - 1
 
 
-def _finish_history(figure, axes, ylabel: str, title: str | None, path: Path) -> Path:
+def _wall_name(result: SimulationResult, index: int) -> str:
+    """"wall N (story S)": the wall at 0-based ``index`` of ``result.building.wall_list``, and its story."""
+    return f"wall {index + 1} (story {result.building.wall_list[index][0]})"
+
+
+def _finish_history(figure: Figure, axes: Axes, ylabel: str, title: str | None, path: Path) -> Path:
     """Label a history against time (s), grid, legend and title; save the figure to ``path``."""
     axes.set_xlabel("time (s)")
     axes.set_ylabel(ylabel)
@@ -51,13 +59,15 @@ def plot_wall_temperature(results: Mapping[str, SimulationResult], wall: int, pa
     path = figure_path(path, "wall_temperature.png")
     plt = pyplot()
     figure, axes = plt.subplots(figsize=(8.0, 3.8))
+    name = f"wall {wall}"
     for label, result in results.items():
         index = _wall_index(result, wall)
+        name = _wall_name(result, index)
         temperature = result.wall_temperature
         if temperature is None or not np.isfinite(temperature[:, index]).all():
             raise ValueError(f"{label}: wall {wall} has no temperature (no thermal description)")
         axes.plot(result.time, temperature[:, index], lw=1.0, label=label)
-    return _finish_history(figure, axes, f"wall {wall} temperature (degC)", title, path)
+    return _finish_history(figure, axes, f"{name} temperature (degC)", title, path)
 
 
 def plot_wall_loops(result: SimulationResult, wall: int, windows: Sequence[tuple[float, float]],
@@ -87,8 +97,8 @@ def plot_wall_loops(result: SimulationResult, wall: int, windows: Sequence[tuple
                   label=f"{start:.1f}-{end:.1f} s")
     axes.axhline(0.0, color="0.7", lw=0.5)
     axes.axvline(0.0, color="0.7", lw=0.5)
-    axes.set_xlabel(f"wall {wall} strain (%)")
-    axes.set_ylabel(f"wall {wall} force (kN)")
+    axes.set_xlabel(f"{_wall_name(result, index)} strain (%)")
+    axes.set_ylabel(f"{_wall_name(result, index)} force (kN)")
     axes.grid(True, alpha=0.3)
     axes.legend(fontsize="small", loc="best")
     if title:
@@ -99,18 +109,23 @@ def plot_wall_loops(result: SimulationResult, wall: int, windows: Sequence[tuple
 def plot_wall_amplitude(results: Mapping[str, SimulationResult], wall: int, path: str | os.PathLike[str],
                         strain_range: tuple[float, float] | None = None, title: str | None = None) -> Path:
     """The strain amplitude (%) wall ``wall`` followed against time (s), one line per result, with the
-    wall's |strain| in grey and its identified ``strain_range`` (-, e.g. (2.25, 4.5)) shaded."""
+    wall's |strain| (grey, one trace per result, in the legend) and its identified ``strain_range`` (-, e.g.
+    (2.25, 4.5)) shaded.  The axis names the wall and its story (of the first result's building)."""
     path = figure_path(path, "wall_amplitude.png")
     plt = pyplot()
     figure, axes = plt.subplots(figsize=(8.0, 3.8))
-    for label, result in results.items():
+    name = f"wall {wall}"
+    for number, (label, result) in enumerate(results.items()):
         index = _wall_index(result, wall)
+        if number == 0:
+            name = _wall_name(result, index)
         amplitude = result.wall_amplitude
         if amplitude is None:
             raise ValueError(f"{label}: no wall follows its amplitude")
-        axes.plot(result.time, 100.0 * np.abs(result.wall_strain[:, index]), color="0.75", lw=0.5)
+        axes.plot(result.time, 100.0 * np.abs(result.wall_strain[:, index]), color=str(0.75 - 0.15 * (number % 3)),
+                  lw=0.5, label=f"{label}: |strain|")
         axes.plot(result.time, 100.0 * amplitude[:, index], lw=1.1, label=f"{label}: followed amplitude")
     if strain_range is not None:
         axes.axhspan(100.0 * strain_range[0], 100.0 * strain_range[1], color="tab:green", alpha=0.12,
                      label="identified range")
-    return _finish_history(figure, axes, f"wall {wall} strain (%)", title, path)
+    return _finish_history(figure, axes, f"{name} strain (%)", title, path)

@@ -16,8 +16,16 @@ Units: spectral accelerations in g where the standard tabulates them (else mm/s^
 
 from .spectrum import RISK_CATEGORIES, SITE_CLASSES, Site, mce_spectrum, site_coefficients, site_from_values
 from .suite import PeriodRange, ScaledSuite, period_range, scaled_suite
-from .verify import Criterion, PropertyBounds, VerificationResult, WallDemand, stiffness_factors, verify
+from .verify import (
+    Criterion,
+    PropertyBounds,
+    VerificationResult,
+    WallDemand,
+    composed_factors,
+    stiffness_factors,
+    verify,
+)
 
 __all__ = ["RISK_CATEGORIES", "SITE_CLASSES", "Criterion", "PeriodRange", "PropertyBounds", "ScaledSuite", "Site",
-           "VerificationResult", "WallDemand", "mce_spectrum", "period_range", "scaled_suite", "site_coefficients",
-           "site_from_values", "stiffness_factors", "verify"]
+           "VerificationResult", "WallDemand", "composed_factors", "mce_spectrum", "period_range", "scaled_suite",
+           "site_coefficients", "site_from_values", "stiffness_factors", "verify"]

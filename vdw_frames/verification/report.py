@@ -89,11 +89,15 @@ def markdown(result: VerificationResult, figures: Mapping[str, str], title: str)
     lines += ["", "## Property bounds (Sec. 18.2.4.5)", "",
               f"- lambda_min = {result.bounds.lower:g}, lambda_max = {result.bounds.upper:g} ({result.bounds.source}); "
               "every wall's moduli and viscosities times lambda (`wall.scaled`)"]
+    included = {True: "include", False: "do not include", None: "are not stated to include or exclude"}
+    lines.append(f"- the lambdas {included[result.bounds.lambda_includes_temperature]} the effect of temperature")
     if result.bounds.ambient is not None:
         cold, hot = result.bounds.ambient
-        lines.append(f"- ambient {cold:g} to {hot:g} degC: the upper-bound walls start at {cold:g} degC, the "
-                     f"lower-bound ones at {hot:g} degC (and heat from there); a temperature changes K' and K'' by "
-                     "different factors")
+        lines.append(f"- ambient {cold:g} to {hot:g} degC: each bound starts every wall (and heats it from there) at "
+                     f"the end of the range that bounds its quantity at {1.0 / result.first_period:.3f} Hz -- the "
+                     f"upper bound (forces) at the larger |K*|, here {result.ambient_range('upper')}; the lower bound "
+                     f"(displacements) at the smaller K'', here {result.ambient_range('lower')}; a temperature changes "
+                     "K' and K'' by different factors")
     frequency = 1.0 / result.first_period
     lines += ["", f"| case | lambda | K' factor at {frequency:.3f} Hz | K'' factor at {frequency:.3f} Hz |",
               "|---|---|---|---|"]

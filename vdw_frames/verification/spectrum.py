@@ -35,7 +35,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validation import finite_array, finite_scalar, non_negative, positive, show
+from .._validation import finite_array, non_negative, positive, show
 from ..motion.record import G
 
 SITE_CLASSES = ("A", "B", "C", "D", "E", "F")
@@ -144,6 +144,17 @@ def _spectral_parameters(sms: object, sm1: object, tl: object) -> tuple[float, f
     return sms_value, sm1_value, tl_value
 
 
+SITE_CONSISTENCY_TOLERANCE = 0.005
+"""How far (relative to S_MS, S_M1) a :class:`Site` given with its mapped values and site coefficients may
+find F_a S_S and F_v S_1 from them (ASCE 7-16 Eqs. 11.4-1, 11.4-2): 0.5 %, the rounding of values printed to
+three significant figures (as design-map tools print them); a larger gap means the values do not belong
+together."""
+
+
+def _product(mapped: float | None, coefficient: float | None) -> float | None:
+    return None if mapped is None or coefficient is None else mapped * coefficient
+
+
 @dataclass(frozen=True)
 class Site:
     """The site of a design: the MCE_R spectral parameters and the building's risk category.
@@ -152,7 +163,9 @@ class Site:
     ``tl`` (s, > 0): the long-period transition period T_L (Figs. 22-14 to 22-17); S_M1 <= S_MS T_L (else T_S
     would lie beyond T_L).  ``risk_category``: "I" ... "IV" (Table 1.5-1), which sets the acceptance of
     Chapter 16.  ``ss``, ``s1`` (g), ``site_class``, ``fa``, ``fv``: how S_MS and S_M1 were found when they came
-    from mapped values (:meth:`from_mapped`); None when given directly.
+    from mapped values (:meth:`from_mapped`); None when given directly.  Each given is > 0, and where both a
+    mapped value and its coefficient are given, F_a S_S and F_v S_1 must equal S_MS and S_M1 within
+    :data:`SITE_CONSISTENCY_TOLERANCE` (0.5 %); ValueError naming the value otherwise.
     """
 
     sms: float
@@ -171,11 +184,20 @@ class Site:
         object.__setattr__(self, "sm1", sm1)
         object.__setattr__(self, "tl", tl)
         object.__setattr__(self, "risk_category", risk_category(self.risk_category))
-        for name in ("ss", "s1", "fa", "fv"):
-            if getattr(self, name) is not None:
-                object.__setattr__(self, name, finite_scalar(name, getattr(self, name)))
+        for name, label in (("ss", "S_S"), ("s1", "S_1"), ("fa", "F_a"), ("fv", "F_v")):
+            if getattr(self, name) is not None:  # mapped values and site coefficients are > 0 (Sec. 11.4.2-11.4.4)
+                object.__setattr__(self, name, positive(f"{name} ({label}, {'g' if name[0] == 's' else '-'})",
+                                                        getattr(self, name)))
         if self.site_class is not None:
             object.__setattr__(self, "site_class", site_class(self.site_class))
+        for spectral, mapped, coefficient, equation in (("sms", "ss", "fa", "11.4-1"), ("sm1", "s1", "fv", "11.4-2")):
+            value, product = getattr(self, spectral), _product(getattr(self, mapped), getattr(self, coefficient))
+            if product is not None and abs(product - value) > SITE_CONSISTENCY_TOLERANCE * value:
+                factors = f"{show(getattr(self, coefficient))} x {show(getattr(self, mapped))}"
+                raise ValueError(f"{spectral} = {show(value)} g disagrees with {coefficient} x {mapped} = "
+                                 f"{factors} = {product:.6g} g "
+                                 f"(ASCE 7-16 Eq. {equation}; tolerance {SITE_CONSISTENCY_TOLERANCE:.1%} of "
+                                 f"{spectral}): give values that belong together")
 
     @classmethod
     def from_mapped(cls, ss: float, s1: float, site: str, tl: float, risk_category: str = "II",

@@ -3,14 +3,16 @@
 :func:`verify` selects and scales a suite to the site's MCE_R spectrum (:mod:`.suite`, Sec. 16.2), runs it at the
 nominal, upper- and lower-bound wall properties and judges the results:
 
-* **bounds** (Sec. 18.2.4.5, property modification factors; the clause's text was NOT read -- no copy was at
-  hand -- so how lambda_ae, lambda_test and lambda_spec combine is left to the user): the user states the
-  combined factors lambda_min <= 1 <= lambda_max (:class:`PropertyBounds`), applied to every wall as
+* **bounds** (Sec. 18.2.4.5, property modification factors; the clause's text was searched for and NOT found,
+  so its composition of lambda_ae, lambda_test and lambda_spec is offered as recalled, :func:`composed_factors`):
+  the user states the combined factors lambda_min <= 1 <= lambda_max (:class:`PropertyBounds`, or
+  :meth:`PropertyBounds.from_parts`) and whether they include temperature, applied to every wall as
   ``wall.scaled(lambda)`` (moduli and viscosities times lambda: K*(f) scales, the loss factor does not).  Walls
   with a thermal description (:class:`~vdw_frames.ThermalProperties`) also heat in every analysis, and an
-  ambient temperature range (``PropertyBounds(ambient=(coldest, hottest))``) starts the upper-bound walls at
-  the coldest temperature and the lower-bound ones at the hottest, besides lambda: K' and K'' then change by
-  different factors, reported at the first mode (:func:`stiffness_factors`).
+  ambient temperature range (``PropertyBounds(ambient=(coldest, hottest))``) starts each wall, besides lambda,
+  at the end of the range that bounds the case's quantity -- the upper bound (forces) at the end of the larger
+  |K*|, the lower bound (displacements) at that of the smaller K'' (:meth:`PropertyBounds.ambient_end`): K'
+  and K'' change by different factors, reported at the first mode (:func:`stiffness_factors`).
 * **unacceptable responses** (Sec. 16.4.1.1): an analysis whose story drift ratio exceeded the collapse limit
   (``collapse_drift_ratio``), that did not converge, whose drift ratio exceeded ``valid_drift_ratio`` (the
   largest drift the story models are valid for, if given), in which a wall failed (its
@@ -40,8 +42,7 @@ from __future__ import annotations
 
 import concurrent.futures
 import math
-import os
-import sys
+import warnings
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -49,14 +50,16 @@ from typing import Any
 import numpy as np
 
 from .. import _warnings
-from .._validation import finite_scalar, positive, show, text
+from .._parallel import check_executor, executor_for, fan_out, reissue
+from .._validation import positive, show, text
+from ..element.thermal import service_temperature
 from ..frame.building import ShearBuilding
 from ..frame.results import SimulationResult
 from ..frame.simulation import simulate
 from ..motion.record import GroundMotion
 from . import spectrum
 from .spectrum import Site
-from .suite import MIN_RECORDS, ScaledSuite, scaled_suite
+from .suite import MIN_RECORDS, ScaledSuite, period_range, scaled_suite
 
 ALLOWABLE_DRIFT = {"I": 0.020, "II": 0.020, "III": 0.015, "IV": 0.010}
 """ASCE 7-16 Table 12.12-1, "all other structures", Delta_a / h_sx by Risk Category (NOT read from the standard:
@@ -71,26 +74,83 @@ MEDIAN_FACTOR = 1.2
 (ASCE 7-22 wording as transcribed; not verified for ASCE 7-16)."""
 
 
+AGING_ENVIRONMENT_WEIGHT = 0.75
+"""The share of the aging and environmental factor's departure from 1 that enters lambda_max and lambda_min: ASCE
+7-16 Sec. 18.2.4.5, Eqs. 18.2-1 and 18.2-2, as RECALLED (the same form as Sec. 17.2.8.4, Eqs. 17.2-1 and
+17.2-2, for isolators): lambda_max = (1 + 0.75 (lambda_ae,max - 1)) lambda_test,max lambda_spec,max and
+lambda_min = (1 - 0.75 (1 - lambda_ae,min)) lambda_test,min lambda_spec,min.  The clause's text was searched for
+and NOT found in the stored sources (FEMA P-1050's chapter on ASCE 7-16 Chapter 18, read, confirms only that the
+2016 edition added "sections for the determination of the maximum and minimum damper properties"): check the
+composition against the standard before relying on it."""
+
+
+def _factor_pair(name: str, value: object) -> tuple[float, float]:
+    """(lambda_min <= 1, lambda_max >= 1) of one source of variation, as given."""
+    if not isinstance(value, (tuple, list)) or len(value) != 2:
+        raise ValueError(f"{name} must be (lambda_min, lambda_max), got {show(value)}")
+    low, high = (positive(f"{name} lambda", v) for v in value)
+    if not low <= 1.0 <= high:
+        raise ValueError(f"{name} must be (lambda_min <= 1, lambda_max >= 1), got {show(value)}")
+    return low, high
+
+
+def composed_factors(aging_environment: tuple[float, float] = (1.0, 1.0), testing: tuple[float, float] = (1.0, 1.0),
+                     specification: tuple[float, float] = (1.0, 1.0)) -> tuple[float, float]:
+    """(lambda_min, lambda_max) (-) composed from their parts as ASCE 7-16 Sec. 18.2.4.5 does (Eqs. 18.2-1 and 18.2-2
+    as recalled, NOT read: :data:`AGING_ENVIRONMENT_WEIGHT`): each part a (min, max) pair around 1 --
+    ``aging_environment`` (lambda_ae: aging, contamination, environmental exposure, and temperature unless the
+    walls' own law bounds it: :class:`PropertyBounds` ``lambda_includes_temperature``), ``testing``
+    (lambda_test: the prototype tests' variation, heating, rate and cycle effects) and ``specification``
+    (lambda_spec: the manufacturing tolerance the specification allows).
+
+        lambda_max = (1 + 0.75 (lambda_ae,max - 1)) lambda_test,max lambda_spec,max
+        lambda_min = (1 - 0.75 (1 - lambda_ae,min)) lambda_test,min lambda_spec,min
+    """
+    ae_min, ae_max = _factor_pair("aging_environment", aging_environment)
+    test_min, test_max = _factor_pair("testing", testing)
+    spec_min, spec_max = _factor_pair("specification", specification)
+    upper = (1.0 + AGING_ENVIRONMENT_WEIGHT * (ae_max - 1.0)) * test_max * spec_max
+    lower = (1.0 - AGING_ENVIRONMENT_WEIGHT * (1.0 - ae_min)) * test_min * spec_min
+    return lower, upper
+
+
+BOUND_QUANTITIES = {"upper": "forces", "lower": "displacements"}
+"""What each bound is for (ASCE 7-16 Sec. 18.2.4.5's intent, as this package reads it): the upper-bound
+(maximum) properties give the larger damper and frame forces, the lower-bound (minimum) ones the larger
+displacements and drifts; every response quantity is then taken from the case that governs it."""
+
+
 @dataclass(frozen=True)
 class PropertyBounds:
-    """Property modification factors of the walls (ASCE 7-16 Sec. 18.2.4.5: the clause was not read): the
-    combined ``lower`` (lambda_min, 0 < lambda_min <= 1) and ``upper`` (lambda_max >= 1) factors, applied as
-    ``wall.scaled(lambda)``; ``source``: where they come from (stated in the report).
+    """Property modification factors of the walls (ASCE 7-16 Sec. 18.2.4.5): the combined ``lower``
+    (lambda_min, 0 < lambda_min <= 1) and ``upper`` (lambda_max >= 1) factors, applied as ``wall.scaled(lambda)``;
+    ``source``: where they come from (stated in the report).  :meth:`from_parts` composes them from the aging and
+    environment, testing and specification factors (:func:`composed_factors`).
 
-    ``ambient`` (degC, (coldest, hottest)), optional: the range of temperatures the walls serve in.  Then the
-    upper-bound analyses start the walls at the coldest temperature and the lower-bound ones at the hottest
-    (``wall.at_ambient(T)``, heating from there), each also times its lambda; the nominal analyses keep the
-    walls' own temperature.  A temperature is not one factor: it changes K' and K'' by different factors
-    (time-temperature superposition shifts the frequency), so the report states both at the first mode
-    (:attr:`VerificationResult.stiffness_factors`).  An FDMK wall's K' and K'' rise with frequency, so a
-    colder wall (a higher reduced frequency) is the stiffer, more damped one -- the upper bound.  Every wall
-    needs a thermal description then.
+    ``ambient`` (degC, (coldest, hottest)), optional: the range of temperatures the walls serve in (service
+    temperatures: above absolute zero, at most 200 degC).  Each bound then starts every wall (``wall.at_ambient``,
+    heating from there) at the end of the range that makes it bound its quantity (:data:`BOUND_QUANTITIES`),
+    chosen per wall at the first mode's frequency (:meth:`ambient_end`): the upper bound (forces) at the end of
+    the larger force per unit deformation |K*|, the lower bound (displacements) at the end of the smaller loss
+    stiffness K'' (the energy a cycle dissipates, pi K'' d^2).  A temperature is not one factor: it shifts the
+    wall along its own frequency curve, and K' and K'' move differently -- colder is always stiffer (an FDMK wall's
+    K' rises with frequency) but not always more damped: past the Maxwell branch's loss peak K'' falls with
+    frequency, so a cold wall can dissipate less (the paper's sets as one family, at 318 % and 10 degC: K' x 1.30
+    but K'' x 0.834 at 0.607 Hz, the example frame's first mode; at 30 degC x 0.77 and x 0.72).  Where the end
+    of the smaller K'' is not that of the smaller K', no single end bounds both; :func:`verify` warns then.  The
+    nominal analyses keep the walls' own temperature.  Every wall needs a thermal description with an ambient
+    range.
+
+    ``lambda_includes_temperature``: whether lambda_min and lambda_max already include the effect of
+    temperature (True), or not (False), or it is not stated (None, the default; the report says so).  With an
+    ambient range it must not be True: temperature would be counted twice.
     """
 
     lower: float
     upper: float
     source: str = "stated by the user"
     ambient: tuple[float, float] | None = None
+    lambda_includes_temperature: bool | None = None
 
     def __post_init__(self) -> None:
         lower, upper = positive("lambda_min", self.lower), positive("lambda_max", self.upper)
@@ -101,52 +161,110 @@ class PropertyBounds:
         object.__setattr__(self, "lower", lower)
         object.__setattr__(self, "upper", upper)
         text("source", self.source)
+        if self.lambda_includes_temperature is not None and not isinstance(self.lambda_includes_temperature, bool):
+            raise ValueError(f"lambda_includes_temperature must be True, False or None (not stated), got "
+                             f"{show(self.lambda_includes_temperature)}")
         if self.ambient is not None:
             values = self.ambient
             if not isinstance(values, (tuple, list)) or len(values) != 2:
                 raise ValueError(f"ambient must be (coldest, hottest) in degC, got {show(values)}")
-            cold, hot = (finite_scalar("ambient temperature", value) for value in values)
+            cold, hot = (service_temperature("ambient temperature", value) for value in values)
             if not cold <= hot:
                 raise ValueError(f"ambient must be (coldest, hottest) in degC, coldest first, got {show(values)}")
+            if self.lambda_includes_temperature:
+                raise ValueError(f"an ambient range {show(values)} degC with lambda_includes_temperature=True would "
+                                 "count temperature twice: give lambda without temperature, or no ambient range")
             object.__setattr__(self, "ambient", (cold, hot))
+
+    @classmethod
+    def from_parts(cls, aging_environment: tuple[float, float] = (1.0, 1.0),
+                   testing: tuple[float, float] = (1.0, 1.0), specification: tuple[float, float] = (1.0, 1.0), *,
+                   source: str = "stated by the user", ambient: tuple[float, float] | None = None,
+                   lambda_includes_temperature: bool | None = None) -> PropertyBounds:
+        """Bounds whose lambda_min and lambda_max are :func:`composed_factors` of the parts (each (min, max), -);
+        ``source`` gets the parts appended."""
+        lower, upper = composed_factors(aging_environment, testing, specification)
+        parts = (f"lambda_ae {show(tuple(aging_environment))}, lambda_test {show(tuple(testing))}, lambda_spec "
+                 f"{show(tuple(specification))} composed as ASCE 7-16 Eqs. 18.2-1 and 18.2-2 (as recalled)")
+        return cls(lower, upper, f"{source}; {parts}", ambient, lambda_includes_temperature)
 
     @property
     def cases(self) -> tuple[tuple[str, float], ...]:
         """(name, lambda) of the analyses: nominal, upper bound, lower bound."""
         return (("nominal", 1.0), ("upper", self.upper), ("lower", self.lower))
 
+    def ambient_end(self, wall: Any, case: str, frequency: float) -> float | None:
+        """The ambient temperature (degC) ``wall`` starts from in ``case``; None: its own (nominal, or no ambient
+        range).  The end of the range that bounds the case's quantity (class docstring): "upper", the larger
+        |K*(frequency)|; "lower", the smaller K''(frequency); the wall isothermal at each end (an amplitude-dependent
+        wall at the centre of its range), ``frequency`` in Hz.  The colder end where the two ends tie."""
+        if self.ambient is None or case == "nominal":
+            return None
+        _thermal_needed(wall, self.ambient)
+        cold, hot = self.ambient
+        stiffness = [complex(_isothermal(wall.at_ambient(t)).complex_stiffness(positive("frequency", frequency)))
+                     for t in (cold, hot)]
+        if case == "upper":
+            return cold if abs(stiffness[0]) >= abs(stiffness[1]) else hot
+        return hot if stiffness[1].imag < stiffness[0].imag else cold
+
+    def discordant(self, wall: Any, frequency: float) -> bool:
+        """True when the lower bound's end (the smaller K'') is not also the end of the smaller K' for ``wall`` at
+        ``frequency`` (Hz): no one ambient end bounds both (False without an ambient range)."""
+        if self.ambient is None:
+            return False
+        end = self.ambient_end(wall, "lower", frequency)
+        storage = [float(_isothermal(wall.at_ambient(t)).storage_stiffness(frequency)) for t in self.ambient]
+        softer = self.ambient[0] if storage[0] < storage[1] else self.ambient[1]
+        return storage[0] != storage[1] and end != softer
+
     def temperature(self, case: str) -> float | None:
-        """The ambient temperature (degC) the walls start from in ``case``; None: their own."""
+        """Deprecated: the ends are chosen per wall (:meth:`ambient_end`).  The coldest end for "upper", the
+        hottest for "lower" (what the bounds took before 0.3.0), None for "nominal" or without a range."""
+        warnings.warn("PropertyBounds.temperature is deprecated: each bound's ambient end is chosen per wall by the "
+                      "quantity it bounds (PropertyBounds.ambient_end)", DeprecationWarning, stacklevel=2)
         if self.ambient is None or case == "nominal":
             return None
         return self.ambient[0] if case == "upper" else self.ambient[1]
 
-    def wall(self, wall: Any, case: str) -> Any:
-        """``wall`` as analysed in ``case`` ("nominal", "upper", "lower"): at the case's ambient temperature, if
-        any, then times its lambda."""
+    def wall(self, wall: Any, case: str, frequency: float | None = None) -> Any:
+        """``wall`` as analysed in ``case`` ("nominal", "upper", "lower"): at the case's ambient end, if any
+        (:meth:`ambient_end` at ``frequency`` Hz, needed then), then times its lambda."""
         factor = dict(self.cases)[case]
-        temperature = self.temperature(case)
-        if temperature is not None:
-            if getattr(wall, "thermal", None) is None:
-                raise ValueError(f"ambient bounds {self.ambient} degC need walls with a thermal description "
-                                 "(thermal=ThermalProperties(...)); a wall has none")
+        if self.ambient is not None and case != "nominal":
+            if frequency is None:
+                raise ValueError("with an ambient range, PropertyBounds.wall needs the frequency (Hz) at which the "
+                                 "ambient end is chosen (the first mode's; PropertyBounds.building finds it)")
+            temperature = self.ambient_end(wall, case, frequency)
             wall = wall.at_ambient(temperature)
         return wall.scaled(factor) if factor != 1.0 else wall
 
-    def building(self, building: ShearBuilding, case: str) -> ShearBuilding:
-        """``building`` with every wall as analysed in ``case`` (:meth:`wall`)."""
-        return building.with_walls({story: tuple(self.wall(wall, case) for wall in walls)
+    def building(self, building: ShearBuilding, case: str, frequency: float | None = None) -> ShearBuilding:
+        """``building`` with every wall as analysed in ``case`` (:meth:`wall`); ``frequency`` (Hz) at which the
+        ambient ends are chosen, by default 1 / T_1 of ``building`` with its walls (complex modal analysis)."""
+        if self.ambient is not None and case != "nominal" and frequency is None:
+            for _, wall in building.wall_list:
+                _thermal_needed(wall, self.ambient)
+            frequency = 1.0 / period_range(building).first_period
+        return building.with_walls({story: tuple(self.wall(wall, case, frequency) for wall in walls)
                                     for story, walls in building.walls.items()})
+
+
+def _thermal_needed(wall: Any, ambient: tuple[float, float]) -> None:
+    if getattr(wall, "thermal", None) is None:
+        raise ValueError(f"ambient bounds {ambient} degC need walls with a thermal description "
+                         "(thermal=ThermalProperties(...)); a wall has none")
 
 
 def stiffness_factors(building: ShearBuilding, bounds: PropertyBounds, frequency: float) -> np.ndarray:
     """(cases, walls, 2): K'(f) and K''(f) of every wall in each case of ``bounds`` over the nominal wall's, at
     ``frequency`` (Hz), each wall isothermal at the temperature it starts from (amplitude-dependent walls at
-    the centre, in logarithm, of their identified range).  With lambda only both columns are lambda."""
+    the centre, in logarithm, of their identified range; a temperature beyond the shift law's range held at its
+    end, as the analyses do).  With lambda only both columns are lambda."""
     factors = np.empty((len(bounds.cases), len(building.wall_list), 2))
     for c, (case, _) in enumerate(bounds.cases):
         for j, (_, wall) in enumerate(building.wall_list):
-            nominal, bounded = _isothermal(wall), _isothermal(bounds.wall(wall, case))
+            nominal, bounded = _isothermal(wall), _isothermal(bounds.wall(wall, case, frequency))
             factors[c, j] = (bounded.storage_stiffness(frequency) / nominal.storage_stiffness(frequency),
                              bounded.loss_stiffness(frequency) / nominal.loss_stiffness(frequency))
     return factors
@@ -208,7 +326,9 @@ class VerificationResult:
     per wall); ``wall_peaks``: each analysis's :func:`wall_peaks`, name -> (cases, records, walls);
     ``specification``: the prototype test specification text; ``first_period`` (s, with walls);
     ``stiffness_factors`` (-, (cases, walls, 2)): each case's K' and K'' of every wall over the nominal, at
-    1 / ``first_period`` (:func:`stiffness_factors`; they differ where an ambient range is bounded).
+    1 / ``first_period`` (:func:`stiffness_factors`; they differ where an ambient range is bounded);
+    ``ambient_ends`` (degC, (cases, walls)): the ambient temperature each wall starts from in each case
+    (:meth:`PropertyBounds.ambient_end`; None: its own).
     """
 
     site: Site
@@ -228,6 +348,13 @@ class VerificationResult:
     specification: str
     first_period: float
     stiffness_factors: np.ndarray
+    ambient_ends: tuple[tuple[float | None, ...], ...] = ()
+
+    def ambient_range(self, case: str) -> str:
+        """The ambient temperatures (degC) the walls start from in ``case``, as text ("" for their own)."""
+        c = [name for name, _ in self.cases].index(case)
+        ends = sorted({end for end in self.ambient_ends[c] if end is not None}) if self.ambient_ends else []
+        return " and ".join(f"{end:g} degC" for end in ends)
 
     @property
     def passed(self) -> bool:
@@ -341,12 +468,9 @@ class _Task:
     valid_drift_ratio: float | None
 
     def run(self) -> dict[str, Any]:
-        with _warnings.collect() as caught:
-            result = simulate(self.building, self.motion.scaled(self.factor),
-                              collapse_drift_ratio=self.collapse_drift_ratio)
-        summary = _summary(result, self.valid_drift_ratio)
-        summary["warnings"] = [(w.category, w.message) for w in caught]
-        return summary
+        result = simulate(self.building, self.motion.scaled(self.factor),
+                          collapse_drift_ratio=self.collapse_drift_ratio)
+        return _summary(result, self.valid_drift_ratio)  # its warnings: collected by _parallel.fan_out
 
 
 def _run(task: _Task) -> dict[str, Any]:
@@ -481,11 +605,17 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
 
         records = fema_p695_records("far-field")
     suite = scaled_suite(building, site, records, count)
-    if executor is not None and not callable(getattr(executor, "submit", None)):
-        raise ValueError(f"executor must be a concurrent.futures.Executor (or None), got {show(executor)}")
+    check_executor(executor)
 
     cases = bounds.cases
-    variants = [bounds.building(building, case) for case, _ in cases]
+    first = suite.range.first_period
+    variants = [bounds.building(building, case, 1.0 / first) for case, _ in cases]
+    discordant = [f"story {story}" for story, wall in building.wall_list if bounds.discordant(wall, 1.0 / first)]
+    if discordant:
+        _warnings.warn(f"property bounds: for the walls of {', '.join(discordant)} no one end of the ambient range "
+                       f"{bounds.ambient} degC bounds both K' and K'' at {1.0 / first:.3f} Hz (the lower bound takes "
+                       "the end of the smaller K''; the other end has the smaller K'): the lower-bound displacements "
+                       "may not be bounded -- verify at both ends", UserWarning, stacklevel=2)
     tasks = {(c, r): _Task(variant, motion, float(f), collapse, valid)
              for c, variant in enumerate(variants)
              for r, (motion, f) in enumerate(zip(suite.motions, suite.factors, strict=True))}
@@ -501,7 +631,6 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
     peaks = {name: np.array([[summaries[(c, r)][name] for r in range(n_records)] for c in range(n_cases)])
              for name in WALL_PEAKS}
     walls = _wall_demands(building, peaks, cases, names)
-    first = suite.range.first_period
     factors = stiffness_factors(building, bounds, 1.0 / first)
     return VerificationResult(
         site=site, suite=suite, bounds=bounds, cases=cases, peak_drift_ratio=drifts,
@@ -510,7 +639,9 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
         unacceptable=unacceptable, drift_statistic=statistic, drift_limit=limit, allowed_unacceptable=allowed,
         criteria=criteria, walls=walls, wall_peaks=peaks,
         specification=prototype_test_specification(walls, 1.0 / first), first_period=first,
-        stiffness_factors=factors)
+        stiffness_factors=factors,
+        ambient_ends=tuple(tuple(bounds.ambient_end(wall, case, 1.0 / first) for _, wall in building.wall_list)
+                           for case, _ in cases))
 
 
 def _wall_demands(building: ShearBuilding, peaks: dict[str, np.ndarray], cases: Sequence[tuple[str, float]],
@@ -528,37 +659,13 @@ def _wall_demands(building: ShearBuilding, peaks: dict[str, np.ndarray], cases: 
 
 def _run_all(tasks: dict[tuple[int, int], _Task], executor: concurrent.futures.Executor | None, progress: bool,
              cases: Sequence[tuple[str, float]], motions: Sequence[GroundMotion]) -> dict[tuple[int, int], dict]:
-    own = executor is None
-    pool = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1) if executor is None else executor
-    futures: dict[concurrent.futures.Future, tuple[int, int]] = {}
-    summaries = {}
-    show_bar = progress and sys.stderr.isatty()
-    try:
-        futures = {pool.submit(_run, task): key for key, task in tasks.items()}
-        for done, future in enumerate(concurrent.futures.as_completed(futures), 1):
-            c, r = futures[future]
-            try:
-                summaries[(c, r)] = future.result()
-            except ValueError as error:
-                raise ValueError(f"verify: the analysis of {motions[r].name or r} ({cases[c][0]}) failed: {error}") \
-                    from error
-            if show_bar:
-                filled = 30 * done // len(futures)
-                sys.stderr.write(f"\r[{'#' * filled}{'.' * (30 - filled)}] {done}/{len(futures)} analyses")
-                sys.stderr.write("\n" if done == len(futures) else "")
-                sys.stderr.flush()
-    except BaseException:
-        for future in futures:
-            future.cancel()
-        raise
-    finally:
-        if own:
-            pool.shutdown(cancel_futures=True)
-    reported = set()
-    for (c, r), summary in sorted(summaries.items()):
-        for category, message in summary["warnings"]:
-            text = f"{motions[r].name or r} ({cases[c][0]}): {message}"
-            if text not in reported:
-                reported.add(text)
-                _warnings.warn(text, category, stacklevel=3)
-    return summaries
+    """Every analysis on ``executor`` (:func:`vdw_frames._parallel.fan_out`); their warnings re-issued once
+    each, naming the record and the case."""
+    def label(key: tuple[int, int]) -> str:
+        return f"{motions[key[1]].name or key[1]} ({cases[key[0]][0]})"
+
+    with executor_for(executor) as pool:
+        collected = fan_out(_run, tasks, pool, progress=progress, unit="analyses",
+                            where=lambda key: f"verify: the analysis of {label(key)} failed")
+    reissue(collected, label, stacklevel=3)
+    return {key: each.value for key, each in collected.items()}
