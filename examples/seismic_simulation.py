@@ -14,8 +14,8 @@ fractional order, each wall following its own strain amplitude step by step, hea
 examples/wall_sizing.py so that at this example's intensity their amplitudes stay inside 225-450 %.
 The building file states the assumptions (shift law, heat capacity, failure strain) and their sources.
 Here the walls also cool: each layer towards the plates with its conduction time h^2 / (pi^2 kappa)
-(vdw_frames.element.thermal.conduction_time, kappa = 0.1 mm^2/s, an assumption): 5.7 s for the roof wall's
-2.37 mm layers, 70 s for story 1's 8.29 mm -- the thin roof layers would not stay adiabatic over the record.
+(vdw_frames.element.thermal.conduction_time, kappa = 0.1 mm^2/s, an assumption): 6.5 s for the roof wall's
+2.53 mm layers, 67 s for story 1's 8.12 mm -- the thin roof layers would not stay adiabatic over the record.
 
 The same frame is run with three wall models, each named by what it includes, to show what the choice
 does: "amplitude, heating" -- the walls follow their amplitude in the time domain, heat, cool and can fail

@@ -18,9 +18,10 @@ rule in two steps:
 
 Why stiffness-proportional: with walls proportional to mode-1 drift instead, the roof wall is small and
 the roof's demand, set by the higher modes, differs by more than the tested range's factor 2 between
-records at the same intensity (RIO270 against the rest: 217-468 %), so no one layer thickness keeps it
-inside 225-450 %; leaving the roof bare instead makes it whip (story-10 ductility 2.3-3.3).  Walls
-proportional to story stiffness keep every wall's highest / lowest amplitude within 1.19-1.56.
+records at the same intensity (RIO270 against the rest: 224-452 %), so no one layer thickness keeps it
+inside 225-450 %; leaving the roof bare instead makes it whip (story-10 ductility 1.2-5.4 over the six
+records, against 0.9-1.5 with the file's roof wall and 1.4-2.0 in the bare frame).  Walls proportional to
+story stiffness keep every wall's highest / lowest amplitude within 1.19-1.56.
 
 The walls heat (the examples' shift law, ``ISD110_LOSS_PEAK``: fitted to Ver & Beranek 2006, Table 14.1,
 3M ISD-110 -- an assumption for the paper's material, which the paper gives no temperature data for;
