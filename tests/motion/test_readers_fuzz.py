@@ -125,7 +125,7 @@ def test_read_at2_reads_generated_variants_exactly(file):
 
 
 def mutations(data: bytes):
-    alphabet = list(b"0123456789.-+eEdD \t\r\n,=NPTSDTx") + [0, 0x1A, 0xFF, 0xEF, 0xBB, 0xBF]
+    alphabet = [*b"0123456789.-+eEdD \t\r\n,=NPTSDTx", 0, 0x1A, 0xFF, 0xEF, 0xBB, 0xBF]
     return st.lists(st.tuples(st.sampled_from(["delete", "insert", "replace"]),
                               st.integers(0, max(len(data) - 1, 0)), st.sampled_from(alphabet)),
                     min_size=1, max_size=6)

@@ -194,7 +194,7 @@ def test_collapses_are_counted_end_to_end(verified):
 
 
 def test_walls_that_heat_report_their_temperature_rise(verified):
-    result, records = verified
+    result, _records = verified
     thermal = ThermalProperties(ISD110_LOSS_PEAK, 1.8, 21.0)
     building = three_story()
     heated = building.with_walls({s: tuple(dataclasses.replace(w, thermal=thermal) for w in ws)

@@ -157,7 +157,7 @@ class ShearBuilding:
                 raise ValueError(message)
             walls = tuple(walls) if isinstance(walls, (list, tuple)) else (walls,)
             for wall in walls:
-                if not isinstance(wall, WALL_TYPES + (StrainDependentDamper,)):
+                if not isinstance(wall, (*WALL_TYPES, StrainDependentDamper)):
                     raise ValueError(f"walls[{story}] must be FDMKDamper, SupportedDamper or StrainDependentDamper "
                                      f"objects, got {type(wall).__name__}")
             if story in seen:
@@ -497,7 +497,7 @@ def story_matrix(per_story: np.ndarray) -> np.ndarray:
     """Assemble story springs (story k between floors k-1 and k, floor 0 the ground) into a matrix
     (a stack of matrices for leading axes: (..., n) -> (..., n, n))."""
     n = per_story.shape[-1]
-    matrix = np.zeros(per_story.shape + (n,), dtype=per_story.dtype)
+    matrix = np.zeros((*per_story.shape, n), dtype=per_story.dtype)
     diagonal, upper = np.arange(n), np.arange(n - 1)
     matrix[..., diagonal, diagonal] = per_story
     matrix[..., upper, upper] += per_story[..., 1:]

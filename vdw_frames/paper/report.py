@@ -316,7 +316,7 @@ def _section_table5(candidates: Sequence[Table5Candidate], errata_numbers: dict[
     text += ("\nCandidate definitions of the *theoretical* areas, best first. Cells: area in kN*mm (deviation "
              "from the printed theoretical value); then the largest deviation and the largest Delta (eq. (13)) "
              "against the printed experimental areas.\n\n"
-             + _md(["candidate", "how"] + heads + ["max dev. from theoretical", "max Delta vs experimental"], rows)
+             + _md(["candidate", "how", *heads, "max dev. from theoretical", "max Delta vs experimental"], rows)
              + f"\n**No candidate reproduces the printed theoretical areas.** The closest, *{best.label}*, is off by "
              f"up to {100 * np.max(np.abs(best.deviation())):.0f} %. No single parameter set can: for a linear "
              "model with fixed parameters and U proportional to the strain, the area pi K'' U^2 scales with U^2 "
