@@ -246,7 +246,8 @@ def test_an_amplitude_following_wall_is_passive(seed, harmonic):
 
 def test_a_family_without_a_common_order_is_refused_in_the_time_domain():
     free = paper.strain_dependent(common_order=False)
-    with pytest.raises(ValueError, match="needs one fractional order r at every amplitude, got r = 1, 0.6839, 0.5529"):
+    with pytest.raises(ValueError,
+                       match=r"needs one fractional order r at every amplitude, got r = 1, 0\.6839, 0\.5529"):
         free.force(np.zeros(10), 0.01)
     with pytest.raises(ValueError, match="one fractional order r"):
         free.new_state(0.01)

@@ -237,7 +237,7 @@ def test_a_refused_or_failed_write_at2_never_destroys_the_target(tmp_path, monke
         with pytest.raises(ValueError, match="rename the record"):
             write_at2(GroundMotion([1.0, 2.0], 0.01, name), path)
         assert path.read_bytes() == b"OLD CONTENT"
-    with pytest.raises(ValueError, match="header line '12 0.01 NPTS, DT' would be read as the NPTS/DT line"):
+    with pytest.raises(ValueError, match=r"header line '12 0\.01 NPTS, DT' would be read as the NPTS/DT line"):
         write_at2(GroundMotion([1.0, 2.0], 0.01, "x"), path, header=["12 0.01 NPTS, DT"])
     assert path.read_bytes() == b"OLD CONTENT"
 
@@ -245,7 +245,7 @@ def test_a_refused_or_failed_write_at2_never_destroys_the_target(tmp_path, monke
         raise OSError(28, "No space left on device")
 
     monkeypatch.setattr(os, "replace", fail)
-    with pytest.raises(ValueError, match="record.AT2: cannot write .No space left on device"):
+    with pytest.raises(ValueError, match=r"record\.AT2: cannot write \(No space left on device\)"):
         write_at2(GroundMotion([1.0, 2.0], 0.01, "x"), path)
     assert path.read_bytes() == b"OLD CONTENT" and list(tmp_path.iterdir()) == [path]
 

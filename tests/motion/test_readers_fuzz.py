@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 
 from vdw_frames.motion import G, GroundMotion, read_at2, read_two_column, write_at2
 
-FUZZ = settings(max_examples=int(os.environ.get("VDW_FUZZ_EXAMPLES", 150)), deadline=None,
+FUZZ = settings(max_examples=int(os.environ.get("VDW_FUZZ_EXAMPLES", "150")), deadline=None,
                 suppress_health_check=[HealthCheck.too_slow])
 LINE_ENDS = st.sampled_from(["\n", "\r\n", "\r\r\n", "\r"])
 COUNT_LINES = [
@@ -133,8 +133,8 @@ def mutations(data: bytes):
 
 def mutate(data: bytes, edits) -> bytes:
     buffer = bytearray(data)
-    for operation, position, byte in edits:
-        position = min(position, len(buffer))
+    for operation, drawn_position, byte in edits:
+        position = min(drawn_position, len(buffer))
         if operation == "delete" and position < len(buffer):
             del buffer[position]
         elif operation == "insert":

@@ -27,7 +27,7 @@ def objective(params, f, storage, loss, residual):
     return float(np.sum(((g.real - storage) * weights[0]) ** 2 + ((g.imag - loss) * weights[1]) ** 2))
 
 
-def dense_search(f, storage, loss, residual, r_values, n_lambda=241, fixed_r=None):
+def dense_search(f, storage, loss, residual, r_values, *, n_lambda=241, fixed_r=None):
     """Independent global search: dense (r, log10 lambda) grid, scipy NNLS for (G1, eta1, G2), then Nelder-Mead.
 
     lambda = eta2 / G2 spans 1e-8 .. 1e8 s^r; the ends stand for the Maxwell branch as a spring or a dashpot.

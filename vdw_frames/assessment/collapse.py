@@ -450,7 +450,7 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
 
     searching = time.perf_counter()
     searches, messages = _run_searches(building, motions, 1.0 / normalized, criterion, settings,
-                                       tuple(sorted(simulate_options.items())), executor, progress)
+                                       tuple(sorted(simulate_options.items())), executor=executor, progress=progress)
     searching = time.perf_counter() - searching
 
     # P695 quantities.
@@ -518,7 +518,7 @@ def _ductility(capacity: PushoverResult, target_drift_ratio: float) -> tuple[flo
                      "is not determined; raise pushover_drift_ratio")
 
 
-def _run_searches(building, motions, unit, criterion, settings, options, executor, progress):
+def _run_searches(building, motions, unit, criterion, settings, options, *, executor, progress):
     """Hunt-and-fill of every record on ``executor`` (:func:`vdw_frames._parallel.fan_out`, the longest
     records first); returns (SearchResults in record order, their warning texts in record order)."""
     order = sorted(range(len(motions)), key=lambda k: -motions[k].acceleration.size)  # longest first

@@ -414,7 +414,7 @@ def _diffusive_nodes(dt: float) -> np.ndarray:
     """diffusive_nodes, kept per step (every analysis of a step builds the same nodes; callers get a copy)."""
     high = XI_HIGH_STEPS / dt
     decades = max(math.log10(high / XI_LOW), 0.0)
-    count = int(math.ceil(decades * NODES_PER_DECADE)) + 1
+    count = math.ceil(decades * NODES_PER_DECADE) + 1
     return np.geomspace(XI_LOW, high, count) if count > 1 else np.array([XI_LOW])
 
 

@@ -26,6 +26,7 @@ from numpy.typing import ArrayLike
 from .._files import write_text
 from .._parallel import check_executor, executor_for, fan_out, reissue
 from .._validation import finite_array, show
+from .._warnings import keyword_only_since_0_3
 from ..element.bank import wall_order
 from ..element.damper import DEFAULT_MEMORY
 from ..element.fast_memory import FastMemory
@@ -163,8 +164,9 @@ class BatchResult:
         return write_text(path, handle.getvalue(), "CSV file")
 
 
+@keyword_only_since_0_3
 def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: ArrayLike,
-              executor: concurrent.futures.Executor | None = None, progress: bool = True,
+              executor: concurrent.futures.Executor | None = None, *, progress: bool = True,
               memory: str | FastMemory = DEFAULT_MEMORY, method: str | Discretisation = DEFAULT_METHOD,
               strain_compatible: bool | StrainCompatibleOptions = False, property_factors: ArrayLike | None = None,
               ambient_temperatures: ArrayLike | None = None, **simulate_options: Any) -> BatchResult:
@@ -210,8 +212,10 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
         raise ValueError(f"motions must be a list of GroundMotion objects, got {show(motions)}") from None
     if property_factors is not None or ambient_temperatures is not None:  # motions: listed, iterated per variant
         return _property_envelope(building, property_factors, ambient_temperatures, executor,
-                                  lambda variant, pool: run_batch(variant, motions, scales, pool, progress, memory,
-                                                                  method, strain_compatible, **simulate_options))
+                                  lambda variant, pool: run_batch(variant, motions, scales, pool, progress=progress,
+                                                                  memory=memory, method=method,
+                                                                  strain_compatible=strain_compatible,
+                                                                  **simulate_options))
     if not motions or not all(isinstance(m, GroundMotion) for m in motions):
         bad = next((m for m in motions if not isinstance(m, GroundMotion)), None)
         raise ValueError("motions must be a non-empty sequence of GroundMotion objects"

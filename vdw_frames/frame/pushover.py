@@ -208,8 +208,8 @@ def pushover(building: ShearBuilding, pattern="modal", target_drift_ratio: float
         roof.append(path.roof)
         shear.append(path.load)
         drift.append(path.drift.copy())
-    return _result(np.array(roof), np.array(shear), np.array(drift), loads, height, weight, period, c0, shape, walls,
-                   end, t1)
+    return _result(np.array(roof), np.array(shear), np.array(drift), loads, height=height, weight=weight, period=period,
+                   c0=c0, shape=shape, walls=walls, end=end, t1=t1)
 
 
 def _land_on_kink(path: _Path, trial: _Trial, precision: float) -> _Trial:
@@ -486,7 +486,7 @@ class _Path:
                                      for k in range(self.drift.size)])
 
 
-def _result(roof, shear, drift, loads, height, weight, period, c0, shape, walls, end, t1) -> PushoverResult:
+def _result(roof, shear, drift, loads, *, height, weight, period, c0, shape, walls, end, t1) -> PushoverResult:
     peak = int(np.argmax(shear))
     max_shear = float(shear[peak])
     if not max_shear > 0.0:

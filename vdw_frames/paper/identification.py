@@ -260,10 +260,10 @@ class _Problem:
         if not isinstance(fixed, dict):
             raise ValueError(f"fixed must be a dict of parameter values, got {fixed!r}")
         checked = {}
-        for name, value in fixed.items():
+        for name, given in fixed.items():
             if name not in PARAMETERS:
                 raise ValueError(f"fixed has unknown parameter {name!r}; expected some of {PARAMETERS}")
-            value = finite_scalar(f"fixed[{name!r}]", value)
+            value = finite_scalar(f"fixed[{name!r}]", given)
             if name == "r" and not 0.0 < value <= 1.0:
                 raise ValueError(f"fixed['r'] must lie in (0, 1], got {value!r}")
             if name != "r" and value < 0.0:

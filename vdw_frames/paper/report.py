@@ -46,7 +46,7 @@ _Column = Callable[[int], NDArray[np.float64]]
 
 def _frequency_figure(path: Path, sets: Sequence[ParameterSet],
                       quantity: Callable[[FDMKDamper, NDArray[np.float64]], NDArray[np.float64]], ylabel: str,
-                      title: str, data: _Column | None = None, extra: tuple[str, _Column] | None = None) -> Path:
+                      title: str, data: _Column | None = None, *, extra: tuple[str, _Column] | None = None) -> Path:
     """Data (markers) and model curves of ``quantity(damper, f)`` against f, one panel per strain."""
     plt = pyplot()
     f = np.geomspace(0.4, 12.0, 200)
@@ -492,7 +492,7 @@ def write_paper_report(out_dir: str | os.PathLike[str], quick: bool = False) -> 
     figures = [] if quick else _figures(out, sets)
     strain_figure = None if quick else _strain_figure(out / "fig_strain_dependence.png")
     strain_numbers = strain_dependence_numbers()
-    recommended = [s for s in sets if s.key == paper.RECOMMENDED_RESIDUAL][0]
+    recommended = next(s for s in sets if s.key == paper.RECOMMENDED_RESIDUAL)
     summary = "\n".join(f"* {strain} %: {_params_text(recommended.dampers[strain])} "
                         f"(max error G' {100 * paper.FIT_QUALITY[strain]['storage']:.1f} %, "
                         f"G'' {100 * paper.FIT_QUALITY[strain]['loss']:.1f} %)" for strain in STRAINS)
