@@ -244,18 +244,18 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
     reissue(collected, lambda key: f"{_label(motions, key[0])} x {factors[key]:g}", stacklevel=2)
     peaks = {key: each.value for key, each in collected.items()}
 
-    def stack(name):
-        if peaks[(0, 0)][name] is None:
-            return None
+    def stack(name: str) -> np.ndarray:
         return np.array([[peaks[(m, s)][name] for s in range(factors.shape[1])] for m in range(len(motions))])
 
+    # A peak that an analysis does not give (drift ratios without story heights, temperatures without a
+    # thermal description) is None in every analysis of the batch.
+    stacked: dict[str, Any] = {name: None if peaks[(0, 0)][name] is None else stack(name) for name in PEAKS}
+    stacked.update({name: stack(name).astype(bool) for name in OUTCOMES})
     pga = np.array([[abs(f) * motion.pga for f in row] for row, motion in zip(factors, motions, strict=True)])
     walls = len(building.wall_list)
     failed = stack("wall_failed").reshape(len(motions), factors.shape[1], walls).astype(bool)
     failure_time = stack("wall_failure_time").reshape(failed.shape)
-    return BatchResult(motion_names=tuple(m.name for m in motions), scales=np.array(factors), pga=pga,
-                       **{name: stack(name) for name in PEAKS},
-                       **{name: stack(name).astype(bool) for name in OUTCOMES},
+    return BatchResult(motion_names=tuple(m.name for m in motions), scales=np.array(factors), pga=pga, **stacked,
                        wall_stories=tuple(story for story, _ in building.wall_list), wall_failed=failed,
                        wall_failure_time=np.ma.masked_array(np.where(failed, failure_time, 0.0), mask=~failed))
 
