@@ -126,9 +126,8 @@ def fail_soon_or_sleep(n: int) -> int:
 
 def test_a_failure_on_the_default_pool_terminates_the_running_tasks_rather_than_wait_for_them():
     began = time.monotonic()
-    with pytest.raises(ValueError, match="^task 1: task 1 is refused$"):
-        with _parallel.executor_for(None) as pool:
-            _parallel.fan_out(fail_soon_or_sleep, {n: n for n in range(4)}, pool, where=lambda n: f"task {n}")
+    with pytest.raises(ValueError, match=r"^task 1: task 1 is refused$"), _parallel.executor_for(None) as pool:
+        _parallel.fan_out(fail_soon_or_sleep, {n: n for n in range(4)}, pool, where=lambda n: f"task {n}")
     assert time.monotonic() - began < 20  # the other tasks sleep 60 s
     assert not [child for child in multiprocessing.active_children() if child.is_alive()]
 
@@ -167,9 +166,9 @@ def test_the_progress_bar_is_drawn_only_on_a_terminal(monkeypatch):
 
 
 def test_executors_are_checked_and_a_dask_client_is_used_through_its_executor():
-    with pytest.raises(ValueError, match=r"executor must be a concurrent.futures.Executor \(or None\), got 'x'"):
-        with _parallel.executor_for("x"):
-            pass
+    with (pytest.raises(ValueError, match=r"executor must be a concurrent\.futures\.Executor \(or None\), got 'x'"),
+          _parallel.executor_for("x")):
+        pass
     pool = concurrent.futures.ThreadPoolExecutor(1)
 
     class Client:  # the part of distributed.Client the fan-out uses

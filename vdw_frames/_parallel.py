@@ -25,6 +25,7 @@ Results do not depend on the executor: a task runs the same code, on the same da
 from __future__ import annotations
 
 import concurrent.futures
+import contextlib
 import ctypes
 import os
 import signal
@@ -232,10 +233,8 @@ def _worker_start(owner: int) -> None:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     parent = os.getppid()
     if _use_death_signal:
-        try:
+        with contextlib.suppress(OSError, AttributeError):  # no prctl in this libc: the watchdog alone
             ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, int(signal.SIGTERM), 0, 0, 0)
-        except (OSError, AttributeError):  # no prctl in this libc: the watchdog alone
-            pass
     if not _parent_lives(parent, owner):  # the parent died before the death signal was set
         os._exit(1)
     threading.Thread(target=_watch, args=(parent, owner), name="vdw_frames-parent-watchdog", daemon=True).start()

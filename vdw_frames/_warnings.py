@@ -9,11 +9,17 @@ the warning is appended to that block's list instead; nothing touches ``warnings
 
 from __future__ import annotations
 
+import functools
+import inspect
 import warnings
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
+from typing import ParamSpec, TypeVar
+
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
 
 _collector: ContextVar[list[CollectedWarning] | None] = ContextVar("vdw_frames_warning_collector", default=None)
 
@@ -45,3 +51,27 @@ def collect() -> Iterator[list[CollectedWarning]]:
         yield caught
     finally:
         _collector.reset(token)
+
+
+def keyword_only_since_0_3(function: Callable[_P, _R]) -> Callable[_P, _R]:
+    """Let ``function``'s keyword-only parameters still be given by position, in their order, for one release
+    (0.3.0 made them keyword-only), with a DeprecationWarning naming them."""
+    parameters = inspect.signature(function).parameters.values()
+    positional = sum(p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) for p in parameters)
+    keyword_only = [p.name for p in parameters if p.kind is p.KEYWORD_ONLY]
+
+    @functools.wraps(function)
+    def accept_positions(*args: _P.args, **kwargs: _P.kwargs) -> _R:
+        extra = args[positional:]
+        if extra and len(extra) <= len(keyword_only):
+            names = keyword_only[:len(extra)]
+            clash = [name for name in names if name in kwargs]
+            if clash:  # the function's own TypeError would name only one
+                raise TypeError(f"{function.__name__}() got multiple values for {', '.join(clash)}")
+            warnings.warn(f"{function.__name__}(): pass {', '.join(names)} by keyword; by position is deprecated "
+                          "since 0.3.0 and will be refused in 0.4.0", DeprecationWarning, stacklevel=2)
+            kwargs.update(zip(names, extra, strict=True))
+            args = args[:positional]  # type: ignore[assignment]  # _P.args narrowed to the positional ones
+        return function(*args, **kwargs)
+
+    return accept_positions

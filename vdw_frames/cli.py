@@ -11,17 +11,24 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import math
+import os
 import sys
 import warnings
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, TextIO
 
 import numpy as np
 
 if TYPE_CHECKING:
+    from .element.damper import FDMKDamper
     from .element.wall import Wall
+    from .frame.building import ShearBuilding
+    from .frame.results import SimulationResult
+    from .motion.record import GroundMotion
+
+    _Commands = argparse._SubParsersAction[argparse.ArgumentParser]  # what add_subparsers returns
 
 
 def _add_damper_options(parser: argparse.ArgumentParser) -> None:
@@ -35,7 +42,7 @@ def _add_damper_options(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--thickness", type=float, help="layer thickness, mm (default 10, the paper's stated value)")
 
 
-def _damper_from(args):
+def _damper_from(args: argparse.Namespace) -> FDMKDamper:
     from .element import catalogue
     from .element.damper import FDMKDamper
 
@@ -47,7 +54,7 @@ def _damper_from(args):
     return FDMKDamper(**values, area=area, thickness=thickness)
 
 
-def _geometry_caution(damper) -> str:
+def _geometry_caution(damper: FDMKDamper) -> str:
     """The caution of the README and the paper report for a damper of the paper's stated geometry: the paper's
     own printed stiffnesses and loop areas imply an A/h 34-100 times smaller (computed here from its tables)."""
     from .paper.errata import loop_area_scale, table_scale
@@ -67,13 +74,13 @@ MAX_PGA = 100.0
 an analysis only overflows."""
 
 
-def _command(commands, name: str, **options) -> argparse.ArgumentParser:
+def _command(commands: _Commands, name: str, **options: Any) -> argparse.ArgumentParser:
     """A sub-command's parser; abbreviated flags are refused, as by the main parser."""
     parser: argparse.ArgumentParser = commands.add_parser(name, allow_abbrev=False, **options)
     return parser
 
 
-def _output_folder(out, flag: str = "--out") -> Path:
+def _output_folder(out: str | os.PathLike[str], flag: str = "--out") -> Path:
     """The folder given to ``flag`` (--out, --save), created and checked before any analysis runs."""
     from ._files import output_folder
 
@@ -85,7 +92,7 @@ def _output_folder(out, flag: str = "--out") -> Path:
         raise ValueError(f"{flag} {error}") from None
 
 
-def _sine_test(args) -> int:
+def _sine_test(args: argparse.Namespace) -> int:
     from .element.sine import sine_test
     from .plotting import plot_loops
 
@@ -112,7 +119,7 @@ def _sine_test(args) -> int:
     return 0
 
 
-def _simulate(args) -> int:
+def _simulate(args: argparse.Namespace) -> int:
     from . import plotting
     from .config import load_analysis
     from .frame.simulation import simulate
@@ -192,20 +199,22 @@ def _simulate(args) -> int:
     return 0
 
 
-def _steps(motion, dt: float, free_vibration: float = 0.0) -> int:
+def _steps(motion: GroundMotion, dt: float, free_vibration: float = 0.0) -> int:
     """The steps an analysis of ``motion`` at ``dt`` takes (the record's duration, rest included), with
     ``free_vibration`` s of rest after it (as :func:`~vdw_frames.frame.time_history.integrate` rounds it up)."""
     rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0
     return round(motion.duration / dt) + 1 + rest
 
 
-def _outcome(result) -> str:
+def _outcome(result: SimulationResult) -> str:
     """How the analysis ended, in one line: it ran to the end, the building collapsed, or a step failed."""
     end = float(result.time[-1])
     if result.collapsed:
-        ratio = result.peak_drift_ratio
-        story = int(np.argmax(ratio)) + 1 if ratio is not None else None
-        where = f" (story {story} drift ratio {100 * ratio[story - 1]:.2f} %)" if story is not None else ""
+        ratio = result.peak_drift_ratio  # None without story heights
+        where = ""
+        if ratio is not None:
+            story = int(np.argmax(ratio))
+            where = f" (story {story + 1} drift ratio {100 * ratio[story]:.2f} %)"
         return f"outcome: COLLAPSED at t = {result.collapse_time:.3f} s{where}; the histories end there"
     if not result.converged:
         return f"outcome: did NOT converge after t = {end:.3f} s (converged: no); the histories end there"
@@ -224,7 +233,7 @@ def _story_columns() -> tuple[tuple[str, str, float, int, int], ...]:
             ("peak_story_wall_strain_fraction", "strain %", 100.0, 9, 1))
 
 
-def _story_peaks(result) -> list[list[float | None]]:
+def _story_peaks(result: SimulationResult) -> list[list[float | None]]:
     """Per story, the values of :func:`_story_columns` in their CSV units; None where one does not exist (no
     story heights, a linear story, a story without walls)."""
     # Each peak once (they are properties, computed over the whole history at every access).
@@ -240,7 +249,7 @@ def _story_peaks(result) -> list[list[float | None]]:
     return rows
 
 
-def _print_story_table(result, free_vibration: float = 0.0) -> None:
+def _print_story_table(result: SimulationResult, free_vibration: float = 0.0) -> None:
     """Per story: peak drift and drift ratio, residual drift, peak ductility, floor acceleration, walls."""
     columns = _story_columns()
     print(f"{'story':>5s} " + " ".join(f"{heading:>{width}s}" for _, heading, _, width, _ in columns))
@@ -252,7 +261,7 @@ def _print_story_table(result, free_vibration: float = 0.0) -> None:
     print(f"ductility: peak drift / yield drift of the story model ('-': a linear story); resid.: {resid}")
 
 
-def _write_summary(result, path: Path) -> Path:
+def _write_summary(result: SimulationResult, path: Path) -> Path:
     """The story table as CSV, each column's unit the end of its name (``_mm``, ``_mm_s2``, ``_N``;
     ``_fraction``: a ratio such as 0.0123, where the console prints the percent 1.23; ``peak_ductility`` is
     dimensionless); '' where a value does not exist."""
@@ -264,7 +273,7 @@ def _write_summary(result, path: Path) -> Path:
     return write_text(path, "\n".join(rows) + "\n", "summary")
 
 
-def _print_wall_assumptions(building) -> None:
+def _print_wall_assumptions(building: ShearBuilding) -> None:
     """The walls' constants from outside the paper -- how they heat and fail -- with their sources, once each."""
     lines: dict[str, None] = {}  # ordered, each line once
     for _, wall in building.wall_list:
@@ -282,7 +291,7 @@ def _print_wall_assumptions(building) -> None:
         print(line)
 
 
-def _print_wall_states(result) -> None:
+def _print_wall_states(result: SimulationResult) -> None:
     """Per wall, when the walls follow their amplitude, heat or can fail: the largest amplitude followed and
     the seconds it spent below and above the tested amplitudes, the temperature rise and how and when the wall
     failed ('-' where the wall has no such state)."""
@@ -306,7 +315,7 @@ def _print_wall_states(result) -> None:
               "parameters are those of the nearest tested set")
 
 
-def _design(args) -> int:
+def _design(args: argparse.Namespace) -> int:
     """The ``design`` command: modal table with and without walls, sizing, damping-versus-size figure."""
     from .config import load_building
     from .design.sizing import MAX_STORIES as SIZING_MAX_STORIES
@@ -364,7 +373,7 @@ def _design(args) -> int:
     return _design_sizing(args, building, out)
 
 
-def _design_sizing(args, building, out: Path) -> int:
+def _design_sizing(args: argparse.Namespace, building: ShearBuilding, out: Path) -> int:
     """The ``design`` command's sizing of the walls of ``building`` (fixed parameters), its advice and figure."""
     from .design import damping_curve, size_walls
     from .design.sizing import SEARCH_FACTORS, story_text
@@ -448,7 +457,7 @@ def _design_sizing(args, building, out: Path) -> int:
     return 0
 
 
-def _collapse(args) -> int:
+def _collapse(args: argparse.Namespace) -> int:
     """The ``collapse`` command: FEMA P695 collapse assessment of a building file on a P695 record set."""
     from .assessment import CollapseCriterion, HuntAndFill, collapse_assessment, write_collapse_report
     from .config import load_analysis
@@ -488,7 +497,7 @@ def _collapse(args) -> int:
     return 0
 
 
-def _add_collapse_command(commands) -> None:
+def _add_collapse_command(commands: _Commands) -> None:
     collapse = _command(commands, "collapse", help="FEMA P695 collapse assessment on a P695 record set (needs the "
                                                     "[p695] extra): Ŝ_CT, CMR, SSF, ACMR, pass/fail, report")
     collapse.add_argument("building",
@@ -539,7 +548,7 @@ def _verify_records(value: str) -> list:
     return [read_at2(path) for path in files]
 
 
-def _verify(args) -> int:
+def _verify(args: argparse.Namespace) -> int:
     """The ``verify`` command: ASCE 7-16 Chapters 16/18 verification of a building file on a site."""
     from . import plotting
     from ._files import write_text
@@ -609,7 +618,7 @@ def _verify(args) -> int:
     return 0 if result.passed else 1  # a verdict of FAIL exits 1; errors exit 2
 
 
-def _add_verify_command(commands) -> None:
+def _add_verify_command(commands: _Commands) -> None:
     verify = _command(commands, "verify", help="ASCE 7-16 Ch. 16/18 design verification: suite scaled to the MCE_R "
                                                 "spectrum, bounds, acceptance, device test demands, report")
     verify.add_argument("building", help="building file, .toml or .json, with story heights and walls (and "
@@ -643,7 +652,7 @@ def _add_verify_command(commands) -> None:
     verify.set_defaults(run=_verify)
 
 
-def _paper_report(args) -> int:
+def _paper_report(args: argparse.Namespace) -> int:
     from .paper.report import write_paper_report
 
     path = write_paper_report(args.out)
@@ -651,7 +660,7 @@ def _paper_report(args) -> int:
     return 0
 
 
-def _add_design_command(commands) -> None:
+def _add_design_command(commands: _Commands) -> None:
     design = _command(commands, "design", help="what the walls add (complex modes, with and without walls) and "
                                                 "how large they must be for a target damping ratio")
     design.add_argument("building", help="building file, .toml or .json, with walls (format: vdw_frames.config)")
@@ -719,7 +728,8 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _print_warning(message, category, filename, lineno, file=None, line=None) -> None:
+def _print_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+                   file: TextIO | None = None, line: str | None = None) -> None:
     print("warning: " + " ".join(str(message).split()), file=sys.stderr)
 
 

@@ -359,11 +359,11 @@ def _story_numbers(story_numbers: object, stories: int) -> list[int]:
         return list(range(1, stories + 1))
     if isinstance(story_numbers, list):
         numbers = []
-        for number in story_numbers:
+        for given in story_numbers:
             try:
-                number = whole_number("story", number, 1)
+                number = whole_number("story", given, 1)
             except ValueError:
-                raise ValueError(f"walls stories must be story numbers in 1 ... {stories}, got {show(number)} "
+                raise ValueError(f"walls stories must be story numbers in 1 ... {stories}, got {show(given)} "
                                  f"in {show(story_numbers)}") from None
             if number > stories:
                 raise ValueError(f"wall story must be a story number in 1 ... {stories}, got {number}")

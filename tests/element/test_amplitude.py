@@ -40,7 +40,7 @@ def cycle_measures(displacement, force, cycle):
 @pytest.mark.parametrize("family", FAMILIES, ids=list(FAMILIES))
 def test_a_steady_sine_gives_the_loop_of_the_wall_at_that_amplitude(family):
     wall = FAMILIES[family]
-    for amplitude in wall.strains + (float(np.sqrt(wall.strains[0] * wall.strains[1])),):
+    for amplitude in (*wall.strains, float(np.sqrt(wall.strains[0] * wall.strains[1]))):
         displacement, force, dt = loops(wall, [amplitude], 6)
         fixed = wall.at(amplitude).force(displacement, dt)
         area, peak = cycle_measures(displacement, force, 5)
@@ -60,7 +60,7 @@ def test_a_stepped_sine_reaches_the_other_level_loop_within_three_cycles(family)
     # family's 400 -> 100 % is the new level's after three cycles.
     wall = FAMILIES[family]
     low, high = wall.strains[0], wall.strains[-1]
-    displacement, force, dt = loops(wall, [low, high, low], 6)
+    displacement, force, _dt = loops(wall, [low, high, low], 6)
     for level, amplitude, after in ((1, high, 2), (2, low, 3)):
         start = level * 6
         steady_displacement, steady_force, _ = loops(wall.at(amplitude), [amplitude], 6)
@@ -264,7 +264,8 @@ def test_an_amplitude_following_wall_is_passive(seed, harmonic):
 
 def test_a_family_without_a_common_order_is_refused_in_the_time_domain():
     free = paper.strain_dependent(common_order=False)
-    with pytest.raises(ValueError, match="needs one fractional order r at every amplitude, got r = 1, 0.6839, 0.5529"):
+    with pytest.raises(ValueError,
+                       match=r"needs one fractional order r at every amplitude, got r = 1, 0\.6839, 0\.5529"):
         free.force(np.zeros(10), 0.01)
     with pytest.raises(ValueError, match="one fractional order r"):
         free.new_state(0.01)

@@ -121,7 +121,7 @@ def test_a_batch_over_ambient_temperatures_is_the_envelope_of_the_separate_runs(
 
 
 def test_ambient_temperatures_need_walls_that_can_feel_them():
-    with pytest.raises(ValueError, match="ambient_temperatures needs .* thermal description"):
+    with pytest.raises(ValueError, match=r"ambient_temperatures needs .* thermal description"):
         vdw.run_batch(five_story([WALL]), [default_record()], [1.0], executor=_Serial(), progress=False,
                       ambient_temperatures=(0.0, 40.0))
 

@@ -97,7 +97,7 @@ def test_saving_replaces_the_old_file_only_when_the_new_one_is_complete(result, 
         raise OSError(28, "No space left on device")
 
     monkeypatch.setattr(np, "savez_compressed", fail)
-    with pytest.raises(ValueError, match="run.npz: cannot write"):
+    with pytest.raises(ValueError, match=r"run\.npz: cannot write"):
         result.save(path)
     assert path.read_bytes() == before
     assert [p.name for p in tmp_path.iterdir()] == ["run.npz"]
@@ -110,7 +110,7 @@ def test_a_file_that_is_not_a_saved_result_is_refused_naming_it(tmp_path, conten
         np.savez(path, x=np.zeros(3))  # an npz without the result's metadata
     else:
         path.write_bytes(content)
-    with pytest.raises(ValueError, match="other.npz: not a vdw_frames.SimulationResult"):
+    with pytest.raises(ValueError, match=r"other\.npz: not a vdw_frames\.SimulationResult"):
         SimulationResult.load(path)
 
 
@@ -304,5 +304,6 @@ def test_every_kind_of_result_loads_back_bit_exact_through_the_checks(name, tmp_
             assert getattr(loaded, item.name) == saved, item.name
     for item in dataclasses.fields(result.energy):
         _same(getattr(loaded.energy, item.name), getattr(result.energy, item.name))
-    for name in ("masses", "stiffnesses", "story_heights", "gravity_loads", "hysteresis", "wall_list", "damping_model"):
-        assert getattr(loaded.building, name) == getattr(result.building, name), name
+    for field in ("masses", "stiffnesses", "story_heights", "gravity_loads", "hysteresis", "wall_list",
+                  "damping_model"):
+        assert getattr(loaded.building, field) == getattr(result.building, field), field

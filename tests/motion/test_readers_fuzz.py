@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 
 from vdw_frames.motion import G, GroundMotion, read_at2, read_two_column, write_at2
 
-FUZZ = settings(max_examples=int(os.environ.get("VDW_FUZZ_EXAMPLES", 150)), deadline=None,
+FUZZ = settings(max_examples=int(os.environ.get("VDW_FUZZ_EXAMPLES", "150")), deadline=None,
                 suppress_health_check=[HealthCheck.too_slow])
 LINE_ENDS = st.sampled_from(["\n", "\r\n", "\r\r\n", "\r"])
 COUNT_LINES = [
@@ -125,7 +125,7 @@ def test_read_at2_reads_generated_variants_exactly(file):
 
 
 def mutations(data: bytes):
-    alphabet = list(b"0123456789.-+eEdD \t\r\n,=NPTSDTx") + [0, 0x1A, 0xFF, 0xEF, 0xBB, 0xBF]
+    alphabet = [*b"0123456789.-+eEdD \t\r\n,=NPTSDTx", 0, 0x1A, 0xFF, 0xEF, 0xBB, 0xBF]
     return st.lists(st.tuples(st.sampled_from(["delete", "insert", "replace"]),
                               st.integers(0, max(len(data) - 1, 0)), st.sampled_from(alphabet)),
                     min_size=1, max_size=6)
@@ -133,8 +133,8 @@ def mutations(data: bytes):
 
 def mutate(data: bytes, edits) -> bytes:
     buffer = bytearray(data)
-    for operation, position, byte in edits:
-        position = min(position, len(buffer))
+    for operation, drawn_position, byte in edits:
+        position = min(drawn_position, len(buffer))
         if operation == "delete" and position < len(buffer):
             del buffer[position]
         elif operation == "insert":

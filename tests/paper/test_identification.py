@@ -27,7 +27,7 @@ def objective(params, f, storage, loss, residual):
     return float(np.sum(((g.real - storage) * weights[0]) ** 2 + ((g.imag - loss) * weights[1]) ** 2))
 
 
-def dense_search(f, storage, loss, residual, r_values, n_lambda=241, fixed_r=None):
+def dense_search(f, storage, loss, residual, r_values, *, n_lambda=241, fixed_r=None):
     """Independent global search: dense (r, log10 lambda) grid, scipy NNLS for (G1, eta1, G2), then Nelder-Mead.
 
     lambda = eta2 / G2 spans 1e-8 .. 1e8 s^r; the ends stand for the Maxwell branch as a spring or a dashpot.
@@ -145,7 +145,7 @@ def test_reaches_the_global_minimum_on_the_paper_tables(strain, residual):
     # The reported sum is the sum at the reported parameters (independent model).
     assert result.sse == pytest.approx(objective(result.params, f, storage, loss, residual), rel=1e-10)
     # 200 x 241 = 48 200 grid points (24 times the default search) plus a local polish never do better.
-    best, found = dense_search(f, storage, loss, residual, np.linspace(0.005, 1.0, 200))
+    best, _found = dense_search(f, storage, loss, residual, np.linspace(0.005, 1.0, 200))
     assert result.sse <= best * (1 + 1e-7)
     assert result.sse == pytest.approx(best, rel=1e-4)  # the same minimum, not merely a lower bound
 

@@ -110,7 +110,7 @@ def test_site_refuses_impossible_or_inconsistent_mapped_values(changes, message)
 def test_site_accepts_mapped_values_within_the_rounding_tolerance():
     # S_MS printed to three figures: 1.0 x 1.504 = 1.504 against 1.50 (0.27 %) is accepted, 1.51 (0.67 %) is not
     assert Site(1.50, 0.9, 8.0, ss=1.504, fa=1.0, s1=0.6, fv=1.5).fa == 1.0
-    with pytest.raises(ValueError, match="sms = 1.5 g disagrees with fa x ss = 1.0 x 1.51 = 1.51 g"):
+    with pytest.raises(ValueError, match=r"sms = 1\.5 g disagrees with fa x ss = 1\.0 x 1\.51 = 1\.51 g"):
         Site(1.50, 0.9, 8.0, ss=1.51, fa=1.0)
     mapped = Site.from_mapped(1.0, 0.15, "D", 8.0)  # F_a S_S = S_MS exactly: still accepted
     assert mapped.sms == pytest.approx(1.1)

@@ -104,7 +104,7 @@ def test_a_failed_wall_is_measured_up_to_its_failure():
     failing = building.with_walls({**building.walls, 1: (weak,)})
     result = simulate(failing, motion)
     assert result.wall_failed.tolist() == [True, False, False]
-    step = int(round(result.wall_failure_time[0] / (result.time[1] - result.time[0])))
+    step = round(float(result.wall_failure_time[0] / (result.time[1] - result.time[0])))
     peaks = wall_peaks(result)
     drift = result.drift[: step + 1, 0]
     assert peaks["deformation"][0] == pytest.approx(np.abs(drift).max(), rel=1e-12)
@@ -194,7 +194,7 @@ def test_collapses_are_counted_end_to_end(verified):
 
 
 def test_walls_that_heat_report_their_temperature_rise(verified):
-    result, records = verified
+    result, _records = verified
     thermal = ThermalProperties(ISD110_LOSS_PEAK, 1.8, 21.0)
     building = three_story()
     heated = building.with_walls({s: tuple(dataclasses.replace(w, thermal=thermal) for w in ws)

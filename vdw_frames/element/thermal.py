@@ -77,9 +77,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Protocol, cast, runtime_checkable
+from typing import Any, Protocol, cast, runtime_checkable
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .. import _warnings
 from .._validation import finite_scalar, positive, show, text
@@ -121,7 +122,7 @@ class ShiftLaw(Protocol):
     reference: float
     valid: tuple[float, float]
 
-    def log10_shift(self, temperature) -> np.ndarray:
+    def log10_shift(self, temperature: ArrayLike) -> np.ndarray:
         """log10 a_T at ``temperature`` (degC), evaluated where the law is defined."""
         ...
 
@@ -131,7 +132,7 @@ class ShiftLaw(Protocol):
         ...
 
 
-def _check_range(name: str, valid, reference: float, lowest: float) -> tuple[float, float]:
+def _check_range(name: str, valid: object, reference: float, lowest: float) -> tuple[float, float]:
     if not isinstance(valid, (tuple, list)) or len(valid) != 2:
         raise ValueError(f"{name} must be two temperatures (low, high) in degC, got {show(valid)}")
     low, high = (finite_scalar(name, value) for value in valid)
@@ -207,7 +208,7 @@ class WLF:
     valid: tuple[float, float]
     source: str = ""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if finite_scalar("C1", self.C1) <= 0.0:
             raise ValueError(f"C1 must be > 0 (with C1 <= 0 the wall would stiffen, its relaxation slow down, as "
                              f"it heats), got {show(self.C1)}")
@@ -224,7 +225,7 @@ class WLF:
         """T_ref - C2 (degC): the law is undefined at and below it."""
         return self.reference - self.C2
 
-    def log10_shift(self, temperature) -> np.ndarray:
+    def log10_shift(self, temperature: ArrayLike) -> np.ndarray:
         """log10 a_T at ``temperature`` (degC, > T_ref - C2; a ValueError naming it otherwise)."""
         temperature = np.asarray(temperature, dtype=float)
         if not np.all(np.isfinite(temperature)) or np.any(temperature <= self.lowest):
@@ -250,14 +251,14 @@ class Arrhenius:
     valid: tuple[float, float]
     source: str = ""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "activation_energy", positive("activation_energy", self.activation_energy))
         reference = service_temperature("reference", self.reference)
         object.__setattr__(self, "reference", reference)
         text("source", self.source)
         object.__setattr__(self, "valid", _check_range("valid", self.valid, reference, ABSOLUTE_ZERO))
 
-    def log10_shift(self, temperature) -> np.ndarray:
+    def log10_shift(self, temperature: ArrayLike) -> np.ndarray:
         """log10 a_T at ``temperature`` (degC, above absolute zero)."""
         temperature = np.asarray(temperature, dtype=float)
         if not np.all(np.isfinite(temperature)) or np.any(temperature <= ABSOLUTE_ZERO):
@@ -287,14 +288,14 @@ class LogLinear:
     valid: tuple[float, float]
     source: str = ""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "degrees_per_decade", positive("degrees_per_decade", self.degrees_per_decade))
         reference = service_temperature("reference", self.reference)
         object.__setattr__(self, "reference", reference)
         text("source", self.source)
         object.__setattr__(self, "valid", _check_range("valid", self.valid, reference, ABSOLUTE_ZERO))
 
-    def log10_shift(self, temperature) -> np.ndarray:
+    def log10_shift(self, temperature: ArrayLike) -> np.ndarray:
         """log10 a_T at ``temperature`` (degC, above absolute zero: a ValueError naming it otherwise, as
         :class:`WLF` and :class:`Arrhenius` give)."""
         temperature = np.asarray(temperature, dtype=float)
@@ -359,7 +360,7 @@ class ThermalProperties:
     temperature: float = cast(float, None)  # None: the shift law's reference (a float after checking)
     cooling_time: float = math.inf
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if not isinstance(self.shift, SHIFT_LAWS):
             raise ValueError(f"shift must be a WLF, Arrhenius or LogLinear law, got {type(self.shift).__name__}")
         object.__setattr__(self, "heat_capacity", positive("heat_capacity", self.heat_capacity))
@@ -414,7 +415,7 @@ def _diffusive_nodes(dt: float) -> np.ndarray:
     """diffusive_nodes, kept per step (every analysis of a step builds the same nodes; callers get a copy)."""
     high = XI_HIGH_STEPS / dt
     decades = max(math.log10(high / XI_LOW), 0.0)
-    count = int(math.ceil(decades * NODES_PER_DECADE)) + 1
+    count = math.ceil(decades * NODES_PER_DECADE) + 1
     return np.geomspace(XI_LOW, high, count) if count > 1 else np.array([XI_LOW])
 
 
@@ -474,7 +475,7 @@ class PropertyFactors:
         return self.loss / self.storage
 
 
-def property_factors(wall, temperatures, frequency: float) -> PropertyFactors:
+def property_factors(wall: Any, temperatures: ArrayLike, frequency: float) -> PropertyFactors:
     """:class:`PropertyFactors` of ``wall`` (any wall with ``at_temperature`` and a thermal description)
     at ``frequency`` (Hz, > 0) over ``temperatures`` (degC, service temperatures: :func:`service_temperature`);
     outside the shift law's range the law is held at the range's end, with a warning (:func:`held_temperature`,

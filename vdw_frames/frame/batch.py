@@ -26,6 +26,7 @@ from numpy.typing import ArrayLike
 from .._files import write_text
 from .._parallel import check_executor, executor_for, fan_out, reissue
 from .._validation import finite_array, show
+from .._warnings import keyword_only_since_0_3
 from ..element.bank import wall_order
 from ..element.damper import DEFAULT_MEMORY
 from ..element.fast_memory import FastMemory
@@ -163,8 +164,9 @@ class BatchResult:
         return write_text(path, handle.getvalue(), "CSV file")
 
 
+@keyword_only_since_0_3
 def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: ArrayLike,
-              executor: concurrent.futures.Executor | None = None, progress: bool = True,
+              executor: concurrent.futures.Executor | None = None, *, progress: bool = True,
               memory: str | FastMemory = DEFAULT_MEMORY, method: str | Discretisation = DEFAULT_METHOD,
               strain_compatible: bool | StrainCompatibleOptions = False, property_factors: ArrayLike | None = None,
               ambient_temperatures: ArrayLike | None = None, **simulate_options: Any) -> BatchResult:
@@ -210,8 +212,10 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
         raise ValueError(f"motions must be a list of GroundMotion objects, got {show(motions)}") from None
     if property_factors is not None or ambient_temperatures is not None:  # motions: listed, iterated per variant
         return _property_envelope(building, property_factors, ambient_temperatures, executor,
-                                  lambda variant, pool: run_batch(variant, motions, scales, pool, progress, memory,
-                                                                  method, strain_compatible, **simulate_options))
+                                  lambda variant, pool: run_batch(variant, motions, scales, pool, progress=progress,
+                                                                  memory=memory, method=method,
+                                                                  strain_compatible=strain_compatible,
+                                                                  **simulate_options))
     if not motions or not all(isinstance(m, GroundMotion) for m in motions):
         bad = next((m for m in motions if not isinstance(m, GroundMotion)), None)
         raise ValueError("motions must be a non-empty sequence of GroundMotion objects"
@@ -240,18 +244,18 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
     reissue(collected, lambda key: f"{_label(motions, key[0])} x {factors[key]:g}", stacklevel=2)
     peaks = {key: each.value for key, each in collected.items()}
 
-    def stack(name):
-        if peaks[(0, 0)][name] is None:
-            return None
+    def stack(name: str) -> np.ndarray:
         return np.array([[peaks[(m, s)][name] for s in range(factors.shape[1])] for m in range(len(motions))])
 
+    # A peak that an analysis does not give (drift ratios without story heights, temperatures without a
+    # thermal description) is None in every analysis of the batch.
+    stacked: dict[str, Any] = {name: None if peaks[(0, 0)][name] is None else stack(name) for name in PEAKS}
+    stacked.update({name: stack(name).astype(bool) for name in OUTCOMES})
     pga = np.array([[abs(f) * motion.pga for f in row] for row, motion in zip(factors, motions, strict=True)])
     walls = len(building.wall_list)
     failed = stack("wall_failed").reshape(len(motions), factors.shape[1], walls).astype(bool)
     failure_time = stack("wall_failure_time").reshape(failed.shape)
-    return BatchResult(motion_names=tuple(m.name for m in motions), scales=np.array(factors), pga=pga,
-                       **{name: stack(name) for name in PEAKS},
-                       **{name: stack(name).astype(bool) for name in OUTCOMES},
+    return BatchResult(motion_names=tuple(m.name for m in motions), scales=np.array(factors), pga=pga, **stacked,
                        wall_stories=tuple(story for story, _ in building.wall_list), wall_failed=failed,
                        wall_failure_time=np.ma.masked_array(np.where(failed, failure_time, 0.0), mask=~failed))
 

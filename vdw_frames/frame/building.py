@@ -87,6 +87,22 @@ class ShearBuilding:
     damping_model: str = "rayleigh"
 
     def __post_init__(self) -> None:
+        stories = self._check_masses_and_stiffnesses()
+        object.__setattr__(self, "damping_ratio", damping_ratio(self.damping_ratio))
+        object.__setattr__(self, "damping_modes", self._check_damping_modes(stories))
+        object.__setattr__(self, "walls", self._normalise_walls(self.walls, stories))
+        if self.story_heights is not None:
+            object.__setattr__(self, "story_heights", self._check_story_heights(self.story_heights, stories))
+        object.__setattr__(self, "hysteresis", self._normalise_hysteresis(self.hysteresis, stories))
+        if self.gravity_loads is not None:
+            if self.story_heights is None:
+                raise ValueError("gravity_loads need story_heights (P-Delta is -P/h per story)")
+            object.__setattr__(self, "gravity_loads", self._check_gravity_loads(self.gravity_loads, stories))
+        if not isinstance(self.damping_model, str) or self.damping_model not in DAMPING_MODELS:
+            raise ValueError(f"damping_model must be one of {DAMPING_MODELS}, got {self.damping_model!r}")
+
+    def _check_masses_and_stiffnesses(self) -> int:
+        """Check and store masses (tonne) and story stiffnesses (N/mm) as tuples; returns the number of stories."""
         masses = finite_array("masses", self.masses)
         stiffnesses = finite_array("stiffnesses", self.stiffnesses)
         if masses.size == 0:
@@ -105,39 +121,42 @@ class ShearBuilding:
                              f"{show(stiffnesses[story + 1])} N/mm) overflow when added into the stiffness matrix")
         object.__setattr__(self, "masses", tuple(masses.tolist()))
         object.__setattr__(self, "stiffnesses", tuple(stiffnesses.tolist()))
-        object.__setattr__(self, "damping_ratio", damping_ratio(self.damping_ratio))
+        return int(masses.size)
+
+    def _check_damping_modes(self, stories: int) -> tuple[int, ...]:
+        """The two mode numbers of the damping (default the first two, or the only mode of one story)."""
         if self.damping_modes is None:
-            object.__setattr__(self, "damping_modes", (1, min(2, masses.size)))
+            return (1, min(2, stories))
         modes: object = self.damping_modes
         if isinstance(modes, np.ndarray):
             modes = tuple(modes.tolist()) if modes.ndim == 1 else None
         if not isinstance(modes, (tuple, list)) or len(modes) != 2:
-            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, "
+            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {stories}, "
                              f"got {show(self.damping_modes)}")
         numbers = tuple(whole_number("damping_modes", m, 1) for m in modes)
-        if max(numbers) > masses.size:
-            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {masses.size}, got {numbers}")
-        object.__setattr__(self, "damping_modes", numbers)
-        object.__setattr__(self, "walls", self._normalise_walls(self.walls, masses.size))
-        if self.story_heights is not None:
-            heights = finite_array("story_heights", self.story_heights)
-            if heights.size != masses.size:
-                raise ValueError(f"story_heights has {heights.size} entries for {masses.size} stories")
-            if (heights <= 0).any():
-                raise ValueError(f"story_heights must be > 0 mm, got {show(heights[heights <= 0][0])}")
-            object.__setattr__(self, "story_heights", tuple(heights.tolist()))
-        object.__setattr__(self, "hysteresis", self._normalise_hysteresis(self.hysteresis, masses.size))
-        if self.gravity_loads is not None:
-            if self.story_heights is None:
-                raise ValueError("gravity_loads need story_heights (P-Delta is -P/h per story)")
-            loads = finite_array("gravity_loads", self.gravity_loads)
-            if loads.size != masses.size:
-                raise ValueError(f"gravity_loads has {loads.size} entries for {masses.size} stories")
-            if (loads < 0).any():
-                raise ValueError(f"gravity_loads must be >= 0 N, got {loads[loads < 0][0]!r}")
-            object.__setattr__(self, "gravity_loads", tuple(loads.tolist()))
-        if not isinstance(self.damping_model, str) or self.damping_model not in DAMPING_MODELS:
-            raise ValueError(f"damping_model must be one of {DAMPING_MODELS}, got {self.damping_model!r}")
+        if max(numbers) > stories:
+            raise ValueError(f"damping_modes must be two mode numbers in 1 ... {stories}, got {numbers}")
+        return numbers
+
+    @staticmethod
+    def _check_story_heights(story_heights: ArrayLike, stories: int) -> tuple[float, ...]:
+        """The story heights (mm), one a story, each > 0."""
+        heights = finite_array("story_heights", story_heights)
+        if heights.size != stories:
+            raise ValueError(f"story_heights has {heights.size} entries for {stories} stories")
+        if (heights <= 0).any():
+            raise ValueError(f"story_heights must be > 0 mm, got {show(heights[heights <= 0][0])}")
+        return tuple(heights.tolist())
+
+    @staticmethod
+    def _check_gravity_loads(gravity_loads: ArrayLike, stories: int) -> tuple[float, ...]:
+        """The gravity loads (N) on each story, each >= 0."""
+        loads = finite_array("gravity_loads", gravity_loads)
+        if loads.size != stories:
+            raise ValueError(f"gravity_loads has {loads.size} entries for {stories} stories")
+        if (loads < 0).any():
+            raise ValueError(f"gravity_loads must be >= 0 N, got {loads[loads < 0][0]!r}")
+        return tuple(loads.tolist())
 
     @staticmethod
     def _normalise_walls(walls_by_story: dict[Any, Any] | None,
@@ -147,17 +166,17 @@ class ShearBuilding:
         normalised: dict[int, tuple[Wall | StrainDependentDamper, ...]] = {}
         seen: set[int] = set()  # stories after normalisation: {1: w, 1.0: w} is one story twice
         given = walls_by_story or {}
-        for story, walls in given.items():
-            message = f"wall story must be a story number in 1 ... {stories}, got {show(story)}"
+        for key, entry in given.items():
+            message = f"wall story must be a story number in 1 ... {stories}, got {show(key)}"
             try:
-                story = whole_number("wall story", story, 1)
+                story = whole_number("wall story", key, 1)
             except ValueError:
                 raise ValueError(message) from None
             if story > stories:
                 raise ValueError(message)
-            walls = tuple(walls) if isinstance(walls, (list, tuple)) else (walls,)
+            walls = tuple(entry) if isinstance(entry, (list, tuple)) else (entry,)
             for wall in walls:
-                if not isinstance(wall, WALL_TYPES + (StrainDependentDamper,)):
+                if not isinstance(wall, (*WALL_TYPES, StrainDependentDamper)):
                     raise ValueError(f"walls[{story}] must be FDMKDamper, SupportedDamper or StrainDependentDamper "
                                      f"objects, got {type(wall).__name__}")
             if story in seen:
@@ -497,7 +516,7 @@ def story_matrix(per_story: np.ndarray) -> np.ndarray:
     """Assemble story springs (story k between floors k-1 and k, floor 0 the ground) into a matrix
     (a stack of matrices for leading axes: (..., n) -> (..., n, n))."""
     n = per_story.shape[-1]
-    matrix = np.zeros(per_story.shape + (n,), dtype=per_story.dtype)
+    matrix = np.zeros((*per_story.shape, n), dtype=per_story.dtype)
     diagonal, upper = np.arange(n), np.arange(n - 1)
     matrix[..., diagonal, diagonal] = per_story
     matrix[..., upper, upper] += per_story[..., 1:]

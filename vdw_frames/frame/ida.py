@@ -36,6 +36,7 @@ from numpy.typing import ArrayLike
 
 from .._parallel import executor_for
 from .._validation import finite_array, positive, show
+from .._warnings import keyword_only_since_0_3
 from ..motion.record import G, GroundMotion
 from .batch import run_batch, scale_factors_to_spectral_acceleration
 from .building import ShearBuilding
@@ -121,9 +122,10 @@ class IDAResult:
         return Fragility(float(scale), float(shape))
 
 
+@keyword_only_since_0_3
 def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[GroundMotion], step: float, cap: float,
                                  period: float | None = None, executor: concurrent.futures.Executor | None = None,
-                                 wall_failure_collapse: bool = False, **options: Any) -> IDAResult:
+                                 *, wall_failure_collapse: bool = False, **options: Any) -> IDAResult:
     """IDA of ``building`` under ``motions`` (GroundMotion, mm/s^2): Sa(``period``, 5 %) from ``step`` in steps
     of ``step`` up to ``cap`` (mm/s^2) or collapse, record by record (module docstring).
 

@@ -286,26 +286,40 @@ def _largest(values):
 def _solve(frame, dt, work):
     """Solve ((4/dt^2) M + (2/dt) C + B^T diag(k) B) x = R for the correction x (n,), k =
     ``work.stiffness_diagonal``, R = ``work.residual``: the Thomas algorithm when tridiagonal, else LU."""
+    if frame.tridiagonal:
+        _solve_tridiagonal(work)
+    else:
+        _solve_dense(frame, dt, work)
+
+
+@njit(cache=True, inline="always")
+def _solve_tridiagonal(work):
+    """:func:`_solve` when C is tridiagonal (Rayleigh damping): the Thomas algorithm on the symmetric band."""
+    k, rhs, out, band = work.stiffness_diagonal, work.residual, work.correction, work.work
+    n = rhs.shape[0]
+    # diagonal in band[0], super-diagonal in band[1]; forward elimination (symmetric tridiagonal)
+    diagonal = work.dynamic_band[0, 0] + k[0] + (k[1] if n > 1 else 0.0)
+    band[0, 0] = diagonal
+    out[0] = rhs[0]
+    for i in range(1, n):
+        upper = work.dynamic_band[1, i - 1] - k[i]
+        band[1, i - 1] = upper
+        factor = upper / diagonal
+        diagonal = work.dynamic_band[0, i] + k[i] + (k[i + 1] if i + 1 < n else 0.0) - factor * upper
+        band[0, i] = diagonal
+        out[i] = rhs[i] - factor * out[i - 1]
+    out[n - 1] /= band[0, n - 1]
+    for i in range(n - 2, -1, -1):
+        out[i] = (out[i] - band[1, i] * out[i + 1]) / band[0, i]
+
+
+@njit(cache=True, inline="always")
+def _solve_dense(frame, dt, work):
+    """:func:`_solve` for a full C (modal damping): Gaussian elimination with partial pivoting."""
     damping, k = frame.damping, work.stiffness_diagonal
-    rhs, out, band, matrix = work.residual, work.correction, work.work, work.matrix
+    rhs, out, matrix = work.residual, work.correction, work.matrix
     n = rhs.shape[0]
     v1 = 2.0 / dt
-    if frame.tridiagonal:
-        # diagonal in band[0], super-diagonal in band[1]; forward elimination (symmetric tridiagonal)
-        diagonal = work.dynamic_band[0, 0] + k[0] + (k[1] if n > 1 else 0.0)
-        band[0, 0] = diagonal
-        out[0] = rhs[0]
-        for i in range(1, n):
-            upper = work.dynamic_band[1, i - 1] - k[i]
-            band[1, i - 1] = upper
-            factor = upper / diagonal
-            diagonal = work.dynamic_band[0, i] + k[i] + (k[i + 1] if i + 1 < n else 0.0) - factor * upper
-            band[0, i] = diagonal
-            out[i] = rhs[i] - factor * out[i - 1]
-        out[n - 1] /= band[0, n - 1]
-        for i in range(n - 2, -1, -1):
-            out[i] = (out[i] - band[1, i] * out[i + 1]) / band[0, i]
-        return
     # Every row's damping first: the stiffness couples row i to i + 1, which a later row must not overwrite.
     for i in range(n):
         for j in range(n):
@@ -338,6 +352,128 @@ def _solve(frame, dt, work):
         out[i] = total / matrix[i, i]
 
 
+@njit(cache=True, inline="always")
+def _newton(step, ground_next, dt, frame, stories, newton, out, work):
+    """Newton-Raphson for row ``step`` + 1 from u_n into ``work.displacement``: the strategies in turn
+    (full tangent, with a line search, initial stiffness), each from u_n again.  Returns (converged,
+    corrections made)."""
+    least = _step_constants(step, ground_next, dt, frame, out, work)
+    u = work.displacement
+    made = 0
+    for strategy in range(3):
+        if frame.linear and strategy > 0:
+            break
+        for i in range(u.shape[0]):
+            u[i] = out.displacement[step, i]
+        limit = newton.max_iterations if strategy < _INITIAL else newton.fallback_iterations
+        if frame.linear:
+            limit = 1
+        converged, corrections = _iterate(strategy, limit, least, dt, frame, stories, newton, work)
+        made += corrections
+        if converged:
+            return True, made
+    return False, made
+
+
+@njit(cache=True, inline="always")
+def _iterate(strategy, limit, least, dt, frame, stories, newton, work):
+    """At most ``limit`` Newton corrections of ``work.displacement`` with one strategy; returns (converged,
+    corrections made)."""
+    u, geometric = work.displacement, frame.geometric
+    n = u.shape[0]
+    last_correction = np.inf
+    exact_solve = False  # the last correction solved the model itself (no tangent changed since)
+    made = 0
+    for iteration in range(limit + 1):
+        scale = _residual(u, dt, least, frame, stories, work)
+        norm = _largest(work.residual)
+        if exact_solve and _tangent_changed(frame, work):
+            exact_solve = False
+        if iteration > 0 and (frame.linear or (
+                norm <= newton.force_tolerance * scale
+                and (exact_solve or last_correction <= newton.displacement_tolerance))):
+            return True, made
+        if iteration == limit or not math.isfinite(norm):
+            return False, made
+        for s in range(n):
+            if strategy == _INITIAL:
+                work.stiffness_diagonal[s] = work.initial_stiffness[s] + work.wall_tangent[s]
+            else:
+                work.stiffness_diagonal[s] = work.story_tangent[s] + geometric[s] + work.wall_tangent[s]
+        _solve(frame, dt, work)
+        made += 1
+        step_length = 1.0
+        if strategy == _LINE_SEARCH:
+            step_length = _line_search(norm, dt, least, frame, stories, work)
+        exact_solve = strategy != _INITIAL and step_length == 1.0
+        last_correction = step_length * _largest(work.correction)
+        for i in range(n):
+            u[i] += step_length * work.correction[i]
+    return False, made
+
+
+@njit(cache=True, inline="always")
+def _tangent_changed(frame, work):
+    """Whether a story's tangent differs from the one the last correction was solved with."""
+    for s in range(work.stiffness_diagonal.shape[0]):
+        if work.story_tangent[s] + frame.geometric[s] + work.wall_tangent[s] != work.stiffness_diagonal[s]:
+            return True
+    return False
+
+
+@njit(cache=True, inline="always")
+def _line_search(norm, dt, least, frame, stories, work):
+    """The length of ``work.correction`` to take from ``work.displacement``: halved until the unbalanced force
+    drops below ``norm`` (at most 8 halvings; after them the 1/256 step is taken and the next residual judges
+    it)."""
+    u, trial = work.displacement, work.line_search
+    step_length = 1.0
+    for _ in range(8):
+        for i in range(u.shape[0]):
+            trial[i] = u[i] + step_length * work.correction[i]
+        _residual(trial, dt, least, frame, stories, work)
+        if _largest(work.residual) < norm:
+            break
+        step_length *= 0.5
+    return step_length
+
+
+@njit(cache=True, inline="always")
+def _moved_most(correction):
+    """The story (0-based) whose drift the correction ``correction`` (floors) changed most."""
+    story, largest = 0, 0.0
+    for s in range(correction.shape[0]):
+        story_drift = abs(correction[s] - (correction[s - 1] if s > 0 else 0.0))
+        if story_drift > largest:
+            story, largest = s, story_drift
+    return story
+
+
+@njit(cache=True, inline="always")
+def _record_walls(step, table, out, work):
+    """Row ``step`` + 1 of the wall groups' histories from the committed walls (``table``: their states)."""
+    groups = work.wall_force.shape[0]
+    for g in range(groups):
+        out.group_force[step + 1, g] = work.wall_force[g]
+        out.group_strain[step + 1, g] = work.wall_strain[g]
+        out.peak_group_strain[g] = max(out.peak_group_strain[g], abs(work.wall_strain[g]))
+    if out.group_temperature.shape[0] > 0:
+        heat, stored, parameter_loss = 0.0, 0.0, 0.0
+        for g in range(groups):
+            out.group_temperature[step + 1, g] = table[g, kernel.TEMPERATURE]
+            if out.group_heat.shape[0] > 0:
+                out.group_heat[step + 1, g] = table[g, kernel.HEAT]
+            heat += table[g, kernel.HEAT]
+            stored += table[g, kernel.STORED]
+            parameter_loss += table[g, kernel.PARAMETER_LOSS]
+        out.wall_heat[step + 1] = heat
+        out.wall_stored[step + 1] = stored
+        out.wall_parameter_loss[step + 1] = parameter_loss
+    if out.group_amplitude.shape[0] > 0:
+        for g in range(groups):
+            out.group_amplitude[step + 1, g] = table[g, kernel.AMPLITUDE]
+
+
 @njit(cache=True, allocates=False)
 def integrate(excitation, frame, stories, walls, newton, out, work):
     """Newmark average acceleration with Newton-Raphson, rows 1 .. N-1 from the state in row 0, in place.
@@ -361,7 +497,7 @@ def integrate(excitation, frame, stories, walls, newton, out, work):
         work.dynamic_band[0, i] = work.dynamic_mass[i] + v1 * frame.damping[i, i]
         work.dynamic_band[1, i] = v1 * frame.damping[i, i + 1] if i + 1 < n else 0.0
         work.initial_stiffness[i] = stories.parameters[i, 0] + geometric[i]
-    old_damping_force, trial = work.old_damping_force, work.line_search
+    old_damping_force = work.old_damping_force
     for i in range(n):  # C v of row 0 (loops, not slice operations: those compile numba's shape-error machinery)
         old_damping_force[i] = 0.0
         for j in range(n):
@@ -376,65 +512,10 @@ def integrate(excitation, frame, stories, walls, newton, out, work):
             work.wall_tangent[walls.group_story[g]] += bank.tangent[g]
             work.wall_history[walls.group_story[g]] += bank.history_force[g]
         # 2. Newton-Raphson from u_n; strategies in turn, each from u_n again
-        least = _step_constants(step, ground[step + 1], dt, frame, out, work)
-        u = work.displacement
-        converged = False
-        for strategy in range(3):
-            if frame.linear and strategy > 0:
-                break
-            for i in range(n):
-                u[i] = out.displacement[step, i]
-            limit = newton.max_iterations if strategy < _INITIAL else newton.fallback_iterations
-            if frame.linear:
-                limit = 1
-            last_correction = np.inf
-            exact_solve = False  # the last correction solved the model itself (no tangent changed since)
-            for iteration in range(limit + 1):
-                scale = _residual(u, dt, least, frame, stories, work)
-                norm = _largest(work.residual)
-                if exact_solve:
-                    for s in range(n):
-                        if (work.story_tangent[s] + geometric[s] + work.wall_tangent[s]
-                                != work.stiffness_diagonal[s]):
-                            exact_solve = False
-                            break
-                if iteration > 0 and (frame.linear or (
-                        norm <= newton.force_tolerance * scale
-                        and (exact_solve or last_correction <= newton.displacement_tolerance))):
-                    converged = True
-                    break
-                if iteration == limit or not math.isfinite(norm):
-                    break
-                for s in range(n):
-                    if strategy == _INITIAL:
-                        work.stiffness_diagonal[s] = work.initial_stiffness[s] + work.wall_tangent[s]
-                    else:
-                        work.stiffness_diagonal[s] = work.story_tangent[s] + geometric[s] + work.wall_tangent[s]
-                _solve(frame, dt, work)
-                total_iterations += 1
-                step_length = 1.0
-                if strategy == _LINE_SEARCH:
-                    # Backtrack until the unbalanced force drops (at most 8 halvings).
-                    for _ in range(8):
-                        for i in range(n):
-                            trial[i] = u[i] + step_length * work.correction[i]
-                        _residual(trial, dt, least, frame, stories, work)
-                        if _largest(work.residual) < norm:
-                            break
-                        step_length *= 0.5  # (after 8 halvings the 1/256 step is taken; the next residual judges it)
-                exact_solve = strategy != _INITIAL and step_length == 1.0
-                last_correction = step_length * _largest(work.correction)
-                for i in range(n):
-                    u[i] += step_length * work.correction[i]
-            if converged:
-                break
+        converged, iterations = _newton(step, ground[step + 1], dt, frame, stories, newton, out, work)
+        total_iterations += iterations
         if not converged:
-            failed_story, largest = 0, 0.0  # the story the last correction moved most
-            for s in range(n):
-                story_drift = abs(work.correction[s] - (work.correction[s - 1] if s > 0 else 0.0))
-                if story_drift > largest:
-                    failed_story, largest = s, story_drift
-            out.outcome[0], out.outcome[1], out.outcome[2] = FAILED, failed_story, total_iterations
+            out.outcome[0], out.outcome[1], out.outcome[2] = FAILED, _moved_most(work.correction), total_iterations
             return step + 1
         # 3. commit: stories, then the walls with their drifts (memory advances only now)
         for s in range(n):
@@ -443,26 +524,8 @@ def integrate(excitation, frame, stories, walls, newton, out, work):
         for g in range(groups):
             work.wall_deformation[g] = work.drift[walls.group_story[g]]
         kernel.bank_commit(bank, start + step, work.wall_deformation, work.wall_force, work.wall_strain)
-        for g in range(groups):
-            out.group_force[step + 1, g] = work.wall_force[g]
-            out.group_strain[step + 1, g] = work.wall_strain[g]
-            out.peak_group_strain[g] = max(out.peak_group_strain[g], abs(work.wall_strain[g]))
-        table = bank.states.table
-        if out.group_temperature.shape[0] > 0:
-            heat, stored, parameter_loss = 0.0, 0.0, 0.0
-            for g in range(groups):
-                out.group_temperature[step + 1, g] = table[g, kernel.TEMPERATURE]
-                if out.group_heat.shape[0] > 0:
-                    out.group_heat[step + 1, g] = table[g, kernel.HEAT]
-                heat += table[g, kernel.HEAT]
-                stored += table[g, kernel.STORED]
-                parameter_loss += table[g, kernel.PARAMETER_LOSS]
-            out.wall_heat[step + 1] = heat
-            out.wall_stored[step + 1] = stored
-            out.wall_parameter_loss[step + 1] = parameter_loss
-        if out.group_amplitude.shape[0] > 0:
-            for g in range(groups):
-                out.group_amplitude[step + 1, g] = table[g, kernel.AMPLITUDE]
+        _record_walls(step, bank.states.table, out, work)
+        u = work.displacement
         for i in range(n):
             increment = u[i] - out.displacement[step, i]
             out.displacement[step + 1, i] = u[i]

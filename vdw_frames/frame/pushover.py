@@ -54,6 +54,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.linalg import eigh
 
 from .._validation import finite_array, positive, show, whole_number
@@ -134,7 +135,7 @@ def elastic_mode(building: ShearBuilding, wall_stiffness: np.ndarray) -> tuple[f
     return 2.0 * math.pi / math.sqrt(eigenvalues[0]), shape
 
 
-def pushover(building: ShearBuilding, pattern="modal", target_drift_ratio: float = 0.05, *,
+def pushover(building: ShearBuilding, pattern: str | ArrayLike = "modal", target_drift_ratio: float = 0.05, *,
              period: float | None = None, steps: int = 500) -> PushoverResult:
     """Pushover of ``building`` to a roof displacement of ``target_drift_ratio`` x its height (FEMA P695 Sec. 6.3).
 
@@ -208,8 +209,8 @@ def pushover(building: ShearBuilding, pattern="modal", target_drift_ratio: float
         roof.append(path.roof)
         shear.append(path.load)
         drift.append(path.drift.copy())
-    return _result(np.array(roof), np.array(shear), np.array(drift), loads, height, weight, period, c0, shape, walls,
-                   end, t1)
+    return _result(np.array(roof), np.array(shear), np.array(drift), loads, height=height, weight=weight, period=period,
+                   c0=c0, shape=shape, walls=walls, end=end, t1=t1)
 
 
 def _land_on_kink(path: _Path, trial: _Trial, precision: float) -> _Trial:
@@ -227,7 +228,7 @@ def _land_on_kink(path: _Path, trial: _Trial, precision: float) -> _Trial:
     return trial
 
 
-def _pattern(pattern, building: ShearBuilding, shape: np.ndarray) -> np.ndarray:
+def _pattern(pattern: str | ArrayLike, building: ShearBuilding, shape: np.ndarray) -> np.ndarray:
     masses = np.asarray(building.masses)
     if isinstance(pattern, str):
         if pattern == "modal":
@@ -486,7 +487,8 @@ class _Path:
                                      for k in range(self.drift.size)])
 
 
-def _result(roof, shear, drift, loads, height, weight, period, c0, shape, walls, end, t1) -> PushoverResult:
+def _result(roof: np.ndarray, shear: np.ndarray, drift: np.ndarray, loads: np.ndarray, *, height: float, weight: float,
+            period: float, c0: float, shape: np.ndarray, walls: np.ndarray, end: str, t1: float) -> PushoverResult:
     peak = int(np.argmax(shear))
     max_shear = float(shear[peak])
     if not max_shear > 0.0:

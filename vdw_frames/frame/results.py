@@ -478,6 +478,53 @@ def check_saved_result(fields: dict[str, Any], energy: dict[str, Any]) -> None:
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
     floors, walls = building.stories, len(building.wall_list)
+    state = _check_outcome_flags(fields, floors)
+    time, first, dt = _check_time(fields.get("time"), state)
+    rows = time.size
+    histories = {name: _history(name, fields.get(name), (rows, floors))
+                 for name in ("displacement", "velocity", "acceleration", "drift", "story_shear", "story_wall_force")}
+    for name in ("ground_acceleration", "base_shear"):
+        histories[name] = _history(name, fields.get(name), (rows,))
+    groups = _check_wall_groups(fields, building, rows)
+    _check_group_states(fields, groups, rows, first, dt)
+    _check_strain_compatible(fields, walls)
+    collapse_time = fields.get("collapse_time")
+    if fields.get("collapsed", False) != (collapse_time is not None) or \
+            (collapse_time is not None and collapse_time != float(time[-1])):
+        raise ValueError(f"collapse_time must be the last time, {float(time[-1])!r} s, when collapsed and None "
+                         f"otherwise, got {show(collapse_time)}")
+    for name in _ENERGY_FIELDS:
+        if name in energy:
+            _history(f"energy.{name}", energy[name], (rows,))
+    _check_identities(building, histories, energy)
+
+
+def _array(name: str, value: object, kind: str = "f") -> np.ndarray:
+    """``value`` if it is a float64 (``kind`` "f") or int64 ("i") numpy array; else a ValueError."""
+    if not isinstance(value, np.ndarray) or value.dtype.kind != kind or value.dtype.itemsize != 8:
+        wanted = "float64" if kind == "f" else "int64"
+        got = value.dtype if isinstance(value, np.ndarray) else type(value).__name__
+        raise ValueError(f"{name} must be a {wanted} array, got {got}")
+    return value
+
+
+def _history(name: str, value: object, shape: tuple[int, ...], nan_columns: bool = False) -> np.ndarray:
+    """``value`` if it is a finite float64 array of ``shape`` (with ``nan_columns``, a column may be NaN
+    throughout: a wall without a temperature); else a ValueError naming the first bad entry."""
+    values = _array(name, value)
+    if values.shape != shape:
+        raise ValueError(f"{name} must have shape {shape}, got {values.shape}")
+    bad = ~np.isfinite(values)
+    if nan_columns and values.ndim == 2:
+        bad &= ~np.all(np.isnan(values), axis=0)
+    if bad.any():
+        index = tuple(int(i) for i in np.argwhere(bad)[0])
+        raise ValueError(f"{name} must be finite, got {show(values[index])} at index {index}")
+    return values
+
+
+def _check_outcome_flags(fields: dict[str, Any], floors: int) -> FrameState | None:
+    """The outcome's flags and counts, and the initial state (returned: None for a start from rest)."""
     for name in ("converged", "collapsed"):
         if not isinstance(fields.get(name, False), bool):
             raise ValueError(f"{name} must be True or False, got {show(fields[name])}")
@@ -491,27 +538,12 @@ def check_saved_result(fields: dict[str, Any], energy: dict[str, Any]) -> None:
     state = fields.get("initial_state")
     if state is not None and (not isinstance(state, FrameState) or state.stories != floors):
         raise ValueError(f"initial_state must be a FrameState of {floors} stories, got {show(state)}")
+    return state
 
-    def array(name: str, value: object, kind: str = "f") -> np.ndarray:
-        if not isinstance(value, np.ndarray) or value.dtype.kind != kind or value.dtype.itemsize != 8:
-            wanted = "float64" if kind == "f" else "int64"
-            got = value.dtype if isinstance(value, np.ndarray) else type(value).__name__
-            raise ValueError(f"{name} must be a {wanted} array, got {got}")
-        return value
 
-    def history(name: str, value: object, shape: tuple[int, ...], nan_columns: bool = False) -> np.ndarray:
-        values = array(name, value)
-        if values.shape != shape:
-            raise ValueError(f"{name} must have shape {shape}, got {values.shape}")
-        bad = ~np.isfinite(values)
-        if nan_columns and values.ndim == 2:  # a column that is NaN throughout: a wall without a temperature
-            bad &= ~np.all(np.isnan(values), axis=0)
-        if bad.any():
-            index = tuple(int(i) for i in np.argwhere(bad)[0])
-            raise ValueError(f"{name} must be finite, got {show(values[index])} at index {index}")
-        return values
-
-    time = array("time", fields.get("time"))
+def _check_time(value: object, state: FrameState | None) -> tuple[np.ndarray, int, float]:
+    """(time (s), its first step, dt (s)): ``value`` must be (first step + k) dt, dt > 0."""
+    time = _array("time", value)
     rows = time.size
     if time.ndim != 1 or rows == 0:
         raise ValueError(f"time must be a 1-D array of at least one step, got shape {time.shape}")
@@ -522,15 +554,18 @@ def check_saved_result(fields: dict[str, Any], energy: dict[str, Any]) -> None:
             np.any(np.abs(time - np.arange(first, first + rows) * dt) > 1e-8 * (first + rows) * dt):
         raise ValueError(f"time must be (first step + k) dt, increasing uniformly from {first} dt (dt > 0), got "
                          f"{show(time[:3].tolist())} ...")
-    histories = {name: history(name, fields.get(name), (rows, floors))
-                 for name in ("displacement", "velocity", "acceleration", "drift", "story_shear", "story_wall_force")}
-    for name in ("ground_acceleration", "base_shear"):
-        histories[name] = history(name, fields.get(name), (rows,))
-    group_force = array("group_force", fields.get("group_force"))
+    return time, first, dt
+
+
+def _check_wall_groups(fields: dict[str, Any], building: ShearBuilding, rows: int) -> int:
+    """The wall groups' force and strain histories, the walls' groups (each group used, its walls on one
+    story) and shares (summing to 1 a group); returns the number of groups."""
+    walls = len(building.wall_list)
+    group_force = _array("group_force", fields.get("group_force"))
     groups = group_force.shape[1] if group_force.ndim == 2 else -1
     for name in ("group_force", "group_strain"):
-        history(name, fields.get(name), (rows, max(groups, 0)))
-    wall_group = array("wall_group", fields.get("wall_group"), "i")
+        _history(name, fields.get(name), (rows, max(groups, 0)))
+    wall_group = _array("wall_group", fields.get("wall_group"), "i")
     if wall_group.shape != (walls,) or np.any(wall_group < 0) or np.any(wall_group >= groups) or \
             np.unique(wall_group).size != groups:
         raise ValueError(f"wall_group must give each of the building's {walls} walls one of the {groups} wall groups "
@@ -540,22 +575,28 @@ def check_saved_result(fields: dict[str, Any], energy: dict[str, Any]) -> None:
         if np.unique(stories[wall_group == group]).size != 1:
             raise ValueError(f"wall_group {group} holds walls of stories {sorted(set(stories[wall_group == group]))}: "
                              "a group is walls of one story")
-    share = history("wall_share", fields.get("wall_share"), (walls,))
+    share = _history("wall_share", fields.get("wall_share"), (walls,))
     if np.any(share <= 0.0) or np.any(share > 1.0) or \
             np.any(np.abs(np.bincount(wall_group, share, groups) - 1.0) > CONSISTENCY_TOLERANCE):
         raise ValueError(f"wall_share must give each wall a share in (0, 1] of its group, the shares of a group "
                          f"summing to 1, got {show(share.tolist())}")
+    return groups
+
+
+def _check_group_states(fields: dict[str, Any], groups: int, rows: int, first: int, dt: float) -> None:
+    """The wall groups' temperature, heat and amplitude histories, heat terms, failures and time outside
+    their tested range."""
     for name in ("group_temperature", "group_heat", "group_amplitude"):
-        value = array(name, fields.get(name, np.zeros((0, 0))))
+        value = _array(name, fields.get(name, np.zeros((0, 0))))
         shape = value.shape if value.shape in ((0, 0), (0, groups)) else (rows, groups)
-        values = history(name, value, shape, nan_columns=name == "group_temperature")
+        values = _history(name, value, shape, nan_columns=name == "group_temperature")
         if name == "group_amplitude" and np.any(values < 0.0):
             raise ValueError("group_amplitude must be >= 0")
-    terms = array("group_heat_terms", fields.get("group_heat_terms", np.zeros((0, 4))))
-    terms = history("group_heat_terms", terms, terms.shape if terms.shape == (0, 4) else (groups, 4))
+    terms = _array("group_heat_terms", fields.get("group_heat_terms", np.zeros((0, 4))))
+    terms = _history("group_heat_terms", terms, terms.shape if terms.shape == (0, 4) else (groups, 4))
     if np.any(terms[:, 2] < 0.0) or np.any(terms[:, 2] > 1.0) or np.any(terms[:, 3] < 0.0):
         raise ValueError("group_heat_terms must hold decays in [0, 1] and gains >= 0 (columns 3 and 4)")
-    failure = array("group_failure", fields.get("group_failure", np.zeros((0, 2), dtype=np.int64)), "i")
+    failure = _array("group_failure", fields.get("group_failure", np.zeros((0, 2), dtype=np.int64)), "i")
     step, mode = (failure[:, 0], failure[:, 1]) if failure.ndim == 2 and failure.shape[1] == 2 else (None, None)
     if step is None or mode is None or failure.shape[0] not in (0, groups) or np.any(step < -1) or \
             np.any(step >= first + rows) or np.any((mode < 0) | (mode >= len(FAILURE_MODES))) or \
@@ -563,29 +604,24 @@ def check_saved_result(fields: dict[str, Any], energy: dict[str, Any]) -> None:
         raise ValueError(f"group_failure must hold, per wall group, a failure step in {first} ... {first + rows - 1} "
                          f"(-1: intact) and a mode of 1 ... {len(FAILURE_MODES) - 1} (0: intact), got "
                          f"{show(failure.tolist())}")
-    outside = array("group_outside_range", fields.get("group_outside_range", np.zeros((0, 2))))
-    outside = history("group_outside_range", outside, outside.shape if outside.shape == (0, 2) else (groups, 2))
+    outside = _array("group_outside_range", fields.get("group_outside_range", np.zeros((0, 2))))
+    outside = _history("group_outside_range", outside, outside.shape if outside.shape == (0, 2) else (groups, 2))
     if np.any(outside < 0.0) or np.any(outside > (first + rows) * dt):
         raise ValueError(f"group_outside_range must hold times in 0 ... {(first + rows) * dt:.6g} s, got "
                          f"{show(outside.tolist())}")
+
+
+def _check_strain_compatible(fields: dict[str, Any], walls: int) -> None:
+    """A strain-compatible analysis's entries: all four given or none."""
     effective, equivalent = fields.get("wall_effective_strain"), fields.get("equivalent_walls")
     strained = (effective, equivalent, fields.get("strain_iterations"), fields.get("strain_converged"))
     if any(item is None for item in strained) and any(item is not None for item in strained):
         raise ValueError("wall_effective_strain, equivalent_walls, strain_iterations and strain_converged must all be "
                          "given (a strain-compatible analysis) or all be None")
-    if effective is not None and np.any(history("wall_effective_strain", effective, (walls,)) < 0.0):
+    if effective is not None and np.any(_history("wall_effective_strain", effective, (walls,)) < 0.0):
         raise ValueError("wall_effective_strain must be >= 0")
     if equivalent is not None and (not isinstance(equivalent, tuple) or len(equivalent) != walls):
         raise ValueError(f"equivalent_walls must be a tuple of the building's {walls} walls, got {show(equivalent)}")
-    collapse_time = fields.get("collapse_time")
-    if fields.get("collapsed", False) != (collapse_time is not None) or \
-            (collapse_time is not None and collapse_time != float(time[-1])):
-        raise ValueError(f"collapse_time must be the last time, {float(time[-1])!r} s, when collapsed and None "
-                         f"otherwise, got {show(collapse_time)}")
-    for name in _ENERGY_FIELDS:
-        if name in energy:
-            history(f"energy.{name}", energy[name], (rows,))
-    _check_identities(building, histories, energy)
 
 
 def _check_identities(building: ShearBuilding, histories: dict[str, np.ndarray], energy: dict[str, np.ndarray]) -> None:

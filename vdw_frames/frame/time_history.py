@@ -76,14 +76,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     The arguments are those of :func:`vdw_frames.simulate` (units there); this is its analysis whenever
     the strain-compatible iteration is not asked for.
     """
-    if not isinstance(building, ShearBuilding):
-        raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
-    for _, wall in building.wall_list:  # an amplitude-following wall needs one r (its memory's)
-        wall_order(wall)
-    if not isinstance(ground_motion, GroundMotion):
-        raise ValueError(f"ground_motion must be a GroundMotion (see read_at2), got {type(ground_motion).__name__}")
-    _require_size(building)
-    require_stable_under_gravity(building, "simulate")
+    _check_model(building, ground_motion)
     method = get_method(method)
     memory_strategy(memory)
     newton = NewtonRaphson() if newton is None else newton
@@ -182,13 +175,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     failure = np.stack([bank.state(kernel.FAILURE_STEP), bank.state(kernel.FAILURE_MODE)], axis=1).astype(np.int64)
     wall_energies = None
     if heated and energy_followed.all():
-        released = np.zeros(filled)  # from each failure's row on, the stored energy it released; from the next
-        for step, energy, falling_work in zip(failure[:, 0], bank.state(kernel.RELEASED),
-                                              bank.state(kernel.RELEASED_WORK), strict=True):
-            if step >= 0:  # (row on, the work on its lost share as its force fell)
-                released[max(int(step) - start, 0):] += energy
-                released[max(int(step) + 1 - start, 0):] += falling_work
-        wall_energies = (out.wall_heat[keep], out.wall_stored[keep], released,
+        wall_energies = (out.wall_heat[keep], out.wall_stored[keep], _released_energy(bank, failure, start, filled),
                          out.wall_parameter_loss[keep])
     try:
         energies = energy_history(out.energy[keep], wall_energies)
@@ -209,6 +196,31 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         group_failure=failure, group_amplitude=out.group_amplitude[keep],
         group_outside_range=np.stack([bank.state(kernel.BELOW_RANGE), bank.state(kernel.ABOVE_RANGE)], axis=1) * dt,
         initial_state=initial_state)
+
+
+def _check_model(building: ShearBuilding, ground_motion: GroundMotion) -> None:
+    """Refuse what is not a building and a record, a building too large, or one unstable under its gravity
+    loads (before any array is built)."""
+    if not isinstance(building, ShearBuilding):
+        raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
+    for _, wall in building.wall_list:  # an amplitude-following wall needs one r (its memory's)
+        wall_order(wall)
+    if not isinstance(ground_motion, GroundMotion):
+        raise ValueError(f"ground_motion must be a GroundMotion (see read_at2), got {type(ground_motion).__name__}")
+    _require_size(building)
+    require_stable_under_gravity(building, "simulate")
+
+
+def _released_energy(bank: WallBank, failure: np.ndarray, start: int, filled: int) -> np.ndarray:
+    """The walls' energy (N*mm) released by their failures, row by row: from each failure's row on, the stored
+    energy it released; from the next row on, the work on its lost share as its force fell."""
+    released = np.zeros(filled)
+    for step, energy, falling_work in zip(failure[:, 0], bank.state(kernel.RELEASED),
+                                          bank.state(kernel.RELEASED_WORK), strict=True):
+        if step >= 0:
+            released[max(int(step) - start, 0):] += energy
+            released[max(int(step) + 1 - start, 0):] += falling_work
+    return released
 
 
 def _record_text(ground_motion: GroundMotion) -> str:
@@ -257,7 +269,7 @@ def _start_from(state: FrameState, frame: FrameArrays, stories: StoryArrays, wal
                          + float(np.dot(frame.story_damping_row, state.velocity)))
 
 
-def _warn_temperature_range(groups, bank: WallBank, dt: float) -> None:
+def _warn_temperature_range(groups: Sequence[tuple[int, object]], bank: WallBank, dt: float) -> None:
     """One warning naming every wall group whose temperature left its shift law's range, and when."""
     first, temperature = bank.state(kernel.OUTSIDE), bank.state(kernel.TEMPERATURE)
     low, high = bank.state(kernel.T_LOW), bank.state(kernel.T_HIGH)

@@ -358,7 +358,7 @@ def write_at2(motion: GroundMotion, path: str | os.PathLike[str], header: str | 
     if len(lines) > 2 or any(_CONTROL.search(line) for line in lines):
         raise ValueError(f"header must be at most 2 single lines without control characters, got {header!r}")
     name_line = f"GROUND MOTION {motion.name or 'RECORD'}"
-    lines = (lines + [name_line, ""])[:2]
+    lines = [*lines, name_line, ""][:2]
     for line in lines:
         if _CONTROL.search(line):
             raise ValueError(f"record name {motion.name!r} has a control character; rename the record "

@@ -74,6 +74,8 @@ from typing import TypedDict
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .._warnings import keyword_only_since_0_3
+
 # The recommended sets live in the element's catalogue (a building file reads them without the identification);
 # their names here are the same objects.
 from ..element.catalogue import AREA, FIT_RANGE, FITTED, STRAINS, THICKNESS, fitted
@@ -194,14 +196,17 @@ def printed_eq9_loss_factor(omega: ArrayLike, G1: float, G2: float, eta1: float,
     return loss / storage
 
 
-def printed_eq10_stiffness(omega: ArrayLike, G1: float, G2: float, eta1: float, eta2: float, r: float,
+@keyword_only_since_0_3
+def printed_eq10_stiffness(omega: ArrayLike, G1: float, G2: float, eta1: float, eta2: float, r: float, *,
                            area: float = AREA, thickness: float = THICKNESS) -> tuple[np.ndarray, np.ndarray]:
     """(K'_d, K''_d) of the printed eq. (10) = eq. (8) * A / h, in N/mm for A in mm^2, h in mm.  NOT the model."""
     storage, loss = printed_eq8_moduli(omega, G1, G2, eta1, eta2, r)
     return storage * area / thickness, loss * area / thickness
 
 
-def printed_eq11_damping_coefficient(omega: ArrayLike, G1: float, G2: float, eta1: float, eta2: float, r: float,
+@keyword_only_since_0_3
+def printed_eq11_damping_coefficient(omega: ArrayLike, G1: float, G2: float, eta1: float, eta2: float, r: float, *,
                                      area: float = AREA, thickness: float = THICKNESS) -> np.ndarray:
     """C_d of the printed eq. (11) = K''_d(10) / omega, in N*s/mm.  NOT the model."""
-    return printed_eq10_stiffness(omega, G1, G2, eta1, eta2, r, area, thickness)[1] / np.asarray(omega, dtype=float)
+    loss = printed_eq10_stiffness(omega, G1, G2, eta1, eta2, r, area=area, thickness=thickness)[1]
+    return loss / np.asarray(omega, dtype=float)

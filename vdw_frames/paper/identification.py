@@ -149,7 +149,7 @@ def identify(frequency: ArrayLike, storage_modulus: ArrayLike, loss_modulus: Arr
     # An optimum on a bound is approached only slowly from inside: polish again with each bound imposed.
     on_bound = [problem.polish(dict(best, **pins), pinned=pins) for pins in _BOUND_FACES
                 if not set(pins) & set(problem.fixed)]
-    best = min([best] + on_bound, key=problem.sse)
+    best = min([best, *on_bound], key=problem.sse)
     return problem.result(problem.snap(best))
 
 
@@ -175,7 +175,7 @@ def _nonnegative_least_squares(columns: NDArray[np.float64],
     """
     shape, k = columns.shape[:-2], columns.shape[-1]
     best = np.broadcast_to(np.sum(target**2, axis=-1), shape).copy()
-    coefficients = np.zeros(shape + (k,))
+    coefficients = np.zeros((*shape, k))
     for subset in _SUBSETS[k]:
         sub = columns[..., list(subset)]
         solution = np.einsum("...im,...m->...i", np.linalg.pinv(sub), target)
@@ -260,10 +260,10 @@ class _Problem:
         if not isinstance(fixed, dict):
             raise ValueError(f"fixed must be a dict of parameter values, got {fixed!r}")
         checked = {}
-        for name, value in fixed.items():
+        for name, given in fixed.items():
             if name not in PARAMETERS:
                 raise ValueError(f"fixed has unknown parameter {name!r}; expected some of {PARAMETERS}")
-            value = finite_scalar(f"fixed[{name!r}]", value)
+            value = finite_scalar(f"fixed[{name!r}]", given)
             if name == "r" and not 0.0 < value <= 1.0:
                 raise ValueError(f"fixed['r'] must lie in (0, 1], got {value!r}")
             if name != "r" and value < 0.0:
@@ -318,7 +318,7 @@ class _Problem:
         """Variable projection on the grid: (sse, linear coefficients) of shape (len(r), len(u)[, k])."""
         r_grid, u_grid = np.meshgrid(r_values, u_values, indexing="ij")
         sse, coefficients = self.projected_points(r_grid, u_grid)
-        return sse.reshape(r_grid.shape), coefficients.reshape(r_grid.shape + (len(self.linear),))
+        return sse.reshape(r_grid.shape), coefficients.reshape((*r_grid.shape, len(self.linear)))
 
     def starts(self, r_values: NDArray[np.float64],
                u_values: NDArray[np.float64]) -> list[tuple[float, float, NDArray[np.float64]]]:
@@ -380,7 +380,7 @@ class _Problem:
         minima = [kept[rows[kept] == i][np.argmin(value[kept][rows[kept] == i])] for i in minima_rows]
         minima = sorted(minima, key=lambda k: value[k])[:MAX_PROFILE_MINIMA]
         chosen = list(dict.fromkeys(list(band) + list(minima)))
-        chosen_sse, coefficients = self.projected_points(r[chosen], u[chosen])
+        _chosen_sse, coefficients = self.projected_points(r[chosen], u[chosen])
         return [(float(r[k]), float(u[k]), coefficients[n]) for n, k in enumerate(chosen)]
 
     def full_parameters(self, r: float, u: float, coefficients: NDArray[np.float64]) -> dict[str, float]:

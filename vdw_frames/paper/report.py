@@ -46,7 +46,7 @@ _Column = Callable[[int], NDArray[np.float64]]
 
 def _frequency_figure(path: Path, sets: Sequence[ParameterSet],
                       quantity: Callable[[FDMKDamper, NDArray[np.float64]], NDArray[np.float64]], ylabel: str,
-                      title: str, data: _Column | None = None, extra: tuple[str, _Column] | None = None) -> Path:
+                      title: str, data: _Column | None = None, *, extra: tuple[str, _Column] | None = None) -> Path:
     """Data (markers) and model curves of ``quantity(damper, f)`` against f, one panel per strain."""
     plt = pyplot()
     f = np.geomspace(0.4, 12.0, 200)
@@ -316,7 +316,7 @@ def _section_table5(candidates: Sequence[Table5Candidate], errata_numbers: dict[
     text += ("\nCandidate definitions of the *theoretical* areas, best first. Cells: area in kN*mm (deviation "
              "from the printed theoretical value); then the largest deviation and the largest Delta (eq. (13)) "
              "against the printed experimental areas.\n\n"
-             + _md(["candidate", "how"] + heads + ["max dev. from theoretical", "max Delta vs experimental"], rows)
+             + _md(["candidate", "how", *heads, "max dev. from theoretical", "max Delta vs experimental"], rows)
              + f"\n**No candidate reproduces the printed theoretical areas.** The closest, *{best.label}*, is off by "
              f"up to {100 * np.max(np.abs(best.deviation())):.0f} %. No single parameter set can: for a linear "
              "model with fixed parameters and U proportional to the strain, the area pi K'' U^2 scales with U^2 "
@@ -492,7 +492,7 @@ def write_paper_report(out_dir: str | os.PathLike[str], quick: bool = False) -> 
     figures = [] if quick else _figures(out, sets)
     strain_figure = None if quick else _strain_figure(out / "fig_strain_dependence.png")
     strain_numbers = strain_dependence_numbers()
-    recommended = [s for s in sets if s.key == paper.RECOMMENDED_RESIDUAL][0]
+    recommended = next(s for s in sets if s.key == paper.RECOMMENDED_RESIDUAL)
     summary = "\n".join(f"* {strain} %: {_params_text(recommended.dampers[strain])} "
                         f"(max error G' {100 * paper.FIT_QUALITY[strain]['storage']:.1f} %, "
                         f"G'' {100 * paper.FIT_QUALITY[strain]['loss']:.1f} %)" for strain in STRAINS)

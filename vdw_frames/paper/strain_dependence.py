@@ -132,8 +132,8 @@ def identification_strains() -> np.ndarray:
     grid = []
     for low, high in pairwise(STRAINS):
         between = np.exp(np.linspace(np.log(low), np.log(high), INTERMEDIATE_STRAINS + 2)[1:-1])
-        grid += [float(low)] + between.tolist()
-    return np.array(grid + [float(STRAINS[-1])])
+        grid += [float(low), *between.tolist()]
+    return np.array([*grid, float(STRAINS[-1])])
 
 
 def relative_errors(modulus: np.ndarray | complex, strain: float) -> np.ndarray:

@@ -1,28 +1,71 @@
 """Figures of FEMA P695 collapse assessments: IDA curves with collapse points, pushover curves with
 delta_y,eff and delta_u, empirical and P695 collapse fragilities.  Intensities in g, drifts in %.
 
-The functions take :class:`~vdw_frames.assessment.CollapseAssessment` objects (read by attribute:
-plotting sits beside the assessment layer and imports it for type checking only).
+The functions take :class:`~vdw_frames.assessment.CollapseAssessment` objects, read by attribute: plotting
+sits below the assessment layer (whose report draws these figures), so it names what it reads in small
+protocols (:class:`Assessed`) rather than importing the assessment.
 """
 
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..motion.record import G
 from ._figure import figure_path, pyplot, save
 
 if TYPE_CHECKING:
-    from ..assessment.collapse import CollapseAssessment
     from ..frame.pushover import PushoverResult
 
 
-def plot_collapse_ida(assessments: Mapping[str, CollapseAssessment], path: str | os.PathLike[str],
+class _Criterion(Protocol):
+    @property
+    def drift_ratio(self) -> float: ...  # the collapse drift ratio (-)
+
+
+class _Curve(Protocol):
+    """One record's runs, sorted by intensity (an assessment's IDACurve)."""
+
+    @property
+    def intensity(self) -> np.ndarray: ...  # mm/s^2
+    @property
+    def peak_drift_ratio(self) -> np.ndarray: ...  # (-)
+    @property
+    def collapsed(self) -> np.ndarray: ...  # bool
+
+
+class Assessed(Protocol):
+    """What the figures read of a :class:`~vdw_frames.assessment.CollapseAssessment` (intensities mm/s^2)."""
+
+    @property
+    def criterion(self) -> _Criterion: ...
+    @property
+    def curves(self) -> Sequence[_Curve]: ...
+    @property
+    def smt(self) -> float: ...
+    @property
+    def median_collapse_intensity(self) -> float: ...
+    @property
+    def cmr(self) -> float: ...
+    @property
+    def total_analyses(self) -> int: ...
+    @property
+    def period(self) -> float: ...  # s
+    @property
+    def collapse_intensity(self) -> np.ma.MaskedArray: ...
+    @property
+    def record_names(self) -> Sequence[str]: ...
+    @property
+    def beta_total(self) -> float: ...
+    def fragility(self, intensity: ArrayLike, adjusted: bool = False) -> np.ndarray: ...
+
+
+def plot_collapse_ida(assessments: Mapping[str, Assessed], path: str | os.PathLike[str],
                       title: str | None = None) -> Path:
     """IDA curves of every record: the set's intensity S_T (g) against the largest story drift ratio (%), one
     panel per assessment (``assessments`` maps a label to a CollapseAssessment); each record's first
@@ -96,7 +139,7 @@ def plot_pushover(pushovers: Mapping[str, PushoverResult], path: str | os.PathLi
     return save(figure, path)
 
 
-def plot_collapse_fragility(assessments: Mapping[str, CollapseAssessment], path: str | os.PathLike[str],
+def plot_collapse_fragility(assessments: Mapping[str, Assessed], path: str | os.PathLike[str],
                             title: str | None = None) -> Path:
     """Collapse fragilities against S_T (g): the empirical one (fraction of records collapsed) as steps and
     FEMA P695's lognormal one (median Ŝ_CT, dispersion beta_TOT) as a line, with S_MT marked."""

@@ -140,7 +140,7 @@ def markdown(result: VerificationResult, figures: Mapping[str, str], title: str)
     return "\n".join(lines)
 
 
-def _span(values) -> str:
+def _span(values: np.ndarray) -> str:
     """'a' or 'a-b': the range of the walls' factors."""
     low, high = float(min(values)), float(max(values))
     return f"{low:.3f}" if abs(high - low) < 5e-4 else f"{low:.3f}-{high:.3f}"

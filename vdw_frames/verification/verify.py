@@ -430,7 +430,7 @@ def wall_peaks(result: SimulationResult) -> dict[str, np.ndarray]:
     deformation, velocity, force = wall_histories(result)
     walls = len(result.building.wall_list)
     dt = float(result.time[1] - result.time[0]) if result.time.size > 1 else 1.0
-    ends = [deformation.shape[0] if t is None else min(int(round(t / dt)) + 1, deformation.shape[0])
+    ends = [deformation.shape[0] if t is None else min(round(float(t) / dt) + 1, deformation.shape[0])
             for t in result.wall_failure_time]
     strain = np.abs(result.wall_strain)
     peaks: dict[str, list[float]] = {name: [] for name in WALL_PEAKS[:-1]}
