@@ -178,7 +178,9 @@ def print_summary(results: dict[str, vdw.SimulationResult]) -> None:
             continue
         heat = energy.wall_heat[-1] if energy.wall_heat is not None else energy.wall_work[-1]
         print(f"  {label}: walls dissipate {100 * heat / energy.input[-1]:.0f} % of the input energy as heat, "
-              f"story yielding {100 * energy.hysteretic[-1] / energy.input[-1]:.0f} %")
+              # round() to an int: a frame that never yields has a hysteretic energy of a rounding's size,
+              # which .0f would print as "-0".
+              f"story yielding {round(100 * energy.hysteretic[-1] / energy.input[-1])} %")
     bare = results["bare frame"].energy
     print(f"  bare frame: story yielding {100 * bare.hysteretic[-1] / bare.input[-1]:.0f} %")
     energy = results[MODELS[0]].energy

@@ -337,9 +337,8 @@ def _warn_strain_range(walls: Sequence[tuple[int, Wall]], peak_wall_strain: np.n
         elif peak_amplitude[index] < low:
             beyond.append(f"story {story}: at most {100 * peak_amplitude[index]:.0f} %, below the range "
                           f"{100 * low:.0f}-{100 * high:.0f} % throughout")
-    peak = peak_strain_warning(walls, peak_wall_strain)
-    if peak is not None:
-        _warnings.warn(peak, UserWarning, stacklevel=4)
+    said = [peak_strain_warning(walls, peak_wall_strain)]
     if beyond:
-        _warnings.warn(_AMPLITUDE_OUTSIDE + " (those of the nearest are used): " + "; ".join(dict.fromkeys(beyond)),
-                       UserWarning, stacklevel=4)
+        said.append(_AMPLITUDE_OUTSIDE + " (those of the nearest are used): " + "; ".join(dict.fromkeys(beyond)))
+    if any(said):  # one warning an analysis: batches count the analyses that warned (is_strain_range_warning)
+        _warnings.warn(". ".join(text for text in said if text), UserWarning, stacklevel=4)
