@@ -349,8 +349,10 @@ class RecordSearch:
         label = self.motion.name or "a record"
 
         def analyse(intensity):
-            result = simulate(self.building, self.motion.scaled(self.unit * intensity),
-                              collapse_drift_ratio=self.criterion.drift_ratio, **options)
+            with _warnings.collect() as caught:
+                result = simulate(self.building, self.motion.scaled(self.unit * intensity),
+                                  collapse_drift_ratio=self.criterion.drift_ratio, **options)
+            _one_strain_warning_per_analysis(caught)
             collapsed = self.criterion.collapsed(result, f"{label} at S_T = {intensity / G:.4g} g")
             drift_ratio = result.peak_drift_ratio
             assert drift_ratio is not None, "the assessment's buildings have story heights (checked)"
@@ -358,6 +360,18 @@ class RecordSearch:
                        int(result.time.size))
 
         return hunt_and_fill(analyse, self.search, label)
+
+
+def _one_strain_warning_per_analysis(caught: list[_warnings.CollectedWarning]) -> None:
+    """Re-issue one analysis's warnings, its strain-range ones (an amplitude-following wall gives two: its
+    amplitude and its peak strain) joined into one, so that ``strain_warnings`` holds one per analysis that
+    had one and its count is a count of analyses."""
+    strain = [w for w in caught if is_strain_range_warning(w.message)]
+    for w in caught:
+        if w not in strain:
+            _warnings.warn(w.message, w.category)
+    if strain:
+        _warnings.warn("; ".join(dict.fromkeys(w.message for w in strain)), strain[0].category)
 
 
 def _search(task: RecordSearch):
