@@ -357,6 +357,15 @@ def test_read_at2_refuses_other_quantities_and_units_it_cannot_read(tmp_path, he
     assert_rejected(read_at2, at2_with_header(tmp_path, header_line), problem)
 
 
+def test_read_at2_reads_a_unit_stated_on_the_count_line(tmp_path):
+    # Before the review of issue 29 the count line's unit was not looked at and the values were read as g (x 981).
+    text = peer_at2("NPTS= 3, DT= 0.01 SEC, UNITS: CM/S2", ["30.0 -12.5 0.25"], header=("PEER RECORD", "STATION"))
+    motion = read_at2(write_file(tmp_path, "count.AT2", text))
+    np.testing.assert_allclose(motion.acceleration, [300.0, -125.0, 2.5], rtol=1e-15)  # 1 cm = 10 mm
+    text = peer_at2("NPTS= 3, DT= 0.01 SEC, UNITS: FT/S2", ["30.0 -12.5 0.25"], header=("PEER RECORD", "STATION"))
+    assert_rejected(read_at2, write_file(tmp_path, "feet.AT2", text), r"line 3 states units 'FT/S2'")
+
+
 def test_read_at2_refuses_a_header_stating_two_units(tmp_path):
     rows = [" ".join(f"{v:.7E}" for v in VALUES_G)]
     text = peer_at2("NPTS= 7, DT= 0.01", rows, header=("UNITS OF CM/S2", "IN UNITS OF G"))

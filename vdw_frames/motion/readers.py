@@ -241,7 +241,7 @@ def read_at2(path: str | os.PathLike[str]) -> GroundMotion:
         assert legacy is not None  # the count line is a keyword line or a legacy one
         npts = _npts(legacy.group(1), path, count_line_number)
         dt = _dt(legacy.group(2), path, count_line_number)
-    factor, unit = _header_unit(numbered[:header], path)
+    factor, unit = _header_unit(numbered[:header + 1], path)  # the count line too ("NPTS=..., UNITS: CM/S2")
     tokens, line_numbers = [], []
     for number, line in numbered[header + 1:]:
         words = line.split()
