@@ -473,6 +473,10 @@ def _collapse(args: argparse.Namespace) -> int:
             period = float(period)
         except ValueError:
             raise ValueError(f"--period must be T1 or seconds, got {args.period!r}") from None
+    if args.wall_failure and not any(getattr(wall, "limits", None) is not None for _, wall in building.wall_list):
+        # Else the flag would change nothing while the report lists wall failure among the limit states.
+        raise ValueError(f"--wall-failure: no wall of {args.building} has limits (a [walls.limits] table), so none "
+                         "can fail; give the walls limits or leave out --wall-failure")
     out = _output_folder(args.out)
     criterion = CollapseCriterion(drift_ratio=args.drift_limit, wall_failure=args.wall_failure)
     search = HuntAndFill(tolerance=args.tolerance)
@@ -516,8 +520,9 @@ def _add_collapse_command(commands: _Commands) -> None:
     collapse.add_argument("--drift-limit", type=float, default=0.10,
                           help="story drift ratio counted as collapse (default 0.10)")
     collapse.add_argument("--wall-failure", action="store_true",
-                          help="count the failure of any wall (its [walls.limits]) as collapse too (default: a "
-                               "failed wall leaves the frame standing; CollapseCriterion.wall_failure)")
+                          help="count the failure of any wall (its [walls.limits]; refused when no wall has limits) as "
+                               "collapse too (default: a failed wall leaves the frame standing; "
+                               "CollapseCriterion.wall_failure)")
     collapse.add_argument("--tolerance", type=float, default=0.02,
                           help="hunt-and-fill tolerance on the collapse intensity (default 0.02)")
     collapse.add_argument("--bare", action="store_true",

@@ -119,6 +119,22 @@ def test_collapse_command_counts_wall_failure_when_asked(flags, wall_failure, bu
         raise ValueError("stopped by the test")
 
     monkeypatch.setattr("vdw_frames.assessment.collapse_assessment", stop)
+    data = json.loads(building_file.read_text())
+    data["walls"][0]["limits"] = {"strain": 8.5}  # walls that can fail
+    building_file.write_text(json.dumps(data))
     assert main(["collapse", str(building_file), "--drift-limit", "0.05", "--out", str(tmp_path / "x"), *flags]) == 2
     assert capsys.readouterr().err == "vdw-frames: error: stopped by the test\n"
     assert seen == [CollapseCriterion(drift_ratio=0.05, wall_failure=wall_failure)]
+
+
+def test_collapse_command_refuses_wall_failure_where_no_wall_can_fail(building_file, tmp_path, monkeypatch, capsys):
+    """Walls without limits never fail: --wall-failure would change nothing while the report listed wall failure
+    among the limit states (examples/ten_story.toml without its [walls.limits] gave ACMR 5.27 with the flag, as
+    without it).  Refused before any analysis, exit 2."""
+    monkeypatch.setattr("vdw_frames.assessment.collapse_assessment", lambda *a, **k: pytest.fail("analysed"))
+    out = tmp_path / "x"
+    assert main(["collapse", str(building_file), "--wall-failure", "--out", str(out)]) == 2
+    assert capsys.readouterr().err == (f"vdw-frames: error: --wall-failure: no wall of {building_file} has limits (a "
+                                       "[walls.limits] table), so none can fail; give the walls limits or leave out "
+                                       "--wall-failure\n")
+    assert not out.exists()

@@ -3,6 +3,7 @@ their thermal descriptions and limits, story models, P-Delta) come back equal, a
 quantity; files that are not saved results are refused."""
 
 import dataclasses
+import io
 import json
 import os
 import warnings
@@ -258,6 +259,22 @@ def test_load_refuses_raw_members_deep_metadata_and_a_fifo(saved, tmp_path):
         os.mkfifo(fifo)  # np.load would wait for a writer forever
         with pytest.raises(ValueError, match=r"pipe.npz: not a regular file"):
             SimulationResult.load(fifo)
+
+
+def test_load_refuses_an_entry_whose_header_declares_more_data_than_it_holds(saved, tmp_path):
+    """A crafted entry: a valid .npy header declaring 10^11 float64 values (800 GB) over 64 bytes of data.
+    numpy allocates the declared shape before reading, so without the check this was a MemoryError (or, under
+    memory overcommit, a large allocation), not a ValueError."""
+    header = io.BytesIO()
+    np.lib.format.write_array_header_1_0(header, {"descr": "<f8", "fortran_order": False, "shape": (10**11,)})
+    crafted = tmp_path / "crafted.npz"
+    with zipfile.ZipFile(saved) as source, zipfile.ZipFile(crafted, "w") as target:
+        for name in source.namelist():
+            data = header.getvalue() + bytes(64) if name == "result.time.npy" else source.read(name)
+            target.writestr(name, data)
+    with pytest.raises(ValueError, match=r"crafted.npz: entry 'result.time.npy' declares \(100000000000,\) float64 "
+                                         r"\(800,000,000,000 bytes\) but holds \d+ bytes"):
+        SimulationResult.load(crafted)
 
 
 def test_the_checks_pass_a_file_as_saved_and_hold_the_analysis_identities(result, saved, tmp_path):

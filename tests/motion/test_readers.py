@@ -321,6 +321,8 @@ def test_read_at2_converts_the_units_its_header_states(tmp_path, header_line, fa
     ("ACCELERATION [in/sec\u00b2]", [762.0, -317.5, 6.35]),  # 1 in = 25.4 mm
     ("ACCELERATION IN G", [294199.5, -122583.125, 2451.6625]),  # g = 9806.65 mm/s^2
     ("ACCELERATION [g]", [294199.5, -122583.125, 2451.6625]),
+    ("ACCELERATION IN G'S", [294199.5, -122583.125, 2451.6625]),
+    ("Acceleration (g's)", [294199.5, -122583.125, 2451.6625]),
     ("CHI-CHI 09/20/99, HWA002, N/S (CWB)", [294199.5, -122583.125, 2451.6625]),  # no unit named: g
 ])
 def test_read_at2_reads_units_named_without_the_word_units(tmp_path, header_line, expected_mm_s2):
@@ -335,6 +337,10 @@ def test_read_at2_reads_units_named_without_the_word_units(tmp_path, header_line
     ("Acceleration (ft/sec^2)", r"line 2 states units 'ft/sec\^2' .*unknown header unit"),
     ("ACCELERATION IN CM/S", r"line 2 states units 'CM/S' .*is a unit of velocity"),
     ("ACCELERATION (cm/s2), PEAK 0.3 (g)", r"the header states two units, 'cm/s2' on line 2 and 'g' on line 2"),
+    # Read as g (x 1000 and x 100 too large) or as the ratio without its scale (x 100) before the review of issue 29.
+    ("Acceleration in milli-g", r"line 2 states units 'milli-g' .*unknown header unit 'milli-g'"),
+    ("ACCELERATION IN %G", r"line 2 states units '%G' .*unknown header unit '%G'"),
+    ("ACCELERATION (10^-2 m/s2)", r"line 2 states units '10\^-2 m/s2' .*unknown header unit"),
 ])
 def test_read_at2_refuses_a_named_unit_it_cannot_read_rather_than_reading_g(tmp_path, header_line, problem):
     text = peer_at2("NPTS= 3, DT= 0.01", ["30.0 -12.5 0.25"], header=("PEER RECORD", header_line))
@@ -349,6 +355,15 @@ def test_read_at2_refuses_a_named_unit_it_cannot_read_rather_than_reading_g(tmp_
 ])
 def test_read_at2_refuses_other_quantities_and_units_it_cannot_read(tmp_path, header_line, problem):
     assert_rejected(read_at2, at2_with_header(tmp_path, header_line), problem)
+
+
+def test_read_at2_reads_a_unit_stated_on_the_count_line(tmp_path):
+    # Before the review of issue 29 the count line's unit was not looked at and the values were read as g (x 981).
+    text = peer_at2("NPTS= 3, DT= 0.01 SEC, UNITS: CM/S2", ["30.0 -12.5 0.25"], header=("PEER RECORD", "STATION"))
+    motion = read_at2(write_file(tmp_path, "count.AT2", text))
+    np.testing.assert_allclose(motion.acceleration, [300.0, -125.0, 2.5], rtol=1e-15)  # 1 cm = 10 mm
+    text = peer_at2("NPTS= 3, DT= 0.01 SEC, UNITS: FT/S2", ["30.0 -12.5 0.25"], header=("PEER RECORD", "STATION"))
+    assert_rejected(read_at2, write_file(tmp_path, "feet.AT2", text), r"line 3 states units 'FT/S2'")
 
 
 def test_read_at2_refuses_a_header_stating_two_units(tmp_path):

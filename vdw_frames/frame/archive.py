@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 import os
 import stat
 import zipfile
@@ -77,6 +78,8 @@ def read_archive(path: str | os.PathLike[str], kind: str,
         raw = sorted(member.filename for member in members if not member.filename.endswith(".npy"))
         if raw:
             raise ValueError(f"{path}: entries {raw} are not numpy arrays; not a {kind} file")
+        for member in members:
+            _declared_size_fits(target, member, path)
         with np.load(target, allow_pickle=False) as data:
             arrays = {name: data[name] for name in data.files}
         metadata = json.loads(str(arrays.pop("metadata")))
@@ -98,6 +101,23 @@ def read_archive(path: str | os.PathLike[str], kind: str,
         except (TypeError, KeyError, ValueError) as error:
             raise ValueError(f"{path}: {name}: an entry that cannot be read ({error})") from None
     return arrays, decoded
+
+
+def _declared_size_fits(target: Path, member: zipfile.ZipInfo, path: object) -> None:
+    """Refuse an entry whose .npy header declares more data than the entry holds: numpy allocates the
+    declared shape before it reads (a crafted 100-byte entry declaring 10^11 values would be a MemoryError)."""
+    with zipfile.ZipFile(target) as archive, archive.open(member) as entry:
+        version = np.lib.format.read_magic(entry)
+        if version == (1, 0):
+            shape, _, dtype = np.lib.format.read_array_header_1_0(entry)
+        elif version == (2, 0):
+            shape, _, dtype = np.lib.format.read_array_header_2_0(entry)
+        else:
+            raise ValueError(f"{path}: entry {member.filename!r}: .npy format {version} not read")
+        declared = math.prod(shape) * dtype.itemsize
+        if declared > member.file_size:
+            raise ValueError(f"{path}: entry {member.filename!r} declares {shape} {dtype} ({declared:,} bytes) but "
+                             f"holds {member.file_size:,} bytes; not a saved result")
 
 
 MAX_DEPTH = 32

@@ -52,12 +52,17 @@ _SLASH_UNIT = re.compile(rf"(?<![A-Za-z_/])({_LENGTH}\s*/\s*{_TIME}(?:\s*/\s*{_T
 _NEGATIVE_POWER_UNIT = re.compile(rf"(?<![A-Za-z_/])({_LENGTH})\s*[\s.*\u00b7]\s*{_TIME}\s*(?:\^|\*\*)?\s*"
                                   r"(?:[-\u2212]\s*2|\u207b\u00b2)(?![\w/])", re.IGNORECASE)
 _GAL = re.compile(r"(?<![\w/])(gals?)(?![\w/])", re.IGNORECASE)
-# A short word or a ratio in brackets after "ACCELERATION", or after "ACCELERATION IN", is a unit too, even one
-# not read here ("ACCELERATION [mg]", "ACCEL. IN FT/S2"): refused, never read as g.
-_UNIT_WORD = r"(?:[A-Za-z]{1,4}|[^\s()\[\],;]*/[^\s()\[\],;]*)"
+# A short word, or a word with a character other than a letter (a ratio, "%g", "milli-g", "g's"), after
+# "ACCELERATION IN" or in brackets after "ACCELERATION" is a unit too, even one not read here ("ACCELERATION [mg]",
+# "ACCEL. IN FT/S2", "ACCELERATION IN %G"); in brackets, a ratio with a scale before it too ("(10^-2 m/s2)"):
+# refused, never read as g (nor as the ratio without its scale).
+_MARKED_WORD = r"[^\s()\[\],;]*[^A-Za-z\s()\[\],;][^\s()\[\],;]*"
+_UNIT_WORD = rf"(?:[A-Za-z]{{1,4}}|{_MARKED_WORD})"
+_BRACKETED_UNIT = rf"(?:[A-Za-z]{{1,4}}|[^()\[\],;]*/[^()\[\],;]*|{_MARKED_WORD})"
 _ACCELERATION_UNIT = re.compile(r"\bACCEL(?:ERATIONS?|\.)?\s*(?:(?:TIME\s+)?(?:HISTORY|SERIES)\s*)?"
-                                rf"(?:IN\s+(?!UNITS?\b)({_UNIT_WORD})(?![\w/]|\s*/)|[(\[]\s*({_UNIT_WORD})\s*[)\]])",
+                                rf"(?:IN\s+(?!UNITS?\b)({_UNIT_WORD})(?![\w/]|\s*/)|[(\[]\s*({_BRACKETED_UNIT})\s*[)\]])",
                                 re.IGNORECASE)
+_G_PLURAL = re.compile(r"g'?s", re.IGNORECASE)  # "g's", "Gs": g
 _G = re.compile(r"[(\[]\s*(g)\s*[)\]]|\bIN\s+(g)\b(?![/-])", re.IGNORECASE)
 # A header naming another quantity: "VELOCITY TIME HISTORY", "DISPLACEMENT TIME SERIES".
 _OTHER_HISTORY = re.compile(r"\b(VELOCITY|DISPLACEMENT)\s+(?:TIME\s+)?(?:HISTORY|SERIES)\b", re.IGNORECASE)
@@ -160,6 +165,7 @@ def _stated_units(line: str) -> list[str]:
         found.extend((match.start(), next(group for group in match.groups() if group is not None))
                      for match in pattern.finditer(line))
     found.extend((match.start(), f"{match.group(1)}/s2") for match in _NEGATIVE_POWER_UNIT.finditer(line))
+    found = [(start, "g" if _G_PLURAL.fullmatch(unit) else unit.strip()) for start, unit in found]
     return [unit for _, unit in sorted(set(found))]  # one unit found by two patterns counts once
 
 
@@ -235,7 +241,7 @@ def read_at2(path: str | os.PathLike[str]) -> GroundMotion:
         assert legacy is not None  # the count line is a keyword line or a legacy one
         npts = _npts(legacy.group(1), path, count_line_number)
         dt = _dt(legacy.group(2), path, count_line_number)
-    factor, unit = _header_unit(numbered[:header], path)
+    factor, unit = _header_unit(numbered[:header + 1], path)  # the count line too ("NPTS=..., UNITS: CM/S2")
     tokens, line_numbers = [], []
     for number, line in numbered[header + 1:]:
         words = line.split()
