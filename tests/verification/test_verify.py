@@ -363,7 +363,7 @@ def test_verify_warns_where_no_one_end_bounds_both_k_storage_and_k_loss(verified
                executor=executor, progress=False)
 
 
-def test_lambda_composed_from_its_parts_as_asce_7_16_eqs_18_2_1_and_18_2_2():
+def test_lambda_composed_from_its_parts_as_the_recalled_eqs_18_2_1_and_18_2_2_not_read_in_the_standard():
     # Hand products: (1 + 0.75 x 0.2) x 1.1 x 1.15 = 1.45475; (1 - 0.75 x 0.1) x 0.95 x 0.85 = 0.7469375.
     lower, upper = composed_factors((0.9, 1.2), (0.95, 1.1), (0.85, 1.15))
     assert upper == pytest.approx(1.45475, rel=1e-14) and lower == pytest.approx(0.7469375, rel=1e-14)
@@ -408,5 +408,9 @@ def test_the_old_temperature_of_a_case_still_answers_with_a_deprecation_warning(
     bounds = PropertyBounds(0.8, 1.2, ambient=(10.0, 30.0))
     with pytest.warns(DeprecationWarning, match="ambient_end"):
         assert (bounds.temperature("upper"), bounds.temperature("lower")) == (10.0, 30.0)
-    with pytest.raises(ValueError, match="needs the frequency"):
-        bounds.wall(_heated().wall_list[0][1], "upper")
+    wall = _heated().wall_list[0][1]
+    with pytest.warns(DeprecationWarning, match="without the frequency"):
+        old = bounds.wall(wall, "upper")
+    # The behaviour before 0.3: the coldest end, times lambda -- against the wall taken there by hand.
+    expected = wall.at_ambient(10.0).scaled(1.2)
+    assert old.storage_stiffness(0.6) == pytest.approx(expected.storage_stiffness(0.6), rel=1e-12)

@@ -229,13 +229,20 @@ class PropertyBounds:
 
     def wall(self, wall: Any, case: str, frequency: float | None = None) -> Any:
         """``wall`` as analysed in ``case`` ("nominal", "upper", "lower"): at the case's ambient end, if any
-        (:meth:`ambient_end` at ``frequency`` Hz, needed then), then times its lambda."""
+        (:meth:`ambient_end` at ``frequency`` Hz), then times its lambda.  Without ``frequency`` an ambient
+        range is deprecated: the ends taken before 0.3 (the coldest for "upper", the hottest for "lower") are used,
+        with a DeprecationWarning; from 0.4 it will be needed."""
         factor = dict(self.cases)[case]
         if self.ambient is not None and case != "nominal":
             if frequency is None:
-                raise ValueError("with an ambient range, PropertyBounds.wall needs the frequency (Hz) at which the "
-                                 "ambient end is chosen (the first mode's; PropertyBounds.building finds it)")
-            temperature = self.ambient_end(wall, case, frequency)
+                warnings.warn("PropertyBounds.wall without the frequency (Hz) at which the ambient end is chosen is "
+                              "deprecated: the coldest end is used for 'upper' and the hottest for 'lower', "
+                              "whichever bounds the quantity; give the first mode's (PropertyBounds.building finds "
+                              "it)", DeprecationWarning, stacklevel=2)
+                _thermal_needed(wall, self.ambient)
+                temperature: float | None = self.ambient[0] if case == "upper" else self.ambient[1]
+            else:
+                temperature = self.ambient_end(wall, case, frequency)
             wall = wall.at_ambient(temperature)
         return wall.scaled(factor) if factor != 1.0 else wall
 
