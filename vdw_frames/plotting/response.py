@@ -95,15 +95,17 @@ def plot_story_hysteresis(result: SimulationResult, story: int, path: str | os.P
 def plot_energy(result: SimulationResult, path: str | os.PathLike[str], title: str | None = None) -> Path:
     """Stacked energy histories (kN*m = 1e6 N*mm) with the input energy on top.
 
-    Walls, inherent damping and story yielding (hysteretic) dissipate; frame strain and kinetic energy
-    are stored.  With P-Delta, gravity also does work (``energy.p_delta`` <= 0): the stack then reaches
-    input - p_delta, drawn dashed.
+    The walls' band is the work done on them (``energy.wall_work``): the heat they dissipated plus the
+    energy they store, which an amplitude-following wall can also gain or lose at no work as its moduli
+    change (``energy.wall_parameter_loss``), so it is not their heat alone.  Inherent damping and story yielding
+    (hysteretic) dissipate; frame strain and kinetic energy are stored.  With P-Delta, gravity also does work
+    (``energy.p_delta`` <= 0): the stack then reaches input - p_delta, drawn dashed.
     """
     path = figure_path(path, "energy.png")
     plt = pyplot()
     energy = result.energy
     figure, axes = plt.subplots(figsize=(9.5, 4.0))
-    parts = [("walls", energy.wall_work), ("inherent damping", energy.inherent_damping),
+    parts = [("walls (work done on them)", energy.wall_work), ("inherent damping", energy.inherent_damping),
              ("story yielding", energy.hysteretic), ("frame strain", energy.frame_strain),
              ("kinetic", energy.kinetic)]
     parts = [(name, values) for name, values in parts if np.abs(values).max() > 0.0]
