@@ -284,13 +284,18 @@ class ShearBuilding:
         count = whole_number("count", count, 1)
         if count > self.stories:
             raise ValueError(f"count must be at most the {self.stories} modes, got {count}")
-        scale = 1.0 / np.sqrt(np.asarray(self.masses))
-        k = np.asarray(self.stiffnesses)
+        # Masses and stiffnesses taken relative to their largest, the squares scaled back after: the
+        # bisection's tolerance and Sturm counts work on numbers near 1 (masses of 1e308 t made its entries
+        # 1e-303, where they lost their digits).
+        masses, k = np.asarray(self.masses), np.asarray(self.stiffnesses)
+        mass_unit, stiffness_unit = float(masses.max()), float(k.max())
+        scale = 1.0 / np.sqrt(masses / mass_unit)
+        k = k / stiffness_unit
         diagonal = (k + np.append(k[1:], 0.0)) * scale**2
         off = -k[1:] * scale[:-1] * scale[1:]
         squares = eigh_tridiagonal(diagonal, off, eigvals_only=True, select="i", select_range=(0, count - 1),
                                    tol=np.finfo(float).tiny)
-        return _read_only(np.sqrt(np.asarray(squares)))
+        return _read_only(np.sqrt(np.asarray(squares)) * np.sqrt(stiffness_unit / mass_unit))
 
     @cached_property
     def rayleigh_coefficients(self) -> tuple[float, float]:
