@@ -157,15 +157,15 @@ def service_temperature(name: str, value: object) -> float:
     return temperature
 
 
-def held_temperature(law: WLF | Arrhenius | LogLinear, temperature: object) -> float:
+def held_temperature(law: WLF | Arrhenius | LogLinear, temperature: object, warn: bool = True) -> float:
     """The temperature (degC) at which the frequency domain evaluates ``law`` for a wall at ``temperature``:
-    ``temperature`` inside the law's valid range, the range's nearer end outside it, with a warning -- the
-    rule of the time domain, whose update holds the law at the range's end too (kernel ``_shift_factor``).
-    ``temperature`` must be a service temperature (:func:`service_temperature`)."""
+    ``temperature`` inside the law's valid range, the range's nearer end outside it, with a warning (none
+    with ``warn=False``) -- the rule of the time domain, whose update holds the law at the range's end too
+    (kernel ``_shift_factor``).  ``temperature`` must be a service temperature (:func:`service_temperature`)."""
     value = service_temperature("temperature", temperature)
     low, high = law.valid
     held = min(max(value, low), high)
-    if held != value:
+    if warn and held != value:
         _warnings.warn(f"temperature {value:g} degC is outside the shift law's range {low:g} ... {high:g} degC: "
                        f"the law is evaluated at {held:g} degC, the range's end (as the time domain does)",
                        UserWarning, stacklevel=3)
@@ -175,12 +175,7 @@ def held_temperature(law: WLF | Arrhenius | LogLinear, temperature: object) -> f
 def shift_factor(law: WLF | Arrhenius | LogLinear, temperature: object, r: float, warn: bool = True) -> float:
     """a_T^r (-) of ``law`` at ``temperature`` (degC), held at the law's valid range (:func:`held_temperature`;
     ``warn=False``: without the warning, for callers that report it themselves)."""
-    if warn:
-        held = held_temperature(law, temperature)
-    else:
-        low, high = law.valid
-        held = min(max(service_temperature("temperature", temperature), low), high)
-    return float(10.0 ** (r * float(law.log10_shift(held))))
+    return float(10.0 ** (r * float(law.log10_shift(held_temperature(law, temperature, warn)))))
 
 
 def conduction_time(thickness: float, diffusivity: float = THERMAL_DIFFUSIVITY) -> float:
