@@ -17,7 +17,16 @@ from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
 from typing import Any
 
-from .element import FDMKDamper, StrainDependentDamper, SupportedDamper, ThermalProperties, WallLimits, sine_test
+from .element import (
+    FDMKDamper,
+    FluidViscousDamper,
+    FrictionDamper,
+    StrainDependentDamper,
+    SupportedDamper,
+    ThermalProperties,
+    WallLimits,
+    sine_test,
+)
 from .frame import Bilinear, BoucWen, ShearBuilding, incremental_dynamic_analysis, modal_analysis, run_batch, simulate
 from .motion import G, GroundMotion, read_at2, read_two_column
 
@@ -30,6 +39,8 @@ __all__ = [
     "Bilinear",
     "BoucWen",
     "FDMKDamper",
+    "FluidViscousDamper",
+    "FrictionDamper",
     "G",
     "GroundMotion",
     "ShearBuilding",

@@ -252,12 +252,12 @@ def building_from_dict(data: dict[str, Any]) -> ShearBuilding:
         for story, wall in walls:
             dampers.setdefault(story, []).extend([wall] * per_story)
     # damping_modes only when the file gives them: else the building picks its default.
-    modes = {"damping_modes": tuple(data["damping_modes"])} if "damping_modes" in data else {}
+    modes = tuple(data["damping_modes"]) if "damping_modes" in data else None
     return ShearBuilding(
         data["masses"], data["stiffnesses"],
         damping_ratio=data.get("damping_ratio", 0.05),
-        **modes,
-        walls={story: tuple(walls) for story, walls in dampers.items()},
+        damping_modes=modes,
+        devices={story: tuple(walls) for story, walls in dampers.items()},
         story_heights=data.get("story_heights"),
         hysteresis=_hysteresis(data.get("hysteresis"), stories),
         gravity_loads=data.get("gravity_loads"),

@@ -12,6 +12,9 @@
   (``wall.prony(f_min, f_max)``), for programs that cannot host the exact wall;
 - :mod:`.strain_dependent`: :class:`StrainDependentDamper`, FDMK parameters as functions of the
   strain amplitude (followed step by step in the time domain);
+- :mod:`.device`: the :class:`Device` contract every damping device satisfies; :mod:`.devices`: the
+  compiled trial/commit of the kinds beyond the walls and their registry; :mod:`.viscous`:
+  :class:`FluidViscousDamper`; :mod:`.friction`: :class:`FrictionDamper`;
 - :mod:`.thermal`: temperature -- shift laws (:class:`WLF`, :class:`Arrhenius`, :class:`LogLinear`),
   :class:`ThermalProperties`, self-heating; :mod:`.limits`: :class:`WallLimits`, walls that fail.
 
@@ -20,8 +23,11 @@ Units: N, mm, s; moduli MPa, viscosities MPa*s^r.
 
 from .bank import WallBank
 from .damper import FDMKDamper, WallState
+from .device import Device
+from .devices import device_response
 from .fast_memory import FastMemory
 from .fractional import BDF2, DampedTwoStep, Discretisation, GrunwaldLetnikov, Trapezoidal
+from .friction import FrictionDamper
 from .limits import WallLimits
 from .material import Material
 from .prony import PronySeries
@@ -29,9 +35,11 @@ from .sine import SineTestResult, sine_test
 from .strain_dependent import StrainDependentDamper
 from .supported import SupportedDamper
 from .thermal import ISD110_LOSS_PEAK, WLF, Arrhenius, LogLinear, ThermalProperties
+from .viscous import FluidViscousDamper
 from .wall import Wall
 
-__all__ = ["BDF2", "ISD110_LOSS_PEAK", "WLF", "Arrhenius", "DampedTwoStep", "Discretisation", "FDMKDamper",
-           "FastMemory", "GrunwaldLetnikov", "LogLinear", "Material", "PronySeries", "SineTestResult",
-           "StrainDependentDamper", "SupportedDamper", "ThermalProperties", "Trapezoidal", "Wall", "WallBank",
-           "WallLimits", "WallState", "sine_test"]
+__all__ = ["BDF2", "ISD110_LOSS_PEAK", "WLF", "Arrhenius", "DampedTwoStep", "Device", "Discretisation",
+           "FDMKDamper", "FastMemory", "FluidViscousDamper", "FrictionDamper", "GrunwaldLetnikov", "LogLinear",
+           "Material", "PronySeries", "SineTestResult", "StrainDependentDamper", "SupportedDamper",
+           "ThermalProperties", "Trapezoidal", "Wall", "WallBank", "WallLimits", "WallState", "device_response",
+           "sine_test"]

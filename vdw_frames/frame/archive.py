@@ -24,15 +24,18 @@ import numpy as np
 from .._files import file_path, write_via
 from .._validation import MEMORY_LIMIT_BYTES
 from ..element.damper import FDMKDamper
+from ..element.friction import FrictionDamper
 from ..element.limits import WallLimits
 from ..element.strain_dependent import StrainDependentDamper
 from ..element.supported import SupportedDamper
 from ..element.thermal import WLF, Arrhenius, LogLinear, ThermalProperties
+from ..element.viscous import FluidViscousDamper
 from .building import ShearBuilding
 from .hysteresis import Bilinear, BoucWen
 
 # The classes an archive may hold; nothing else is built on reading.
-_CLASSES: tuple[type, ...] = (ShearBuilding, FDMKDamper, SupportedDamper, StrainDependentDamper, ThermalProperties,
+_CLASSES: tuple[type, ...] = (ShearBuilding, FDMKDamper, SupportedDamper, StrainDependentDamper, FluidViscousDamper,
+                              FrictionDamper, ThermalProperties,
                               WLF, Arrhenius, LogLinear, WallLimits, Bilinear, BoucWen)
 
 

@@ -1,5 +1,5 @@
 """Shear building: lumped floor masses, story springs (elastic or yielding), P-Delta, inherent damping,
-FDMK walls across stories."""
+damping devices across stories (FDMK walls, fluid viscous and friction dampers)."""
 
 from __future__ import annotations
 
@@ -12,12 +12,15 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import eigh, eigh_tridiagonal
 
+from .. import _warnings
 from .._validation import check_memory, damping_ratio, finite_array, positive, show, whole_number
+from ..element.devices import KINDS, is_stepped_device
 from ..element.strain_dependent import StrainDependentDamper
 from ..element.supported import WALL_TYPES
 from .hysteresis import STORY_MODELS, Bilinear, BoucWen
 
 if TYPE_CHECKING:
+    from ..element.device import Device
     from ..element.wall import Wall
 
 DAMPING_MODELS = ("rayleigh", "modal")
@@ -26,9 +29,10 @@ DAMPING_MODELS = ("rayleigh", "modal")
 _FREQUENCY_CHUNK = 2048  # frequencies solved at once by frequency_response
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class ShearBuilding:
-    """A shear building with optional FDMK walls, yielding stories and P-Delta.
+    """A shear building with optional damping devices (FDMK walls, fluid viscous and friction dampers),
+    yielding stories and P-Delta.
 
     Parameters
     ----------
@@ -43,12 +47,13 @@ class ShearBuilding:
         Rayleigh damping: the two modes (1-based) given ``damping_ratio`` by C = a0 M + a1 K_frame; the
         same mode twice splits the ratio equally between the mass and stiffness terms.  Default (1, 2),
         or (1, 1) for a one-story building.
-    walls : dict {story: wall or list of walls}
-        Walls across stories (1 ... n): :class:`~vdw_frames.FDMKDamper` or
-        :class:`~vdw_frames.SupportedDamper`; several on one story act in parallel.  A wall's
-        deformation is the interstory drift.  A wall may be a
-        :class:`~vdw_frames.StrainDependentDamper`; such a building is analysed by
-        ``simulate(..., strain_compatible=True)`` (:mod:`vdw_frames.frame.strain_compatible`).
+    devices : dict {story: device or list of devices}
+        Damping devices across stories (1 ... n), of any kind and mixed: walls
+        (:class:`~vdw_frames.FDMKDamper`, :class:`~vdw_frames.SupportedDamper`,
+        :class:`~vdw_frames.StrainDependentDamper`), :class:`~vdw_frames.FluidViscousDamper` and
+        :class:`~vdw_frames.FrictionDamper`; several on one story act in parallel.  A device's deformation
+        is its magnification (1 for walls) times the interstory drift (:mod:`vdw_frames.element.device`).
+        ``walls=`` (the keyword before 0.3) still works, with a DeprecationWarning.
     story_heights : sequence of float, optional
         Story heights, mm, for drift ratios, P-Delta and the collapse check.
     hysteresis : sequence or dict, optional
@@ -80,17 +85,36 @@ class ShearBuilding:
     damping_ratio: float = 0.05
     # None (the default) becomes (1, 2), or (1, 1) for one story, in __post_init__.
     damping_modes: tuple[int, int] = cast("tuple[int, int]", None)
-    walls: dict[int, tuple[Wall | StrainDependentDamper, ...]] = field(default_factory=dict)
+    devices: dict[int, tuple[Device, ...]] = field(default_factory=dict)
     story_heights: tuple[float, ...] | None = None
     hysteresis: tuple[Bilinear | BoucWen | None, ...] | None = None
     gravity_loads: tuple[float, ...] | None = None
     damping_model: str = "rayleigh"
 
+    # The dataclass's own positional signature since 0.1, and walls=, the devices' keyword before 0.3.
+    def __init__(self, masses: ArrayLike, stiffnesses: ArrayLike, damping_ratio: float = 0.05,  # noqa: PLR0917
+                 damping_modes: tuple[int, int] | None = None, devices: dict[Any, Any] | None = None,
+                 story_heights: ArrayLike | None = None, hysteresis: object = None,
+                 gravity_loads: ArrayLike | None = None, damping_model: str = "rayleigh", *,
+                 walls: dict[Any, Any] | None = None) -> None:
+        if walls is not None:
+            _warnings.warn("ShearBuilding(walls=...) is deprecated since 0.3 and will be removed in 0.4: give every "
+                           "device, walls included, through devices=", DeprecationWarning, stacklevel=2)
+            if devices is not None:
+                raise ValueError("give the devices through devices= only (walls= is its deprecated name), not both")
+            devices = walls
+        for name, value in (("masses", masses), ("stiffnesses", stiffnesses), ("damping_ratio", damping_ratio),
+                            ("damping_modes", damping_modes), ("devices", {} if devices is None else devices),
+                            ("story_heights", story_heights), ("hysteresis", hysteresis),
+                            ("gravity_loads", gravity_loads), ("damping_model", damping_model)):
+            object.__setattr__(self, name, value)
+        self.__post_init__()
+
     def __post_init__(self) -> None:
         stories = self._check_masses_and_stiffnesses()
         object.__setattr__(self, "damping_ratio", damping_ratio(self.damping_ratio))
         object.__setattr__(self, "damping_modes", self._check_damping_modes(stories))
-        object.__setattr__(self, "walls", self._normalise_walls(self.walls, stories))
+        object.__setattr__(self, "devices", self._normalise_devices(self.devices, stories))
         if self.story_heights is not None:
             object.__setattr__(self, "story_heights", self._check_story_heights(self.story_heights, stories))
         object.__setattr__(self, "hysteresis", self._normalise_hysteresis(self.hysteresis, stories))
@@ -159,32 +183,31 @@ class ShearBuilding:
         return tuple(loads.tolist())
 
     @staticmethod
-    def _normalise_walls(walls_by_story: dict[Any, Any] | None,
-                         stories: int) -> dict[int, tuple[Wall | StrainDependentDamper, ...]]:
-        if walls_by_story is not None and not isinstance(walls_by_story, dict):
-            raise ValueError(f"walls must be a dict {{story: FDMKDamper or list}}, got {type(walls_by_story).__name__}")
-        normalised: dict[int, tuple[Wall | StrainDependentDamper, ...]] = {}
+    def _normalise_devices(devices_by_story: dict[Any, Any] | None, stories: int) -> dict[int, tuple[Device, ...]]:
+        if devices_by_story is not None and not isinstance(devices_by_story, dict):
+            raise ValueError(f"devices must be a dict {{story: device or list}}, got {type(devices_by_story).__name__}")
+        normalised: dict[int, tuple[Device, ...]] = {}
         seen: set[int] = set()  # stories after normalisation: {1: w, 1.0: w} is one story twice
-        given = walls_by_story or {}
+        given = devices_by_story or {}
+        kinds = ", ".join(cls.__name__ for cls in (*WALL_TYPES, StrainDependentDamper, *KINDS.values()))
         for key, entry in given.items():
-            message = f"wall story must be a story number in 1 ... {stories}, got {show(key)}"
+            message = f"device story must be a story number in 1 ... {stories}, got {show(key)}"
             try:
-                story = whole_number("wall story", key, 1)
+                story = whole_number("device story", key, 1)
             except ValueError:
                 raise ValueError(message) from None
             if story > stories:
                 raise ValueError(message)
-            walls = tuple(entry) if isinstance(entry, (list, tuple)) else (entry,)
-            for wall in walls:
-                if not isinstance(wall, (*WALL_TYPES, StrainDependentDamper)):
-                    raise ValueError(f"walls[{story}] must be FDMKDamper, SupportedDamper or StrainDependentDamper "
-                                     f"objects, got {type(wall).__name__}")
+            devices = tuple(entry) if isinstance(entry, (list, tuple)) else (entry,)
+            for device in devices:
+                if not (is_wall(device) or is_stepped_device(device)):
+                    raise ValueError(f"devices[{story}] must be {kinds} objects, got {type(device).__name__}")
             if story in seen:
-                raise ValueError(f"walls has story {story} twice (keys {show(list(given))}); give each "
-                                 "story once, with a list of its walls")
+                raise ValueError(f"devices has story {story} twice (keys {show(list(given))}); give each "
+                                 "story once, with a list of its devices")
             seen.add(story)
-            if walls:
-                normalised[story] = walls
+            if devices:
+                normalised[story] = devices
         return dict(sorted(normalised.items()))
 
     @staticmethod
@@ -218,8 +241,15 @@ class ShearBuilding:
 
     @property
     def is_linear(self) -> bool:
-        """True when every story is elastic (walls are linear in any case)."""
+        """True when every story is elastic (its devices aside: :attr:`devices_linear`)."""
         return self.hysteresis is None
+
+    @property
+    def devices_linear(self) -> bool:
+        """True when every device's force is linear in its motion: walls of fixed parameters and linear fluid
+        viscous dampers (a wall that heats, follows its amplitude or fails is stepped as linear within each
+        step, its coefficients changing between steps)."""
+        return all(getattr(device, "linear", True) for _, device in self.other_device_list)
 
     @property
     def story_models(self) -> tuple[Bilinear | BoucWen | None, ...]:
@@ -355,9 +385,27 @@ class ShearBuilding:
         return a0 / (2.0 * w) + a1 * w / 2.0
 
     @property
+    def walls(self) -> dict[int, tuple[Wall | StrainDependentDamper, ...]]:
+        """{story: its walls} (FDMK walls among :attr:`devices`), stories ascending."""
+        walls = {story: tuple(cast("Wall | StrainDependentDamper", d) for d in devices if is_wall(d))
+                 for story, devices in self.devices.items()}
+        return {story: group for story, group in walls.items() if group}
+
+    @property
     def wall_list(self) -> list[tuple[int, Wall | StrainDependentDamper]]:
-        """(story, damper) for every damper, stories ascending."""
+        """(story, wall) for every wall, stories ascending."""
         return [(story, wall) for story, walls in self.walls.items() for wall in walls]
+
+    @property
+    def device_list(self) -> list[tuple[int, Device]]:
+        """(story, device) for every device, walls included, stories ascending."""
+        return [(story, device) for story, devices in self.devices.items() for device in devices]
+
+    @property
+    def other_device_list(self) -> list[tuple[int, Device]]:
+        """(story, device) for every device that is not a wall (fluid viscous, friction: the kinds of
+        :mod:`vdw_frames.element.devices`), stories ascending: the columns of a result's device histories."""
+        return [(story, device) for story, device in self.device_list if not is_wall(device)]
 
     @property
     def strain_dependent(self) -> bool:
@@ -380,13 +428,31 @@ class ShearBuilding:
 
         return self.with_walls({story: tuple(fixed(wall) for wall in walls) for story, walls in self.walls.items()})
 
+    def without_devices(self) -> ShearBuilding:
+        """The bare frame: the same stories, P-Delta and damping, with no device."""
+        return dataclasses.replace(self, devices={})
+
     def without_walls(self) -> ShearBuilding:
-        """The same frame (stories, P-Delta, damping) with no walls."""
-        return dataclasses.replace(self, walls={})
+        """The same frame with its walls removed (its other devices kept: :meth:`without_devices` is the bare
+        frame)."""
+        return self.with_walls({})
 
     def with_walls(self, walls: dict[int, tuple[Wall | StrainDependentDamper, ...]]) -> ShearBuilding:
-        """The same frame with ``walls`` (a dict as for the constructor) instead of its own."""
-        return dataclasses.replace(self, walls=walls)
+        """The same frame with ``walls`` (a dict as for the constructor) instead of its own walls; its other
+        devices are kept, on their stories, after the walls."""
+        if not isinstance(walls, dict):
+            raise ValueError(f"walls must be a dict {{story: wall or list}}, got {type(walls).__name__}")
+        merged: dict[Any, list[Any]] = {}
+        for story, entry in walls.items():
+            merged.setdefault(story, []).extend(entry if isinstance(entry, (list, tuple)) else (entry,))
+        for story, device in self.other_device_list:
+            key = next((k for k in merged if k == story), story)
+            merged.setdefault(key, []).append(device)
+        return dataclasses.replace(self, devices={story: tuple(group) for story, group in merged.items()})
+
+    def with_devices(self, devices: dict[int, tuple[Device, ...]]) -> ShearBuilding:
+        """The same frame with ``devices`` (a dict as for the constructor) instead of all of its own."""
+        return dataclasses.replace(self, devices=devices)
 
     def frequency_response(self, frequency: ArrayLike) -> np.ndarray:
         """Relative floor displacement per unit ground acceleration, mm/(mm/s^2), shape (len(f), floors).
@@ -403,6 +469,7 @@ class ShearBuilding:
         stiffness at rest: no steady response exists, as :func:`~vdw_frames.modal_analysis` refuses too).
         """
         require_fixed_walls(self, "frequency_response()")
+        require_linear_devices(self, "frequency_response()")
         require_stable_under_gravity(self, "frequency_response()")
         frequency = finite_array("frequency", frequency, ndim=None)
         if frequency.ndim > 1:
@@ -425,6 +492,8 @@ class ShearBuilding:
             # Fixed walls only (frequency_response checked): no strain-dependent wall.
             for story, wall in cast("list[tuple[int, Wall]]", self.wall_list):
                 per_story[:, story - 1] += wall.stiffness_transfer(1j * omega)
+            for story, device in self.other_device_list:  # linear (frequency_response checked)
+                per_story[:, story - 1] += device.story_stiffness(frequency)
             base = self.stiffness_matrix + story_matrix(np.asarray(self.geometric_stiffness, dtype=float))
             dynamic = (story_matrix(per_story) + base - (omega**2)[:, None, None] * self.mass_matrix
                        + (1j * omega)[:, None, None] * self.damping_matrix)
@@ -485,6 +554,11 @@ def static_wall_stiffness(building: ShearBuilding) -> np.ndarray:
     return stiffness
 
 
+def is_wall(device: object) -> bool:
+    """Whether ``device`` is an FDMK wall (stepped by the walls' bank)."""
+    return isinstance(device, (*WALL_TYPES, StrainDependentDamper))
+
+
 def require_stable_under_gravity(building: ShearBuilding, analysis: str) -> None:
     """ValueError naming the story when a story's P-Delta stiffness -P/h cancels its stiffness at rest
     (k0 plus its walls' K(s = 0), :func:`static_wall_stiffness`): the linear frame is then unstable under its
@@ -509,6 +583,16 @@ def require_fixed_walls(building: ShearBuilding | None, analysis: str) -> None:
                          "(StrainDependentDamper), whose parameters follow their amplitude: give each wall its "
                          "parameters at one strain amplitude with wall.at(strain), or analyse in time (simulate "
                          "follows the amplitude; strain_compatible=True iterates an equivalent-linear building)")
+
+
+def require_linear_devices(building: ShearBuilding, analysis: str) -> None:
+    """ValueError naming the first device that is not linear (a nonlinear FVD, a friction damper), which
+    ``analysis`` cannot take without an amplitude to linearise it at."""
+    for story, device in building.other_device_list:
+        if not getattr(device, "linear", False):
+            raise ValueError(f"{analysis} needs linear devices, but story {story} has a {device.describe()}, whose "
+                             "stiffness depends on its amplitude: analyse in time (simulate), or linearise it at an "
+                             "amplitude (modal_analysis(..., drift_amplitude=...))")
 
 
 def _read_only(array: np.ndarray) -> np.ndarray:

@@ -53,6 +53,7 @@ import numpy as np
 from .._jit import njit
 from .._validation import positive, whole_number
 from ..element import kernel
+from ..element.devices import DeviceStates, devices_commit, devices_trial, record_devices
 from ..element.kernel import BankArrays
 from .hysteresis import story_trial
 
@@ -126,11 +127,14 @@ class FrameArrays(NamedTuple):
     collapse_ratio: float  # drift ratio that stops the run (0: never)
 
 
-class WallArrays(NamedTuple):
-    """The walls: one bank of wall groups and the story of each group (G groups)."""
+class DeviceArrays(NamedTuple):
+    """The devices: one bank of wall groups (G groups), their stories and magnifications, and every other
+    device kind's states (:class:`~vdw_frames.element.devices.DeviceStates`)."""
 
     group_story: np.ndarray  # (G,) int64, 0-based
+    group_magnification: np.ndarray  # (G,) -: wall deformation / story drift
     bank: BankArrays
+    others: DeviceStates
 
 
 class Histories(NamedTuple):
@@ -155,6 +159,12 @@ class Histories(NamedTuple):
     wall_stored: np.ndarray  # (N,) N*mm stored in all walls
     wall_parameter_loss: np.ndarray  # (N,) N*mm the walls' stored energy lost as their parameters changed
     group_amplitude: np.ndarray  # (N, G) strain amplitude followed; (0, G) without amplitude-following walls
+    # The other devices (D, the building's order; (N, 0) without any), along each device:
+    device_force: np.ndarray  # (N, D) N
+    device_deformation: np.ndarray  # (N, D) mm
+    device_velocity: np.ndarray  # (N, D) mm/s
+    device_heat: np.ndarray  # (N, D) N*mm dissipated since rest
+    device_stored: np.ndarray  # (N, D) N*mm stored
 
 
 class Scratch(NamedTuple):
@@ -172,6 +182,8 @@ class Scratch(NamedTuple):
     stiffness_diagonal: np.ndarray  # (n,) story tangents in the solve, N/mm
     wall_tangent: np.ndarray  # (n,) walls' K_t per story, N/mm
     wall_history: np.ndarray  # (n,) walls' H_n per story, N
+    device_force: np.ndarray  # (n,) the other devices' trial force per story, N
+    device_tangent: np.ndarray  # (n,) their tangent per story, N/mm
     work: np.ndarray  # (2, n) tridiagonal factors
     matrix: np.ndarray  # (n, n) dense tangent
     wall_deformation: np.ndarray  # (G,) mm
@@ -236,7 +248,7 @@ def _step_constants(step, ground, dt, frame, out, work):
 
 
 @njit(cache=True, inline="always")
-def _residual(u, dt, least, frame, stories, work):
+def _residual(u, dt, least, frame, stories, devices, work):
     """Unbalanced force R = -M a_g - (M a + C v + B^T f)(u) at trial displacements u (n,) of the step whose
     constants :func:`_step_constants` put in ``work`` (its least force scale ``least``, N), into
     ``work.residual``; returns the force scale.
@@ -251,9 +263,11 @@ def _residual(u, dt, least, frame, stories, work):
     for s in range(n):
         work.drift[s] = u[s] - (u[s - 1] if s > 0 else 0.0)
     _story_state(stories, work)
+    if devices.total:
+        devices_trial(devices, work.drift, dt, work.device_force, work.device_tangent)
     for s in range(n):
         work.story_total[s] = (work.story_force[s] + geometric[s] * work.drift[s]
-                               + work.wall_tangent[s] * work.drift[s] + work.wall_history[s])
+                               + work.wall_tangent[s] * work.drift[s] + work.wall_history[s] + work.device_force[s])
     scale = least
     for i in range(n):
         damped = 0.0
@@ -353,7 +367,7 @@ def _solve_dense(frame, dt, work):
 
 
 @njit(cache=True, inline="always")
-def _newton(step, ground_next, dt, frame, stories, newton, out, work):
+def _newton(step, ground_next, dt, frame, stories, devices, newton, out, work):
     """Newton-Raphson for row ``step`` + 1 from u_n into ``work.displacement``: the strategies in turn
     (full tangent, with a line search, initial stiffness), each from u_n again.  Returns (converged,
     corrections made)."""
@@ -368,7 +382,7 @@ def _newton(step, ground_next, dt, frame, stories, newton, out, work):
         limit = newton.max_iterations if strategy < _INITIAL else newton.fallback_iterations
         if frame.linear:
             limit = 1
-        converged, corrections = _iterate(strategy, limit, least, dt, frame, stories, newton, work)
+        converged, corrections = _iterate(strategy, limit, least, dt, frame, stories, devices, newton, work)
         made += corrections
         if converged:
             return True, made
@@ -376,7 +390,7 @@ def _newton(step, ground_next, dt, frame, stories, newton, out, work):
 
 
 @njit(cache=True, inline="always")
-def _iterate(strategy, limit, least, dt, frame, stories, newton, work):
+def _iterate(strategy, limit, least, dt, frame, stories, devices, newton, work):
     """At most ``limit`` Newton corrections of ``work.displacement`` with one strategy; returns (converged,
     corrections made)."""
     u, geometric = work.displacement, frame.geometric
@@ -385,7 +399,7 @@ def _iterate(strategy, limit, least, dt, frame, stories, newton, work):
     exact_solve = False  # the last correction solved the model itself (no tangent changed since)
     made = 0
     for iteration in range(limit + 1):
-        scale = _residual(u, dt, least, frame, stories, work)
+        scale = _residual(u, dt, least, frame, stories, devices, work)
         norm = _largest(work.residual)
         if exact_solve and _tangent_changed(frame, work):
             exact_solve = False
@@ -397,14 +411,15 @@ def _iterate(strategy, limit, least, dt, frame, stories, newton, work):
             return False, made
         for s in range(n):
             if strategy == _INITIAL:
-                work.stiffness_diagonal[s] = work.initial_stiffness[s] + work.wall_tangent[s]
+                work.stiffness_diagonal[s] = work.initial_stiffness[s] + work.wall_tangent[s] + work.device_tangent[s]
             else:
-                work.stiffness_diagonal[s] = work.story_tangent[s] + geometric[s] + work.wall_tangent[s]
+                work.stiffness_diagonal[s] = (work.story_tangent[s] + geometric[s] + work.wall_tangent[s]
+                                              + work.device_tangent[s])
         _solve(frame, dt, work)
         made += 1
         step_length = 1.0
         if strategy == _LINE_SEARCH:
-            step_length = _line_search(norm, dt, least, frame, stories, work)
+            step_length = _line_search(norm, dt, least, frame, stories, devices, work)
         exact_solve = strategy != _INITIAL and step_length == 1.0
         last_correction = step_length * _largest(work.correction)
         for i in range(n):
@@ -416,13 +431,14 @@ def _iterate(strategy, limit, least, dt, frame, stories, newton, work):
 def _tangent_changed(frame, work):
     """Whether a story's tangent differs from the one the last correction was solved with."""
     for s in range(work.stiffness_diagonal.shape[0]):
-        if work.story_tangent[s] + frame.geometric[s] + work.wall_tangent[s] != work.stiffness_diagonal[s]:
+        if (work.story_tangent[s] + frame.geometric[s] + work.wall_tangent[s]
+                + work.device_tangent[s]) != work.stiffness_diagonal[s]:
             return True
     return False
 
 
 @njit(cache=True, inline="always")
-def _line_search(norm, dt, least, frame, stories, work):
+def _line_search(norm, dt, least, frame, stories, devices, work):
     """The length of ``work.correction`` to take from ``work.displacement``: halved until the unbalanced force
     drops below ``norm`` (at most 8 halvings; after them the 1/256 step is taken and the next residual judges
     it)."""
@@ -431,7 +447,7 @@ def _line_search(norm, dt, least, frame, stories, work):
     for _ in range(8):
         for i in range(u.shape[0]):
             trial[i] = u[i] + step_length * work.correction[i]
-        _residual(trial, dt, least, frame, stories, work)
+        _residual(trial, dt, least, frame, stories, devices, work)
         if _largest(work.residual) < norm:
             break
         step_length *= 0.5
@@ -480,8 +496,9 @@ def integrate(excitation, frame, stories, walls, newton, out, work):
 
     ``excitation`` :class:`Excitation` (the ground acceleration (N,) mm/s^2, dt s, and the number of
     steps the walls have committed before row 0: 0 from rest); ``frame`` :class:`FrameArrays`;
-    ``stories`` :class:`StoryArrays` (its committed state advances); ``walls`` :class:`WallArrays` (its
-    bank's memory advances); ``newton`` :class:`NewtonSettings`; ``out`` :class:`Histories`, whose row 0
+    ``stories`` :class:`StoryArrays` (its committed state advances); ``walls`` :class:`DeviceArrays` (its
+    bank's memory and its other devices' states advance); ``newton`` :class:`NewtonSettings`; ``out``
+    :class:`Histories`, whose row 0
     holds the starting state (rest, or a state the stories and walls were brought to by :func:`replay`);
     ``work`` :class:`Scratch` of the building (:func:`scratch`).  Returns the number of rows filled;
     ``out.outcome`` receives (status, failed or collapsed story, Newton corrections).
@@ -509,10 +526,11 @@ def integrate(excitation, frame, stories, walls, newton, out, work):
             work.wall_tangent[s] = 0.0
             work.wall_history[s] = 0.0
         for g in range(groups):
-            work.wall_tangent[walls.group_story[g]] += bank.tangent[g]
-            work.wall_history[walls.group_story[g]] += bank.history_force[g]
+            factor = walls.group_magnification[g]
+            work.wall_tangent[walls.group_story[g]] += factor * factor * bank.tangent[g]
+            work.wall_history[walls.group_story[g]] += factor * bank.history_force[g]
         # 2. Newton-Raphson from u_n; strategies in turn, each from u_n again
-        converged, iterations = _newton(step, ground[step + 1], dt, frame, stories, newton, out, work)
+        converged, iterations = _newton(step, ground[step + 1], dt, frame, stories, walls.others, newton, out, work)
         total_iterations += iterations
         if not converged:
             out.outcome[0], out.outcome[1], out.outcome[2] = FAILED, _moved_most(work.correction), total_iterations
@@ -522,9 +540,12 @@ def integrate(excitation, frame, stories, walls, newton, out, work):
             stories.committed[s, 0] = work.drift[s]
             stories.committed[s, 1] = work.trial_state[s]
         for g in range(groups):
-            work.wall_deformation[g] = work.drift[walls.group_story[g]]
+            work.wall_deformation[g] = walls.group_magnification[g] * work.drift[walls.group_story[g]]
         kernel.bank_commit(bank, start + step, work.wall_deformation, work.wall_force, work.wall_strain)
         _record_walls(step, bank.states.table, out, work)
+        if walls.others.total:
+            devices_commit(walls.others)
+            _record_devices(step + 1, walls.others, out)
         u = work.displacement
         for i in range(n):
             increment = u[i] - out.displacement[step, i]
@@ -544,17 +565,18 @@ def integrate(excitation, frame, stories, walls, newton, out, work):
 
 
 @njit(cache=True, allocates=False)
-def replay(drift, stories, walls, out, work):
+def replay(drift, dt, stories, walls, out, work):
     """Commit the stories and the walls through a drift history as the integrator commits them, and write
     the state of its last row into row 0 of ``out``'s story and wall histories.
 
     ``drift`` (k + 1, n) mm: every story's drift from rest (row 0) to step k; ``stories``
-    :class:`StoryArrays` and ``walls`` :class:`WallArrays` at rest (their committed states advance k
+    :class:`StoryArrays` and ``walls`` :class:`DeviceArrays` at rest (their committed states advance k
     steps); ``out`` :class:`Histories` (row 0 of story_shear, story_wall_force, group_force and
     group_strain is written); ``work`` :class:`Scratch` of the building.  A frame with fractional walls
     and hysteretic stories is hereditary: its state is its history, so committing the same drifts
     reproduces the states the analysis reached.
-    Returns the walls' work over the history (N*mm, trapezoidal increments, as the integrator's energy).
+    ``dt`` (s): the step (the devices' Newmark velocities).  Returns the devices' work over the history (N*mm,
+    trapezoidal increments, as the integrator's energy); row 0 of the other devices' histories is their state.
     """
     steps, n = drift.shape
     groups = walls.group_story.shape[0]
@@ -569,18 +591,34 @@ def replay(drift, stories, walls, out, work):
             stories.committed[s, 0] = drift[j, s]
             stories.committed[s, 1] = value
         for g in range(groups):
-            deformation[g] = drift[j, walls.group_story[g]]
+            deformation[g] = walls.group_magnification[g] * drift[j, walls.group_story[g]]
         kernel.bank_commit(walls.bank, j - 1, deformation, force, strain)
         for s in range(n):
             story_wall[s] = 0.0
+        if walls.others.total:
+            devices_trial(walls.others, drift[j], dt, work.device_force, work.device_tangent)
+            devices_commit(walls.others)
+            for s in range(n):
+                story_wall[s] += work.device_force[s]
         for g in range(groups):
-            story_wall[walls.group_story[g]] += force[g]
+            story_wall[walls.group_story[g]] += walls.group_magnification[g] * force[g]
             out.group_force[0, g] = force[g]
             out.group_strain[0, g] = strain[g]
         for s in range(n):
             wall_work += 0.5 * (story_wall[s] + out.story_wall_force[0, s]) * (drift[j, s] - drift[j - 1, s])
             out.story_wall_force[0, s] = story_wall[s]
+    if walls.others.total:
+        _record_devices(0, walls.others, out)
     return wall_work
+
+
+@njit(cache=True, inline="always")
+def _record_devices(row, devices, out):
+    """Row ``row`` of the other devices' histories from their committed states."""
+    record_devices(devices.viscous.kinematics, row, out.device_force, out.device_deformation, out.device_velocity,
+                   out.device_heat, out.device_stored)
+    record_devices(devices.friction.kinematics, row, out.device_force, out.device_deformation, out.device_velocity,
+                   out.device_heat, out.device_stored)
 
 
 @njit(cache=True, inline="always")

@@ -51,6 +51,11 @@ class EnergyHistory:
     work -- a property of the coupling, measured rather than hidden in the heat; negative when a wall
     stiffens);
     :attr:`heat_balance_error` is the balance with them in place of ``wall_work``.  None otherwise.
+
+    ``wall_work`` is the work of every device (the name is that of the walls-only releases); with fluid
+    viscous or friction dampers, ``device_heat`` (dissipated since rest) and ``device_stored`` (in their
+    braces and elastic stiffness now) split their share (:mod:`vdw_frames.element.devices`); None without
+    such a device.  A building of those devices only has wall parts of 0.
     """
 
     input: np.ndarray
@@ -64,6 +69,8 @@ class EnergyHistory:
     wall_stored: np.ndarray | None = None
     wall_released: np.ndarray | None = None
     wall_parameter_loss: np.ndarray | None = None
+    device_heat: np.ndarray | None = None
+    device_stored: np.ndarray | None = None
 
     @property
     def heat_balance_error(self) -> np.ndarray | None:
@@ -74,9 +81,12 @@ class EnergyHistory:
         if self.wall_heat is None or self.wall_stored is None or self.wall_released is None \
                 or self.wall_parameter_loss is None:
             return None
+        devices = 0.0
+        if self.device_heat is not None and self.device_stored is not None:
+            devices = self.device_heat + self.device_stored
         return self.input - (self.kinetic + self.frame_strain + self.hysteretic + self.inherent_damping
                              + self.wall_heat + self.wall_stored + self.wall_released + self.wall_parameter_loss
-                             + self.p_delta)
+                             + devices + self.p_delta)
 
     @property
     def balance_error(self) -> np.ndarray:
@@ -203,6 +213,12 @@ class SimulationResult:
     group_amplitude: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # (steps, groups)
     group_outside_range: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)), repr=False)  # s (groups, 2)
     initial_state: FrameState | None = field(default=None, repr=False)  # where the analysis started, None: rest
+    # The devices that are not walls, (steps, devices) in building.other_device_list order, along each device:
+    device_force: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # N
+    device_deformation: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # mm
+    device_velocity: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # mm/s
+    device_heat: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # N*mm since rest
+    device_stored: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)  # N*mm
 
     @property
     def first_step(self) -> int:
@@ -447,7 +463,8 @@ class SimulationResult:
 
 
 _ENERGY_FIELDS = ("input", "kinetic", "frame_strain", "hysteretic", "inherent_damping", "wall_work", "p_delta",
-                  "wall_heat", "wall_stored", "wall_released", "wall_parameter_loss")
+                  "wall_heat", "wall_stored", "wall_released", "wall_parameter_loss", "device_heat", "device_stored")
+_DEVICE_HISTORIES = ("device_force", "device_deformation", "device_velocity", "device_heat", "device_stored")
 _REQUIRED = ("building", "time", "ground_acceleration", "displacement", "velocity", "acceleration", "drift",
              "story_shear", "story_wall_force", "base_shear", "group_force", "group_strain", "wall_group", "wall_share")
 CONSISTENCY_TOLERANCE = 1e-9
@@ -487,6 +504,10 @@ def check_saved_result(fields: dict[str, Any], energy: dict[str, Any]) -> None:
         histories[name] = _history(name, fields.get(name), (rows,))
     groups = _check_wall_groups(fields, building, rows)
     _check_group_states(fields, groups, rows, first, dt)
+    devices = len(building.other_device_list)
+    for name in _DEVICE_HISTORIES:
+        value = _array(name, fields.get(name, np.zeros((0, 0))))
+        _history(name, value, (0, 0) if devices == 0 and value.shape == (0, 0) else (rows, devices))
     _check_strain_compatible(fields, walls)
     collapse_time = fields.get("collapse_time")
     if fields.get("collapsed", False) != (collapse_time is not None) or \
@@ -678,14 +699,21 @@ def check_energy_balance(energy: EnergyHistory) -> None:
                        "motion to their tolerance; do not trust this result", RuntimeWarning, stacklevel=5)
 
 
-def energy_history(energy: np.ndarray, wall_energies: tuple | None = None) -> EnergyHistory:
+def energy_history(energy: np.ndarray, wall_energies: tuple | None = None,
+                   device_energies: tuple | None = None) -> EnergyHistory:
     """The integrator's energy columns (steps, 7) as an :class:`EnergyHistory`, checked finite and balanced;
-    ``wall_energies``: (heat, stored, released) histories (steps,) N*mm when every wall's heat is followed."""
+    ``wall_energies``: (heat, stored, released, parameter loss) histories (steps,) N*mm when every wall's heat
+    is followed; ``device_energies``: (heat, stored) of the other devices (steps,) N*mm, when there are any, and
+    whether the building has walls (without, the wall parts are 0)."""
     require_finite("the energy histories", energy)
     heat, stored, released, parameter_loss = wall_energies if wall_energies is not None else (None,) * 4
+    device_heat, device_stored, has_walls = device_energies if device_energies is not None else (None, None, True)
+    if not has_walls:  # the devices' split stands for the whole device work
+        heat = stored = released = parameter_loss = np.zeros(energy.shape[0])
     history = EnergyHistory(input=energy[:, 0], kinetic=energy[:, 1], frame_strain=energy[:, 2],
                             hysteretic=energy[:, 3] - energy[:, 2], inherent_damping=energy[:, 4],
                             wall_work=energy[:, 5], p_delta=energy[:, 6], wall_heat=heat, wall_stored=stored,
-                            wall_released=released, wall_parameter_loss=parameter_loss)
+                            wall_released=released, wall_parameter_loss=parameter_loss, device_heat=device_heat,
+                            device_stored=device_stored)
     check_energy_balance(history)
     return history

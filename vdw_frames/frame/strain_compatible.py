@@ -171,7 +171,7 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion: GroundM
         run_walls = [dataclasses.replace(d, strain_range=None) if flag and isinstance(d, FDMKDamper) else d
                      for d, flag in zip(final, dependent, strict=True)]
         with _warnings.collect() as caught:  # per thread: safe under run_batch's thread executors
-            result = time_history(dataclasses.replace(building, walls=_regroup(building, run_walls)),
+            result = time_history(building.with_walls(_regroup(building, run_walls)),
                                   ground_motion, **simulate_options)
         effective = options.effective_strain_ratio * result.peak_drift[stories] / thickness
         converged = bool(np.all(np.abs(effective - strain)[dependent] <= options.tolerance * strain[dependent]))
@@ -207,7 +207,7 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion: GroundM
                       f"effective strains still changed by up to {100 * change:.2g} % (tolerance "
                       f"{100 * options.tolerance:g} %)", UserWarning, stacklevel=3)
     return dataclasses.replace(
-        result, building=dataclasses.replace(building, walls=_regroup(building, final)),
+        result, building=building.with_walls(_regroup(building, final)),
         wall_effective_strain=np.where(dependent, strain, effective), equivalent_walls=tuple(final),
         strain_iterations=iteration, strain_converged=converged)
 

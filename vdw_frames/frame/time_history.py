@@ -20,6 +20,7 @@ from .. import _warnings
 from .._validation import check_memory, non_negative, positive, require_finite, show, time_step
 from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy, wall_order
+from ..element.devices import device_states
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation, get_method
 from ..motion.record import G, GroundMotion
@@ -29,12 +30,12 @@ from .integrator import (
     COLLAPSED,
     ENERGIES,
     FAILED,
+    DeviceArrays,
     Excitation,
     FrameArrays,
     Histories,
     NewtonRaphson,
     Scratch,
-    WallArrays,
     integrate,
     replay,
     scratch,
@@ -71,7 +72,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
                  newton: NewtonRaphson | None = None, initial_state: FrameState | None = None) -> SimulationResult:
     """Integrate ``building`` under ``ground_motion`` (mm/s^2): walls of fixed parameters, walls that heat
     (a thermal description), walls that follow their own strain amplitude (strain-dependent walls with a
-    common r) and walls that fail (limits).
+    common r), walls that fail (limits), fluid viscous and friction dampers.
 
     The arguments are those of :func:`vdw_frames.simulate` (units there); this is its analysis whenever
     the strain-compatible iteration is not asked for.
@@ -95,7 +96,8 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     floors, walls = building.stories, cast("list[tuple[int, Wall]]", building.wall_list)  # fixed walls only
     # Response and result histories (about 14 per floor), each wall's force, strain and exact memory,
     # energies: float64 a step.
-    step_bytes = 8 * (14 * floors + 6 * len(walls) + 12)
+    others = building.other_device_list
+    step_bytes = 8 * (14 * floors + 6 * len(walls) + 5 * len(others) + 12)
     record_steps = (ground_motion.acceleration.size - 1) * substeps + 1
     if free_vibration > 0.0:  # named first: its steps may not even be a number (1e308 s / dt = inf)
         check_memory(f"simulate with free_vibration = {show(free_vibration)} s (dt = {dt!r} s, {floors} floors, "
@@ -126,24 +128,18 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         masses=np.asarray(building.masses), damping=np.ascontiguousarray(building.damping_matrix),
         story_damping_row=building.story_damping_row,
         geometric=np.asarray(building.geometric_stiffness, dtype=float), heights=heights,
-        tridiagonal=building.damping_model == "rayleigh", linear=building.is_linear, collapse_ratio=collapse_ratio)
-    out = Histories(
-        displacement=np.zeros((rows, floors)), velocity=np.zeros((rows, floors)),
-        acceleration=np.zeros((rows, floors)), drift=np.zeros((rows, floors)),
-        story_shear=np.zeros((rows, floors)), story_wall_force=np.zeros((rows, floors)),
-        base_shear=np.zeros(rows), group_force=np.zeros((rows, len(groups))),
-        group_strain=np.zeros((rows, len(groups))), peak_group_strain=np.zeros(len(groups)),
-        energy=np.zeros((rows, ENERGIES)), outcome=np.zeros(3, dtype=np.int64),
-        group_temperature=np.zeros((heated, len(groups))), group_heat=np.zeros((heat_rows, len(groups))),
-        wall_heat=np.zeros(heated), wall_stored=np.zeros(heated), wall_parameter_loss=np.zeros(heated),
-        group_amplitude=np.zeros((amplitudes, len(groups))))
+        tridiagonal=building.damping_model == "rayleigh", linear=building.is_linear and building.devices_linear,
+        collapse_ratio=collapse_ratio)
+    out = _histories(rows, floors, len(groups), len(others), heated=heated, heat_rows=heat_rows,
+                     amplitudes=amplitudes)
     stories = story_arrays(building.story_models, building.stiffnesses)
-    wall_arrays = WallArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64), bank.arrays)
+    device_arrays = DeviceArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64), np.ones(len(groups)),
+                                 bank.arrays, device_states(others, dt))
     work = scratch(floors, len(groups))
     if initial_state is None:
         out.acceleration[0] = -ground[0]
     else:
-        _start_from(initial_state, frame, stories, wall_arrays, out, work)
+        _start_from(initial_state, frame, stories, device_arrays, out, work)
     if heated:
         out.group_temperature[0] = bank.state(kernel.TEMPERATURE)
         out.group_heat[:1] = initial_heat = bank.state(kernel.HEAT)
@@ -152,7 +148,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         out.wall_parameter_loss[0] = bank.state(kernel.PARAMETER_LOSS).sum()
     if amplitudes:
         out.group_amplitude[0] = bank.state(kernel.AMPLITUDE)
-    filled = integrate(Excitation(ground, float(dt), int(start)), frame, stories, wall_arrays, newton.arrays(), out,
+    filled = integrate(Excitation(ground, float(dt), int(start)), frame, stories, device_arrays, newton.arrays(), out,
                        work)
     status, story_index, iterations = (int(x) for x in out.outcome)
     if status == FAILED:
@@ -178,7 +174,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         wall_energies = (out.wall_heat[keep], out.wall_stored[keep], _released_energy(bank, failure, start, filled),
                          out.wall_parameter_loss[keep])
     try:
-        energies = energy_history(out.energy[keep], wall_energies)
+        energies = energy_history(out.energy[keep], wall_energies, _device_energies(out, keep, walls=bool(walls)))
     except ValueError as error:
         raise ValueError(f"{error} {_record_text(ground_motion)}") from None
     return SimulationResult(
@@ -195,7 +191,35 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
                           else np.zeros((0, 4))),
         group_failure=failure, group_amplitude=out.group_amplitude[keep],
         group_outside_range=np.stack([bank.state(kernel.BELOW_RANGE), bank.state(kernel.ABOVE_RANGE)], axis=1) * dt,
-        initial_state=initial_state)
+        initial_state=initial_state, device_force=out.device_force[keep],
+        device_deformation=out.device_deformation[keep], device_velocity=out.device_velocity[keep],
+        device_heat=out.device_heat[keep], device_stored=out.device_stored[keep])
+
+
+def _device_energies(out: Histories, keep: slice, *, walls: bool) -> tuple | None:
+    """(heat, stored) of the devices that are not walls, summed (rows,) N*mm; None without any.  A building
+    without walls gets wall parts of 0 (:func:`~vdw_frames.frame.results.energy_history` adds them)."""
+    if out.device_heat.shape[1] == 0:
+        return None
+    return out.device_heat[keep].sum(axis=1), out.device_stored[keep].sum(axis=1), walls
+
+
+def _histories(rows: int, floors: int, groups: int, devices: int, *, heated: int, heat_rows: int,
+               amplitudes: int) -> Histories:
+    """Zeroed histories of ``rows`` rows: the walls' heat (``heated``, ``heat_rows`` rows) and amplitude
+    (``amplitudes`` rows) only where followed."""
+    return Histories(
+        displacement=np.zeros((rows, floors)), velocity=np.zeros((rows, floors)),
+        acceleration=np.zeros((rows, floors)), drift=np.zeros((rows, floors)),
+        story_shear=np.zeros((rows, floors)), story_wall_force=np.zeros((rows, floors)),
+        base_shear=np.zeros(rows), group_force=np.zeros((rows, groups)),
+        group_strain=np.zeros((rows, groups)), peak_group_strain=np.zeros(groups),
+        energy=np.zeros((rows, ENERGIES)), outcome=np.zeros(3, dtype=np.int64),
+        group_temperature=np.zeros((heated, groups)), group_heat=np.zeros((heat_rows, groups)),
+        wall_heat=np.zeros(heated), wall_stored=np.zeros(heated), wall_parameter_loss=np.zeros(heated),
+        group_amplitude=np.zeros((amplitudes, groups)), device_force=np.zeros((rows, devices)),
+        device_deformation=np.zeros((rows, devices)), device_velocity=np.zeros((rows, devices)),
+        device_heat=np.zeros((rows, devices)), device_stored=np.zeros((rows, devices)))
 
 
 def _check_model(building: ShearBuilding, ground_motion: GroundMotion) -> None:
@@ -246,7 +270,7 @@ def _check_state(state: FrameState, dt: float, steps: int, floors: int) -> int:
     return state.step
 
 
-def _start_from(state: FrameState, frame: FrameArrays, stories: StoryArrays, walls: WallArrays,
+def _start_from(state: FrameState, frame: FrameArrays, stories: StoryArrays, walls: DeviceArrays,
                 out: Histories, work: Scratch) -> None:
     """Row 0 of ``out`` at ``state``: the stories and walls committed through its drift history
     (:func:`~vdw_frames.frame.integrator.replay`), the floors' motion, and the energy the state holds.
@@ -256,7 +280,7 @@ def _start_from(state: FrameState, frame: FrameArrays, stories: StoryArrays, wal
     dissipation of the stories and of the inherent damping starts at 0, and the input starts at their
     sum -- the balance closes from row 0 on.
     """
-    wall_work = replay(np.ascontiguousarray(state.drift), stories, walls, out, work)
+    wall_work = replay(np.ascontiguousarray(state.drift), state.dt, stories, walls, out, work)
     drift = state.drift[-1]
     out.displacement[0], out.velocity[0], out.acceleration[0], out.drift[0] = (
         state.displacement, state.velocity, state.acceleration, drift)
