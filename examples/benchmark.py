@@ -88,7 +88,7 @@ HEIGHTS = np.array([4000.0] + [3500.0] * 9)  # mm
 
 
 def ten_story(wall=WALL) -> ShearBuilding:
-    return ShearBuilding(MASSES, np.linspace(900e3, 450e3, 10), walls={story: [wall, wall] for story in range(1, 11)})
+    return ShearBuilding(MASSES, np.linspace(900e3, 450e3, 10), devices={story: [wall, wall] for story in range(1, 11)})
 
 
 def inelastic(building: ShearBuilding) -> ShearBuilding:
@@ -417,11 +417,11 @@ def part_bridge(building, motion, source, quick, repeats):
     walls = len(building.wall_list)
     print(f"\n(e) OpenSees bridge: 10-story frame, {walls} fractional walls (r = {WALL.r:g}), {source}: {steps} steps, "
           f"dt = {dt:g} s; Newton, NormDispIncr 1e-9 mm; time per step, best of {max(repeats, 3)} rounds")
-    combined = dataclasses.replace(building, walls={story: dataclasses.replace(ws[0], area=sum(w.area for w in ws))
+    combined = dataclasses.replace(building, devices={story: dataclasses.replace(ws[0], area=sum(w.area for w in ws))
                                                       for story, ws in building.walls.items()})
 
     def classical(frame):
-        return dataclasses.replace(frame, walls={story: [dataclasses.replace(w, r=1.0) for w in ws]
+        return dataclasses.replace(frame, devices={story: [dataclasses.replace(w, r=1.0) for w in ws]
                                                    for story, ws in frame.walls.items()})
 
     def own_steps(model):  # the bridge's model, its history forces never updated: OpenSees's own step
