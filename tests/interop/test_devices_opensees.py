@@ -57,7 +57,8 @@ def both(building, motion, dt):
 
 
 def check_the_devices_matter(result, building):
-    """The devices carry a real share of the story shear and the stories yield: the comparison tests both."""
+    """The devices' peak force is a real share of the story spring's and the stories yield: the comparison
+    tests both."""
     assert (result.peak_ductility > 1.5).all(), result.peak_ductility
     share = np.abs(result.device_force).max(axis=0) / np.abs(result.story_shear).max(axis=0)
     assert (share > 0.05).all(), share
@@ -134,8 +135,8 @@ def test_device_element_refuses_bad_nodes(ops):
 @pytest.mark.records
 def test_yielding_frame_with_nonlinear_fvds_matches_opensees_viscous_damper(ops, record):
     # The issue's test: 3 stories, Bilinear (Steel01) stories with P-Delta, an FVD (alpha = 0.5, K_b = 2e5 N/mm)
-    # on every story, El Centro x 1.5 (stories reach ductility 3-4; the dampers carry 17-44 % of the story
-    # shear).  Peak drifts within 1 %: measured 0.20 % at dt = 0.01 s (the record's 0.02 s halved), 0.046 % at
+    # on every story, El Centro x 1.5 (stories reach ductility 3-4; the dampers' peak force is 17-44 % of the
+    # story spring's).  Peak drifts within 1 %: measured 0.20 % at dt = 0.01 s (the record's 0.02 s halved), 0.046 % at
     # 0.005 s: the difference is the two FVD integrators' O(dt^2) (0.91 % at the record's own 0.02 s, a step
     # several times the brace-dashpot relaxation time, where the trapezoid rings and Dormand-Prince sub-steps).
     building = yielding_three_story(NONLINEAR_FVD)
