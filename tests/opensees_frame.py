@@ -276,9 +276,9 @@ def drifts(displacement):
 
 # ---------------------------------------------------------------------------------------------- walls bridged
 def build_bare(building, tolerance=1e-12, max_iterations=50, algorithm="Newton"):
-    """The bare frame of ``building`` (no walls: :func:`build` of ``building.without_walls()``) in a fresh
-    domain, for walls added afterwards.  Returns the floor node tags (story k between nodes k-1 and k; node
-    0 the ground)."""
+    """The frame of ``building`` without its walls (:func:`build` of ``building.without_walls()``: its other
+    devices as native elements) in a fresh domain, for walls added afterwards.  Returns the floor node tags
+    (story k between nodes k-1 and k; node 0 the ground)."""
     return build(building.without_walls(), tolerance, max_iterations, algorithm)
 
 

@@ -9,11 +9,12 @@ Both sides use Newmark's average acceleration on the same step, Newton to 1e-12 
 """
 
 import dataclasses
+import warnings
 
 import numpy as np
 import opensees_frame
 import pytest
-from builders import three_story
+from builders import FRACTIONAL_WALL_A, three_story
 from opensees_frame import imposed_force
 from reference import history_deviation, peak_deviation
 
@@ -177,3 +178,24 @@ def test_frame_with_friction_dampers_matches_opensees_elastic_pp(ops, magnificat
     assert peak_deviation(result.drift, expected) < 1e-6
     assert np.allclose(np.abs(result.device_force).max(axis=0), device.slip_force, rtol=1e-12)  # every one slips
     check_the_devices_matter(result, building)
+
+
+@pytest.mark.records
+def test_walls_through_the_bridge_beside_native_devices_equal_simulate(ops, record):
+    # Every kind in one OpenSees model: fractional walls through WallBridge, friction dampers (ElasticPP) and
+    # linear dashpots (Viscous) as native elements, on the fractional ten-story frame.  The three rules are
+    # the package's own (walls: the same kernel; friction and dashpot: the same exact rules), so the model
+    # equals simulate to the Newton tolerance (measured 1.3e-12 in peak drifts; bar 1e-9, as the bridge's tests).
+    devices = {story: (FRACTIONAL_WALL_A, dataclasses.replace(FRICTION, slip_force=2.0e5, magnification=0.9))
+               for story in range(1, 11)}
+    devices[3] = devices[3] + (dataclasses.replace(DASHPOT, magnification=1.2),)
+    building = ShearBuilding([500.0] * 10, np.linspace(800e3, 400e3, 10), devices=devices)  # builders' fractional
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # the walls' strain-range warning: not what is tested
+        expected = simulate(building, record, newton=TIGHT)
+    displacement, bridge = opensees_frame.run_bridged(building, record.acceleration, record.dt, step_by_step=True)
+    drift = opensees_frame.drifts(displacement)
+    assert bridge.failed_step is None and len(bridge) == 10
+    assert peak_deviation(drift, expected.drift) < 1e-9
+    assert history_deviation(drift, expected.drift) < 1e-9
+    assert np.abs(expected.device_force[:, :10]).max() == pytest.approx(2.0e5, rel=1e-12)  # the dampers slip
