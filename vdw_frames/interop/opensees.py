@@ -610,7 +610,7 @@ def device_material(ops: Any, tag: int, device: object) -> int:
 def device_element(ops: Any, tag: int, node_i: int, node_j: int, device: object, dof: int = 1) -> int:
     """``device`` between nodes ``node_i`` and ``node_j``: its material (:func:`device_material`, material tag
     ``tag``) in a ``zeroLength`` element (element tag ``tag``) acting in node degree of freedom ``dof``
-    (1-based), deformation u_j - u_i = the story drift (mm), force the device's share of the story shear
+    (1-based), deformation u_j - u_i = the story drift (mm), force the force the device adds to the story
     (N: magnification x the device's own).  ``-doRayleigh 0``: the device takes no Rayleigh damping, as in
     :func:`vdw_frames.simulate`.  Returns ``tag``."""
     ops = opensees_module(ops)
