@@ -124,7 +124,7 @@ class _Sizer:
         self.building, self.wall, self.distribution = building, wall, distribution
         self.stories = _stories(building, stories)
         self.weights = _weights(building, distribution, self.stories, self.mode)
-        poles, _, _ = complex_modes(building, walls=False)
+        poles, _, _ = complex_modes(building, devices=False)
         self.bare = poles[self.mode - 1]
         self._cache: dict[float, complex] = {}
 
