@@ -59,6 +59,14 @@ class Wall(Protocol):
         """The step kernel's row of 7 constants (:mod:`vdw_frames.element.kernel`)."""
         ...
 
+    def story_stiffness(self, f: ArrayLike, drift_amplitude: float | None = None) -> np.ndarray:
+        """magnification^2 K(i 2 pi f) (N/mm) at frequencies f (Hz): what the story sees (the Device protocol)."""
+        ...
+
+    def describe(self) -> str:
+        """Its kind and parameters, for tables."""
+        ...
+
     def scaled(self, factor: float) -> Wall:
         """Moduli and viscosities times ``factor`` (property-modification factors; supports unchanged)."""
         ...
