@@ -135,3 +135,19 @@ def test_a_nonlinear_device_without_an_amplitude_is_refused_naming_it():
         modal_analysis(building, drift_amplitude=[5.0, 4.0, 3.0])
     with pytest.raises(ValueError, match="drift_amplitude"):
         modal_analysis(building, drift_amplitude=float("nan"))
+
+
+def test_strain_dependent_walls_are_fixed_at_the_strain_of_the_stated_drift():
+    from vdw_frames.paper import strain_dependent
+
+    family = strain_dependent()
+    wall = type(family)(**{**{name: getattr(family, name) for name in ("strains", "G1", "G2", "eta1", "eta2", "r")},
+                           "area": 0.3e6, "thickness": 8.0, "magnification": 1.25})
+    building = ShearBuilding([300.0, 300.0], [2e5, 1.8e5], devices={1: wall, 2: wall})
+    # drift 20 mm -> wall 25 mm -> strain 25 / 8 = 3.125: the wall at that strain on both stories
+    reference = modal_analysis(building.walls_at(25.0 / 8.0))
+    result = modal_analysis(building, drift_amplitude=20.0)
+    np.testing.assert_allclose(result.poles, reference.poles, rtol=1e-12)
+    assert "strain amplitude 3.125" in result.linearisation[0]
+    with pytest.raises(ValueError, match=r"strain-dependent FDMK wall.*drift_amplitude"):
+        modal_analysis(building)
