@@ -119,12 +119,12 @@ _Box = tuple[float, float, float, float]
 
 @dataclass(frozen=True)
 class ModalResult:
-    """Complex modes of a building with walls (:func:`modal_analysis`), arrays over ``modes``.
+    """Complex modes of a building with its devices (:func:`modal_analysis`), arrays over ``modes``.
 
     ``modes``: mode numbers (1-based, ordered by |s|).  ``poles``: s (rad/s, Im s > 0);
     ``periods``: 2 pi / |s| (s); ``damping_ratios``: -Re s / |s| (-); ``mode_shapes``: complex
     floor displacements, one column per mode, scaled so the entry of largest modulus is 1.
-    ``bare_poles``, ``bare_periods``, ``bare_damping_ratios``: the same frame without walls (inherent
+    ``bare_poles``, ``bare_periods``, ``bare_damping_ratios``: the same frame without devices (inherent
     damping and P-Delta kept); ``added_damping`` = damping_ratios - bare_damping_ratios.
     ``energy_damping_ratios``: the energy estimate xi_inherent + sum W_c / (4 pi W_s) (module
     docstring), with ``energy_inherent`` its inherent part and ``effective_periods`` (s) the periods of
@@ -162,7 +162,7 @@ class ModalResult:
 
     @property
     def energy_added_damping(self) -> np.ndarray:
-        """The walls' part of the energy estimate, sum W_c / (4 pi W_s) (-)."""
+        """The devices' part of the energy estimate, sum W_c / (4 pi W_s) (-)."""
         return self.energy_damping_ratios - self.energy_inherent
 
 
