@@ -151,3 +151,24 @@ def test_strain_dependent_walls_are_fixed_at_the_strain_of_the_stated_drift():
     assert "strain amplitude 3.125" in result.linearisation[0]
     with pytest.raises(ValueError, match=r"strain-dependent FDMK wall.*drift_amplitude"):
         modal_analysis(building)
+
+
+def test_linearised_poles_are_roots_of_the_characteristic_matrix_built_here():
+    # T(s) = s^2 M + s C + K + sum_stories B^T (K'(w) + s K''(w) / w) B with K' + i K'' = story_stiffness(w / 2 pi)
+    # at the story's drift amplitude and w = |s|, assembled here from the devices' own K* (tridiagonal).
+    devices = {1: FrictionDamper(1e5, 8e4), 2: FluidViscousDamper(1500.0, 0.5, stiffness=1e5),
+               3: FluidViscousDamper(3000.0, 0.35, stiffness=2e5, magnification=1.4)}
+    building = ShearBuilding([300.0, 300.0, 250.0], [2e5, 1.8e5, 1.5e5], devices=devices)
+    amplitude = np.array([12.0, 10.0, 6.0])
+    result = modal_analysis(building, drift_amplitude=amplitude)
+    mass, damping = np.diag(building.masses), building.damping_matrix
+    for s in result.poles:
+        omega = abs(s)
+        story = np.array(building.stiffnesses, dtype=complex)
+        for k, device in devices.items():
+            value = complex(device.story_stiffness(omega / (2 * np.pi), amplitude[k - 1])[()])
+            story[k - 1] += value.real + s * value.imag / omega
+        stiffness = np.diag(story + np.append(story[1:], 0.0)) - np.diag(story[1:], 1) - np.diag(story[1:], -1)
+        matrix = s**2 * mass + s * damping + stiffness
+        singular = np.linalg.svd(matrix, compute_uv=False)
+        assert singular[-1] <= 1e-11 * singular[0]
