@@ -611,7 +611,8 @@ def _verify(args: argparse.Namespace) -> int:
     for name, text in (("suite.csv", verification_report.suite_csv(result)),
                        ("spectra.csv", verification_report.spectra_csv(result)),
                        ("drifts.csv", verification_report.drifts_csv(result)),
-                       ("walls.csv", verification_report.walls_csv(result))):
+                       ("walls.csv", verification_report.walls_csv(result)),
+                       *((("devices.csv", verification_report.devices_csv(result)),) if result.devices else ())):
         write_text(out / name, text, "CSV file")
     title = f"ASCE 7-16 design verification of {Path(args.building).name}"
     path = write_text(out / "report.md", verification_report.markdown(result, figures, title), "report")
@@ -621,8 +622,13 @@ def _verify(args: argparse.Namespace) -> int:
     for c, (case, factor) in enumerate(result.cases[1:], 1):
         storage, loss = result.stiffness_factors[c, :, 0], result.stiffness_factors[c, :, 1]
         at = result.ambient_range(case)
-        print(f"{case} bound: lambda {factor:g}{f', walls from {at}' if at else ''}: K' x "
-              f"{storage.min():.3f}-{storage.max():.3f}, K'' x {loss.min():.3f}-{loss.max():.3f} at {frequency:.3f} Hz")
+        walls = (f": K' x {storage.min():.3f}-{storage.max():.3f}, K'' x {loss.min():.3f}-{loss.max():.3f} at "
+                 f"{frequency:.3f} Hz") if storage.size else ""
+        others = "; other devices' C or slip force x lambda" if result.devices else ""
+        print(f"{case} bound: lambda {factor:g}{f', walls from {at}' if at else ''}{walls}{others}")
+    if result.devices:
+        print("other devices' demands, the largest over the suite at each bound (along the device):")
+        print("\n".join(verification_report.device_rows(result)))
     for criterion in result.criteria:
         print(f"{'pass' if criterion.passed else 'FAIL'}: {criterion.name}: {criterion.text}")
     print(f"verification: {'PASS' if result.passed else 'FAIL'}")
