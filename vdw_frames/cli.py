@@ -314,17 +314,11 @@ def _print_devices(result: SimulationResult) -> None:
         return  # walls only: the story table names them
     print("devices per story (in parallel; their total force in the story table's devices kN):")
     for story, devices in building.devices.items():
-        counted: list[list[Any]] = []
+        counted: dict[object, int] = {}  # devices are frozen dataclasses: equal ones hash alike
         for device in devices:
-            same = next((entry for entry in counted if entry[0] == device), None)
-            if same is None:
-                counted.append([device, 1])
-            else:
-                same[1] += 1
-        print(f"{story:5d}  " + "; ".join(f"{count} x {_device_name(device)}" for device, count in counted))
+            counted[device] = counted.get(device, 0) + 1
+        print(f"{story:5d}  " + "; ".join(f"{count} x {_device_name(device)}" for device, count in counted.items()))
     others = building.other_device_list
-    if not others:
-        return
     force, deformation = np.abs(result.device_force).max(axis=0), np.abs(result.device_deformation).max(axis=0)
     velocity = np.abs(result.device_velocity).max(axis=0)
     print(f"{'device':>6s} {'story':>5s} {'force kN':>9s} {'deform. mm':>10s} {'vel. mm/s':>9s}  device")

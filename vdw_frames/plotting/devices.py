@@ -27,12 +27,10 @@ MAX_PANELS = 12
 def distinct_devices(result: SimulationResult) -> list[int]:
     """The device numbers (1-based, ``building.other_device_list`` order) of one device of each kind of equal
     devices on a story: equal devices side by side on a story move alike, so their loops are one."""
-    numbers, seen = [], []
+    first: dict[tuple[int, object], int] = {}  # devices are frozen dataclasses: equal ones hash alike
     for index, (story, device) in enumerate(result.building.other_device_list):
-        if (story, device) not in seen:
-            seen.append((story, device))
-            numbers.append(index + 1)
-    return numbers
+        first.setdefault((story, device), index + 1)
+    return list(first.values())
 
 
 def plot_device_loops(result: SimulationResult, path: str | os.PathLike[str], devices: Sequence[int] | None = None,
