@@ -548,8 +548,9 @@ def _collapse(args: argparse.Namespace) -> int:
     out = _output_folder(args.out)
     criterion = CollapseCriterion(drift_ratio=args.drift_limit, wall_failure=args.wall_failure)
     search = HuntAndFill(tolerance=args.tolerance)
-    buildings = {"bare frame": building.without_walls(), "with walls": building} if args.bare and \
-        building.wall_list else {"building": building}
+    # The bare frame is without any device; the building's label stays "with walls" (the report's, since 0.2).
+    buildings = {"bare frame": building.without_devices(), "with walls": building} if args.bare and \
+        building.devices else {"building": building}
     results = {}
     for label, frame in buildings.items():
         try:
@@ -599,7 +600,7 @@ def _add_collapse_command(commands: _Commands) -> None:
     collapse.add_argument("--tolerance", type=float, default=0.02,
                           help="hunt-and-fill tolerance on the collapse intensity (default 0.02)")
     collapse.add_argument("--bare", action="store_true",
-                          help="also assess the frame without its walls, for comparison")
+                          help="also assess the frame without its walls and other devices, for comparison")
     collapse.add_argument("--out", default="collapse_report", help="output folder (default ./collapse_report)")
     collapse.set_defaults(run=_collapse)
 

@@ -18,7 +18,7 @@ Keys (units N-mm-s-tonne)::
     risk_category = "II"                # optional (default "II")
 
     [verification]                      # optional, for ``vdw-frames verify``
-    bounds = [0.8, 1.2]                 # the walls' lambda_min, lambda_max (ASCE 7-16 Sec. 18.2.4.5)
+    bounds = [0.8, 1.2]                 # the devices' lambda_min, lambda_max (ASCE 7-16 Sec. 18.2.4.5)
     bounds_source = "..."               # where they come from (optional)
     ambient = [0.0, 40.0]               # degC, the walls' service temperatures (optional; walls with thermal)
     lambda_includes_temperature = false # whether bounds already include temperature (optional; not with ambient)
