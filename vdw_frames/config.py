@@ -172,7 +172,7 @@ def load_verification(path: str | os.PathLike[str]) -> tuple[ShearBuilding, Site
     """(building, site, property bounds) from a building file for ``vdw-frames verify``: its ``[site]`` table
     (keys of :func:`vdw_frames.verification.spectrum.site_from_values`: ``sms``, ``sm1`` or ``ss``, ``s1``,
     ``site_class``; ``tl``; ``risk_category``) and its ``[verification]`` table (``bounds = [lambda_min,
-    lambda_max]``, the walls' property modification factors of ASCE 7-16 Sec. 18.2.4.5, ``bounds_source``,
+    lambda_max]``, the devices' property modification factors of ASCE 7-16 Sec. 18.2.4.5, ``bounds_source``,
     where they come from, and optionally ``ambient = [coldest, hottest]``, degC, the walls' service temperatures:
     :class:`~vdw_frames.verification.PropertyBounds`); None for a table the file does not have."""
     path, data = _read_data(path)

@@ -11,6 +11,9 @@ import pytest
 from verification_cases import r1_wall, synthetic_records
 
 from vdw_frames import FluidViscousDamper, FrictionDamper, ShearBuilding, simulate
+from vdw_frames.cli import main
+from vdw_frames.config import load_building
+from vdw_frames.motion import read_at2, write_at2
 from vdw_frames.verification import Site
 from vdw_frames.verification import report as verification_report
 from vdw_frames.verification.verify import PropertyBounds, verify
@@ -111,3 +114,50 @@ def test_a_building_with_devices_but_no_walls_is_verified():
         result = verify(building, SITE, records, bounds=(0.8, 1.25), executor=executor, progress=False)
     assert result.walls == () and len(result.devices) == 1
     assert "| upper | 1.25 | - | - |" in verification_report.markdown(result, {}, "check")
+
+
+FVD_BUILDING = """
+masses = [100.0, 100.0, 80.0]
+stiffnesses = [1.2e5, 1.0e5, 0.8e5]
+story_heights = [3500.0, 3200.0, 3200.0]
+damping_ratio = 0.03
+
+[[devices]]
+type = "fluid_viscous"
+stories = [1]
+C = 300.0
+alpha = 1.0
+
+[[devices]]
+type = "friction"
+stories = [2, 3]
+slip_force = 4.0e4
+stiffness = 6.0e4
+"""
+
+
+def test_the_verify_command_prints_and_writes_the_device_demands(tmp_path, capsys):
+    (tmp_path / "building.toml").write_text(FVD_BUILDING)
+    folder = tmp_path / "records"
+    folder.mkdir()
+    for motion in synthetic_records(11, 5.0):
+        write_at2(motion, folder / f"{motion.name.replace(' ', '_')}.AT2")
+    out = tmp_path / "out"
+    code = main(["verify", str(tmp_path / "building.toml"), "--sms", "1.5", "--sm1", "0.9", "--tl", "8",
+                 "--bounds", "0.8", "1.25", "--records", str(folder), "--out", str(out)])
+    printed = capsys.readouterr().out
+    assert code in (0, 1), printed
+    records = [read_at2(path) for path in sorted(folder.glob("*.AT2"))]
+    with concurrent.futures.ThreadPoolExecutor(2) as executor:
+        expected = verify(load_building(tmp_path / "building.toml"), SITE, records, bounds=(0.8, 1.25),
+                          executor=executor, progress=False)
+    assert "upper bound: lambda 1.25; other devices' C or slip force x lambda" in printed
+    for line in verification_report.device_rows(expected):
+        assert line in printed
+    assert [d.description for d in expected.devices] == ["FVD C=300.0, alpha=1.0", "friction F_s=40000.0, k=60000.0",
+                                                         "friction F_s=40000.0, k=60000.0"]
+    written = list(csv.reader(io.StringIO((out / "devices.csv").read_text())))
+    assert written == list(csv.reader(io.StringIO(verification_report.devices_csv(expected))))
+    # a friction damper's force never exceeds its (bounded) slip force
+    assert expected.devices[1].force["upper"] <= 1.25 * 4.0e4 * (1 + 1e-12)
+    assert expected.devices[1].force["lower"] <= 0.8 * 4.0e4 * (1 + 1e-12)
