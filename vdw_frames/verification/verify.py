@@ -41,11 +41,12 @@ nominal, upper- and lower-bound wall properties and judges the results:
   drifts at lambda_min); exponent alpha, brace and elastic stiffness are kept.  One pair of factors serves
   every device of the building (a device kind with factors of its own needs a verification of its own).  Per
   device, :class:`DeviceDemand` reports the largest force (N), deformation (mm) and velocity (mm/s) along the
-  device over the suite, at each bound.  ASCE 7-16 Sec. 18.1 (wording read in an extract of the 2016 text)
-  defines a velocity-dependent device as one whose force is primarily a function of the relative velocity
-  between its ends, a displacement-dependent one as one whose force is primarily a function of the relative
-  displacement; that the device demands are the force, displacement and velocity at both bounds is this
-  package's reading of Sec. 18.2.4.5 and 18.6 (their text was NOT read).
+  device over the suite, at each bound.  ASCE 7-16 Sec. 18.1 (definitions, read in an extract of the 2016
+  text) calls a device velocity-dependent when its force-displacement relation is primarily a function of the
+  relative velocity between its ends, displacement-dependent when its force response is primarily a function
+  of the relative displacement (the ASCE 7-22 draft's Sec. 18.1.2, read too, classes devices the same way, "or
+  a combination thereof"); that the device demands are the force, displacement and velocity at both bounds is
+  this package's reading of Sec. 18.2.4.5 and 18.6 (their text was NOT read).
 
 Units: N, mm, s; drift ratios -, energies N mm, temperatures K.
 """
