@@ -81,6 +81,9 @@ def test_a_story_holds_its_walls_first_then_the_devices_in_file_order():
 def test_malformed_device_groups_are_refused_naming_the_value(group, match):
     with pytest.raises(ValueError, match=match):
         building_from_dict({"masses": [1.0], "stiffnesses": [1e3], "devices": [group]})
+
+
+def test_devices_must_be_a_list_of_groups():
     with pytest.raises(ValueError, match="devices must be a list"):
         building_from_dict({"masses": [1.0], "stiffnesses": [1e3], "devices": {"type": "friction"}})
 
