@@ -113,8 +113,8 @@ def markdown(result: VerificationResult, figures: Mapping[str, str], title: str)
               f"- lambda_min = {result.bounds.lower:g}, lambda_max = {result.bounds.upper:g} ({result.bounds.source}); "
               "every wall's moduli and viscosities times lambda (`wall.scaled`)"
               + ("; every fluid viscous damper's C and every friction damper's slip force times lambda "
-                 "(`device.scaled`: the upper bound gives the largest device forces, the lower the largest "
-                 "displacements)" if result.devices else "")]
+                 "(`device.scaled`: the upper bound gives the largest device forces, the lower usually the "
+                 "largest displacements)" if result.devices else "")]
     included = {True: "include", False: "do not include", None: "are not stated to include or exclude"}
     lines.append(f"- the lambdas {included[result.bounds.lambda_includes_temperature]} the effect of temperature")
     if result.bounds.ambient is not None:

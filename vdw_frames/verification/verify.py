@@ -36,9 +36,10 @@ nominal, upper- and lower-bound wall properties and judges the results:
   written by :func:`prototype_test_specification` (this package's rule, stated there).
 * **other devices** (fluid viscous and friction dampers, :mod:`vdw_frames.element.devices`): each bound scales
   every such device by its lambda through ``device.scaled(lambda)`` -- a fluid viscous damper's C (its force at
-  a given velocity: lambda_max gives the largest damper forces, lambda_min the least damping, so the largest
-  displacements), a friction damper's slip force (likewise: the largest forces at lambda_max, the largest
-  drifts at lambda_min); exponent alpha, brace and elastic stiffness are kept.  One pair of factors serves
+  a given velocity: lambda_max gives the largest damper forces, lambda_min the least damping, so usually the
+  largest displacements), a friction damper's slip force (the largest forces at lambda_max; whether the
+  smaller slip force gives the larger drifts depends on the amplitude, and both bounds are run and reported);
+  exponent alpha, brace and elastic stiffness are kept.  One pair of factors serves
   every device of the building (a device kind with factors of its own needs a verification of its own).  Per
   device, :class:`DeviceDemand` reports the largest force (N), deformation (mm) and velocity (mm/s) along the
   device over the suite, at each bound.  ASCE 7-16 Sec. 18.1 (definitions, read in an extract of the 2016
