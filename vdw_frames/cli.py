@@ -422,7 +422,7 @@ def _design(args: argparse.Namespace) -> int:
             print(f"strain-dependent walls at {centres} (the centre, in logarithm, of their identified range, "
                   f"{ranges}; --strain to choose)")
         building = building.walls_at(None if args.strain is None else args.strain / 100.0)
-    modes = modal_analysis(building)
+    modes = modal_analysis(building, drift_amplitude=args.drift_amplitude)
     walls = building.wall_list
     print(f"{args.building}: {building.stories} stories, {len(walls)} walls, inherent damping "
           f"{100 * building.damping_ratio:g} % ({building.damping_model}); the linear building, complex modes")
@@ -451,7 +451,7 @@ def _design_sizing(args: argparse.Namespace, building: ShearBuilding, out: Path)
 
     walls = building.wall_list
     stories = sorted(building.walls)
-    own = modal_analysis(building, args.mode)
+    own = modal_analysis(building, args.mode, drift_amplitude=args.drift_amplitude)
     own_ratio, own_period = float(own.damping_ratios[0]), float(own.periods[0])
     existing = (args.distribution or "existing") == "existing"
     template: Wall | None = None  # None: the file's own walls, every one's area scaled by the same factor
@@ -503,7 +503,7 @@ def _design_sizing(args: argparse.Namespace, building: ShearBuilding, out: Path)
         except ValueError as error:  # reported after the figure, as the command's error
             unreachable = error
         else:
-            result = modal_analysis(sized, args.mode)
+            result = modal_analysis(sized, args.mode, drift_amplitude=args.drift_amplitude)
             largest = max(wall.area for _, wall in sized.wall_list)
             reference = max(wall.area for _, wall in building.wall_list) if template is None else template.area
             factor = largest / reference
@@ -759,6 +759,9 @@ def _add_design_command(commands: _Commands) -> None:
     design.add_argument("--strain", type=float,
                         help="amplitude, %%, at which strain-dependent walls are analysed (default: the centre, in "
                              "logarithm, of their identified range)")
+    design.add_argument("--drift-amplitude", type=float,
+                        help="story drift amplitude, mm, at which nonlinear FVDs and friction dampers are "
+                             "linearised (needed when the building has them; FEMA 356 Sec. 9.3)")
     design.add_argument("--out", default="design", help="folder for the figure (default ./design)")
     design.set_defaults(run=_design)
 

@@ -324,8 +324,9 @@ def _records(records: str | Iterable[GroundMotion],
 def _period(period: float | str | None, building: ShearBuilding, sdc: str,
             system: str) -> tuple[float, str, float]:
     """(T in s, where it comes from, analytical T1 in s)."""
-    # Amplitude-following walls: their parameters at the centre, in logarithm, of their identified range.
-    analytical = float(modal_analysis(building.walls_at(), 1).periods[0])
+    # Amplitude-following walls: their parameters at the centre, in logarithm, of their identified range;
+    # nonlinear FVDs and friction dampers left out (a period that depends on no assumed amplitude).
+    analytical = float(modal_analysis(building.walls_at().without_nonlinear_devices(), 1).periods[0])
     if period is None:
         value, source = code_period(building, sdc, system), f"C_u T_a ({system})"
     elif isinstance(period, str) and period.upper() == "T1":

@@ -450,6 +450,15 @@ class ShearBuilding:
             merged.setdefault(key, []).append(device)
         return dataclasses.replace(self, devices={story: tuple(group) for story, group in merged.items()})
 
+    def without_nonlinear_devices(self) -> ShearBuilding:
+        """The same building without its devices whose stiffness depends on their amplitude (nonlinear fluid
+        viscous dampers, friction dampers): what a period that must not depend on an amplitude is computed with
+        (an FVD adds no static stiffness; a friction damper's elastic stiffness before it slips is left out, so
+        the period is that of the frame while they slip)."""
+        kept = {story: tuple(d for d in devices if is_wall(d) or getattr(d, "linear", False))
+                for story, devices in self.devices.items()}
+        return dataclasses.replace(self, devices={story: group for story, group in kept.items() if group})
+
     def with_devices(self, devices: dict[int, tuple[Device, ...]]) -> ShearBuilding:
         """The same frame with ``devices`` (a dict as for the constructor) instead of all of its own."""
         return dataclasses.replace(self, devices=devices)

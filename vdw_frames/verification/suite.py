@@ -89,17 +89,20 @@ class PeriodRange:
         return (f"period range {self.lower:.3f} ... {self.upper:.3f} s (ASCE 7-16 Sec. 16.2.3.1): T_upper = "
                 f"2 T_1 = 2 x {self.first_period:.3f} s; T_lower = min(0.2 T_1 = {0.2 * self.first_period:.3f} s, "
                 f"T_{self.mass_mode} = {self.mass_period:.3f} s where the modes reach "
-                f"{100 * self.mass_participation[self.mass_mode - 1]:.1f} % of the mass); periods with the walls")
+                f"{100 * self.mass_participation[self.mass_mode - 1]:.1f} % of the mass); periods with the walls and "
+                "linear devices (nonlinear FVDs and friction dampers left out)")
 
 
 def period_range(building: ShearBuilding) -> PeriodRange:
     """The period range (s) of ASCE 7-16 Sec. 16.2.3.1 for ``building``, its periods computed with its walls
-    (module docstring: T_lower = min(0.2 T_1, T_90), T_upper = 2 T_1).  Amplitude-following walls are fixed at
-    the log-centre of their identified range (:meth:`ShearBuilding.walls_at`)."""
+    and linear devices (module docstring: T_lower = min(0.2 T_1, T_90), T_upper = 2 T_1).  Amplitude-following
+    walls are fixed at the log-centre of their identified range (:meth:`ShearBuilding.walls_at`); nonlinear
+    FVDs and friction dampers are left out (:meth:`ShearBuilding.without_nonlinear_devices`: the period must
+    not depend on an assumed amplitude)."""
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
     fixed = building.walls_at() if building.strain_dependent else building
-    modal = modal_analysis(fixed)
+    modal = modal_analysis(fixed.without_nonlinear_devices())
     periods = np.asarray(modal.periods, dtype=float)
     # effective modal masses of the bare frame's real modes (mass-normalised shapes): (phi^T M 1)^2
     masses = np.asarray(building.masses, dtype=float)
