@@ -32,6 +32,9 @@ lateral strength to P-Delta and would need pulling back to stand (static collaps
 A wall's static stiffness is its stiffness K(s) at s = 0: G1 A / h for an :class:`~vdw_frames.FDMKDamper`
 (eqs. (3)-(5) of the paper: the Kelvin branch's spring; the Maxwell branch relaxes to zero), zero for a
 Maxwell-only wall (G1 = 0), and in series with the support for a :class:`~vdw_frames.SupportedDamper`.
+A friction damper is an elastic-perfectly-plastic spring in parallel with its story (its stiffness until it
+slips, then its slip force; magnification f: f^2 k and f F_s in the story), stepped by its own
+:class:`~vdw_frames.element.devices.DeviceState`; a fluid viscous damper carries no static force.
 
 From the capacity curve (base shear V against roof displacement delta), FEMA P695 Section 6.3:
 
@@ -58,6 +61,8 @@ from numpy.typing import ArrayLike
 from scipy.linalg import eigh
 
 from .._validation import finite_array, positive, show, whole_number
+from ..element.devices import DeviceState
+from ..element.friction import FrictionDamper
 from ..motion.record import G
 from .building import ShearBuilding, static_wall_stiffness, story_matrix
 from .hysteresis import StoryState
@@ -122,6 +127,15 @@ class PushoverResult:
         return self.base_shear / self.weight
 
 
+def stuck_friction_stiffness(building: ShearBuilding) -> np.ndarray:
+    """The friction dampers' elastic stiffness before they slip, magnification^2 k, summed per story (N/mm)."""
+    stiffness = np.zeros(building.stories)
+    for story, device in building.other_device_list:
+        if isinstance(device, FrictionDamper):
+            stiffness[story - 1] += device.magnification**2 * device.stiffness
+    return stiffness
+
+
 def elastic_mode(building: ShearBuilding, wall_stiffness: np.ndarray) -> tuple[float, np.ndarray]:
     """(T1 in s, phi_1 with roof ordinate 1) of the elastic static model: initial story stiffness, the walls'
     static stiffness and the P-Delta stiffness -P/h.  ValueError when that model is unstable."""
@@ -177,7 +191,7 @@ def pushover(building: ShearBuilding, pattern: str | ArrayLike = "modal", target
     if steps > MAX_STEPS:
         raise ValueError(f"steps must be at most {MAX_STEPS}, got {steps}")
     walls = static_wall_stiffness(building)
-    t1, shape = elastic_mode(building, walls)
+    t1, shape = elastic_mode(building, walls + stuck_friction_stiffness(building))
     period = t1 if period is None else positive("period", period)
     masses = np.asarray(building.masses)
     loads = _pattern(pattern, building, shape)
@@ -305,6 +319,12 @@ class _Path:
         self.initial = np.asarray(building.stiffnesses, dtype=float)
         self.states = [StoryState(model, k)
                        for model, k in zip(building.story_models, building.stiffnesses, strict=True)]
+        # Friction dampers: elastic-perfectly-plastic springs in parallel with their stories (their rate does
+        # not enter); fluid viscous dampers carry no static force.
+        self.friction: list[list[DeviceState]] = [[] for _ in range(building.stories)]
+        for story, device in building.other_device_list:
+            if isinstance(device, FrictionDamper):
+                self.friction[story - 1].append(DeviceState(device, 1.0))
         n = building.stories
         self.drift = np.zeros(n)
         self.shear = np.zeros(n)
@@ -320,6 +340,9 @@ class _Path:
         if not math.isfinite(drift):
             raise _Stop(f"story {k + 1}'s drift is not finite")
         force, tangent = self.states[k].trial(drift)
+        for damper in self.friction[k]:
+            extra_force, extra_tangent = damper.trial(drift)
+            force, tangent = force + extra_force, tangent + extra_tangent
         return force + self.linear[k] * drift, tangent + self.linear[k]
 
     def _story_drift(self, k: int, shear: float) -> tuple[float, float, float] | None:
@@ -476,6 +499,9 @@ class _Path:
         for k, state in enumerate(self.states):
             state.trial(float(trial.drift[k]))  # the trial's drift, then commit it
             state.commit()
+            for damper in self.friction[k]:
+                damper.trial(float(trial.drift[k]))
+                damper.commit()
         self.drift, self.shear, self.tangent, self.load = trial.drift.copy(), trial.shear, trial.tangent, trial.load
         if trial.peak:
             # Past the limit point: the tangents of the branch about to be followed (the localising story past
