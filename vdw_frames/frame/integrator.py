@@ -450,8 +450,8 @@ def _moved_most(correction):
 
 
 @njit(cache=True, inline="always")
-def _record_walls(step, table, out, work):
-    """Row ``step`` + 1 of the wall groups' histories from the committed walls (``table``: their states)."""
+def _record_walls(step, states, out, work):
+    """Row ``step`` + 1 of the wall groups' histories from the committed walls (``states``: their WallStates)."""
     groups = work.wall_force.shape[0]
     for g in range(groups):
         out.group_force[step + 1, g] = work.wall_force[g]
@@ -460,18 +460,19 @@ def _record_walls(step, table, out, work):
     if out.group_temperature.shape[0] > 0:
         heat, stored, parameter_loss = 0.0, 0.0, 0.0
         for g in range(groups):
-            out.group_temperature[step + 1, g] = table[g, kernel.TEMPERATURE]
+            energy = states.energy[g]
+            out.group_temperature[step + 1, g] = states.thermal[g].temperature
             if out.group_heat.shape[0] > 0:
-                out.group_heat[step + 1, g] = table[g, kernel.HEAT]
-            heat += table[g, kernel.HEAT]
-            stored += table[g, kernel.STORED]
-            parameter_loss += table[g, kernel.PARAMETER_LOSS]
+                out.group_heat[step + 1, g] = energy.heat
+            heat += energy.heat
+            stored += energy.stored
+            parameter_loss += energy.parameter_loss
         out.wall_heat[step + 1] = heat
         out.wall_stored[step + 1] = stored
         out.wall_parameter_loss[step + 1] = parameter_loss
     if out.group_amplitude.shape[0] > 0:
         for g in range(groups):
-            out.group_amplitude[step + 1, g] = table[g, kernel.AMPLITUDE]
+            out.group_amplitude[step + 1, g] = states.tracker[g].amplitude
 
 
 @njit(cache=True, allocates=False)
@@ -524,7 +525,7 @@ def integrate(excitation, frame, stories, walls, newton, out, work):
         for g in range(groups):
             work.wall_deformation[g] = work.drift[walls.group_story[g]]
         kernel.bank_commit(bank, start + step, work.wall_deformation, work.wall_force, work.wall_strain)
-        _record_walls(step, bank.states.table, out, work)
+        _record_walls(step, bank.states, out, work)
         u = work.displacement
         for i in range(n):
             increment = u[i] - out.displacement[step, i]
