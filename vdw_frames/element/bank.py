@@ -136,8 +136,8 @@ class WallBank:
         limits = [getattr(wall, "limits", None) for wall in self.walls]
         tables = [wall.amplitude_table() if hasattr(wall, "amplitude_table") else np.zeros((0, 5))
                   for wall in self.walls]
-        base, thermal_group, energy, limits_group, tracker = (kernel.state_group(dtype, count) for dtype in (
-            kernel.BASE, kernel.THERMAL, kernel.ENERGY, kernel.LIMITS, kernel.TRACKER))
+        walls = kernel.wall_records(count)
+        base, thermal_group, energy, limits_group, tracker = (walls[group].view(np.recarray) for group in kernel.GROUPS)
         base["energy_followed"] = [t is not None or lim is not None for t, lim in zip(thermals, limits, strict=True)]
         base["tracked"] = [t is not None or lim is not None or nodes.size > 0
                            for t, lim, nodes in zip(thermals, limits, tables, strict=True)]
@@ -184,25 +184,24 @@ class WallBank:
             n = orders.index(float(base.order[w]))
             base.node_set[w] = n
             energy.tail_dashpot[w], energy.tail_spring[w], energy.node_work_sum[w] = tails[n]
-        return kernel.WallStates(base=base, thermal=thermal_group, energy=energy, limits=limits_group, tracker=tracker,
-                                 nodes=nodes, node_state=np.zeros((count, 2, xi.size)), amplitude_table=amplitude_table)
+        return kernel.WallStates(walls=walls, nodes=nodes, node_state=np.zeros((count, 2, xi.size)),
+                                 amplitude_table=amplitude_table)
 
     @property
     def states(self) -> kernel.WallStates:
-        """Every wall's state beyond its memory: the kernel's own state groups (base, thermal, energy, limits,
-        tracker: (W,) record arrays of named fields, :class:`~vdw_frames.element.kernel.WallStates`), changed
-        in place by every commit.  :meth:`state` gives a copy of one field."""
+        """Every wall's state beyond its memory, the kernel's own (changed in place by every commit): its state
+        groups ``states.base``, ``.thermal``, ``.energy``, ``.limits``, ``.tracker``, each (W,) records of named
+        fields (:class:`~vdw_frames.element.kernel.WallStates`).  :meth:`state` gives a copy of one field."""
         return self.arrays.states
 
     def state(self, field: str) -> np.ndarray:
         """One named field of every wall's state, a copy (W,): ``bank.state("temperature")``; the names are those of
-        the state groups (:data:`vdw_frames.element.kernel.BASE_FIELDS`, ``THERMAL_FIELDS``, ``ENERGY_FIELDS``,
-        ``LIMITS_FIELDS``, ``TRACKER_FIELDS``).  Units: the field's own."""
-        names = [name for group in self.arrays.states.groups().values() for name in group.dtype.names or ()]
-        if field not in names:
-            raise ValueError(f"no wall state field {field!r}; the fields are {', '.join(names)}")
-        group = next(g for g in self.arrays.states.groups().values() if field in (g.dtype.names or ()))
-        return np.array(group[field], dtype=float)
+        the state groups (:data:`vdw_frames.element.kernel.GROUPS`).  Units: the field's own."""
+        for group, fields in kernel.GROUPS.items():
+            if field in fields:
+                return np.array(self.arrays.states.walls[group][field], dtype=float)
+        names = ", ".join(name for fields in kernel.GROUPS.values() for name in fields)
+        raise ValueError(f"no wall state field {field!r}; the fields are {names}")
 
     def _allocate(self, steps: int, states: kernel.WallStates) -> kernel.BankArrays:
         strategy = memory_strategy(self.memory)

@@ -66,9 +66,11 @@ def _group(fields: dict[str, str]) -> np.dtype:
     return np.dtype([(name, np.float64) for name in fields], align=True)
 
 
-# The state groups of WallStates: one record of named floats per wall in each, by concept (what the wall is, its
-# temperature, its energies, its limits, its amplitude).  The compiled functions read a field of wall w as
-# group[w].field (a load at a fixed offset, as a column of one table was); Python reads group.field, (W,).
+# The state groups of a wall, by concept (what the wall is, its temperature, its energies, its limits, its amplitude):
+# each a record of named floats, the five together one record a wall (WALL).  Compiled code reads a field of wall w as
+# walls[w].thermal.temperature, a load at a fixed offset as a column of one table was; Python reads
+# WallStates.thermal.temperature, (W,).  One record array, not a NamedTuple of (W,) arrays: a compiled call from
+# Python unboxes every array it is given (about 0.2 us each), and WallBank.commit calls once a step.
 BASE_FIELDS = {
     "tracked": "1 when the wall's state is followed (a thermal description, limits or amplitude following)",
     "energy_followed": "1 when its heat and stored energy are (a thermal description or limits: the diffusive nodes)",
@@ -167,31 +169,56 @@ FAILURE_MODES = ("", "strain", "stress", "temperature")
 """Names of the failure_mode field (LIMITS)."""
 
 
-def state_group(dtype: np.dtype, walls: int) -> np.recarray:
-    """A state group of ``walls`` walls, every field 0: a record array of ``dtype`` (BASE, THERMAL, ENERGY, LIMITS,
-    TRACKER), its fields read and written by name."""
-    return np.zeros(walls, dtype).view(np.recarray)
+WALL = np.dtype([("base", BASE), ("thermal", THERMAL), ("energy", ENERGY), ("limits", LIMITS), ("tracker", TRACKER)],
+                align=True)
+"""A wall's state beyond its memory: its five state groups, each a record of named fields."""
+GROUPS = {"base": BASE_FIELDS, "thermal": THERMAL_FIELDS, "energy": ENERGY_FIELDS, "limits": LIMITS_FIELDS,
+          "tracker": TRACKER_FIELDS}
+"""The fields of every state group, by group: name -> what it is."""
+
+
+def wall_records(walls: int) -> np.ndarray:
+    """The states of ``walls`` walls, every field 0: a (W,) array of :data:`WALL` records.  A plain ndarray, not a
+    np.recarray: numba types a subclass the slow way, about a microsecond more a call from Python."""
+    return np.zeros(walls, WALL)
 
 
 class WallStates(NamedTuple):
     """Every wall's state beyond its memory (W walls, N diffusive nodes, K amplitude nodes), changed only by
-    :func:`update_walls`.  The groups are (W,) record arrays of named fields (:func:`state_group`)."""
+    :func:`update_walls`.  ``walls[w].thermal.temperature`` in compiled code; ``states.thermal.temperature``
+    (W,) in Python (the properties below: views of ``walls``, not copies)."""
 
-    base: np.recarray  # BASE
-    thermal: np.recarray  # THERMAL
-    energy: np.recarray  # ENERGY
-    limits: np.recarray  # LIMITS
-    tracker: np.recarray  # TRACKER
+    walls: np.ndarray  # (W,) of WALL: the state groups of every wall
     # (S, 4, N): e, g, c_k g, c_k of every node (thermal.node_coefficients, diffusive_weights), one set for each
     # order r (base.node_set): walls of one order share theirs, which keeps the update's data small
     nodes: np.ndarray
     node_state: np.ndarray  # (W, 2, N): phi of the Kelvin (eps) and Maxwell (eps_v) springpots
     amplitude_table: np.ndarray  # (W, K, 5): log strain, G1, G2, eta1, eta2 at the amplitude nodes
 
-    def groups(self) -> dict[str, np.recarray]:
-        """The state groups by name."""
-        return {"base": self.base, "thermal": self.thermal, "energy": self.energy, "limits": self.limits,
-                "tracker": self.tracker}
+    @property
+    def base(self) -> np.recarray:
+        """What each wall is (:data:`BASE_FIELDS`), (W,)."""
+        return self.walls["base"].view(np.recarray)
+
+    @property
+    def thermal(self) -> np.recarray:
+        """Each wall's temperature and shift law (:data:`THERMAL_FIELDS`), (W,)."""
+        return self.walls["thermal"].view(np.recarray)
+
+    @property
+    def energy(self) -> np.recarray:
+        """Each wall's heat and stored energy (:data:`ENERGY_FIELDS`), (W,)."""
+        return self.walls["energy"].view(np.recarray)
+
+    @property
+    def limits(self) -> np.recarray:
+        """Each wall's limits and failure (:data:`LIMITS_FIELDS`), (W,)."""
+        return self.walls["limits"].view(np.recarray)
+
+    @property
+    def tracker(self) -> np.recarray:
+        """Each wall's amplitude tracker (:data:`TRACKER_FIELDS`), (W,)."""
+        return self.walls["tracker"].view(np.recarray)
 
 
 class MemoryArrays(NamedTuple):
@@ -215,7 +242,7 @@ class BankArrays(NamedTuple):
     tangent: np.ndarray  # (W,): K_t of the coming step, N/mm
     history_force: np.ndarray  # (W,): H_n of the coming step, N
     states: WallStates
-    followed: bool  # some wall's state is followed (base.tracked): only then is there any to update
+    followed: bool  # some wall's state is followed (walls.base.tracked): only then is there any to update
 
 
 @njit(cache=True, fastmath=_FAST, allocates=False)
@@ -295,7 +322,7 @@ def wall_affine(bank, w):
     area, thickness, flexibility = c[4], c[5], c[6]
     stress, _, modulus = fdmk_stress(0.0, bank.memory.history[0, w], bank.memory.history[1, w], c[0], c[1], c[2], c[3],
                                      bank.memory.w0[w])
-    factor = bank.states.limits[w].scale  # 1 unless the wall has failed
+    factor = bank.states.walls[w].limits.scale  # 1 unless the wall has failed
     stress *= factor
     wall_tangent = factor * modulus * area / thickness
     scale = 1.0 / (1.0 + flexibility * wall_tangent)
@@ -311,7 +338,7 @@ def wall_response(bank, w, deformation):
     c = bank.constants[w]
     G1, G2, eta1, eta2, area, thickness, flexibility = c[0], c[1], c[2], c[3], c[4], c[5], c[6]
     strain_history, maxwell_history, w0 = bank.memory.history[0, w], bank.memory.history[1, w], bank.memory.w0[w]
-    factor = bank.states.limits[w].scale  # 1 unless the wall has failed
+    factor = bank.states.walls[w].limits.scale  # 1 unless the wall has failed
     wall_deformation = deformation
     if flexibility > 0.0:
         history_stress, _, modulus = fdmk_stress(0.0, strain_history, maxwell_history, G1, G2, eta1, eta2, w0)
@@ -327,16 +354,15 @@ def _springpots(nodes, node_state, energy, n, w, strain, strain_v):
     """(heat of the Kelvin springpot, of the Maxwell one, their stored energies), each per unit volume and
     unit viscosity (times eta: MPa = N*mm/mm^3), over the step that took their inputs to ``strain`` (eps)
     and ``strain_v`` (eps_v), from the diffusive nodes of wall ``w`` (nodes (S, 4, N): its set ``n``,
-    base.node_set; node_state (W, 2, N), ``energy`` the ENERGY group), each node exactly for an input
+    base.node_set; node_state (W, 2, N); ``energy``: the wall's ENERGY record), each node exactly for an input
     linear over the step (thermal.node_coefficients), the tails in closed form.  Advances the nodes.
 
     A node's heat over the step is its work less the change of its stored energy,
     c (g phi dx + D dx^2) - c (phi'^2 - phi^2) / 2 (thermal module docstring): two sums a node, the stored
     energy before the step kept from the last (node_square_*).  It is a positive semi-definite form of
     (phi, dx); the sums are clipped at 0 against rounding: an adiabatic wall never cools."""
-    state = energy[w]
-    dx = strain - state.previous_strain
-    dv = strain_v - state.previous_dashpot_strain
+    dx = strain - energy.previous_strain
+    dv = strain_v - energy.previous_dashpot_strain
     work_1 = 0.0
     work_2 = 0.0
     square_1 = 0.0
@@ -353,88 +379,87 @@ def _springpots(nodes, node_state, energy, n, w, strain, strain_v):
     for k in range(count):
         square_1 += nodes[n, 3, k] * node_state[w, 0, k] * node_state[w, 0, k]
         square_2 += nodes[n, 3, k] * node_state[w, 1, k] * node_state[w, 1, k]
-    heat_1 = dx * (work_1 + dx * state.node_work_sum) - 0.5 * (square_1 - state.node_square_1)
-    heat_2 = dv * (work_2 + dv * state.node_work_sum) - 0.5 * (square_2 - state.node_square_2)
-    dashpot, spring = state.tail_dashpot, state.tail_spring
-    state.previous_strain = strain
-    state.previous_dashpot_strain = strain_v
-    state.node_square_1 = square_1
-    state.node_square_2 = square_2
+    heat_1 = dx * (work_1 + dx * energy.node_work_sum) - 0.5 * (square_1 - energy.node_square_1)
+    heat_2 = dv * (work_2 + dv * energy.node_work_sum) - 0.5 * (square_2 - energy.node_square_2)
+    dashpot, spring = energy.tail_dashpot, energy.tail_spring
+    energy.previous_strain = strain
+    energy.previous_dashpot_strain = strain_v
+    energy.node_square_1 = square_1
+    energy.node_square_2 = square_2
     return (max(heat_1, 0.0) + dashpot * dx * dx, max(heat_2, 0.0) + dashpot * dv * dv,
             0.5 * (square_1 + spring * strain * strain), 0.5 * (square_2 + spring * strain_v * strain_v))
 
 
 @njit(cache=True, inline="always")
-def _shift_factor(thermal, w, count):
-    """a_T^r (-) of wall ``w`` at its committed temperature, clamped to its shift law's range (the first step
-    outside it is noted, ``outside``; ``thermal`` the THERMAL group), found from the last exp taken where the
-    exponent has moved little.
+def _shift_factor(thermal, count):
+    """a_T^r (-) of a wall (``thermal``: its THERMAL record) at its committed temperature, clamped to its shift law's
+    range (the first step outside it is noted, ``outside``), found from the last exp taken where the exponent has
+    moved little.
 
     The exponent ln a_T^r = -(ln 10 r slope) d / (1 + curvature d), d = T - T_ref, is every law of
     :mod:`~vdw_frames.element.thermal` (thermal.log10_shift); a log-linear law has no curvature and so no
     division.  Near the anchor, exp(anchor + x) = exp(anchor) exp(x) with the series of exp(x) to x^4 (|x| <=
     1e-3: x^5 / 120 < 1e-17, within an ulp; Estrin's grouping, a shorter chain than Horner's)."""
-    state = thermal[w]
-    temperature = state.temperature
-    clamped = min(max(temperature, state.valid_low), state.valid_high)
-    if clamped != temperature and state.outside < 0.0:
-        state.outside = count + 1
-    difference = clamped - state.law_reference
-    exponent = -state.shift_rate * difference
-    curvature = state.law_curvature
+    temperature = thermal.temperature
+    clamped = min(max(temperature, thermal.valid_low), thermal.valid_high)
+    if clamped != temperature and thermal.outside < 0.0:
+        thermal.outside = count + 1
+    difference = clamped - thermal.law_reference
+    exponent = -thermal.shift_rate * difference
+    curvature = thermal.law_curvature
     if curvature != 0.0:
         exponent /= 1.0 + curvature * difference
-    x = exponent - state.shift_anchor
+    x = exponent - thermal.shift_anchor
     if abs(x) <= 1e-3:
         x2 = x * x
-        return state.shift_factor * ((1.0 + x) + x2 * ((0.5 + x * (1.0 / 6.0)) + x2 * (1.0 / 24.0)))
+        return thermal.shift_factor * ((1.0 + x) + x2 * ((0.5 + x * (1.0 / 6.0)) + x2 * (1.0 / 24.0)))
     factor = math.exp(exponent)  # (the first call too: the anchor starts as NaN)
-    state.shift_anchor = exponent
-    state.shift_factor = factor
+    thermal.shift_anchor = exponent
+    thermal.shift_factor = factor
     return factor
 
 
 @njit(cache=True, fastmath=_FAST, allocates=False)
 def _interpolate_amplitude(tracker, amplitude_table, w):
-    """G1, G2, eta1, eta2 of amplitude-following wall ``w`` at its amplitude into at_* of ``tracker``
-    (``amplitude_table`` (W, K, 5): linear in log strain between the nodes, the end node's outside them).  Not
+    """G1, G2, eta1, eta2 of amplitude-following wall ``w`` at its amplitude into at_* of ``tracker`` (its TRACKER
+    record; ``amplitude_table`` (W, K, 5): linear in log strain between the nodes, the end node's outside them).  Not
     inlined: it runs only when the followed amplitude has moved, and the update's loop stays short without it
     (compiled with the update's own floating-point flags, as it was when inlined)."""
-    state = tracker[w]
-    count = int(state.amplitude_nodes)
-    amplitude = state.amplitude
+    count = int(tracker.amplitude_nodes)
+    amplitude = tracker.amplitude
     x = math.log(max(amplitude, 1e-300))
     k = 0
     while k < count - 2 and x > amplitude_table[w, k + 1, 0]:
         k += 1
     low, high = amplitude_table[w, k, 0], amplitude_table[w, k + 1, 0]
     t = min(max((x - low) / (high - low), 0.0), 1.0)
-    state.at_g1 = amplitude_table[w, k, 1] + t * (amplitude_table[w, k + 1, 1] - amplitude_table[w, k, 1])
-    state.at_g2 = amplitude_table[w, k, 2] + t * (amplitude_table[w, k + 1, 2] - amplitude_table[w, k, 2])
-    state.at_eta1 = amplitude_table[w, k, 3] + t * (amplitude_table[w, k + 1, 3] - amplitude_table[w, k, 3])
-    state.at_eta2 = amplitude_table[w, k, 4] + t * (amplitude_table[w, k + 1, 4] - amplitude_table[w, k, 4])
-    state.amplitude_used = amplitude
+    tracker.at_g1 = amplitude_table[w, k, 1] + t * (amplitude_table[w, k + 1, 1] - amplitude_table[w, k, 1])
+    tracker.at_g2 = amplitude_table[w, k, 2] + t * (amplitude_table[w, k + 1, 2] - amplitude_table[w, k, 2])
+    tracker.at_eta1 = amplitude_table[w, k, 3] + t * (amplitude_table[w, k + 1, 3] - amplitude_table[w, k, 3])
+    tracker.at_eta2 = amplitude_table[w, k, 4] + t * (amplitude_table[w, k + 1, 4] - amplitude_table[w, k, 4])
+    tracker.amplitude_used = amplitude
 
 
 @njit(cache=True, inline="always")
 def set_coefficients(states, constants, w, count):
     """Wall ``w``'s G1, G2, eta1, eta2 (``constants`` (W, 7)) for the step after commit ``count``, at its
     committed amplitude and temperature: the parameters at the amplitude (``states.amplitude_table`` (W, K, 5);
-    the base parameters, ``states.base``, for a wall of fixed parameters), eta times a_T^r at the temperature
+    the base parameters, its BASE record, for a wall of fixed parameters), eta times a_T^r at the temperature
     (:func:`_shift_factor`).  G1 and G2 are written only for a wall that follows its amplitude (nothing else
     changes them).  Returns whether the coefficients follow anything (False: the base parameters, as before)."""
-    base, tracker = states.base[w], states.tracker[w]
-    eta1, eta2 = base.eta1, base.eta2
+    wall = states.walls[w]
+    tracker = wall.tracker
+    eta1, eta2 = wall.base.eta1, wall.base.eta2
     follows = False
     if tracker.amplitude_nodes > 0.0:
         if tracker.amplitude != tracker.amplitude_used:  # (held within much of a half-cycle: reuse the last)
-            _interpolate_amplitude(states.tracker, states.amplitude_table, w)
+            _interpolate_amplitude(tracker, states.amplitude_table, w)
         constants[w, 0] = tracker.at_g1
         constants[w, 1] = tracker.at_g2
         eta1, eta2 = tracker.at_eta1, tracker.at_eta2
         follows = True
-    if states.thermal[w].law_kind != 0.0:
-        factor = _shift_factor(states.thermal, w, count)
+    if wall.thermal.law_kind != 0.0:
+        factor = _shift_factor(wall.thermal, count)
         eta1 *= factor
         eta2 *= factor
         follows = True
@@ -449,9 +474,9 @@ decay release in :func:`track_amplitude`): smaller wiggles of the strain are nev
 
 
 @njit(cache=True, inline="always")
-def track_amplitude(tracker, w, strain, count):
-    """Follow wall ``w``'s strain amplitude after commit ``count`` (``strain`` -; ``tracker`` the TRACKER
-    group): the ENVELOPE of the total strain, not its ripples.
+def track_amplitude(tracker, strain, count):
+    """Follow a wall's strain amplitude after commit ``count`` (``strain`` -; ``tracker``: the wall's TRACKER
+    record): the ENVELOPE of the total strain, not its ripples.
 
     Half-cycles run between reversals, a = |extreme - turn| / 2 (an offset of the strain, a residual drift,
     is not amplitude); the first excursion from rest is a quarter cycle, a = |extreme|.  A reversal is
@@ -480,68 +505,65 @@ def track_amplitude(tracker, w, strain, count):
     breaks down with strain) is governed by the total strain amplitude of the cycle, not by the components
     of a spectral decomposition of the strain; the paper's sets were measured under single sines, where
     the two coincide."""
-    state = tracker[w]
-    direction, turn, extreme = state.direction, state.turn, state.extreme
+    direction, turn, extreme = tracker.direction, tracker.turn, tracker.extreme
     if direction == 0.0:
         if strain != turn:
             direction = 1.0 if strain > turn else -1.0
             extreme = strain
-            state.extended_at = count
+            tracker.extended_at = count
     elif direction * (strain - extreme) > 0.0:
         extreme = strain
-        state.extended_at = count
+        tracker.extended_at = count
     else:
         span = 0.5 * abs(extreme - turn)  # the half-cycle's amplitude so far: the return that confirms it
         gate = span
         # The extreme has stood longer than a whole cycle (twice the last half-cycle): a decay.  One
         # half-cycle was too short a wait: a ripple's reversal at start-up shortened it, and the release
         # then ended half-cycles at every ripple (tests/element/test_amplitude.py, the phase sweep).
-        held, cycle = count - state.extended_at, 2.0 * state.half_steps
+        held, cycle = count - tracker.extended_at, 2.0 * tracker.half_steps
         if held > cycle > 0.0:
             gate *= max(cycle / held, REVERSAL_GATE)
         if direction * (extreme - strain) > gate:
-            first = state.last_amplitude == 0.0  # the excursion from rest: a quarter cycle
-            state.last_amplitude = 2.0 * span if first else span
-            state.followed_at_turn = state.amplitude
-            state.half_steps = count - state.confirmed_at  # >= 1: the turn was set at an earlier step
-            state.confirmed_at = count
-            state.extended_at = count
+            first = tracker.last_amplitude == 0.0  # the excursion from rest: a quarter cycle
+            tracker.last_amplitude = 2.0 * span if first else span
+            tracker.followed_at_turn = tracker.amplitude
+            tracker.half_steps = count - tracker.confirmed_at  # >= 1: the turn was set at an earlier step
+            tracker.confirmed_at = count
+            tracker.extended_at = count
             turn, extreme, direction = extreme, strain, -direction
-    state.direction, state.turn, state.extreme = direction, turn, extreme
-    completed, before = state.last_amplitude, state.followed_at_turn
+    tracker.direction, tracker.turn, tracker.extreme = direction, turn, extreme
+    completed, before = tracker.last_amplitude, tracker.followed_at_turn
     if completed == 0.0:  # no reversal yet: a quarter cycle from rest
-        state.amplitude = abs(extreme)
+        tracker.amplitude = abs(extreme)
         return
-    progress = min((count - state.confirmed_at) / state.half_steps, 1.0)
-    state.amplitude = max(0.5 * abs(extreme - turn), before + (completed - before) * progress)
+    progress = min((count - tracker.confirmed_at) / tracker.half_steps, 1.0)
+    tracker.amplitude = max(0.5 * abs(extreme - turn), before + (completed - before) * progress)
 
 
 @njit(cache=True, inline="always")
-def _follow_amplitude(tracker, w, strain, count):
-    """The amplitude of an amplitude-following wall ``w`` after commit ``count``, and its steps outside its
-    range (``tracker`` the TRACKER group)."""
-    state = tracker[w]
-    if state.amplitude_nodes > 0.0:
-        track_amplitude(tracker, w, strain, count)
-        if state.amplitude < state.amplitude_low:
-            state.below_range += 1.0
-        elif state.amplitude > state.amplitude_high:
-            state.above_range += 1.0
+def _follow_amplitude(tracker, strain, count):
+    """The amplitude of an amplitude-following wall (``tracker``: its TRACKER record) after commit ``count``, and its
+    steps outside its range."""
+    if tracker.amplitude_nodes > 0.0:
+        track_amplitude(tracker, strain, count)
+        if tracker.amplitude < tracker.amplitude_low:
+            tracker.below_range += 1.0
+        elif tracker.amplitude > tracker.amplitude_high:
+            tracker.above_range += 1.0
 
 
 @njit(cache=True, inline="always")
-def _energies(energy, w, G1, G2, eta2, strain, maxwell):
-    """(springs, heat_1, heat_2, stored_1, stored_2) of wall ``w`` (``energy`` the ENERGY group) after a commit: the
+def _energies(energy, G1, G2, eta2, strain, maxwell):
+    """(springs, heat_1, heat_2, stored_1, stored_2) of a wall (``energy``: its ENERGY record) after a commit: the
     energy in its springs (G1 at ``strain``, G2 at the Maxwell stress ``maxwell`` MPa) per unit volume (MPa), and
     its springpots' heat over the step and stored energy after it per unit volume and unit viscosity
     (springpot_*).  A Maxwell branch without G2 or eta2 carries no stress: its terms are 0."""
-    state = energy[w]
     springs = 0.5 * G1 * strain * strain
     heat_2 = stored_2 = 0.0
     if G2 > 0.0 and eta2 > 0.0:
         springs += 0.5 * maxwell * maxwell / G2
-        heat_2, stored_2 = state.springpot_heat_2, state.springpot_stored_2
-    return springs, state.springpot_heat_1, heat_2, state.springpot_stored_1, stored_2
+        heat_2, stored_2 = energy.springpot_heat_2, energy.springpot_stored_2
+    return springs, energy.springpot_heat_1, heat_2, energy.springpot_stored_1, stored_2
 
 
 @njit(cache=True, inline="always")
@@ -552,26 +574,24 @@ def _stored(springs, eta1, eta2, stored_1, stored_2, volume):
 
 
 @njit(cache=True, inline="always")
-def _warm(thermal, w, heat):
-    """Wall ``w``'s temperature (degC; ``thermal`` the THERMAL group) after a step's ``heat`` (N*mm): T' = T_a
+def _warm(thermal, heat):
+    """A wall's temperature (degC; ``thermal``: its THERMAL record) after a step's ``heat`` (N*mm): T' = T_a
     + (T - T_a) exp(-dt / tau) + gain heat, the exact step of rho c V dT/dt = P - rho c V (T - T_a) / tau for a
     power P constant over it."""
-    state = thermal[w]
-    ambient = state.ambient
-    state.temperature = ambient + (state.temperature - ambient) * state.decay + heat * state.gain
+    ambient = thermal.ambient
+    thermal.temperature = ambient + (thermal.temperature - ambient) * thermal.decay + heat * thermal.gain
 
 
 @njit(cache=True, inline="always")
-def _exceeded_limit(limits, temperature, w, strain, force, area):
-    """The failure mode of wall ``w`` (``limits`` the LIMITS group) at its committed ``strain`` (-), ``force``
+def _exceeded_limit(limits, temperature, strain, force, area):
+    """The failure mode of a wall (``limits``: its LIMITS record) at its committed ``strain`` (-), ``force``
     (N) over ``area`` (mm^2) and ``temperature`` (degC): 1 strain, 2 stress, 3 temperature (the first limit
     exceeded, in that order), 0 none."""
-    state = limits[w]
-    if abs(strain) > state.limit_strain:
+    if abs(strain) > limits.limit_strain:
         return 1.0
-    if abs(force) > state.limit_stress * area:
+    if abs(force) > limits.limit_stress * area:
         return 2.0
-    if temperature > state.limit_temperature:
+    if temperature > limits.limit_temperature:
         return 3.0
     return 0.0
 
@@ -589,84 +609,83 @@ def update_walls(states, constants, values, force, deformation, count):
     the frame sees falls from the intact wall's to the residual's; the trapezoidal work of the frame's
     energy balance counts half the lost share's force over the step's deformation, (1 - residual) F dd / 2,
     and that work goes into the tearing too: it is released, at that step."""
-    base, thermal, energy, limits, tracker = states.base, states.thermal, states.energy, states.limits, states.tracker
-    nodes, node_state = states.nodes, states.node_state
-    walls = constants.shape[0]
+    walls, nodes, node_state = states.walls, states.nodes, states.node_state
     # The springpots of every wall first, then the rest: the walls' node sums are independent, and in a loop of
     # their own they overlap (29.6 -> 24.6 ns a wall and step, the update timed alone; docs/validation.rst).
-    for w in range(walls):
-        if base[w].energy_followed == 0.0:
+    for w in range(constants.shape[0]):
+        wall = walls[w]
+        if wall.base.energy_followed == 0.0:
             continue
         strain_v = 0.0  # the strain of the Maxwell branch's dashpot (none without G2 or eta2)
         if constants[w, 1] > 0.0 and constants[w, 3] > 0.0:
             strain_v = values[0, w] - values[1, w] * (1.0 / constants[w, 1])
-        heat_1, heat_2, stored_1, stored_2 = _springpots(nodes, node_state, energy, int(base[w].node_set), w,
+        energy = wall.energy
+        heat_1, heat_2, stored_1, stored_2 = _springpots(nodes, node_state, energy, int(wall.base.node_set), w,
                                                          values[0, w], strain_v)
-        spent = energy[w]
-        spent.springpot_heat_1, spent.springpot_heat_2 = heat_1, heat_2
-        spent.springpot_stored_1, spent.springpot_stored_2 = stored_1, stored_2
-    for w in range(walls):
-        wall = base[w]
-        if wall.tracked == 0.0:
+        energy.springpot_heat_1, energy.springpot_heat_2 = heat_1, heat_2
+        energy.springpot_stored_1, energy.springpot_stored_2 = stored_1, stored_2
+    for w in range(constants.shape[0]):
+        wall = walls[w]
+        base, thermal, energy, limits = wall.base, wall.thermal, wall.energy, wall.limits
+        if base.tracked == 0.0:
             continue
-        spent, limit = energy[w], limits[w]
         strain, maxwell = values[0, w], values[1, w]
         G1, G2, eta1, eta2 = constants[w, 0], constants[w, 1], constants[w, 2], constants[w, 3]
-        volume = constants[w, 4] * constants[w, 5] * limit.scale  # a failed wall keeps its residual share
+        volume = constants[w, 4] * constants[w, 5] * limits.scale  # a failed wall keeps its residual share
         # A wall that only heats (the common case) goes straight through: the same steps as the general path below,
         # without its checks (each about half a nanosecond a wall and step; docs/validation.rst, Performance).
-        if wall.heating_only != 0.0:
-            springs, heat_1, heat_2, stored_1, stored_2 = _energies(energy, w, G1, G2, eta2, strain, maxwell)
+        if base.heating_only != 0.0:
+            springs, heat_1, heat_2, stored_1, stored_2 = _energies(energy, G1, G2, eta2, strain, maxwell)
             heat = (eta1 * heat_1 + eta2 * heat_2) * volume
             stored = _stored(springs, eta1, eta2, stored_1, stored_2, volume)
-            spent.heat += heat
-            _warm(thermal, w, heat)
-            factor = _shift_factor(thermal, w, count)
-            eta1, eta2 = wall.eta1 * factor, wall.eta2 * factor
+            energy.heat += heat
+            _warm(thermal, heat)
+            factor = _shift_factor(thermal, count)
+            eta1, eta2 = base.eta1 * factor, base.eta2 * factor
             constants[w, 2], constants[w, 3] = eta1, eta2
             renewed = _stored(springs, eta1, eta2, stored_1, stored_2, volume)
-            spent.parameter_loss += stored - renewed
-            spent.stored = renewed
+            energy.parameter_loss += stored - renewed
+            energy.stored = renewed
             continue
-        limited = wall.limited != 0.0
-        if limited and limit.failure_step == count:  # the step after the failing commit
-            spent.released_work = (0.5 * (1.0 - limit.residual) * limit.failure_force
-                                   * (deformation[w] - limit.failure_deformation))
-        if wall.energy_followed == 0.0:  # a wall that only follows its amplitude: no heat, no energy split
-            _follow_amplitude(tracker, w, strain, count)
+        limited = base.limited != 0.0
+        if limited and limits.failure_step == count:  # the step after the failing commit
+            energy.released_work = (0.5 * (1.0 - limits.residual) * limits.failure_force
+                                    * (deformation[w] - limits.failure_deformation))
+        if base.energy_followed == 0.0:  # a wall that only follows its amplitude: no heat, no energy split
+            _follow_amplitude(wall.tracker, strain, count)
             set_coefficients(states, constants, w, count)
             continue
-        springs, heat_1, heat_2, stored_1, stored_2 = _energies(energy, w, G1, G2, eta2, strain, maxwell)
+        springs, heat_1, heat_2, stored_1, stored_2 = _energies(energy, G1, G2, eta2, strain, maxwell)
         heat = (eta1 * heat_1 + eta2 * heat_2) * volume
         stored = _stored(springs, eta1, eta2, stored_1, stored_2, volume)
-        spent.heat += heat
-        if thermal[w].capacity > 0.0:
-            _warm(thermal, w, heat)
+        energy.heat += heat
+        if thermal.capacity > 0.0:
+            _warm(thermal, heat)
         failing = False
-        if limited and limit.failure_step < 0.0:
-            mode = _exceeded_limit(limits, thermal[w].temperature, w, strain, force[w], constants[w, 4])
+        if limited and limits.failure_step < 0.0:
+            mode = _exceeded_limit(limits, thermal.temperature, strain, force[w], constants[w, 4])
             if mode > 0.0:
                 failing = True
-                limit.failure_step = count + 1
-                limit.failure_mode = mode
-                spent.released = (1.0 - limit.residual) * stored
-                limit.failure_force = force[w]
-                limit.failure_deformation = deformation[w]
-                limit.scale = limit.residual
-                stored *= limit.residual
-        _follow_amplitude(tracker, w, strain, count)
+                limits.failure_step = count + 1
+                limits.failure_mode = mode
+                energy.released = (1.0 - limits.residual) * stored
+                limits.failure_force = force[w]
+                limits.failure_deformation = deformation[w]
+                limits.scale = limits.residual
+                stored *= limits.residual
+        _follow_amplitude(wall.tracker, strain, count)
         if not set_coefficients(states, constants, w, count):  # limits only: parameters stay,
-            spent.stored = stored                              # and so does the stored energy
+            energy.stored = stored                             # and so does the stored energy
             continue
         # The same state stores another energy under the next step's parameters (temperature, amplitude): the
         # difference does no work and warms nothing in this model; it is accounted, not hidden in the heat.
         if constants[w, 0] != G1 or constants[w, 1] != G2:  # (G1 and G2 follow the amplitude only)
-            springs = _energies(energy, w, constants[w, 0], constants[w, 1], constants[w, 3], strain, maxwell)[0]
+            springs = _energies(energy, constants[w, 0], constants[w, 1], constants[w, 3], strain, maxwell)[0]
         renewed = _stored(springs, constants[w, 2], constants[w, 3], stored_1, stored_2,
-                          constants[w, 4] * constants[w, 5] * limit.scale)
+                          constants[w, 4] * constants[w, 5] * limits.scale)
         if not failing:
-            spent.parameter_loss += stored - renewed
-        spent.stored = renewed
+            energy.parameter_loss += stored - renewed
+        energy.stored = renewed
 
 
 @njit(cache=True, allocates=False)

@@ -460,8 +460,8 @@ def _record_walls(step, states, out, work):
     if out.group_temperature.shape[0] > 0:
         heat, stored, parameter_loss = 0.0, 0.0, 0.0
         for g in range(groups):
-            energy = states.energy[g]
-            out.group_temperature[step + 1, g] = states.thermal[g].temperature
+            energy = states.walls[g].energy
+            out.group_temperature[step + 1, g] = states.walls[g].thermal.temperature
             if out.group_heat.shape[0] > 0:
                 out.group_heat[step + 1, g] = energy.heat
             heat += energy.heat
@@ -472,7 +472,7 @@ def _record_walls(step, states, out, work):
         out.wall_parameter_loss[step + 1] = parameter_loss
     if out.group_amplitude.shape[0] > 0:
         for g in range(groups):
-            out.group_amplitude[step + 1, g] = states.tracker[g].amplitude
+            out.group_amplitude[step + 1, g] = states.walls[g].tracker.amplitude
 
 
 @njit(cache=True, allocates=False)
