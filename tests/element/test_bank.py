@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 from builders import TABLE4
 
-from vdw_frames import FDMKDamper
+from vdw_frames import FDMKDamper, ThermalProperties, WallLimits
+from vdw_frames.element import ISD110_LOSS_PEAK, kernel
 from vdw_frames.element.bank import WallBank
 from vdw_frames.element.fractional import get_method
 
@@ -45,3 +46,27 @@ def test_time_steps_outside_the_accepted_range_are_refused(dt):
     refused = r"dt = .* s is outside the range of time steps accepted \(1e-09 \.\.\. 1000 s\)"
     with pytest.raises(ValueError, match=refused):
         WallBank((FDMKDamper(**TABLE4),), dt, 10)
+
+
+def test_the_wall_state_is_read_by_name_from_its_groups():
+    # References: the walls' own inputs (temperature at rest, limits) and the state groups themselves.
+    heated = FDMKDamper(**TABLE4, thermal=ThermalProperties(ISD110_LOSS_PEAK, 1.8, 25.0),
+                        limits=WallLimits(strain=2.5, residual=0.2))
+    walls = WallBank((heated, FDMKDamper(**TABLE4)), 0.01, 10)
+    names = [name for fields in kernel.GROUPS.values() for name in fields]
+    assert len(names) == len(set(names))  # WallBank.state finds a field by its name alone
+    np.testing.assert_array_equal(walls.state("temperature"), [25.0, np.nan])
+    np.testing.assert_array_equal(walls.state("limit_strain"), [2.5, np.inf])
+    np.testing.assert_array_equal(walls.state("residual"), [0.2, 0.0])
+    np.testing.assert_array_equal(walls.state("failure_step"), [-1.0, -1.0])
+    np.testing.assert_array_equal(walls.state("tracked"), [1.0, 0.0])
+    walls.commit([0.5, 0.5])
+    for group, fields in kernel.GROUPS.items():
+        for name in fields:
+            np.testing.assert_array_equal(walls.state(name), getattr(getattr(walls.states, group), name))
+    copy = walls.state("heat")
+    assert copy[0] > 0.0
+    copy[0] = -1.0  # a copy: the state is untouched
+    assert walls.states.energy.heat[0] > 0.0
+    with pytest.raises(ValueError, match="no wall state field 'TEMPERATURE'; the fields are tracked, "):
+        walls.state("TEMPERATURE")

@@ -13,15 +13,6 @@ from scipy.integrate import solve_ivp
 
 from vdw_frames import FDMKDamper, SupportedDamper, WallLimits
 from vdw_frames.element.bank import WallBank
-from vdw_frames.element.kernel import (
-    HEAT,
-    HEATING_ONLY,
-    OUTSIDE,
-    PARAMETER_LOSS,
-    SHIFT_ANCHOR,
-    STORED,
-    TEMPERATURE,
-)
 from vdw_frames.element.thermal import (
     ISD110_LOSS_PEAK,
     WLF,
@@ -177,10 +168,10 @@ def test_a_heating_wall_steps_with_the_viscosities_of_its_committed_temperature(
     anchors, last = 0, math.nan
     for d in 15.0 * np.sin(2 * np.pi * 1.5 * np.arange(1, 1201) * dt):
         bank.commit([d])
-        temperature = float(bank.state(TEMPERATURE)[0])
+        temperature = float(bank.state("temperature")[0])
         factor = 10.0 ** (r * law.log10_shift(temperature))
         np.testing.assert_allclose(bank.arrays.constants[0, 2:4], start * factor, rtol=1e-14)
-        anchor = float(bank.state(SHIFT_ANCHOR)[0])
+        anchor = float(bank.state("shift_anchor")[0])
         anchors += anchor != last
         last = anchor
     assert 20.0 < temperature - 21.2 < law.valid[1] - 21.2
@@ -196,7 +187,7 @@ NARROW = [WLF(C1=8.86, C2=101.6, reference=21.2, valid=(18.0, 40.0)),
 @pytest.mark.parametrize("maxwell", [True, False], ids=["Maxwell", "Kelvin only"])
 def test_a_heating_wall_takes_the_same_steps_on_the_update_s_straight_path_as_on_its_general_one(law, cooling_time,
                                                                                                maxwell):
-    # A wall whose temperature is all that is followed goes straight through the update (HEATING_ONLY); the same
+    # A wall whose temperature is all that is followed goes straight through the update (base.heating_only); the same
     # wall with a limit it never reaches goes the general way, with every check.  The steps are the same
     # inlined functions in the same order, so the two walls agree to the last bit (as long as LLVM compiles
     # the two inlined copies alike, which it does).  The wall heats beyond its law's range (clamped there).
@@ -204,13 +195,13 @@ def test_a_heating_wall_takes_the_same_steps_on_the_update_s_straight_path_as_on
     plain = thermal_wall(law=law, r=0.6, heat_capacity=1.0, cooling_time=cooling_time, **parameters)
     limited = dataclasses.replace(plain, limits=WallLimits(strain=1e6))
     bank = WallBank((plain, limited), 0.005, 1500, "damped", "fast")
-    assert list(bank.state(HEATING_ONLY)) == [1.0, 0.0]
+    assert list(bank.state("heating_only")) == [1.0, 0.0]
     for d in 20.0 * np.sin(2 * np.pi * 1.5 * np.arange(1, 1501) * 0.005):
         bank.commit([d, d])
-    for column in (TEMPERATURE, HEAT, STORED, PARAMETER_LOSS, OUTSIDE):
+    for column in ("temperature", "heat", "stored", "parameter_loss", "outside"):
         values = bank.state(column)
         assert values[0] == values[1], column
-    assert bank.state(PARAMETER_LOSS)[0] != 0.0 and bank.state(OUTSIDE)[0] > 0
+    assert bank.state("parameter_loss")[0] != 0.0 and bank.state("outside")[0] > 0
     np.testing.assert_array_equal(bank.arrays.constants[0], bank.arrays.constants[1])
 
 
@@ -226,19 +217,19 @@ def test_a_wall_outside_its_law_s_range_is_noted_at_its_first_step_there_and_ste
     temperatures = []
     for d in 20.0 * np.sin(2 * np.pi * 1.5 * np.arange(1, 1501) * dt):
         bank.commit([d])
-        temperatures.append(float(bank.state(TEMPERATURE)[0]))
+        temperatures.append(float(bank.state("temperature")[0]))
         if temperatures[-1] <= law.valid[1]:
-            assert bank.state(OUTSIDE)[0] == -1.0
+            assert bank.state("outside")[0] == -1.0
     first = int(np.argmax(np.array(temperatures) > law.valid[1]))
     assert first > 0 and temperatures[-1] > law.valid[1] + 5.0
-    assert bank.state(OUTSIDE)[0] == first + 1  # the step (time / dt) of the first committed state outside
+    assert bank.state("outside")[0] == first + 1  # the step (time / dt) of the first committed state outside
     np.testing.assert_allclose(bank.arrays.constants[0, 2:4], start * 10.0 ** (r * law.log10_shift(law.valid[1])),
                                rtol=1e-14)
     # A wall at rest below the range is outside from its first step on, at the range's lower end.
     cold = WallBank((dataclasses.replace(thermal_wall(law=law, r=r, temperature=10.0), limits=limits),), dt, 10,
                     "damped", "fast")
     cold.commit([0.0])
-    assert cold.state(OUTSIDE)[0] == 1.0
+    assert cold.state("outside")[0] == 1.0
     np.testing.assert_allclose(cold.arrays.constants[0, 2:4], start * 10.0 ** (r * law.log10_shift(law.valid[0])),
                                rtol=1e-14)
 

@@ -66,10 +66,8 @@ def test_a_wall_heat_found_from_its_cooling_temperature_is_the_heat_the_kernel_s
     heated = np.isfinite(summed.group_temperature[0])  # every group but the one without a heat capacity
     assert heated.sum() == 5
     row = thermal_row(cooling.thermal, WALL.area * WALL.thickness, dt)  # each heated group: one wall
-    # (row[7]: the update's gain, K per N*mm, in thermal_row's order kind, slope, curvature, T_ref, rho c V, T_0,
-    # decay, gain)
     terms = np.zeros((heated.size, 4))
-    terms[heated] = (0.0, 15.0, np.exp(-dt / 4.0), row[7])
+    terms[heated] = (0.0, 15.0, np.exp(-dt / 4.0), row.gain)  # the update's gain, K per N*mm
     found = _heat_from_temperature(summed.group_temperature, terms)
     np.testing.assert_allclose(found[:, heated], summed.group_heat[:, heated], rtol=1e-12,
                                atol=1e-11 * summed.group_heat.max())

@@ -136,40 +136,44 @@ class WallBank:
         limits = [getattr(wall, "limits", None) for wall in self.walls]
         tables = [wall.amplitude_table() if hasattr(wall, "amplitude_table") else np.zeros((0, 5))
                   for wall in self.walls]
-        table = np.zeros((count, kernel.STATE_FIELDS))
-        table[:, kernel.ENERGY] = [t is not None or lim is not None for t, lim in zip(thermals, limits, strict=True)]
-        table[:, kernel.TRACKED] = [t is not None or lim is not None or nodes.size > 0
-                                    for t, lim, nodes in zip(thermals, limits, tables, strict=True)]
-        table[:, kernel.BASE_G1:kernel.BASE_ETA2 + 1] = constants[:, :4]
-        table[:, kernel.ORDER] = [wall_order(wall) for wall in self.walls]
-        table[:, kernel.AMPLITUDE_NODES] = [nodes.shape[0] for nodes in tables]
+        walls = kernel.wall_records(count)
+        base, thermal_group, energy, limits_group, tracker = (walls[group].view(np.recarray) for group in kernel.GROUPS)
+        base["energy_followed"] = [t is not None or lim is not None for t, lim in zip(thermals, limits, strict=True)]
+        base["tracked"] = [t is not None or lim is not None or nodes.size > 0
+                           for t, lim, nodes in zip(thermals, limits, tables, strict=True)]
+        base["g1"], base["g2"], base["eta1"], base["eta2"] = constants[:, :4].T
+        base["order"] = [wall_order(wall) for wall in self.walls]
+        tracker["amplitude_nodes"] = [nodes.shape[0] for nodes in tables]
         amplitude_table = np.zeros((count, max((nodes.shape[0] for nodes in tables), default=0), 5))
         for w, nodes in enumerate(tables):
             amplitude_table[w, :nodes.shape[0]] = nodes
             if nodes.shape[0]:
-                table[w, kernel.AMPLITUDE_LOW], table[w, kernel.AMPLITUDE_HIGH] = np.exp(nodes[[0, -1], 0])
+                tracker.amplitude_low[w], tracker.amplitude_high[w] = np.exp(nodes[[0, -1], 0])
         for w, (wall_thermal, c) in enumerate(zip(thermals, constants, strict=True)):
-            table[w, kernel.T_KIND:kernel.T_HIGH + 1] = thermal.thermal_row(wall_thermal, c[4] * c[5], self.dt)
-        table[:, kernel.TEMPERATURE] = [t.temperature if t is not None else np.nan for t in thermals]
-        table[:, kernel.SHIFT_RATE] = math.log(10.0) * table[:, kernel.ORDER] * table[:, kernel.T_SLOPE]
-        table[:, kernel.LIMIT_STRAIN:kernel.RESIDUAL + 1] = [np.inf, np.inf, np.inf, 0.0]
+            for name, value in thermal.thermal_row(wall_thermal, c[4] * c[5], self.dt)._asdict().items():
+                thermal_group[name][w] = value
+        thermal_group["temperature"] = [t.temperature if t is not None else np.nan for t in thermals]
+        thermal_group["shift_rate"] = math.log(10.0) * base.order * thermal_group.law_slope
+        for name in ("limit_strain", "limit_stress", "limit_temperature"):
+            limits_group[name] = np.inf
         for w, wall_limits in enumerate(limits):
             if wall_limits is not None:
-                table[w, kernel.LIMIT_STRAIN:kernel.RESIDUAL + 1] = wall_limits.kernel_row()
-        table[:, kernel.LIMITED] = [lim is not None for lim in limits]
+                (limits_group.limit_strain[w], limits_group.limit_stress[w], limits_group.limit_temperature[w],
+                 limits_group.residual[w]) = wall_limits.kernel_row()
+        base["limited"] = [lim is not None for lim in limits]
         # The update's straight path calls the temperature and shift-law steps unchecked: only for a wall with both.
-        heats = (table[:, kernel.T_KIND] != 0.0) & (table[:, kernel.T_CAPACITY] > 0.0)
-        only = (table[:, kernel.LIMITED] == 0.0) & (table[:, kernel.AMPLITUDE_NODES] == 0.0)
-        table[:, kernel.HEATING_ONLY] = heats & only
-        table[:, kernel.FAILURE_STEP] = -1.0
-        table[:, kernel.SCALE] = 1.0
-        table[:, kernel.OUTSIDE] = -1.0
-        table[:, kernel.AMPLITUDE_USED] = np.nan  # nothing interpolated yet
-        table[:, kernel.SHIFT_ANCHOR] = np.nan  # no exp taken yet
-        tracked = np.flatnonzero(table[:, kernel.ENERGY])
+        heats = (thermal_group.law_kind != 0.0) & (thermal_group.capacity > 0.0)
+        only = (base.limited == 0.0) & (tracker.amplitude_nodes == 0.0)
+        base["heating_only"] = heats & only
+        limits_group["failure_step"] = -1.0
+        limits_group["scale"] = 1.0
+        thermal_group["outside"] = -1.0
+        tracker["amplitude_used"] = np.nan  # nothing interpolated yet
+        thermal_group["shift_anchor"] = np.nan  # no exp taken yet
+        tracked = np.flatnonzero(base.energy_followed)
         xi = thermal.diffusive_nodes(self.dt) if tracked.size else np.zeros(0)
         e, gain, work = thermal.node_coefficients(xi, self.dt).T
-        orders = sorted({float(table[w, kernel.ORDER]) for w in tracked.tolist()})  # one node set for each
+        orders = sorted({float(base.order[w]) for w in tracked.tolist()})  # one node set for each
         nodes = np.zeros((len(orders), 4, xi.size))
         tails = []
         for n, order in enumerate(orders):
@@ -177,15 +181,27 @@ class WallBank:
             nodes[n] = e, gain, weights * gain, weights
             tails.append((dashpot / self.dt, spring, float(weights @ work)))  # a dashpot's heat is dashpot dx^2 / dt
         for w in tracked.tolist():
-            n = orders.index(float(table[w, kernel.ORDER]))
-            table[w, kernel.NODE_SET] = n
-            table[w, kernel.TAIL_DASHPOT], table[w, kernel.TAIL_SPRING], table[w, kernel.NODE_WORK_SUM] = tails[n]
-        return kernel.WallStates(table=table, nodes=nodes, node_state=np.zeros((count, 2, xi.size)),
+            n = orders.index(float(base.order[w]))
+            base.node_set[w] = n
+            energy.tail_dashpot[w], energy.tail_spring[w], energy.node_work_sum[w] = tails[n]
+        return kernel.WallStates(walls=walls, nodes=nodes, node_state=np.zeros((count, 2, xi.size)),
                                  amplitude_table=amplitude_table)
 
-    def state(self, column: int) -> np.ndarray:
-        """One column of every wall's state (:data:`vdw_frames.element.kernel.STATE_FIELDS`), a copy."""
-        return self.arrays.states.table[:, column].copy()
+    @property
+    def states(self) -> kernel.WallStates:
+        """Every wall's state beyond its memory, the kernel's own (changed in place by every commit): its state
+        groups ``states.base``, ``.thermal``, ``.energy``, ``.limits``, ``.tracker``, each (W,) records of named
+        fields (:class:`~vdw_frames.element.kernel.WallStates`).  :meth:`state` gives a copy of one field."""
+        return self.arrays.states
+
+    def state(self, field: str) -> np.ndarray:
+        """One named field of every wall's state, a copy (W,): ``bank.state("temperature")``; the names are those of
+        the state groups (:data:`vdw_frames.element.kernel.GROUPS`).  Units: the field's own."""
+        for group, fields in kernel.GROUPS.items():
+            if field in fields:
+                return np.array(self.arrays.states.walls[group][field], dtype=float)
+        names = ", ".join(name for fields in kernel.GROUPS.values() for name in fields)
+        raise ValueError(f"no wall state field {field!r}; the fields are {names}")
 
     def _allocate(self, steps: int, states: kernel.WallStates) -> kernel.BankArrays:
         strategy = memory_strategy(self.memory)
@@ -212,7 +228,7 @@ class WallBank:
         for w, wall in enumerate(self.walls):  # the coefficients at the temperature at rest
             wall_thermal = getattr(wall, "thermal", None)
             if wall_thermal is not None:
-                # held at the law's range, as every step is; the analysis warns of it itself (OUTSIDE)
+                # held at the law's range, as every step is; the analysis warns of it itself (thermal.outside)
                 constants[w, 2:4] *= wall_thermal.viscosity_factor(wall_thermal.temperature, wall_order(wall),
                                                                    warn=False)
         memory = kernel.MemoryArrays(
@@ -221,7 +237,7 @@ class WallBank:
             history=np.zeros((2, count)), values=np.zeros((2, count)))
         return kernel.BankArrays(constants=constants, memory=memory, tangent=np.zeros(count),
                                  history_force=np.zeros(count), states=states,
-                                 followed=bool(states.table[:, kernel.TRACKED].any()))
+                                 followed=bool(states.base.tracked.any()))
 
     def __len__(self) -> int:
         return len(self.walls)

@@ -49,7 +49,7 @@ from .bank import DEFAULT_MEMORY, MEMORY_STRATEGIES, WallBank, kernel_constants,
 from .device import describe_number, magnification_factor
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, Discretisation, get_method
-from .kernel import AMPLITUDE, FAILURE_MODE, FAILURE_MODES, FAILURE_STEP, HEAT, TEMPERATURE
+from .kernel import FAILURE_MODES
 from .limits import WallLimits, check_temperature_limit
 from .prony import PronySeries, fit_prony
 from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, property_factors, shift_factor
@@ -366,30 +366,30 @@ class WallState:
     @property
     def temperature(self) -> float:
         """Temperature of the wall's layers after the last commit (degC); NaN without a thermal description."""
-        return float(self._bank.state(TEMPERATURE)[0])
+        return float(self._bank.states.thermal.temperature[0])
 
     @property
     def heat(self) -> float:
         """Energy the wall has dissipated since rest (N*mm); 0 unless its heat is followed (a thermal
         description or limits)."""
-        return float(self._bank.state(HEAT)[0])
+        return float(self._bank.states.energy.heat[0])
 
     @property
     def amplitude(self) -> float:
         """The strain amplitude an amplitude-following wall follows after the last commit (-); 0 otherwise."""
-        return float(self._bank.state(AMPLITUDE)[0])
+        return float(self._bank.states.tracker.amplitude[0])
 
     @property
     def failure_step(self) -> int | None:
         """The commit (counted from 0, as the samples of :meth:`FDMKDamper.force`) at which the wall failed
         (a limit exceeded), None while intact; its force is the residual share from the next commit on."""
-        step = int(self._bank.state(FAILURE_STEP)[0])
+        step = int(self._bank.states.limits.failure_step[0])
         return None if step < 0 else step - 1
 
     @property
     def failure_mode(self) -> str:
         """How the wall failed ("strain", "stress", "temperature"), "" while intact."""
-        return FAILURE_MODES[int(self._bank.state(FAILURE_MODE)[0])]
+        return FAILURE_MODES[int(self._bank.states.limits.failure_mode[0])]
 
     def trial(self, displacement: float) -> tuple[float, float]:
         """(force in N, tangent in N/mm) at the next step for ``displacement`` (mm); memory untouched."""

@@ -61,64 +61,165 @@ from .._jit import njit
 _FAST = {"reassoc", "contract"}
 
 
-# Columns of WallStates.table: every per-wall scalar of a wall's state, in one row.
-(TRACKED, BASE_G1, BASE_G2, BASE_ETA1, BASE_ETA2, ORDER,
- T_KIND, T_SLOPE, T_CURVATURE, T_REFERENCE, T_CAPACITY, T_AMBIENT, T_DECAY, T_GAIN, T_LOW, T_HIGH,
- TEMPERATURE, HEAT, STORED, RELEASED, PARAMETER_LOSS,
- LIMIT_STRAIN, LIMIT_STRESS, LIMIT_TEMPERATURE, RESIDUAL, FAILURE_STEP, FAILURE_MODE, SCALE, OUTSIDE,
- PREVIOUS_STRAIN, PREVIOUS_DASHPOT_STRAIN, TAIL_DASHPOT, TAIL_SPRING,
- AMPLITUDE_NODES, TURN, EXTREME, DIRECTION, LAST_AMPLITUDE, AMPLITUDE, BELOW_RANGE, ABOVE_RANGE,
- NODE_WORK_SUM, FOLLOWED_AT_TURN, CONFIRMED_AT, ENERGY, AMPLITUDE_LOW, AMPLITUDE_HIGH,
- AMPLITUDE_USED, AT_G1, AT_G2, AT_ETA1, AT_ETA2, SHIFT_ANCHOR, SHIFT_FACTOR, NODE_SQUARE_1, NODE_SQUARE_2,
- FAILURE_FORCE, FAILURE_DEFORMATION, RELEASED_WORK, SPRINGPOT_HEAT_1, SPRINGPOT_HEAT_2, SPRINGPOT_STORED_1,
- SPRINGPOT_STORED_2, NODE_SET, SHIFT_RATE, LIMITED, HEATING_ONLY, HALF_STEPS, EXTENDED_AT) = range(69)
-STATE_FIELDS = 69
-"""TRACKED: 1 when the wall's state is followed (a thermal description, limits or amplitude following);
-ENERGY: 1 when its heat and stored energy are (a thermal description or limits: the diffusive nodes);
-BASE_*: G1, G2 (MPa), eta1, eta2 (MPa s^r) at the reference temperature (fixed walls); ORDER: r;
-T_*: the thermal row (thermal.thermal_row: law kind (0: none), its slope (1/K) and curvature (1/K),
-log10 a_T = -slope (T - T_ref) / (1 + curvature (T - T_ref)), and reference T_ref (degC), rho c V
-(N*mm/K), ambient (degC), exp(-dt / tau), (tau / dt)(1 - exp(-dt / tau)) / (rho c V) (K per N*mm),
-validity range (degC)); SHIFT_RATE (1/K): ln(10) r slope, -d(ln a_T^r)/dT at T_ref;
-TEMPERATURE (degC), HEAT (N*mm dissipated since rest), STORED (N*mm), RELEASED (N*mm lost at failure),
-PARAMETER_LOSS (N*mm the wall's stored energy lost, at no work, as its parameters changed with
-temperature or amplitude: positive as it softens); LIMIT_* (strain -, stress
-MPa, temperature degC; inf: none), RESIDUAL (force factor after failure), FAILURE_STEP (-1 intact),
-FAILURE_MODE (FAILURE_MODES index), SCALE (force factor now), OUTSIDE (first step outside the shift law's
-range, -1); PREVIOUS_*: the springpots' inputs eps, eps_v at the last commit; TAIL_*: the diffusive tails
-(dashpot s^(1-r) over dt, spring s^-r); amplitude tracking (amplitude-dependent walls): AMPLITUDE_NODES (K, 0 for
-fixed parameters), TURN and EXTREME (strain at the last reversal, extreme of the current half-cycle),
-DIRECTION (+1, -1, 0 at rest), LAST_AMPLITUDE (of the last completed half-cycle), AMPLITUDE (the one the
-parameters follow), BELOW_RANGE and ABOVE_RANGE (steps spent outside the table's range); NODE_WORK_SUM:
-sum_k c_k D_k of the diffusive nodes (WallStates.nodes), NODE_SQUARE_1 and NODE_SQUARE_2: sum_k c_k phi_k^2
-of the Kelvin and the Maxwell springpot at the last commit; FOLLOWED_AT_TURN and CONFIRMED_AT: the amplitude
-followed, and the step, when the last reversal was confirmed; HALF_STEPS: the steps between the last two
-confirmed reversals (0: none yet); EXTENDED_AT: the step the current half-cycle's extreme was last reached;
-AMPLITUDE_LOW and AMPLITUDE_HIGH: the amplitude table's range (-); AMPLITUDE_USED and AT_*: the amplitude
-the coefficients were last interpolated at and G1, G2, eta1, eta2 there (reused while the amplitude stays);
-SHIFT_ANCHOR and SHIFT_FACTOR: an exponent ln a_T^r and its exp (NaN: none yet), from which nearby factors are found;
-FAILURE_FORCE (N) and FAILURE_DEFORMATION (mm): the wall's force and deformation at its failing commit;
-RELEASED_WORK (N*mm): the work done on its failing share over the next step, as its force fell to the
-residual (booked at that step: :func:`update_walls`); SPRINGPOT_HEAT_1 and SPRINGPOT_HEAT_2, SPRINGPOT_STORED_1
-and SPRINGPOT_STORED_2: the Kelvin and the Maxwell springpot's heat over the last committed step and their
-stored energy after it, per unit volume and unit viscosity (MPa; :func:`_springpots`); NODE_SET: the wall's
-set of diffusive nodes (WallStates.nodes: one set for every order r of the bank's followed walls); LIMITED:
-1 when the wall has limits; HEATING_ONLY: 1 when its temperature is all that is followed (a thermal
-description, no limits, fixed parameters otherwise): the update takes it straight through."""
+def _group(fields: dict[str, str]) -> np.dtype:
+    """The record of a state group: one float64 a field, in the order of ``fields`` (name: what it is)."""
+    return np.dtype([(name, np.float64) for name in fields], align=True)
+
+
+# The state groups of a wall, by concept (what the wall is, its temperature, its energies, its limits, its amplitude):
+# each a record of named floats, the five together one record a wall (WALL).  Compiled code reads a field of wall w as
+# walls[w].thermal.temperature, a load at a fixed offset as a column of one table was; Python reads
+# WallStates.thermal.temperature, (W,).  One record array, not a NamedTuple of (W,) arrays: a compiled call from
+# Python unboxes every array it is given (about 0.2 us each; WallBank.commit calls once a step), and the update
+# reading five separate arrays measured up to ~10 % slower than one.
+BASE_FIELDS = {
+    "tracked": "1 when the wall's state is followed (a thermal description, limits or amplitude following)",
+    "energy_followed": "1 when its heat and stored energy are (a thermal description or limits: the diffusive nodes)",
+    "limited": "1 when the wall has limits",
+    "heating_only": "1 when its temperature is all that is followed (a thermal description, no limits, fixed "
+                    "parameters otherwise): the update takes it straight through",
+    "g1": "G1 (MPa) at the reference temperature (a wall of fixed parameters)",
+    "g2": "G2 (MPa) at the reference temperature",
+    "eta1": "eta1 (MPa s^r) at the reference temperature",
+    "eta2": "eta2 (MPa s^r) at the reference temperature",
+    "order": "r (-)",
+    "node_set": "the wall's set of diffusive nodes (WallStates.nodes: one set for every order r of the bank's "
+                "followed walls)",
+}
+THERMAL_FIELDS = {
+    "law_kind": "the shift law's kind (0: none; thermal.thermal_row)",
+    "law_slope": "its slope (1/K): log10 a_T = -slope (T - T_ref) / (1 + curvature (T - T_ref))",
+    "law_curvature": "its curvature (1/K)",
+    "law_reference": "its reference temperature T_ref (degC)",
+    "capacity": "rho c V (N*mm/K)",
+    "ambient": "the ambient temperature (degC)",
+    "decay": "exp(-dt / tau) (-)",
+    "gain": "(tau / dt)(1 - exp(-dt / tau)) / (rho c V) (K per N*mm)",
+    "valid_low": "the low end of the shift law's validity range (degC)",
+    "valid_high": "its high end (degC)",
+    "shift_rate": "ln(10) r slope (1/K): -d(ln a_T^r)/dT at T_ref",
+    "temperature": "the wall's temperature (degC; NaN without a thermal description)",
+    "outside": "the first step outside the shift law's range (-1: none)",
+    "shift_anchor": "an exponent ln a_T^r from which nearby factors are found (NaN: none yet)",
+    "shift_factor": "its exp",
+}
+ENERGY_FIELDS = {
+    "heat": "N*mm dissipated since rest",
+    "stored": "N*mm stored",
+    "released": "N*mm lost at failure",
+    "released_work": "N*mm: the work done on a failed wall's failing share over the step after its failing commit, "
+                     "as its force fell to the residual (booked at that step: update_walls)",
+    "parameter_loss": "N*mm of the wall's stored energy lost, at no work, as its parameters changed with temperature "
+                      "or amplitude: positive as it softens",
+    "springpot_heat_1": "the Kelvin springpot's heat over the last committed step, per unit volume and unit "
+                        "viscosity (MPa; _springpots)",
+    "springpot_heat_2": "the Maxwell springpot's",
+    "springpot_stored_1": "the Kelvin springpot's stored energy after it, per unit volume and unit viscosity (MPa)",
+    "springpot_stored_2": "the Maxwell springpot's",
+    "previous_strain": "the Kelvin springpot's input eps at the last commit",
+    "previous_dashpot_strain": "the Maxwell springpot's input eps_v at the last commit",
+    "tail_dashpot": "the diffusive representation's dashpot tail (s^(1-r)) over dt",
+    "tail_spring": "its spring tail (s^-r)",
+    "node_work_sum": "sum_k c_k D_k of the diffusive nodes (WallStates.nodes)",
+    "node_square_1": "sum_k c_k phi_k^2 of the Kelvin springpot at the last commit",
+    "node_square_2": "the same of the Maxwell springpot",
+}
+LIMITS_FIELDS = {
+    "limit_strain": "the strain limit (-; inf: none)",
+    "limit_stress": "the stress limit (MPa; inf: none)",
+    "limit_temperature": "the temperature limit (degC; inf: none)",
+    "residual": "the force factor after failure",
+    "failure_step": "the step from which the wall has failed (-1: intact)",
+    "failure_mode": "FAILURE_MODES index",
+    "failure_force": "the wall's force (N) at its failing commit",
+    "failure_deformation": "its deformation (mm) at its failing commit",
+    "scale": "the force factor now (1 unless the wall has failed)",
+}
+TRACKER_FIELDS = {
+    "amplitude_nodes": "K, the amplitude table's nodes (0 for fixed parameters)",
+    "turn": "the strain at the last reversal",
+    "extreme": "the extreme of the current half-cycle",
+    "direction": "+1, -1, 0 at rest",
+    "last_amplitude": "the amplitude of the last completed half-cycle",
+    "amplitude": "the one the parameters follow",
+    "below_range": "steps spent below the table's range",
+    "above_range": "steps spent above it",
+    "followed_at_turn": "the amplitude followed when the last reversal was confirmed",
+    "confirmed_at": "the step at which it was confirmed",
+    "half_steps": "the steps between the last two confirmed reversals (0: none yet)",
+    "extended_at": "the step the current half-cycle's extreme was last reached",
+    "amplitude_low": "the amplitude table's range (-): its low end",
+    "amplitude_high": "its high end",
+    "amplitude_used": "the amplitude the coefficients were last interpolated at (reused while the amplitude stays)",
+    "at_g1": "G1 there (MPa)",
+    "at_g2": "G2 there (MPa)",
+    "at_eta1": "eta1 there (MPa s^r)",
+    "at_eta2": "eta2 there (MPa s^r)",
+}
+BASE = _group(BASE_FIELDS)
+"""What a wall is: its followed aspects and its base parameters (:data:`BASE_FIELDS`)."""
+THERMAL = _group(THERMAL_FIELDS)
+"""A wall's temperature and its shift law (:data:`THERMAL_FIELDS`, :func:`vdw_frames.element.thermal.thermal_row`)."""
+ENERGY = _group(ENERGY_FIELDS)
+"""A wall's heat and stored energy, and the diffusive representation's sums they come from (:data:`ENERGY_FIELDS`)."""
+LIMITS = _group(LIMITS_FIELDS)
+"""A wall's limits and its failure (:data:`LIMITS_FIELDS`)."""
+TRACKER = _group(TRACKER_FIELDS)
+"""The amplitude tracker of an amplitude-following wall (:data:`TRACKER_FIELDS`, :func:`track_amplitude`)."""
 FAILURE_MODES = ("", "strain", "stress", "temperature")
-"""Names of the FAILURE_MODE column."""
+"""Names of the failure_mode field (LIMITS)."""
+
+
+WALL = np.dtype([("base", BASE), ("thermal", THERMAL), ("energy", ENERGY), ("limits", LIMITS), ("tracker", TRACKER)],
+                align=True)
+"""A wall's state beyond its memory: its five state groups, each a record of named fields."""
+GROUPS = {"base": BASE_FIELDS, "thermal": THERMAL_FIELDS, "energy": ENERGY_FIELDS, "limits": LIMITS_FIELDS,
+          "tracker": TRACKER_FIELDS}
+"""The fields of every state group, by group: name -> what it is."""
+
+
+def wall_records(walls: int) -> np.ndarray:
+    """The states of ``walls`` walls, every field 0: a (W,) array of :data:`WALL` records.  A plain ndarray, not a
+    np.recarray: numba types a subclass the slow way, about a microsecond more a call from Python."""
+    return np.zeros(walls, WALL)
 
 
 class WallStates(NamedTuple):
     """Every wall's state beyond its memory (W walls, N diffusive nodes, K amplitude nodes), changed only by
-    :func:`update_walls`."""
+    :func:`update_walls`.  ``walls[w].thermal.temperature`` in compiled code; ``states.thermal.temperature``
+    (W,) in Python (the properties below: views of ``walls``, not copies)."""
 
-    table: np.ndarray  # (W, STATE_FIELDS): the columns above
+    walls: np.ndarray  # (W,) of WALL: the state groups of every wall
     # (S, 4, N): e, g, c_k g, c_k of every node (thermal.node_coefficients, diffusive_weights), one set for each
-    # order r (table NODE_SET): walls of one order share theirs, which keeps the update's data small
+    # order r (base.node_set): walls of one order share theirs, which keeps the update's data small
     nodes: np.ndarray
     node_state: np.ndarray  # (W, 2, N): phi of the Kelvin (eps) and Maxwell (eps_v) springpots
     amplitude_table: np.ndarray  # (W, K, 5): log strain, G1, G2, eta1, eta2 at the amplitude nodes
+
+    @property
+    def base(self) -> np.recarray:
+        """What each wall is (:data:`BASE_FIELDS`), (W,)."""
+        return self.walls["base"].view(np.recarray)
+
+    @property
+    def thermal(self) -> np.recarray:
+        """Each wall's temperature and shift law (:data:`THERMAL_FIELDS`), (W,)."""
+        return self.walls["thermal"].view(np.recarray)
+
+    @property
+    def energy(self) -> np.recarray:
+        """Each wall's heat and stored energy (:data:`ENERGY_FIELDS`), (W,)."""
+        return self.walls["energy"].view(np.recarray)
+
+    @property
+    def limits(self) -> np.recarray:
+        """Each wall's limits and failure (:data:`LIMITS_FIELDS`), (W,)."""
+        return self.walls["limits"].view(np.recarray)
+
+    @property
+    def tracker(self) -> np.recarray:
+        """Each wall's amplitude tracker (:data:`TRACKER_FIELDS`), (W,)."""
+        return self.walls["tracker"].view(np.recarray)
 
 
 class MemoryArrays(NamedTuple):
@@ -142,7 +243,7 @@ class BankArrays(NamedTuple):
     tangent: np.ndarray  # (W,): K_t of the coming step, N/mm
     history_force: np.ndarray  # (W,): H_n of the coming step, N
     states: WallStates
-    followed: bool  # some wall's state is followed (WallStates.tracked): only then is there any to update
+    followed: bool  # some wall's state is followed (walls.base.tracked): only then is there any to update
 
 
 @njit(cache=True, fastmath=_FAST, allocates=False)
@@ -222,7 +323,7 @@ def wall_affine(bank, w):
     area, thickness, flexibility = c[4], c[5], c[6]
     stress, _, modulus = fdmk_stress(0.0, bank.memory.history[0, w], bank.memory.history[1, w], c[0], c[1], c[2], c[3],
                                      bank.memory.w0[w])
-    factor = bank.states.table[w, SCALE]  # 1 unless the wall has failed
+    factor = bank.states.walls[w].limits.scale  # 1 unless the wall has failed
     stress *= factor
     wall_tangent = factor * modulus * area / thickness
     scale = 1.0 / (1.0 + flexibility * wall_tangent)
@@ -238,7 +339,7 @@ def wall_response(bank, w, deformation):
     c = bank.constants[w]
     G1, G2, eta1, eta2, area, thickness, flexibility = c[0], c[1], c[2], c[3], c[4], c[5], c[6]
     strain_history, maxwell_history, w0 = bank.memory.history[0, w], bank.memory.history[1, w], bank.memory.w0[w]
-    factor = bank.states.table[w, SCALE]  # 1 unless the wall has failed
+    factor = bank.states.walls[w].limits.scale  # 1 unless the wall has failed
     wall_deformation = deformation
     if flexibility > 0.0:
         history_stress, _, modulus = fdmk_stress(0.0, strain_history, maxwell_history, G1, G2, eta1, eta2, w0)
@@ -250,26 +351,25 @@ def wall_response(bank, w, deformation):
 
 
 @njit(cache=True, inline="always")
-def _springpots(nodes, node_state, table, w, strain, strain_v):
+def _springpots(nodes, node_state, energy, n, w, strain, strain_v):
     """(heat of the Kelvin springpot, of the Maxwell one, their stored energies), each per unit volume and
     unit viscosity (times eta: MPa = N*mm/mm^3), over the step that took their inputs to ``strain`` (eps)
-    and ``strain_v`` (eps_v), from the diffusive nodes of wall ``w`` (nodes (S, 4, N): its set
-    table[w, NODE_SET]; node_state (W, 2, N), table (W, STATE_FIELDS)), each node exactly for an input
+    and ``strain_v`` (eps_v), from the diffusive nodes of wall ``w`` (nodes (S, 4, N): its set ``n``,
+    base.node_set; node_state (W, 2, N); ``energy``: the wall's ENERGY record), each node exactly for an input
     linear over the step (thermal.node_coefficients), the tails in closed form.  Advances the nodes.
 
     A node's heat over the step is its work less the change of its stored energy,
     c (g phi dx + D dx^2) - c (phi'^2 - phi^2) / 2 (thermal module docstring): two sums a node, the stored
-    energy before the step kept from the last (NODE_SQUARE_*).  It is a positive semi-definite form of
+    energy before the step kept from the last (node_square_*).  It is a positive semi-definite form of
     (phi, dx); the sums are clipped at 0 against rounding: an adiabatic wall never cools."""
-    dx = strain - table[w, PREVIOUS_STRAIN]
-    dv = strain_v - table[w, PREVIOUS_DASHPOT_STRAIN]
+    dx = strain - energy.previous_strain
+    dv = strain_v - energy.previous_dashpot_strain
     work_1 = 0.0
     work_2 = 0.0
     square_1 = 0.0
     square_2 = 0.0
     # Separate passes (reads, then updates, then reads): measured faster than one fused pass.
     count = nodes.shape[2]
-    n = int(table[w, NODE_SET])
     for k in range(count):
         work_1 += nodes[n, 2, k] * node_state[w, 0, k]
         work_2 += nodes[n, 2, k] * node_state[w, 1, k]
@@ -280,83 +380,87 @@ def _springpots(nodes, node_state, table, w, strain, strain_v):
     for k in range(count):
         square_1 += nodes[n, 3, k] * node_state[w, 0, k] * node_state[w, 0, k]
         square_2 += nodes[n, 3, k] * node_state[w, 1, k] * node_state[w, 1, k]
-    heat_1 = dx * (work_1 + dx * table[w, NODE_WORK_SUM]) - 0.5 * (square_1 - table[w, NODE_SQUARE_1])
-    heat_2 = dv * (work_2 + dv * table[w, NODE_WORK_SUM]) - 0.5 * (square_2 - table[w, NODE_SQUARE_2])
-    dashpot, spring = table[w, TAIL_DASHPOT], table[w, TAIL_SPRING]
-    table[w, PREVIOUS_STRAIN] = strain
-    table[w, PREVIOUS_DASHPOT_STRAIN] = strain_v
-    table[w, NODE_SQUARE_1] = square_1
-    table[w, NODE_SQUARE_2] = square_2
+    heat_1 = dx * (work_1 + dx * energy.node_work_sum) - 0.5 * (square_1 - energy.node_square_1)
+    heat_2 = dv * (work_2 + dv * energy.node_work_sum) - 0.5 * (square_2 - energy.node_square_2)
+    dashpot, spring = energy.tail_dashpot, energy.tail_spring
+    energy.previous_strain = strain
+    energy.previous_dashpot_strain = strain_v
+    energy.node_square_1 = square_1
+    energy.node_square_2 = square_2
     return (max(heat_1, 0.0) + dashpot * dx * dx, max(heat_2, 0.0) + dashpot * dv * dv,
             0.5 * (square_1 + spring * strain * strain), 0.5 * (square_2 + spring * strain_v * strain_v))
 
 
 @njit(cache=True, inline="always")
-def _shift_factor(table, w, count):
-    """a_T^r (-) of wall ``w`` at its committed temperature, clamped to its shift law's range (the first step
-    outside it is noted, OUTSIDE), found from the last exp taken where the exponent has moved little.
+def _shift_factor(thermal, count):
+    """a_T^r (-) of a wall (``thermal``: its THERMAL record) at its committed temperature, clamped to its shift law's
+    range (the first step outside it is noted, ``outside``), found from the last exp taken where the exponent has
+    moved little.
 
     The exponent ln a_T^r = -(ln 10 r slope) d / (1 + curvature d), d = T - T_ref, is every law of
     :mod:`~vdw_frames.element.thermal` (thermal.log10_shift); a log-linear law has no curvature and so no
     division.  Near the anchor, exp(anchor + x) = exp(anchor) exp(x) with the series of exp(x) to x^4 (|x| <=
     1e-3: x^5 / 120 < 1e-17, within an ulp; Estrin's grouping, a shorter chain than Horner's)."""
-    temperature = table[w, TEMPERATURE]
-    clamped = min(max(temperature, table[w, T_LOW]), table[w, T_HIGH])
-    if clamped != temperature and table[w, OUTSIDE] < 0.0:
-        table[w, OUTSIDE] = count + 1
-    difference = clamped - table[w, T_REFERENCE]
-    exponent = -table[w, SHIFT_RATE] * difference
-    curvature = table[w, T_CURVATURE]
+    temperature = thermal.temperature
+    clamped = min(max(temperature, thermal.valid_low), thermal.valid_high)
+    if clamped != temperature and thermal.outside < 0.0:
+        thermal.outside = count + 1
+    difference = clamped - thermal.law_reference
+    exponent = -thermal.shift_rate * difference
+    curvature = thermal.law_curvature
     if curvature != 0.0:
         exponent /= 1.0 + curvature * difference
-    x = exponent - table[w, SHIFT_ANCHOR]
+    x = exponent - thermal.shift_anchor
     if abs(x) <= 1e-3:
         x2 = x * x
-        return table[w, SHIFT_FACTOR] * ((1.0 + x) + x2 * ((0.5 + x * (1.0 / 6.0)) + x2 * (1.0 / 24.0)))
+        return thermal.shift_factor * ((1.0 + x) + x2 * ((0.5 + x * (1.0 / 6.0)) + x2 * (1.0 / 24.0)))
     factor = math.exp(exponent)  # (the first call too: the anchor starts as NaN)
-    table[w, SHIFT_ANCHOR] = exponent
-    table[w, SHIFT_FACTOR] = factor
+    thermal.shift_anchor = exponent
+    thermal.shift_factor = factor
     return factor
 
 
 @njit(cache=True, fastmath=_FAST, allocates=False)
-def _interpolate_amplitude(table, amplitude_table, w):
-    """G1, G2, eta1, eta2 of amplitude-following wall ``w`` at its amplitude into AT_* (``amplitude_table``
-    (W, K, 5): linear in log strain between the nodes, the end node's outside them).  Not inlined: it runs
-    only when the followed amplitude has moved, and the update's loop stays short without it (compiled with the
-    update's own floating-point flags, as it was when inlined)."""
-    count = int(table[w, AMPLITUDE_NODES])
-    amplitude = table[w, AMPLITUDE]
+def _interpolate_amplitude(tracker, amplitude_table, w):
+    """G1, G2, eta1, eta2 of amplitude-following wall ``w`` at its amplitude into at_* of ``tracker`` (its TRACKER
+    record; ``amplitude_table`` (W, K, 5): linear in log strain between the nodes, the end node's outside them).  Not
+    inlined: it runs only when the followed amplitude has moved, and the update's loop stays short without it
+    (compiled with the update's own floating-point flags, as it was when inlined)."""
+    count = int(tracker.amplitude_nodes)
+    amplitude = tracker.amplitude
     x = math.log(max(amplitude, 1e-300))
     k = 0
     while k < count - 2 and x > amplitude_table[w, k + 1, 0]:
         k += 1
     low, high = amplitude_table[w, k, 0], amplitude_table[w, k + 1, 0]
     t = min(max((x - low) / (high - low), 0.0), 1.0)
-    for column, field in ((1, AT_G1), (2, AT_G2), (3, AT_ETA1), (4, AT_ETA2)):
-        table[w, field] = (amplitude_table[w, k, column]
-                           + t * (amplitude_table[w, k + 1, column] - amplitude_table[w, k, column]))
-    table[w, AMPLITUDE_USED] = amplitude
+    tracker.at_g1 = amplitude_table[w, k, 1] + t * (amplitude_table[w, k + 1, 1] - amplitude_table[w, k, 1])
+    tracker.at_g2 = amplitude_table[w, k, 2] + t * (amplitude_table[w, k + 1, 2] - amplitude_table[w, k, 2])
+    tracker.at_eta1 = amplitude_table[w, k, 3] + t * (amplitude_table[w, k + 1, 3] - amplitude_table[w, k, 3])
+    tracker.at_eta2 = amplitude_table[w, k, 4] + t * (amplitude_table[w, k + 1, 4] - amplitude_table[w, k, 4])
+    tracker.amplitude_used = amplitude
 
 
 @njit(cache=True, inline="always")
-def set_coefficients(table, amplitude_table, constants, w, count):
+def set_coefficients(states, constants, w, count):
     """Wall ``w``'s G1, G2, eta1, eta2 (``constants`` (W, 7)) for the step after commit ``count``, at its
-    committed amplitude and temperature: the parameters at the amplitude (``amplitude_table`` (W, K, 5); the
-    base parameters of ``table`` for a wall of fixed parameters), eta times a_T^r at the temperature
+    committed amplitude and temperature: the parameters at the amplitude (``states.amplitude_table`` (W, K, 5);
+    the base parameters, its BASE record, for a wall of fixed parameters), eta times a_T^r at the temperature
     (:func:`_shift_factor`).  G1 and G2 are written only for a wall that follows its amplitude (nothing else
     changes them).  Returns whether the coefficients follow anything (False: the base parameters, as before)."""
-    eta1, eta2 = table[w, BASE_ETA1], table[w, BASE_ETA2]
+    wall = states.walls[w]
+    tracker = wall.tracker
+    eta1, eta2 = wall.base.eta1, wall.base.eta2
     follows = False
-    if table[w, AMPLITUDE_NODES] > 0.0:
-        if table[w, AMPLITUDE] != table[w, AMPLITUDE_USED]:  # (held within much of a half-cycle: reuse the last)
-            _interpolate_amplitude(table, amplitude_table, w)
-        constants[w, 0] = table[w, AT_G1]
-        constants[w, 1] = table[w, AT_G2]
-        eta1, eta2 = table[w, AT_ETA1], table[w, AT_ETA2]
+    if tracker.amplitude_nodes > 0.0:
+        if tracker.amplitude != tracker.amplitude_used:  # (held within much of a half-cycle: reuse the last)
+            _interpolate_amplitude(tracker, states.amplitude_table, w)
+        constants[w, 0] = tracker.at_g1
+        constants[w, 1] = tracker.at_g2
+        eta1, eta2 = tracker.at_eta1, tracker.at_eta2
         follows = True
-    if table[w, T_KIND] != 0.0:
-        factor = _shift_factor(table, w, count)
+    if wall.thermal.law_kind != 0.0:
+        factor = _shift_factor(wall.thermal, count)
         eta1 *= factor
         eta2 *= factor
         follows = True
@@ -371,9 +475,9 @@ decay release in :func:`track_amplitude`): smaller wiggles of the strain are nev
 
 
 @njit(cache=True, inline="always")
-def track_amplitude(table, w, strain, count):
-    """Follow wall ``w``'s strain amplitude after commit ``count`` (``strain`` -): the ENVELOPE of the total
-    strain, not its ripples.
+def track_amplitude(tracker, strain, count):
+    """Follow a wall's strain amplitude after commit ``count`` (``strain`` -; ``tracker``: the wall's TRACKER
+    record): the ENVELOPE of the total strain, not its ripples.
 
     Half-cycles run between reversals, a = |extreme - turn| / 2 (an offset of the strain, a residual drift,
     is not amplitude); the first excursion from rest is a quarter cycle, a = |extreme|.  A reversal is
@@ -382,7 +486,7 @@ def track_amplitude(table, w, strain, count):
     one (a higher mode's ripple, smaller than the slow motion's amplitude) do not end half-cycles, so the
     amplitude followed is that of the total strain's envelope, half its peak-to-peak over the slow cycle.
     Decay release: once the extreme has stood longer than a whole cycle, twice the last half-cycle
-    (``held`` steps against 2 HALF_STEPS), the return needed shrinks as 2 HALF_STEPS / held, to
+    (``held`` steps against 2 half_steps), the return needed shrinks as 2 half_steps / held, to
     REVERSAL_GATE a at the least, so a motion that loses more than half its amplitude within a half-cycle
     (or settles about an offset) is still followed down, two to five cycles late.  Where it holds: two
     harmonics a1 sin(w1 t) + a2 sin(w2 t + phi), a2 < a1, are followed by their envelope for every phase
@@ -393,7 +497,7 @@ def track_amplitude(table, w, strain, count):
     The wall follows the larger of the current half-cycle's amplitude so far and that of the last completed
     one, reached continuously: from the confirmed reversal on, the followed amplitude moves from where it
     was to the completed half-cycle's linearly in time, over as many steps as that half-cycle's confirmation
-    took after the one before (HALF_STEPS).  So a steady sine of amplitude A gives A at every step after
+    took after the one before (half_steps).  So a steady sine of amplitude A gives A at every step after
     its first quarter cycle (the parameters are those of the test at A), a growing motion is followed at
     once, a decaying one about a cycle late, and the parameters never jump (a jump would make the force
     jump: a spurious oscillation).
@@ -402,91 +506,93 @@ def track_amplitude(table, w, strain, count):
     breaks down with strain) is governed by the total strain amplitude of the cycle, not by the components
     of a spectral decomposition of the strain; the paper's sets were measured under single sines, where
     the two coincide."""
-    direction, turn, extreme = table[w, DIRECTION], table[w, TURN], table[w, EXTREME]
+    direction, turn, extreme = tracker.direction, tracker.turn, tracker.extreme
     if direction == 0.0:
         if strain != turn:
             direction = 1.0 if strain > turn else -1.0
             extreme = strain
-            table[w, EXTENDED_AT] = count
+            tracker.extended_at = count
     elif direction * (strain - extreme) > 0.0:
         extreme = strain
-        table[w, EXTENDED_AT] = count
+        tracker.extended_at = count
     else:
         span = 0.5 * abs(extreme - turn)  # the half-cycle's amplitude so far: the return that confirms it
         gate = span
         # The extreme has stood longer than a whole cycle (twice the last half-cycle): a decay.  One
         # half-cycle was too short a wait: a ripple's reversal at start-up shortened it, and the release
         # then ended half-cycles at every ripple (tests/element/test_amplitude.py, the phase sweep).
-        held, cycle = count - table[w, EXTENDED_AT], 2.0 * table[w, HALF_STEPS]
+        held, cycle = count - tracker.extended_at, 2.0 * tracker.half_steps
         if held > cycle > 0.0:
             gate *= max(cycle / held, REVERSAL_GATE)
         if direction * (extreme - strain) > gate:
-            first = table[w, LAST_AMPLITUDE] == 0.0  # the excursion from rest: a quarter cycle
-            table[w, LAST_AMPLITUDE] = 2.0 * span if first else span
-            table[w, FOLLOWED_AT_TURN] = table[w, AMPLITUDE]
-            table[w, HALF_STEPS] = count - table[w, CONFIRMED_AT]  # >= 1: the turn was set at an earlier step
-            table[w, CONFIRMED_AT] = count
-            table[w, EXTENDED_AT] = count
+            first = tracker.last_amplitude == 0.0  # the excursion from rest: a quarter cycle
+            tracker.last_amplitude = 2.0 * span if first else span
+            tracker.followed_at_turn = tracker.amplitude
+            tracker.half_steps = count - tracker.confirmed_at  # >= 1: the turn was set at an earlier step
+            tracker.confirmed_at = count
+            tracker.extended_at = count
             turn, extreme, direction = extreme, strain, -direction
-    table[w, DIRECTION], table[w, TURN], table[w, EXTREME] = direction, turn, extreme
-    completed, before = table[w, LAST_AMPLITUDE], table[w, FOLLOWED_AT_TURN]
+    tracker.direction, tracker.turn, tracker.extreme = direction, turn, extreme
+    completed, before = tracker.last_amplitude, tracker.followed_at_turn
     if completed == 0.0:  # no reversal yet: a quarter cycle from rest
-        table[w, AMPLITUDE] = abs(extreme)
+        tracker.amplitude = abs(extreme)
         return
-    progress = min((count - table[w, CONFIRMED_AT]) / table[w, HALF_STEPS], 1.0)
-    table[w, AMPLITUDE] = max(0.5 * abs(extreme - turn), before + (completed - before) * progress)
+    progress = min((count - tracker.confirmed_at) / tracker.half_steps, 1.0)
+    tracker.amplitude = max(0.5 * abs(extreme - turn), before + (completed - before) * progress)
 
 
 @njit(cache=True, inline="always")
-def _follow_amplitude(table, w, strain, count):
-    """The amplitude of an amplitude-following wall ``w`` after commit ``count``, and its steps outside its
-    range."""
-    if table[w, AMPLITUDE_NODES] > 0.0:
-        track_amplitude(table, w, strain, count)
-        if table[w, AMPLITUDE] < table[w, AMPLITUDE_LOW]:
-            table[w, BELOW_RANGE] += 1.0
-        elif table[w, AMPLITUDE] > table[w, AMPLITUDE_HIGH]:
-            table[w, ABOVE_RANGE] += 1.0
+def _follow_amplitude(tracker, strain, count):
+    """The amplitude of an amplitude-following wall (``tracker``: its TRACKER record) after commit ``count``, and its
+    steps outside its range."""
+    if tracker.amplitude_nodes > 0.0:
+        track_amplitude(tracker, strain, count)
+        if tracker.amplitude < tracker.amplitude_low:
+            tracker.below_range += 1.0
+        elif tracker.amplitude > tracker.amplitude_high:
+            tracker.above_range += 1.0
 
 
 @njit(cache=True, inline="always")
-def _energies(table, w, G1, G2, eta2, strain, maxwell):
-    """(springs, heat_1, heat_2, stored_1, stored_2) of wall ``w`` (``table`` (W, STATE_FIELDS)) after a commit: the
+def _energies(energy, G1, G2, eta2, strain, maxwell):
+    """(springs, heat_1, heat_2, stored_1, stored_2) of a wall (``energy``: its ENERGY record) after a commit: the
     energy in its springs (G1 at ``strain``, G2 at the Maxwell stress ``maxwell`` MPa) per unit volume (MPa), and
     its springpots' heat over the step and stored energy after it per unit volume and unit viscosity
-    (SPRINGPOT_*).  A Maxwell branch without G2 or eta2 carries no stress: its terms are 0."""
+    (springpot_*).  A Maxwell branch without G2 or eta2 carries no stress: its terms are 0."""
     springs = 0.5 * G1 * strain * strain
     heat_2 = stored_2 = 0.0
     if G2 > 0.0 and eta2 > 0.0:
         springs += 0.5 * maxwell * maxwell / G2
-        heat_2, stored_2 = table[w, SPRINGPOT_HEAT_2], table[w, SPRINGPOT_STORED_2]
-    return springs, table[w, SPRINGPOT_HEAT_1], heat_2, table[w, SPRINGPOT_STORED_1], stored_2
+        heat_2, stored_2 = energy.springpot_heat_2, energy.springpot_stored_2
+    return springs, energy.springpot_heat_1, heat_2, energy.springpot_stored_1, stored_2
 
 
 @njit(cache=True, inline="always")
 def _stored(springs, eta1, eta2, stored_1, stored_2, volume):
-    """The energy (N*mm) a wall of ``volume`` mm^3 (times SCALE after a failure) stores under viscosities ``eta1``,
+    """The energy (N*mm) a wall of ``volume`` mm^3 (times its scale after a failure) stores under viscosities ``eta1``,
     ``eta2`` (MPa s^r): its springs' (``springs``, MPa) and its springpots' (per unit volume and viscosity)."""
     return (springs + eta1 * stored_1 + eta2 * stored_2) * volume
 
 
 @njit(cache=True, inline="always")
-def _warm(table, w, heat):
-    """Wall ``w``'s temperature (degC) after a step's ``heat`` (N*mm): T' = T_a + (T - T_a) exp(-dt / tau)
-    + gain heat, the exact step of rho c V dT/dt = P - rho c V (T - T_a) / tau for a power P constant over it."""
-    ambient = table[w, T_AMBIENT]
-    table[w, TEMPERATURE] = ambient + (table[w, TEMPERATURE] - ambient) * table[w, T_DECAY] + heat * table[w, T_GAIN]
+def _warm(thermal, heat):
+    """A wall's temperature (degC; ``thermal``: its THERMAL record) after a step's ``heat`` (N*mm): T' = T_a
+    + (T - T_a) exp(-dt / tau) + gain heat, the exact step of rho c V dT/dt = P - rho c V (T - T_a) / tau for a
+    power P constant over it."""
+    ambient = thermal.ambient
+    thermal.temperature = ambient + (thermal.temperature - ambient) * thermal.decay + heat * thermal.gain
 
 
 @njit(cache=True, inline="always")
-def _exceeded_limit(table, w, strain, force, area):
-    """The failure mode of wall ``w`` at its committed ``strain`` (-) and ``force`` (N) over ``area`` (mm^2):
-    1 strain, 2 stress, 3 temperature (the first limit exceeded, in that order), 0 none."""
-    if abs(strain) > table[w, LIMIT_STRAIN]:
+def _exceeded_limit(limits, temperature, strain, force, area):
+    """The failure mode of a wall (``limits``: its LIMITS record) at its committed ``strain`` (-), ``force``
+    (N) over ``area`` (mm^2) and ``temperature`` (degC): 1 strain, 2 stress, 3 temperature (the first limit
+    exceeded, in that order), 0 none."""
+    if abs(strain) > limits.limit_strain:
         return 1.0
-    if abs(force) > table[w, LIMIT_STRESS] * area:
+    if abs(force) > limits.limit_stress * area:
         return 2.0
-    if table[w, TEMPERATURE] > table[w, LIMIT_TEMPERATURE]:
+    if temperature > limits.limit_temperature:
         return 3.0
     return 0.0
 
@@ -504,80 +610,83 @@ def update_walls(states, constants, values, force, deformation, count):
     the frame sees falls from the intact wall's to the residual's; the trapezoidal work of the frame's
     energy balance counts half the lost share's force over the step's deformation, (1 - residual) F dd / 2,
     and that work goes into the tearing too: it is released, at that step."""
-    table, nodes, node_state = states.table, states.nodes, states.node_state
-    amplitude_table = states.amplitude_table
-    walls = constants.shape[0]
+    walls, nodes, node_state = states.walls, states.nodes, states.node_state
     # The springpots of every wall first, then the rest: the walls' node sums are independent, and in a loop of
     # their own they overlap (29.6 -> 24.6 ns a wall and step, the update timed alone; docs/validation.rst).
-    for w in range(walls):
-        if table[w, ENERGY] == 0.0:
+    for w in range(constants.shape[0]):
+        wall = walls[w]
+        if wall.base.energy_followed == 0.0:
             continue
         strain_v = 0.0  # the strain of the Maxwell branch's dashpot (none without G2 or eta2)
         if constants[w, 1] > 0.0 and constants[w, 3] > 0.0:
             strain_v = values[0, w] - values[1, w] * (1.0 / constants[w, 1])
-        heat_1, heat_2, stored_1, stored_2 = _springpots(nodes, node_state, table, w, values[0, w], strain_v)
-        table[w, SPRINGPOT_HEAT_1], table[w, SPRINGPOT_HEAT_2] = heat_1, heat_2
-        table[w, SPRINGPOT_STORED_1], table[w, SPRINGPOT_STORED_2] = stored_1, stored_2
-    for w in range(walls):
-        if table[w, TRACKED] == 0.0:
+        energy = wall.energy
+        heat_1, heat_2, stored_1, stored_2 = _springpots(nodes, node_state, energy, int(wall.base.node_set), w,
+                                                         values[0, w], strain_v)
+        energy.springpot_heat_1, energy.springpot_heat_2 = heat_1, heat_2
+        energy.springpot_stored_1, energy.springpot_stored_2 = stored_1, stored_2
+    for w in range(constants.shape[0]):
+        wall = walls[w]
+        base, thermal, energy, limits = wall.base, wall.thermal, wall.energy, wall.limits
+        if base.tracked == 0.0:
             continue
         strain, maxwell = values[0, w], values[1, w]
         G1, G2, eta1, eta2 = constants[w, 0], constants[w, 1], constants[w, 2], constants[w, 3]
-        volume = constants[w, 4] * constants[w, 5] * table[w, SCALE]  # a failed wall keeps its residual share
+        volume = constants[w, 4] * constants[w, 5] * limits.scale  # a failed wall keeps its residual share
         # A wall that only heats (the common case) goes straight through: the same steps as the general path below,
         # without its checks (each about half a nanosecond a wall and step; docs/validation.rst, Performance).
-        if table[w, HEATING_ONLY] != 0.0:
-            springs, heat_1, heat_2, stored_1, stored_2 = _energies(table, w, G1, G2, eta2, strain, maxwell)
+        if base.heating_only != 0.0:
+            springs, heat_1, heat_2, stored_1, stored_2 = _energies(energy, G1, G2, eta2, strain, maxwell)
             heat = (eta1 * heat_1 + eta2 * heat_2) * volume
             stored = _stored(springs, eta1, eta2, stored_1, stored_2, volume)
-            table[w, HEAT] += heat
-            _warm(table, w, heat)
-            factor = _shift_factor(table, w, count)
-            eta1, eta2 = table[w, BASE_ETA1] * factor, table[w, BASE_ETA2] * factor
+            energy.heat += heat
+            _warm(thermal, heat)
+            factor = _shift_factor(thermal, count)
+            eta1, eta2 = base.eta1 * factor, base.eta2 * factor
             constants[w, 2], constants[w, 3] = eta1, eta2
             renewed = _stored(springs, eta1, eta2, stored_1, stored_2, volume)
-            table[w, PARAMETER_LOSS] += stored - renewed
-            table[w, STORED] = renewed
+            energy.parameter_loss += stored - renewed
+            energy.stored = renewed
             continue
-        limited = table[w, LIMITED] != 0.0
-        if limited and table[w, FAILURE_STEP] == count:  # the step after the failing commit
-            table[w, RELEASED_WORK] = (0.5 * (1.0 - table[w, RESIDUAL]) * table[w, FAILURE_FORCE]
-                                       * (deformation[w] - table[w, FAILURE_DEFORMATION]))
-        if table[w, ENERGY] == 0.0:  # a wall that only follows its amplitude: no heat, no energy split
-            _follow_amplitude(table, w, strain, count)
-            set_coefficients(table, amplitude_table, constants, w, count)
+        limited = base.limited != 0.0
+        if limited and limits.failure_step == count:  # the step after the failing commit
+            energy.released_work = (0.5 * (1.0 - limits.residual) * limits.failure_force
+                                    * (deformation[w] - limits.failure_deformation))
+        if base.energy_followed == 0.0:  # a wall that only follows its amplitude: no heat, no energy split
+            _follow_amplitude(wall.tracker, strain, count)
+            set_coefficients(states, constants, w, count)
             continue
-        springs, heat_1, heat_2, stored_1, stored_2 = _energies(table, w, G1, G2, eta2, strain, maxwell)
+        springs, heat_1, heat_2, stored_1, stored_2 = _energies(energy, G1, G2, eta2, strain, maxwell)
         heat = (eta1 * heat_1 + eta2 * heat_2) * volume
         stored = _stored(springs, eta1, eta2, stored_1, stored_2, volume)
-        table[w, HEAT] += heat
-        if table[w, T_CAPACITY] > 0.0:
-            _warm(table, w, heat)
+        energy.heat += heat
+        if thermal.capacity > 0.0:
+            _warm(thermal, heat)
         failing = False
-        if limited and table[w, FAILURE_STEP] < 0.0:
-            mode = _exceeded_limit(table, w, strain, force[w], constants[w, 4])
+        if limited and limits.failure_step < 0.0:
+            mode = _exceeded_limit(limits, thermal.temperature, strain, force[w], constants[w, 4])
             if mode > 0.0:
                 failing = True
-                table[w, FAILURE_STEP] = count + 1
-                table[w, FAILURE_MODE] = mode
-                table[w, RELEASED] = (1.0 - table[w, RESIDUAL]) * stored
-                table[w, FAILURE_FORCE] = force[w]
-                table[w, FAILURE_DEFORMATION] = deformation[w]
-                table[w, SCALE] = table[w, RESIDUAL]
-                stored *= table[w, RESIDUAL]
-        _follow_amplitude(table, w, strain, count)
-        if not set_coefficients(table, amplitude_table, constants, w, count):  # limits only: parameters stay,
-            table[w, STORED] = stored                                          # and so does the stored energy
+                limits.failure_step = count + 1
+                limits.failure_mode = mode
+                energy.released = (1.0 - limits.residual) * stored
+                limits.failure_force = force[w]
+                limits.failure_deformation = deformation[w]
+                limits.scale = limits.residual
+                stored *= limits.residual
+        _follow_amplitude(wall.tracker, strain, count)
+        if not set_coefficients(states, constants, w, count):  # limits only: parameters stay,
+            energy.stored = stored                             # and so does the stored energy
             continue
         # The same state stores another energy under the next step's parameters (temperature, amplitude): the
         # difference does no work and warms nothing in this model; it is accounted, not hidden in the heat.
         if constants[w, 0] != G1 or constants[w, 1] != G2:  # (G1 and G2 follow the amplitude only)
-            springs = _energies(table, w, constants[w, 0], constants[w, 1], constants[w, 3], strain, maxwell)[0]
+            springs = _energies(energy, constants[w, 0], constants[w, 1], constants[w, 3], strain, maxwell)[0]
         renewed = _stored(springs, constants[w, 2], constants[w, 3], stored_1, stored_2,
-                          constants[w, 4] * constants[w, 5] * table[w, SCALE])
+                          constants[w, 4] * constants[w, 5] * limits.scale)
         if not failing:
-            table[w, PARAMETER_LOSS] += stored - renewed
-        table[w, STORED] = renewed
+            energy.parameter_loss += stored - renewed
+        energy.stored = renewed
 
 
 @njit(cache=True, allocates=False)

@@ -77,7 +77,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Any, Protocol, cast, runtime_checkable
+from typing import Any, NamedTuple, Protocol, cast, runtime_checkable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -321,7 +321,8 @@ def log10_shift(slope: float, curvature: float, reference: float, temperature: f
     """log10 a_T = -slope d / (1 + curvature d), d = temperature - reference (degC; slope and curvature 1/K), of a
     law's ``kernel_row``: the one form every law here takes (WLF: slope C1 / C2, curvature 1 / C2; Arrhenius:
     slope E_a / (R ln 10 T_ref^2), curvature 1 / T_ref, T_ref in kelvin; log-linear: no curvature).  The compiled
-    update uses the same form, its exponent ln a_T^r with ln(10) r slope found once (kernel SHIFT_RATE)."""
+    update uses the same form, its exponent ln a_T^r with ln(10) r slope found once (kernel:
+    thermal.shift_rate)."""
     difference = temperature - reference
     if curvature == 0.0:
         return -slope * difference
@@ -381,22 +382,35 @@ class ThermalProperties:
         return ThermalProperties(self.shift, self.heat_capacity, temperature, self.cooling_time)
 
 
-def thermal_row(thermal: ThermalProperties | None, volume: float, dt: float) -> np.ndarray:
-    """The kernel's ten T_* values (kernel.T_KIND to T_HIGH of :class:`vdw_frames.element.kernel.WallStates`'
-    table) of a wall with ``thermal`` (None: no temperature dependence) and ``volume`` mm^3 of viscoelastic layers,
-    for steps of ``dt`` s."""
-    row = np.zeros(10)
-    row[8], row[9] = -math.inf, math.inf
+class ThermalRow(NamedTuple):
+    """A wall's thermal constants as the kernel takes them (the fields of the same names of the kernel's THERMAL
+    group, :data:`vdw_frames.element.kernel.THERMAL_FIELDS`)."""
+
+    law_kind: float  # the shift law's kind (0: none)
+    law_slope: float  # 1/K
+    law_curvature: float  # 1/K
+    law_reference: float  # degC
+    capacity: float  # rho c V, N*mm/K
+    ambient: float  # degC
+    decay: float  # exp(-dt / tau)
+    gain: float  # (tau / dt)(1 - exp(-dt / tau)) / (rho c V), K per N*mm
+    valid_low: float  # degC
+    valid_high: float  # degC
+
+
+def thermal_row(thermal: ThermalProperties | None, volume: float, dt: float) -> ThermalRow:
+    """The kernel's thermal constants (:class:`ThermalRow`) of a wall with ``thermal`` (None: no temperature
+    dependence) and ``volume`` mm^3 of viscoelastic layers, for steps of ``dt`` s."""
     if thermal is None:
-        return row
+        return ThermalRow(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -math.inf, math.inf)
     kind, slope, curvature, reference = thermal.shift.kernel_row()
     decay = math.exp(-dt / thermal.cooling_time)
     gain = 1.0 if thermal.cooling_time == math.inf else -math.expm1(-dt / thermal.cooling_time) \
         * thermal.cooling_time / dt
     capacity = thermal.heat_capacity * volume
-    row[:] = (kind, slope, curvature, reference, capacity, thermal.temperature, decay, gain / capacity,
-              *thermal.shift.valid)
-    return row
+    low, high = thermal.shift.valid
+    return ThermalRow(float(kind), float(slope), float(curvature), float(reference), float(capacity),
+                      float(thermal.temperature), decay, gain / capacity, float(low), float(high))
 
 
 def diffusive_nodes(dt: float) -> np.ndarray:

@@ -472,8 +472,8 @@ def _moved_most(correction):
 
 
 @njit(cache=True, inline="always")
-def _record_walls(step, table, out, work):
-    """Row ``step`` + 1 of the wall groups' histories from the committed walls (``table``: their states)."""
+def _record_walls(step, states, out, work):
+    """Row ``step`` + 1 of the wall groups' histories from the committed walls (``states``: their WallStates)."""
     groups = work.wall_force.shape[0]
     for g in range(groups):
         out.group_force[step + 1, g] = work.wall_force[g]
@@ -482,18 +482,19 @@ def _record_walls(step, table, out, work):
     if out.group_temperature.shape[0] > 0:
         heat, stored, parameter_loss = 0.0, 0.0, 0.0
         for g in range(groups):
-            out.group_temperature[step + 1, g] = table[g, kernel.TEMPERATURE]
+            energy = states.walls[g].energy
+            out.group_temperature[step + 1, g] = states.walls[g].thermal.temperature
             if out.group_heat.shape[0] > 0:
-                out.group_heat[step + 1, g] = table[g, kernel.HEAT]
-            heat += table[g, kernel.HEAT]
-            stored += table[g, kernel.STORED]
-            parameter_loss += table[g, kernel.PARAMETER_LOSS]
+                out.group_heat[step + 1, g] = energy.heat
+            heat += energy.heat
+            stored += energy.stored
+            parameter_loss += energy.parameter_loss
         out.wall_heat[step + 1] = heat
         out.wall_stored[step + 1] = stored
         out.wall_parameter_loss[step + 1] = parameter_loss
     if out.group_amplitude.shape[0] > 0:
         for g in range(groups):
-            out.group_amplitude[step + 1, g] = table[g, kernel.AMPLITUDE]
+            out.group_amplitude[step + 1, g] = states.walls[g].tracker.amplitude
 
 
 @njit(cache=True, allocates=False)
@@ -548,7 +549,7 @@ def integrate(excitation, frame, stories, walls, newton, out, work):
         for g in range(groups):
             work.wall_deformation[g] = walls.group_magnification[g] * work.drift[walls.group_story[g]]
         kernel.bank_commit(bank, start + step, work.wall_deformation, work.wall_force, work.wall_strain)
-        _record_walls(step, bank.states.table, out, work)
+        _record_walls(step, bank.states, out, work)
         if walls.others.total:
             devices_commit(walls.others)
             _record_devices(step + 1, walls.others, out)

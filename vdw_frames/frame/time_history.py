@@ -18,7 +18,6 @@ import numpy as np
 
 from .. import _warnings
 from .._validation import check_memory, non_negative, positive, require_finite, show, time_step
-from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy, wall_order
 from ..element.devices import device_states
 from ..element.fast_memory import FastMemory
@@ -116,12 +115,12 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
 
     groups, group_of_wall = group_walls(walls)
     bank = WallBank(tuple(wall for _, wall in groups), dt, steps, method, memory)
-    energy_followed = bank.state(kernel.ENERGY)  # walls whose heat and stored energy are followed
+    energy_followed = bank.state("energy_followed")  # walls whose heat and stored energy are followed
     heated = rows if energy_followed.any() else 0
     # A group with a heat capacity keeps its heat in its temperature (SimulationResult.wall_heat finds it from
     # there); the heat itself is recorded only when some followed group has none (limits only).
-    heat_rows = heated if np.any((energy_followed > 0.0) & (bank.state(kernel.T_CAPACITY) <= 0.0)) else 0
-    amplitudes = rows if bank.state(kernel.AMPLITUDE_NODES).any() else 0
+    heat_rows = heated if np.any((energy_followed > 0.0) & (bank.state("capacity") <= 0.0)) else 0
+    amplitudes = rows if bank.state("amplitude_nodes").any() else 0
     heights = np.asarray(building.story_heights) if building.story_heights is not None else np.ones(floors)
     collapse_ratio = collapse_drift_ratio if (collapse_drift_ratio and building.story_heights) else 0.0
     frame = FrameArrays(
@@ -142,13 +141,13 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     else:
         _start_from(initial_state, frame, stories, device_arrays, out, work)
     if heated:
-        out.group_temperature[0] = bank.state(kernel.TEMPERATURE)
-        out.group_heat[:1] = initial_heat = bank.state(kernel.HEAT)
+        out.group_temperature[0] = bank.state("temperature")
+        out.group_heat[:1] = initial_heat = bank.state("heat")
         out.wall_heat[0] = initial_heat.sum()
-        out.wall_stored[0] = bank.state(kernel.STORED).sum()
-        out.wall_parameter_loss[0] = bank.state(kernel.PARAMETER_LOSS).sum()
+        out.wall_stored[0] = bank.state("stored").sum()
+        out.wall_parameter_loss[0] = bank.state("parameter_loss").sum()
     if amplitudes:
-        out.group_amplitude[0] = bank.state(kernel.AMPLITUDE)
+        out.group_amplitude[0] = bank.state("amplitude")
     filled = integrate(Excitation(ground, float(dt), int(start)), frame, stories, device_arrays, newton.arrays(), out,
                        work)
     status, story_index, iterations = (int(x) for x in out.outcome)
@@ -165,11 +164,11 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         raise ValueError(f"{error} {_record_text(ground_motion)}") from None
     time = np.arange(start, start + filled) * dt
     share = np.array([walls[i][1].area / groups[g][1].area for i, g in enumerate(group_of_wall)])
-    above = bank.state(kernel.ABOVE_RANGE)[group_of_wall] * dt
+    above = bank.state("above_range")[group_of_wall] * dt
     amplitude = out.group_amplitude[keep].max(axis=0, initial=0.0)[group_of_wall] if out.group_amplitude.size else None
     _warn_strain_range(walls, out.peak_group_strain[group_of_wall], above, amplitude)
     _warn_temperature_range(groups, bank, dt)
-    failure = np.stack([bank.state(kernel.FAILURE_STEP), bank.state(kernel.FAILURE_MODE)], axis=1).astype(np.int64)
+    failure = np.stack([bank.state("failure_step"), bank.state("failure_mode")], axis=1).astype(np.int64)
     wall_energies = None
     if heated and energy_followed.all():
         wall_energies = (out.wall_heat[keep], out.wall_stored[keep], _released_energy(bank, failure, start, filled),
@@ -187,11 +186,11 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         converged=status != FAILED, collapsed=status == COLLAPSED,
         collapse_time=float(time[-1]) if status == COLLAPSED else None, newton_iterations=iterations,
         group_temperature=out.group_temperature[keep], group_heat=out.group_heat[keep],
-        group_heat_terms=(np.stack([initial_heat, bank.state(kernel.T_AMBIENT), bank.state(kernel.T_DECAY),
-                                    bank.state(kernel.T_GAIN)], axis=1) if heated and not heat_rows
+        group_heat_terms=(np.stack([initial_heat, bank.state("ambient"), bank.state("decay"),
+                                    bank.state("gain")], axis=1) if heated and not heat_rows
                           else np.zeros((0, 4))),
         group_failure=failure, group_amplitude=out.group_amplitude[keep],
-        group_outside_range=np.stack([bank.state(kernel.BELOW_RANGE), bank.state(kernel.ABOVE_RANGE)], axis=1) * dt,
+        group_outside_range=np.stack([bank.state("below_range"), bank.state("above_range")], axis=1) * dt,
         initial_state=initial_state, device_force=out.device_force[keep],
         device_deformation=out.device_deformation[keep], device_velocity=out.device_velocity[keep],
         device_heat=out.device_heat[keep], device_stored=out.device_stored[keep])
@@ -240,8 +239,8 @@ def _released_energy(bank: WallBank, failure: np.ndarray, start: int, filled: in
     """The walls' energy (N*mm) released by their failures, row by row: from each failure's row on, the stored
     energy it released; from the next row on, the work on its lost share as its force fell."""
     released = np.zeros(filled)
-    for step, energy, falling_work in zip(failure[:, 0], bank.state(kernel.RELEASED),
-                                          bank.state(kernel.RELEASED_WORK), strict=True):
+    for step, energy, falling_work in zip(failure[:, 0], bank.state("released"),
+                                          bank.state("released_work"), strict=True):
         if step >= 0:
             released[max(int(step) - start, 0):] += energy
             released[max(int(step) + 1 - start, 0):] += falling_work
@@ -296,8 +295,8 @@ def _start_from(state: FrameState, frame: FrameArrays, stories: StoryArrays, wal
 
 def _warn_temperature_range(groups: Sequence[tuple[int, object]], bank: WallBank, dt: float) -> None:
     """One warning naming every wall group whose temperature left its shift law's range, and when."""
-    first, temperature = bank.state(kernel.OUTSIDE), bank.state(kernel.TEMPERATURE)
-    low, high = bank.state(kernel.T_LOW), bank.state(kernel.T_HIGH)
+    first, temperature = bank.state("outside"), bank.state("temperature")
+    low, high = bank.state("valid_low"), bank.state("valid_high")
     outside = [f"story {story} at t = {first[g] * dt:.4g} s ({temperature[g]:.1f} degC at the end; "
                f"range {low[g]:g} ... {high[g]:g} degC)" for g, (story, _) in enumerate(groups) if first[g] >= 0]
     if outside:
