@@ -1,0 +1,245 @@
+"""Fluid viscous and friction dampers in frames, against independent references: a linear FVD frame against its
+exact frequency-domain (FFT) solution assembled in the test; the energy balance of a yielding frame with P-Delta
+and every kind of device; devices on one story in parallel; a device's magnification against the scaled device
+it is equivalent to (the scaling proved below); restarts against the uninterrupted run; the deprecated keyword."""
+
+from __future__ import annotations
+
+import dataclasses
+import warnings
+
+import numpy as np
+import pytest
+
+import vdw_frames as vdw
+from vdw_frames.element.thermal import ISD110_LOSS_PEAK, ThermalProperties
+from vdw_frames.motion import default_record
+
+MASSES = np.array([400.0, 380.0, 360.0, 300.0])
+STIFFNESSES = [3.0e5, 2.6e5, 2.2e5, 1.7e5]
+HEIGHTS = [3500.0] * 4
+
+
+def four_story(devices, **options):
+    return vdw.ShearBuilding(MASSES, STIFFNESSES, story_heights=HEIGHTS, devices=devices, **options)
+
+
+# ---------------------------------------------------------------------------------------------- frequency domain
+def story_assembly(per_story):
+    """(..., n) story stiffnesses -> (..., n, n): story k between floors k-1 and k, written out."""
+    n = per_story.shape[-1]
+    matrix = np.zeros((*per_story.shape, n), dtype=per_story.dtype)
+    for k in range(n):
+        matrix[..., k, k] += per_story[..., k]
+        if k > 0:
+            matrix[..., k - 1, k - 1] += per_story[..., k]
+            matrix[..., k - 1, k] -= per_story[..., k]
+            matrix[..., k, k - 1] -= per_story[..., k]
+    return matrix
+
+
+def fvd_stiffness(damper, omega):
+    """magnification^2 x K*(omega) of a linear FVD (N/mm), written out: i omega C, in series with K_b if any."""
+    dashpot = 1j * omega * damper.C
+    along = dashpot if damper.stiffness is None else damper.stiffness * dashpot / (damper.stiffness + dashpot)
+    return damper.magnification**2 * along
+
+
+def tustin_response(building, ground, dt, pad_factor=6):
+    """Floor displacements (mm, steps x floors) of ``building`` (linear stories, linear FVDs only) under
+    ``ground`` (mm/s^2, every dt s) by the FFT: U(f) = -(K + i w C + K_d(w) - w^2 M)^-1 M 1 A_g(f) at the
+    warped frequency f_w = tan(pi f dt) / (pi dt), the continuous system's response under the bilinear
+    transform.  Zero padded to ``pad_factor`` times the record (odd: no Nyquist bin, where f_w is infinite)."""
+    size = pad_factor * ground.size + 1
+    frequency = np.fft.rfftfreq(size, dt)
+    omega = 2 * np.pi * np.tan(np.pi * frequency * dt) / (np.pi * dt)
+    per_story = np.tile(np.asarray(building.stiffnesses, dtype=complex), (omega.size, 1))
+    for story, damper in building.other_device_list:
+        per_story[:, story - 1] += fvd_stiffness(damper, omega)
+    dynamic = (story_assembly(per_story) - omega[:, None, None] ** 2 * np.diag(building.masses)
+               + 1j * omega[:, None, None] * np.asarray(building.damping_matrix))
+    transfer = np.linalg.solve(dynamic, np.broadcast_to(-np.asarray(building.masses, dtype=complex),
+                                                        (omega.size, building.stories))[..., None])[..., 0]
+    spectrum = np.fft.rfft(ground, size)
+    return np.fft.irfft(transfer * spectrum[:, None], size, axis=0)[: ground.size]
+
+
+@pytest.mark.parametrize("brace", [True, False], ids=["with-brace", "pure-dashpot"])
+def test_a_linear_fvd_frame_is_the_tustin_transform_of_the_continuous_frame(brace):
+    """Newmark's average acceleration (the frame) and the implicit trapezoid (the FVD's dashpot) are both the
+    trapezoidal rule, so the discrete frame is the bilinear (Tustin) transform s = 2/dt (z - 1)/(z + 1) of the
+    continuous one: under the sampled record its response equals the continuous frequency response evaluated at
+    the warped frequency f_w = tan(pi f dt) / (pi dt), exactly (up to the wrap-around of the zero padding,
+    here far below the tolerance).  The reference is assembled in the test (masses, story stiffnesses, the
+    inherent damping matrix and each FVD's i omega C in series with K_b); asserted to 1e-10 of the peak, inside
+    the issue's 1e-6 (measured: 1.8e-14 with braces, 1.6e-14 for pure dashpots).  The record starts at
+    a_g = 0: a discrete system started at rest under a_g,0 != 0 is not the z-transform's, whose history is
+    zero before its first sample."""
+    stiffness = (lambda k: k) if brace else (lambda k: None)
+    building = four_story({1: vdw.FluidViscousDamper(2500.0, 1.0, stiffness(1.5e5)),
+                           2: [vdw.FluidViscousDamper(1500.0, 1.0, stiffness(8e4), magnification=0.8),
+                               vdw.FluidViscousDamper(800.0, 1.0, stiffness(4e4))],
+                           4: vdw.FluidViscousDamper(1200.0, 1.0, stiffness(1e5), magnification=1.3)})
+    motion = default_record()
+    assert motion.acceleration[0] == 0.0
+    result = vdw.simulate(building, motion)
+    expected = tustin_response(building, motion.acceleration, motion.dt)
+    peak = np.abs(expected).max()
+    assert peak > 10.0  # the frame moves (mm)
+    np.testing.assert_allclose(result.displacement, expected, rtol=0, atol=1e-10 * peak)
+
+
+# ---------------------------------------------------------------------------------------------- every kind at once
+HEAT = ThermalProperties(ISD110_LOSS_PEAK, 1.8, 21.2)
+WALL = dataclasses.replace(vdw.FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5, area=3e5, thickness=8.0), thermal=HEAT)
+LINEAR_FVD = vdw.FluidViscousDamper(1500.0, 1.0)
+NONLINEAR_FVD = vdw.FluidViscousDamper(4000.0, 0.5, stiffness=1.2e5, magnification=0.85)
+FRICTION = vdw.FrictionDamper(2.5e5, 8e4)
+
+
+def five_story_every_kind(mixed=True):
+    """A five-story yielding frame with P-Delta: a heating FDMK wall (story 1), a linear dashpot (2), a nonlinear
+    FVD with a brace (3), a friction damper (4); ``mixed``: a nonlinear FVD and a friction damper together on
+    story 5, else only the FVD there."""
+    masses = np.array([400.0, 400.0, 380.0, 360.0, 300.0])
+    weight = np.cumsum((masses * vdw.G)[::-1])[::-1]
+    top = [vdw.FluidViscousDamper(2500.0, 0.5, stiffness=9e4)]
+    if mixed:
+        top.append(vdw.FrictionDamper(1.5e5, 6e4, magnification=1.2))
+    return vdw.ShearBuilding(masses, [3.0e5, 2.7e5, 2.4e5, 2.0e5, 1.6e5], story_heights=[3500.0] * 5,
+                             gravity_loads=weight, hysteresis=[vdw.Bilinear(0.12 * w, 0.03) for w in weight],
+                             devices={1: WALL, 2: LINEAR_FVD, 3: NONLINEAR_FVD, 4: FRICTION, 5: top})
+
+
+def quiet_simulate(*args, **kwargs):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # the wall's strain-range warning: tested elsewhere
+        return vdw.simulate(*args, **kwargs)
+
+
+@pytest.fixture(scope="module")
+def every_kind():
+    return quiet_simulate(five_story_every_kind(), default_record().scaled(1.5))
+
+
+def test_every_kind_of_device_in_a_yielding_frame_closes_the_energy_balance(every_kind):
+    """input = kinetic + frame strain + hysteretic + inherent damping + device work + P-Delta: asserted to 1e-10
+    of the input, inside the issue's 1e-4 (measured 8.6e-15: average acceleration with trapezoidal work
+    balances to the iteration tolerance); with the devices' work split into the wall's heat and stored energy
+    (its own states, a diffusive representation) and the other devices' heat and stored energy, to 1e-3
+    (measured 1.5e-4: the wall's split is exact only to its representation, as for walls alone)."""
+    result, energy = every_kind, every_kind.energy
+    scale = energy.input.max()
+    assert np.abs(result.residual_drift).max() > 1.0  # the stories yielded (mm)
+    assert energy.hysteretic[-1] > 0.05 * scale and energy.p_delta.min() < 0.0
+    assert np.abs(energy.balance_error).max() <= 1e-10 * scale
+    assert np.abs(energy.heat_balance_error).max() <= 1e-3 * scale
+    # each kind did some of the work
+    assert energy.wall_heat[-1] > 0.02 * scale and energy.device_heat[-1] > 0.1 * scale
+
+
+def test_each_device_heat_and_stored_energy_are_the_work_of_its_force_on_its_deformation(every_kind):
+    """From the histories alone: int F du (trapezoids, along the device) = heat + stored, device by device
+    (1e-9 of its work; measured <= 5e-15), and the deformation is magnification x the story drift (1e-15)."""
+    result = every_kind
+    devices = result.building.other_device_list
+    assert [type(device).__name__ for _, device in devices] == [
+        "FluidViscousDamper", "FluidViscousDamper", "FrictionDamper", "FluidViscousDamper", "FrictionDamper"]
+    force, deformation = result.device_force, result.device_deformation
+    work = np.concatenate([np.zeros((1, force.shape[1])),
+                           np.cumsum(0.5 * (force[1:] + force[:-1]) * np.diff(deformation, axis=0), axis=0)])
+    scale = np.abs(work).max(axis=0)
+    assert np.all(scale > 0.0)
+    np.testing.assert_array_less(np.abs(result.device_heat + result.device_stored - work).max(axis=0),
+                                 1e-9 * scale)
+    for column, (story, device) in enumerate(devices):
+        np.testing.assert_allclose(deformation[:, column], device.magnification * result.drift[:, story - 1],
+                                   rtol=1e-15, atol=0)
+    # the summed histories of the energy account are the devices'
+    np.testing.assert_allclose(result.energy.device_heat, result.device_heat.sum(axis=1), rtol=1e-15)
+    np.testing.assert_allclose(result.energy.device_stored, result.device_stored.sum(axis=1), rtol=1e-15)
+    # stored: F^2 / (2 K_b) in a brace, F^2 / (2 k) in a friction damper
+    for column, (_, device) in enumerate(devices):
+        if device.stiffness is not None:
+            np.testing.assert_allclose(result.device_stored[:, column],
+                                       force[:, column] ** 2 / (2 * device.stiffness), rtol=1e-12, atol=0)
+
+
+def test_devices_on_one_story_act_in_parallel(every_kind):
+    """The force the devices put into each story is the sum of magnification x device force over its devices
+    (1e-12; measured 2e-16); story 5's FVD and friction damper together."""
+    result = every_kind
+    expected = np.zeros_like(result.story_wall_force)
+    for column, (story, device) in enumerate(result.building.other_device_list):
+        expected[:, story - 1] += device.magnification * result.device_force[:, column]
+    scale = np.abs(result.story_wall_force).max()
+    np.testing.assert_allclose(result.story_wall_force[:, 1:], expected[:, 1:], rtol=0, atol=1e-12 * scale)
+    assert np.abs(expected[:, 4]).max() > 0.0
+
+
+def test_every_kind_restarts_from_a_state_as_the_uninterrupted_run(every_kind):
+    """simulate(..., initial_state=result.state_at(k)) replays the drift history into the devices (their forces,
+    dashpot motion, slip and heat) and goes on as the run that was never stopped (1e-12; measured: identical
+    but for the story device force, 4e-16)."""
+    result = every_kind
+    motion = default_record().scaled(1.5)
+    for k in (700, 1400):
+        restarted = quiet_simulate(result.building, motion, initial_state=result.state_at(k))
+        for name in ("displacement", "story_wall_force", "device_force", "device_deformation", "device_velocity",
+                     "device_heat", "device_stored"):
+            whole, rest = getattr(result, name)[k:], getattr(restarted, name)
+            np.testing.assert_allclose(rest, whole, rtol=0, atol=1e-12 * np.abs(whole).max(), err_msg=name)
+        np.testing.assert_allclose(restarted.energy.device_heat, result.energy.device_heat[k:],
+                                   rtol=0, atol=1e-12 * result.energy.device_heat[-1])
+        assert np.abs(restarted.energy.balance_error).max() <= 1e-10 * result.energy.input.max()
+
+
+# ---------------------------------------------------------------------------------------------- geometry
+@pytest.mark.parametrize("alpha", [0.5, 1.0])
+@pytest.mark.parametrize("magnification", [0.6, 2.5])
+def test_a_magnified_fvd_is_the_fvd_of_C_f_to_the_1_plus_alpha_and_K_b_f_squared(alpha, magnification):
+    """An FVD of magnification f is, in the story, the FVD of coefficient C f^(1 + alpha), brace K_b f^2 and
+    magnification 1.  Proof: the device moves u = f d (d the drift) and adds f F to the story shear, with
+    F = K_b (u - u_d) and du_d/dt = sgn(F) (|F|/C)^(1/alpha).  In the story's variables F' = f F and
+    u_d' = u_d / f: F' = f^2 K_b (d - u_d') and du_d'/dt = sgn(F') (|F'| / (f C))^(1/alpha) / f
+    = sgn(F') (|F'| / (C f^(1 + alpha)))^(1/alpha) -- the damper (C f^(1 + alpha), K_b f^2) across d.  The
+    implicit trapezoid is the same rule in either set of variables, so the two are stepped alike up to
+    rounding, through 2500 steps of a yielding frame: measured <= 1.3e-13 of the peak in displacements and
+    heat, <= 7.4e-13 in forces and 1.2e-12 in the stored energy (quadratic in the force); asserted to 1e-12,
+    2e-12 and 4e-12.  Likewise a friction damper of magnification f is (F_s f, k f^2)."""
+    C, stiffness, slip, friction_stiffness = 3000.0, 1.2e5, 2e5, 7e4
+    f = magnification
+    magnified = {2: [vdw.FluidViscousDamper(C, alpha, stiffness, magnification=f),
+                     vdw.FrictionDamper(slip, friction_stiffness, magnification=f)]}
+    scaled = {2: [vdw.FluidViscousDamper(C * f ** (1 + alpha), alpha, stiffness * f**2),
+                  vdw.FrictionDamper(slip * f, friction_stiffness * f**2)]}
+    masses = np.array([400.0, 380.0, 360.0, 300.0])
+    weight = np.cumsum((masses * vdw.G)[::-1])[::-1]
+    options = dict(gravity_loads=weight, hysteresis=[vdw.Bilinear(0.1 * w, 0.03) for w in weight])
+    motion = default_record().scaled(1.5)
+    one, other = (vdw.simulate(four_story(devices, **options), motion) for devices in (magnified, scaled))
+
+    def close(actual, desired, tolerance, name):
+        np.testing.assert_allclose(actual, desired, rtol=0, atol=tolerance * np.abs(desired).max(), err_msg=name)
+
+    close(one.displacement, other.displacement, 1e-12, "displacement")
+    close(one.device_heat, other.device_heat, 1e-12, "device_heat")
+    close(one.story_wall_force, other.story_wall_force, 2e-12, "story_wall_force")
+    # along the device: f x the scaled one's deformation, its force / f
+    close(one.device_deformation, f * other.device_deformation, 2e-12, "device_deformation")
+    close(f * one.device_force, other.device_force, 2e-12, "device_force")
+    close(one.device_stored, other.device_stored, 4e-12, "device_stored")  # quadratic in the force
+    assert np.abs(one.residual_drift).max() > 1.0  # stories yielded: the frame is not linear
+
+
+# ---------------------------------------------------------------------------------------------- the keyword
+def test_walls_is_a_deprecated_name_of_devices():
+    wall = vdw.FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5, area=3e5, thickness=8.0)
+    with pytest.warns(DeprecationWarning, match=r"walls=.*deprecated.*devices="):
+        old = vdw.ShearBuilding(MASSES, STIFFNESSES, walls={1: wall, 3: [wall, wall]})
+    new = vdw.ShearBuilding(MASSES, STIFFNESSES, devices={1: wall, 3: [wall, wall]})
+    assert old.devices == new.devices == {1: (wall,), 3: (wall, wall)}
+    motion = vdw.GroundMotion(default_record().acceleration[:600], 0.01)
+    np.testing.assert_array_equal(vdw.simulate(old, motion).displacement, vdw.simulate(new, motion).displacement)
+    with pytest.warns(DeprecationWarning), pytest.raises(ValueError, match=r"devices= only.*not both"):
+        vdw.ShearBuilding(MASSES, STIFFNESSES, devices={2: FRICTION}, walls={1: wall})
