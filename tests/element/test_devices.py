@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from scipy.integrate import quad
+from scipy.integrate import quad, solve_ivp
 
 import vdw_frames as vdw
 from vdw_frames.element.devices import device_response
@@ -81,6 +81,33 @@ def test_a_damper_with_a_brace_dissipates_what_its_dashpot_force_does_on_the_das
     np.testing.assert_allclose(response["heat"] + response["stored"], work, rtol=0, atol=1e-10 * work.max())
     np.testing.assert_allclose(response["stored"], force**2 / (2 * damper.stiffness), rtol=1e-13, atol=0)
     assert np.all(np.diff(response["heat"]) >= -1e-9 * work.max())  # a dashpot never gives heat back
+
+
+@pytest.mark.parametrize("alpha", [0.3, 0.5, 1.0])
+def test_a_damper_with_a_soft_brace_converges_at_second_order_to_the_maxwell_equation(alpha):
+    """The series form dF/dt = K_b (du/dt - sgn(F) (|F|/C)^(1/alpha)) under u0 (1 - cos omega t), solved by
+    scipy's Radau to 1e-12 (the reference), with a brace as stiff as the dashpot's peak force per amplitude
+    (the brace takes a large share): the implicit trapezoid's force is within 1e-4 of the peak at 400 steps a
+    cycle (measured 1.2e-5 to 1.6e-5) and its error falls by 4 (measured 3.995 to 4.000) when the step halves:
+    second order."""
+    C, u0, frequency = 250.0, 20.0, 1.5
+    omega = 2 * np.pi * frequency
+    stiffness = C * (omega * u0) ** alpha / u0
+
+    def rate(t, force):
+        dashpot = np.sign(force[0]) * (abs(force[0]) / C) ** (1.0 / alpha)
+        return [stiffness * (u0 * omega * np.sin(omega * t) - dashpot)]
+
+    reference = solve_ivp(rate, (0.0, 2.0 / frequency), [0.0], method="Radau", rtol=1e-12, atol=1e-9,
+                          dense_output=True)
+    errors = []
+    for steps in (200, 400):
+        deformation, dt = one_minus_cosine(u0, frequency, 2, steps)
+        force = device_response(vdw.FluidViscousDamper(C, alpha, stiffness), deformation, dt)["force"]
+        expected = reference.sol(np.arange(deformation.size) * dt)[0]
+        errors.append(np.abs(force - expected).max() / np.abs(expected).max())
+    assert errors[1] < 1e-4
+    assert 3.5 < errors[0] / errors[1] < 4.5
 
 
 def elastic_perfectly_plastic(deformation, slip_force, stiffness):

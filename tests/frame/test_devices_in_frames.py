@@ -1,5 +1,6 @@
 """Fluid viscous and friction dampers in frames, against independent references: a linear FVD frame against its
-exact frequency-domain (FFT) solution assembled in the test; the energy balance of a yielding frame with P-Delta
+exact frequency-domain (FFT) solution assembled in the test, nonlinear FVDs against the continuous equations of
+motion (scipy Radau); the energy balance of a yielding frame with P-Delta
 and every kind of device; devices on one story in parallel; a device's magnification against the scaled device
 it is equivalent to (the scaling proved below); restarts against the uninterrupted run; the deprecated keyword."""
 
@@ -10,6 +11,8 @@ import warnings
 
 import numpy as np
 import pytest
+from reference import tapered_sine
+from scipy.integrate import solve_ivp
 
 import vdw_frames as vdw
 from vdw_frames.element.thermal import ISD110_LOSS_PEAK, ThermalProperties
@@ -87,6 +90,64 @@ def test_a_linear_fvd_frame_is_the_tustin_transform_of_the_continuous_frame(brac
     peak = np.abs(expected).max()
     assert peak > 10.0  # the frame moves (mm)
     np.testing.assert_allclose(result.displacement, expected, rtol=0, atol=1e-10 * peak)
+
+
+def continuous_response(building, ground, duration):
+    """Floor displacements (mm) of ``building`` (linear stories, FVDs with braces) under the ground acceleration
+    ``ground(t)`` (mm/s^2), as functions of t: the equations of motion in first-order form, state (u, v, F)
+    with every damper's force F obeying dF/dt = K_b (f dd/dt - sgn(F) (|F|/C)^(1/alpha)) (f its
+    magnification, d its story's drift), solved by scipy's Radau to 1e-9 (1e-10 changes no digit of the
+    errors below)."""
+    n, masses = building.stories, np.asarray(building.masses)
+    stiffness = story_assembly(np.asarray(building.stiffnesses))
+    damping = np.asarray(building.damping_matrix)
+    dampers = building.other_device_list
+    column = np.array([story - 1 for story, _ in dampers])
+    f = np.array([damper.magnification for _, damper in dampers])
+    C = np.array([damper.C for _, damper in dampers])
+    alpha = np.array([damper.alpha for _, damper in dampers])
+    brace = np.array([damper.stiffness for _, damper in dampers])
+
+    def rate(t, state):
+        u, v, force = state[:n], state[n:2 * n], state[2 * n:]
+        story_force = np.bincount(column, f * force, minlength=n)
+        story_rate = v - np.concatenate([[0.0], v[:-1]])
+        dashpot = np.sign(force) * (np.abs(force) / C) ** (1.0 / alpha)
+        floor_force = story_force - np.concatenate([story_force[1:], [0.0]])  # story k pushes floors k and k-1
+        acceleration = (-masses * ground(t) - damping @ v - stiffness @ u - floor_force) / masses
+        return np.concatenate([v, acceleration, brace * (f * story_rate[column] - dashpot)])
+
+    solution = solve_ivp(rate, (0.0, duration), np.zeros(2 * n + len(dampers)), method="Radau", rtol=1e-9,
+                         atol=1e-8, dense_output=True)
+    return lambda t: solution.sol(t)[:n].T
+
+
+@pytest.mark.slow
+def test_a_frame_with_nonlinear_fvds_converges_at_second_order_to_its_equations_of_motion():
+    """A linear four-story frame with nonlinear FVDs (alpha 0.3 and 0.5, braces, magnifications 1 and 0.8)
+    under a tapered 1.5 Hz sine against its continuous equations of motion (:func:`continuous_response`): the
+    displacements within 5e-3 of the peak at dt = 0.005 s (measured 2.9e-3; 1.2e-2 at 0.01 s, 7.3e-4 at
+    0.0025 s), the error falling by 4 (3.5 to 4.5; measured 4.00) when the step halves: Newmark and the
+    dampers' trapezoid together, second order.  Newton takes at most 4 corrections a step on average (measured
+    2.96: the dampers' tangent is consistent)."""
+    building = four_story({1: vdw.FluidViscousDamper(6000.0, 0.3, 2e5),
+                           2: vdw.FluidViscousDamper(3000.0, 0.5, 1.2e5, magnification=0.8),
+                           3: vdw.FluidViscousDamper(2500.0, 0.5, 1e5)})
+    duration = 6.0
+
+    def ground(t):
+        return tapered_sine(t, 1.5, 3000.0, 1.0, duration)
+
+    reference = continuous_response(building, ground, duration)
+    errors = []
+    for dt in (0.01, 0.005):
+        t = np.arange(round(duration / dt) + 1) * dt
+        result = vdw.simulate(building, vdw.GroundMotion(ground(t), dt))
+        expected = reference(t)
+        errors.append(np.abs(result.displacement - expected).max() / np.abs(expected).max())
+        assert result.newton_iterations <= 4 * t.size
+    assert errors[1] < 5e-3
+    assert 3.5 < errors[0] / errors[1] < 4.5
 
 
 # ---------------------------------------------------------------------------------------------- every kind at once
