@@ -126,8 +126,8 @@ class StoryNumber(int):
 
 def test_a_story_given_twice_after_normalisation_is_refused():
     wall = FDMKDamper(**README_WALL)
-    with pytest.raises(ValueError, match=r"walls has story 1 twice \(keys \[1, 1\]\); give each story once"):
-        ShearBuilding([1.0, 1.0], [1.0, 1.0], walls={1: wall, StoryNumber(1): wall})
+    with pytest.raises(ValueError, match=r"devices has story 1 twice \(keys \[1, 1\]\); give each story once"):
+        ShearBuilding([1.0, 1.0], [1.0, 1.0], devices={1: wall, StoryNumber(1): wall})
     with pytest.raises(ValueError, match=r"hysteresis has story 2 twice"):
         ShearBuilding([1.0, 1.0], [1.0, 1.0], hysteresis={2: Bilinear(1.0), StoryNumber(2): Bilinear(2.0)})
 

@@ -304,3 +304,19 @@ def test_walls_is_a_deprecated_name_of_devices():
     np.testing.assert_array_equal(vdw.simulate(old, motion).displacement, vdw.simulate(new, motion).displacement)
     with pytest.warns(DeprecationWarning), pytest.raises(ValueError, match=r"devices= only.*not both"):
         vdw.ShearBuilding(MASSES, STIFFNESSES, devices={2: FRICTION}, walls={1: wall})
+
+
+def test_dataclasses_replace_with_walls_keeps_working_and_keeps_the_other_devices():
+    """``dataclasses.replace(building, walls=...)``, the way to swap walls before 0.3 (and still in
+    :mod:`vdw_frames.frame.strain_compatible`'s docstring), replaces the walls with a DeprecationWarning: the
+    building's own devices come back as ``devices=`` and are not a second keyword; its other devices stay."""
+    wall = vdw.FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5, area=3e5, thickness=8.0)
+    other = wall.resized(2e5)
+    building = vdw.ShearBuilding(MASSES, STIFFNESSES, devices={1: [wall, LINEAR_FVD], 2: wall})
+    with pytest.warns(DeprecationWarning, match="walls="):
+        replaced = dataclasses.replace(building, walls={2: other, 3: [other, other]})
+    assert replaced.devices == {1: (LINEAR_FVD,), 2: (other,), 3: (other, other)}
+    assert replaced.devices == building.with_walls({2: other, 3: [other, other]}).devices
+    with pytest.warns(DeprecationWarning):
+        bare = vdw.ShearBuilding(MASSES, STIFFNESSES)
+        assert dataclasses.replace(bare, walls={4: wall}).devices == {4: (wall,)}
