@@ -1,8 +1,8 @@
 """Fluid viscous and friction dampers in frames, against independent references: a linear FVD frame against its
-exact frequency-domain (FFT) solution assembled in the test, nonlinear FVDs against the continuous equations of
-motion (scipy Radau); the energy balance of a yielding frame with P-Delta
-and every kind of device; devices on one story in parallel; a device's magnification against the scaled device
-it is equivalent to (the scaling proved below); restarts against the uninterrupted run; the deprecated keyword."""
+exact frequency-domain (FFT) solution assembled in the test; nonlinear FVDs against the continuous equations of
+motion (scipy's Radau); the energy balance of a yielding frame with P-Delta and every kind of device; devices on
+one story in parallel; a device's magnification against the scaled device it is equivalent to (the scaling
+proved below); restarts against the uninterrupted run; the deprecated keyword ``walls=``."""
 
 from __future__ import annotations
 

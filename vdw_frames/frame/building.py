@@ -53,7 +53,8 @@ class ShearBuilding:
         :class:`~vdw_frames.StrainDependentDamper`), :class:`~vdw_frames.FluidViscousDamper` and
         :class:`~vdw_frames.FrictionDamper`; several on one story act in parallel.  A device's deformation
         is its magnification (1 for walls) times the interstory drift (:mod:`vdw_frames.element.device`).
-        ``walls=`` (the keyword before 0.3) still works, with a DeprecationWarning.
+        ``walls=`` (the keyword before 0.3) still works, with a DeprecationWarning
+        (``dataclasses.replace(building, walls=...)`` replaces its walls and keeps its other devices).
     story_heights : sequence of float, optional
         Story heights, mm, for drift ratios, P-Delta and the collapse check.
     hysteresis : sequence or dict, optional
