@@ -120,7 +120,8 @@ def test_warns_when_strain_leaves_identified_range():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         big = smooth_motion(0.01, duration=4.0).scaled(1.0)
-        unbounded = ShearBuilding([300.0], [3e5], damping_modes=(1, 1), walls={1: FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5)})
+        unbounded = ShearBuilding([300.0], [3e5], damping_modes=(1, 1),
+                                  devices={1: FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5)})
         simulate(unbounded, big)
 
 
