@@ -2,7 +2,7 @@
 exact frequency-domain (FFT) solution assembled in the test; nonlinear FVDs against the continuous equations of
 motion (scipy's Radau); the energy balance of a yielding frame with P-Delta and every kind of device; devices on
 one story in parallel; a device's magnification against the scaled device it is equivalent to (the scaling
-proved below); restarts against the uninterrupted run; the deprecated keyword ``walls=``."""
+proved below); restarts against the uninterrupted run; result files; the deprecated keyword ``walls=``."""
 
 from __future__ import annotations
 
@@ -16,6 +16,7 @@ from scipy.integrate import solve_ivp
 
 import vdw_frames as vdw
 from vdw_frames.element.thermal import ISD110_LOSS_PEAK, ThermalProperties
+from vdw_frames.frame.results import SimulationResult
 from vdw_frames.motion import default_record
 
 MASSES = np.array([400.0, 380.0, 360.0, 300.0])
@@ -253,6 +254,20 @@ def test_every_kind_restarts_from_a_state_as_the_uninterrupted_run(every_kind):
         np.testing.assert_allclose(restarted.energy.device_heat, result.energy.device_heat[k:],
                                    rtol=0, atol=1e-12 * result.energy.device_heat[-1])
         assert np.abs(restarted.energy.balance_error).max() <= 1e-10 * result.energy.input.max()
+
+
+def test_every_kind_round_trips_through_a_result_file(every_kind, tmp_path):
+    """SimulationResult.save / load: the devices (every kind, their parameters and stories) and every device
+    history and energy come back as they were (bit for bit)."""
+    path = tmp_path / "every_kind.npz"
+    every_kind.save(path)
+    loaded = SimulationResult.load(path)
+    assert loaded.building.devices == every_kind.building.devices
+    for name in ("displacement", "story_wall_force", "device_force", "device_deformation", "device_velocity",
+                 "device_heat", "device_stored"):
+        np.testing.assert_array_equal(getattr(loaded, name), getattr(every_kind, name), err_msg=name)
+    for name in ("input", "wall_work", "wall_heat", "device_heat", "device_stored"):
+        np.testing.assert_array_equal(getattr(loaded.energy, name), getattr(every_kind.energy, name), err_msg=name)
 
 
 # ---------------------------------------------------------------------------------------------- geometry
