@@ -1,22 +1,25 @@
 """Fluid viscous and friction dampers in frames, against independent references: a linear FVD frame against its
 exact frequency-domain (FFT) solution assembled in the test; nonlinear FVDs against the continuous equations of
-motion (scipy's Radau); the energy balance of a yielding frame with P-Delta and every kind of device; devices on
-one story in parallel; a device's magnification against the scaled device it is equivalent to (the scaling
-proved below); restarts against the uninterrupted run; result files; the deprecated keyword ``walls=``."""
+motion (scipy's Radau); a friction oscillator against its exact piecewise solution; the energy balance of a
+yielding frame with P-Delta and every kind of device; devices on one story in parallel; a device's
+magnification against the scaled device it is equivalent to (the scaling proved below); restarts against the
+uninterrupted run; result files; the deprecated keyword ``walls=``."""
 
 from __future__ import annotations
 
 import dataclasses
+import math
 import warnings
 
 import numpy as np
 import pytest
 from reference import tapered_sine
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 import vdw_frames as vdw
 from vdw_frames.element.thermal import ISD110_LOSS_PEAK, ThermalProperties
-from vdw_frames.frame.results import SimulationResult
+from vdw_frames.frame.results import FrameState, SimulationResult
 from vdw_frames.motion import default_record
 
 MASSES = np.array([400.0, 380.0, 360.0, 300.0])
@@ -148,6 +151,64 @@ def test_a_frame_with_nonlinear_fvds_converges_at_second_order_to_its_equations_
         errors.append(np.abs(result.displacement - expected).max() / np.abs(expected).max())
         assert result.newton_iterations <= 4 * t.size
     assert errors[1] < 5e-3
+    assert 3.5 < errors[0] / errors[1] < 4.5
+
+
+def friction_oscillator(m, K, slip, k, X0, times):
+    """x(t) (mm) of the undamped oscillator m x'' + K x + F = 0 with an elastic-perfectly-plastic friction
+    force F (stiffness k, slip force ``slip``), released at rest from x = X0 having slipped to F = +slip: exact,
+    phase by phase -- sticking (stiffness K + k, about the centre where the two springs balance) until
+    |F| reaches the slip force, slipping (stiffness K, about -F/K) until the velocity reverses -- each phase a
+    cosine, its end found by brentq to 1e-15; elastic for ever once a stick ends in a reversal."""
+    x0, v0, force, sticking, start = X0, 0.0, slip, True, 0.0
+    out, done = np.empty_like(times), 0
+    while True:
+        w = math.sqrt((K + k) / m if sticking else K / m)
+        centre = (k * x0 - force) / (K + k) if sticking else -force / K
+
+        def x(t, x0=x0, v0=v0, w=w, centre=centre):
+            return centre + (x0 - centre) * np.cos(w * t) + v0 / w * np.sin(w * t)
+
+        def v(t, x0=x0, v0=v0, w=w, centre=centre):
+            return -(x0 - centre) * w * math.sin(w * t) + v0 * math.cos(w * t)
+
+        reversal = (math.atan2(v0 / w, x0 - centre) % math.pi) / w or math.pi / w
+        end, slipping = math.inf, None
+        if sticking:
+            direction = 1.0 if x(reversal) > x0 else -1.0
+            target = x0 + (direction * slip - force) / k  # where the force reaches +-slip
+            if (target - x0) * (target - x(reversal)) < 0.0:  # before the reversal: it slips
+                end = brentq(lambda t, target=target: x(t) - target, 0.0, reversal, xtol=1e-15, rtol=1e-15)
+                slipping = direction * slip
+        else:
+            end = reversal
+        upto = int(np.searchsorted(times, start + end, side="right"))
+        out[done:upto] = x(times[done:upto] - start)
+        done = upto
+        if done >= times.size or end == math.inf:
+            return out
+        x0, v0, start = float(x(end)), v(end) if sticking else 0.0, start + end
+        sticking, force = slipping is None, force if slipping is None else slipping
+
+
+def test_a_friction_damper_in_an_oscillator_follows_the_exact_piecewise_solution():
+    """An undamped one-story frame with a friction damper, released from 100 mm having slipped (a FrameState:
+    the restart replays the drift into the damper), against :func:`friction_oscillator`: eleven slip phases,
+    each after a stick, then elastic vibration from 3.2 s on, over 4 s.  Within 5e-5 of the release
+    displacement at dt = 0.5 ms (measured 1.5e-5), the error falling by 4 (3.5 to 4.5; measured 4.1) when
+    the step halves: the return mapping is exact and the slip and stick events cost no order."""
+    m, K, slip, k, X0 = 100.0, 1e4, 5e4, 5e4, 100.0
+    building = vdw.ShearBuilding([m], [K], damping_ratio=0.0, devices={1: vdw.FrictionDamper(slip, k)})
+    errors = []
+    for dt in (0.0005, 0.00025):
+        state = FrameState(step=1, dt=dt, displacement=[X0], velocity=[0.0],
+                           acceleration=[-(K * X0 + slip) / m], drift=[[0.0], [X0]])
+        result = vdw.simulate(building, vdw.GroundMotion(np.zeros(round(4.0 / dt) + 1), dt), initial_state=state)
+        expected = friction_oscillator(m, K, slip, k, X0, result.time - dt)
+        errors.append(np.abs(result.displacement[:, 0] - expected).max() / X0)
+        assert result.device_force[0, 0] == slip and np.abs(result.device_force).max() == slip
+    assert expected.min() < -85.0 and np.abs(expected[-2000:]).max() < 5.0  # it slipped back, then stuck
+    assert errors[0] < 5e-5
     assert 3.5 < errors[0] / errors[1] < 4.5
 
 
