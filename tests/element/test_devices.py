@@ -70,7 +70,8 @@ def test_a_nonlinear_dashpot_dissipates_lambda_C_omega_alpha_u0_1_plus_alpha_a_c
 @pytest.mark.parametrize("alpha", [0.3, 0.5, 1.0])
 def test_a_damper_with_a_brace_dissipates_what_its_dashpot_force_does_on_the_dashpot(alpha):
     """Heat + stored energy F^2 / (2 K_b) equals the trapezoidal work of the force on the device's deformation,
-    step by step, with a soft brace (the brace takes a third of the amplitude)."""
+    step by step, with a soft brace (K_b twice the peak force per amplitude: it deforms by up to half the
+    amplitude)."""
     C, u0, frequency = 250.0, 20.0, 1.5
     omega = 2 * np.pi * frequency
     damper = vdw.FluidViscousDamper(C, alpha, stiffness=2.0 * C * (omega * u0) ** alpha / u0)
