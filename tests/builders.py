@@ -39,7 +39,7 @@ def readme_ten_story():
     """The README's linear 10-story frame with a half-size 300 % wall in each of the six lower stories."""
     wall = paper.fitted(300, area=0.5e6)
     return ShearBuilding(masses=TEN_STORY_MASSES, stiffnesses=TEN_STORY_STIFFNESSES,
-                         walls={story: wall for story in range(1, 7)}, story_heights=TEN_STORY_HEIGHTS)
+                         devices={story: wall for story in range(1, 7)}, story_heights=TEN_STORY_HEIGHTS)
 
 
 # The yielding frame's walls: the README wall at 0.3 m^2 as a classical (r = 1) and a fractional wall.
@@ -55,7 +55,7 @@ def yielding_ten_story(model=Bilinear, strength=0.08, hardening=0.03, walls=INEL
     return ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES, story_heights=TEN_STORY_HEIGHTS,
                          hysteresis=[model(f, hardening) for f in yield_forces],
                          gravity_loads=TEN_STORY_GRAVITY if gravity else None,
-                         walls={story: walls for story in range(1, 7)} if walls else None, **options)
+                         devices={story: walls for story in range(1, 7)} if walls else None, **options)
 
 
 def example_ten_story():
@@ -78,7 +78,7 @@ SUPPORTED_WALL = SupportedDamper(paper.fitted(300, area=0.4e6), 2.0e5)
 
 def uniform_ten_story(walls=None, hysteresis=None):
     """500 t floors, 800 -> 400 kN/mm, 5 % Rayleigh in modes 1 and 2."""
-    return ShearBuilding([500.0] * 10, np.linspace(800e3, 400e3, 10), walls=walls, hysteresis=hysteresis)
+    return ShearBuilding([500.0] * 10, np.linspace(800e3, 400e3, 10), devices=walls, hysteresis=hysteresis)
 
 
 def classical_ten_story(walls=True):
@@ -102,12 +102,12 @@ def light_ten_story(walls=True):
     in every story (``walls``)."""
     stiffness = [300e3 * (1 - 0.05 * i) for i in range(10)]
     walls = {story: [SMALL_README_WALL, SMALL_README_WALL] for story in range(1, 11)} if walls else None
-    return ShearBuilding([300.0] * 10, stiffness, walls=walls, story_heights=[3500.0] * 10)
+    return ShearBuilding([300.0] * 10, stiffness, devices=walls, story_heights=[3500.0] * 10)
 
 
 def three_story(walls=None, story_heights=(3500.0,) * 3):
     """300, 300 and 250 t floors on 200, 180 and 150 kN/mm stories (``story_heights=None``: none given)."""
-    return ShearBuilding([300.0, 300.0, 250.0], [2e5, 1.8e5, 1.5e5], walls=walls,
+    return ShearBuilding([300.0, 300.0, 250.0], [2e5, 1.8e5, 1.5e5], devices=walls,
                          story_heights=list(story_heights) if story_heights is not None else None)
 
 

@@ -14,7 +14,10 @@ story k, between nodes k-1 and k,
   linearised leaning column);
 * per wall, a ``zeroLength`` Kelvin branch: ``Elastic`` E = k1 = G1 A/h, eta = c1 = eta1 A/h (N*s/mm);
 * per wall, a ``zeroLength`` Maxwell branch: ``Maxwell`` K = k2 = G2 A/h, C = c2 = eta2 A/h, alpha = 1,
-  L = 1 (omitted when G2 = 0 or eta2 = 0, which carries no stress in the FDMK model either).
+  L = 1 (omitted when G2 = 0 or eta2 = 0, which carries no stress in the FDMK model either);
+* per other device (fluid viscous, friction), a ``zeroLength`` element of its native material in story
+  units (``ViscousDamper``, ``Viscous`` or ``ElasticPP``, the magnification folded in):
+  :func:`vdw_frames.interop.opensees.device_element`, no Rayleigh.
 
 OpenSees semantics this relies on (source: OpenSees/OpenSees, SRC/):
 
@@ -114,7 +117,8 @@ def imposed_force(ops, material, displacement, dt):
 
 
 def build(building, tolerance=1e-9, max_iterations=50, algorithm="Newton", parallel_walls=False):
-    """Build ``building`` (a :class:`vdw_frames.ShearBuilding` with r = 1 walls) in a fresh OpenSees domain.
+    """Build ``building`` (a :class:`vdw_frames.ShearBuilding` with r = 1 walls and any fluid viscous or
+    friction dampers) in a fresh OpenSees domain.
 
     The analysis is transient Newmark (gamma = 1/2, beta = 1/4, average acceleration, as in
     :func:`vdw_frames.simulate`), Newton iterations to a displacement-increment norm of ``tolerance`` mm
@@ -164,6 +168,13 @@ def build(building, tolerance=1e-9, max_iterations=50, algorithm="Newton", paral
             tag += 1
             ops.uniaxialMaterial("Maxwell", tag, k2, c2, 1.0, 1.0)  # K, C, alpha, L
             ops.element("zeroLength", tag, story - 1, story, "-mat", tag, "-dir", 1)
+
+    if building.other_device_list:
+        from vdw_frames.interop.opensees import device_element
+
+        for story, device in building.other_device_list:
+            tag += 1
+            device_element(ops, tag, story - 1, story, device)
 
     a0, a1 = building.rayleigh_coefficients
     # rayleigh(alphaM, betaK, betaKinit, betaKcomm): a1 on the springs' *initial* stiffness, as vdw_frames.
@@ -265,9 +276,9 @@ def drifts(displacement):
 
 # ---------------------------------------------------------------------------------------------- walls bridged
 def build_bare(building, tolerance=1e-12, max_iterations=50, algorithm="Newton"):
-    """The bare frame of ``building`` (no walls: :func:`build` of ``building.without_walls()``) in a fresh
-    domain, for walls added afterwards.  Returns the floor node tags (story k between nodes k-1 and k; node
-    0 the ground)."""
+    """The frame of ``building`` without its walls (:func:`build` of ``building.without_walls()``: its other
+    devices as native elements) in a fresh domain, for walls added afterwards.  Returns the floor node tags
+    (story k between nodes k-1 and k; node 0 the ground)."""
     return build(building.without_walls(), tolerance, max_iterations, algorithm)
 
 

@@ -23,7 +23,7 @@ def test_python_and_numpy_numbers_are_accepted_alike(kind):
     assert damper == FDMKDamper(G1=0.0, G2=3.0, eta1=0.5, eta2=2.0, r=0.5, area=1e5, thickness=10.0)
     frame = ShearBuilding(np.array([300, 300], dtype=kind), [kind(200000)] * 2, damping_ratio=0.05,
                           damping_modes=np.array([1, 2], dtype=np.int64 if kind in (float, np.float32, np.float64)
-                                                  else kind), walls={np.int64(1): damper})
+                                                  else kind), devices={np.int64(1): damper})
     assert frame.damping_modes == (1, 2) and frame.masses == (300.0, 300.0)
     result = sine_test(damper, kind(10), kind(1), cycles=kind(3))
     assert result.cycles == 3
@@ -58,7 +58,7 @@ def test_messages_print_plain_numbers():
         lambda: ShearBuilding(np.array([1.0, -1.0]), [1.0, 1.0]),
         lambda: ShearBuilding([1.0], [1.0], damping_ratio=np.float32(1.5)),
         lambda: ShearBuilding([1.0, 1.0], [1.0, 1.0], damping_modes=np.array([1, 5])),
-        lambda: ShearBuilding([1.0], [1.0], walls={np.int64(4): FDMKDamper(**README_WALL)}),
+        lambda: ShearBuilding([1.0], [1.0], devices={np.int64(4): FDMKDamper(**README_WALL)}),
         lambda: ShearBuilding([1.0], [1.0]).frequency_response(np.array([-1.0])),
         lambda: motion.spectrum(np.array([-1.0])),
         lambda: motion.spectrum(np.float64(1e9)),

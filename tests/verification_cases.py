@@ -14,7 +14,7 @@ def r1_wall(scale: float = 1.0) -> FDMKDamper:
 
 def three_story(walls: bool = True, heights: bool = True) -> ShearBuilding:
     return ShearBuilding(masses=(100.0, 100.0, 80.0), stiffnesses=(1.2e5, 1.0e5, 0.8e5), damping_ratio=0.03,
-                         walls={1: r1_wall(), 2: r1_wall(), 3: r1_wall(0.8)} if walls else {},
+                         devices={1: r1_wall(), 2: r1_wall(), 3: r1_wall(0.8)} if walls else {},
                          story_heights=(3500.0, 3200.0, 3200.0) if heights else None)
 
 

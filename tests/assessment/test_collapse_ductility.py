@@ -36,7 +36,7 @@ WALL_STATIC = np.array([0.0, 0.0, 0.2 * 1.0e6 / 10.0])
 
 
 def frame(walls=None) -> vdw.ShearBuilding:
-    return vdw.ShearBuilding(MASSES, STIFFNESS, story_heights=HEIGHTS, gravity_loads=GRAVITY, walls=walls,
+    return vdw.ShearBuilding(MASSES, STIFFNESS, story_heights=HEIGHTS, gravity_loads=GRAVITY, devices=walls,
                              hysteresis=[vdw.Bilinear(f, b) for f, b in zip(YIELD, HARDENING, strict=True)])
 
 

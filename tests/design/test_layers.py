@@ -16,7 +16,7 @@ def three_story(walls):
     weight = np.cumsum((masses * vdw.G)[::-1])[::-1]
     return vdw.ShearBuilding(masses=masses, stiffnesses=[1.5e5, 1.3e5, 1.0e5], story_heights=[3500.0] * 3,
                              gravity_loads=weight, hysteresis=[vdw.Bilinear(0.15 * w, 0.03) for w in weight],
-                             walls=walls)
+                             devices=walls)
 
 
 SUITE = [synthetic_ground_motion(duration=8.0, dt=0.01, seed=seed, strong_motion_end=5.0, pga=0.3 * vdw.G)

@@ -19,7 +19,7 @@ KELVIN_MAXWELL = FDMKDamper(**CLASSICAL_KELVIN_MAXWELL, area=5e4)
 
 
 def five_story(walls=None):
-    return ShearBuilding([300.0, 300.0, 280.0, 250.0, 200.0], [2.0e5, 1.8e5, 1.6e5, 1.4e5, 1.1e5], walls=walls)
+    return ShearBuilding([300.0, 300.0, 280.0, 250.0, 200.0], [2.0e5, 1.8e5, 1.6e5, 1.4e5, 1.1e5], devices=walls)
 
 
 def state_space_ratio(building, mode=1):

@@ -21,7 +21,7 @@ def frame(thickness, top=1.0):
         t = thickness * (top if story == 3 else 1.0)
         walls[story] = [vdw.paper.strain_dependent(area=0.3e6 * t / 8.0, thickness=t)]
     return vdw.ShearBuilding(masses=masses, stiffnesses=[3.0e5, 2.7e5, 2.4e5], story_heights=[3500.0] * 3,
-                             gravity_loads=weight, walls=walls)
+                             gravity_loads=weight, devices=walls)
 
 
 def test_an_amplitude_above_the_identified_ones_warns_naming_the_story():

@@ -87,7 +87,7 @@ def test_batch_on_a_dask_local_cluster():
 
 def test_batch_reports_worker_warnings_and_failures():
     bounded = FDMKDamper(G1=0.0, G2=3.0, eta1=0.3, eta2=2.0, r=0.5, area=2.0e5, strain_range=(2.0, 3.0))
-    frame = ShearBuilding([300.0], [2e5], walls={1: bounded})
+    frame = ShearBuilding([300.0], [2e5], devices={1: bounded})
     with concurrent.futures.ThreadPoolExecutor(2) as pool:
         with pytest.warns(UserWarning, match=r"sine 1.1 Hz x 0.5: wall peak strain outside"):
             run_batch(frame, tapered_sine_pair()[:1], [0.5], executor=pool, progress=False)
@@ -106,7 +106,7 @@ def test_empty_motions_and_badly_shaped_or_non_finite_scales_are_refused(args, m
 
 
 def test_bad_motions_scales_executors_and_methods_are_refused_naming_them():
-    frame = ShearBuilding([300.0], [2e5], walls={1: FDMKDamper(**README_WALL)})
+    frame = ShearBuilding([300.0], [2e5], devices={1: FDMKDamper(**README_WALL)})
     motion = tapered_pulse()
     cases = [
         (lambda: run_batch(frame, motion, [1]), "got one GroundMotion .'pulse'.; pass \\[motion\\]"),
@@ -123,7 +123,7 @@ def test_bad_motions_scales_executors_and_methods_are_refused_naming_them():
 
 def test_a_thread_batch_delivers_every_warning_and_leaves_the_filters_alone(monkeypatch):
     bounded = FDMKDamper(**README_WALL, area=2.0e5, strain_range=(50.0, 60.0))  # every run stays below 5000 %
-    frame = ShearBuilding([300.0], [2e5], walls={1: bounded})
+    frame = ShearBuilding([300.0], [2e5], devices={1: bounded})
     scales = np.linspace(0.5, 2.0, 16)
     shown = []
 
@@ -148,11 +148,11 @@ def test_a_thread_batch_delivers_every_warning_and_leaves_the_filters_alone(monk
 def test_simulate_outside_a_batch_still_warns_normally():
     bounded = FDMKDamper(**README_WALL, area=2.0e5, strain_range=(50.0, 60.0))
     with pytest.warns(UserWarning, match="wall peak strain outside"):
-        simulate(ShearBuilding([300.0], [2e5], walls={1: bounded}), tapered_pulse())
+        simulate(ShearBuilding([300.0], [2e5], devices={1: bounded}), tapered_pulse())
 
 
 def test_run_batch_reports_the_failing_run_by_motion_and_scale():
-    frame = ShearBuilding([300.0], [2e5], walls={1: FDMKDamper(**README_WALL)})
+    frame = ShearBuilding([300.0], [2e5], devices={1: FDMKDamper(**README_WALL)})
     with concurrent.futures.ThreadPoolExecutor(2) as pool, \
             pytest.raises(ValueError, match=r"the analysis of quake x 1e\+200 failed: .*overflowed"):
         run_batch(frame, [tapered_pulse("quake")], [1.0, 1e200], executor=pool, progress=False)

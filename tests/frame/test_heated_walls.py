@@ -24,7 +24,7 @@ def five_story(walls):
     return vdw.ShearBuilding(masses=masses, stiffnesses=[3.0e5, 2.7e5, 2.4e5, 2.0e5, 1.6e5],
                              story_heights=[3500.0] * 5, gravity_loads=weight,
                              hysteresis=[vdw.Bilinear(0.12 * w, 0.03) for w in weight],
-                             walls={story: walls for story in range(1, 6)})
+                             devices={story: walls for story in range(1, 6)})
 
 
 WALL = vdw.FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5, area=3e5, thickness=8.0)

@@ -29,7 +29,7 @@ pytestmark = pytest.mark.records  # every analysis here runs a recorded accelero
 def test_linear_limit_equals_the_linear_path():
     motion = read_at2(shared_record("RIO270.AT2")).scaled_to_pga(0.4 * G)
     linear = ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES, story_heights=TEN_STORY_HEIGHTS,
-                           walls={s: INELASTIC_FRACTIONAL_WALL for s in range(1, 7)})
+                           devices={s: INELASTIC_FRACTIONAL_WALL for s in range(1, 7)})
     strong = yielding_ten_story(strength=1e3, walls=INELASTIC_FRACTIONAL_WALL, gravity=False)  # never yields
     expected, result = simulate(linear, motion), simulate(strong, motion)
     scale = np.abs(expected.displacement).max()

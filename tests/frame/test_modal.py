@@ -19,7 +19,7 @@ FRACTIONAL = FDMKDamper(G1=0.2, G2=2.6, eta1=0.04, eta2=1.9, r=0.59, area=2.0e4)
 
 
 def four_story(walls, **options):
-    return ShearBuilding([300.0, 300.0, 280.0, 250.0], [2.0e5, 1.8e5, 1.6e5, 1.4e5], walls=walls, **options)
+    return ShearBuilding([300.0, 300.0, 280.0, 250.0], [2.0e5, 1.8e5, 1.6e5, 1.4e5], devices=walls, **options)
 
 
 # ------------------------------------------------------------------------------ r = 1: state space
@@ -79,7 +79,7 @@ def test_fractional_walls_match_frequency_response_peaks_and_half_power_bandwidt
     # frequency and 1 % in xi (measured 6e-5 / 1.3e-4 and 0.13 % / 0.19 %).
     wall = FRACTIONAL
     building = ShearBuilding([300.0] * 5, [2.0e5, 1.9e5, 1.8e5, 1.6e5, 1.4e5], damping_ratio=0.002,
-                             walls={1: wall, 2: wall, 3: SupportedDamper(wall, 2e4)})
+                             devices={1: wall, 2: wall, 3: SupportedDamper(wall, 2e4)})
     result = modal_analysis(building, [1, 2, 3])
     assert np.all(result.added_damping > 0.3 * result.damping_ratios)  # the walls' share is tested, not hidden
     for j, (frequency_tolerance, damping_tolerance) in enumerate([(2e-5, 1e-3), (5e-4, 1e-2), (5e-4, 1e-2)]):
@@ -94,7 +94,7 @@ def test_fractional_example_walls_match_the_frequency_response_peak_of_mode_1():
     # The example's walls (fitted-300, r = 0.59) at a tenth of their area and light inherent damping.
     wall = fitted(300, area=5e4)
     building = ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES, damping_ratio=0.002,
-                             walls={story: wall for story in range(1, 7)})
+                             devices={story: wall for story in range(1, 7)})
     result = modal_analysis(building, 1)
     peak, xi_half_power = half_power(building, abs(result.poles[0]), result.damping_ratios[0])
     assert peak == pytest.approx(abs(result.poles[0]) * (1 - result.damping_ratios[0] ** 2), rel=1e-4)
@@ -155,10 +155,10 @@ def test_energy_estimate_first_order_for_light_fractional_walls_and_wrong_for_lo
     # Light fractional walls: the estimate is first-order perturbation theory, within 0.5 % (relative)
     # of the exact ratio at 0.9 % damping; the measured gap on a one-story frame grows with xi
     # (0.4 % at xi = 0.8 %, 2 % at 4.8 %, 3 % at 7.4 %).
-    light = ShearBuilding([600.0], [3e5], damping_ratio=0.0, walls={1: fitted(300, area=1e5)})
+    light = ShearBuilding([600.0], [3e5], damping_ratio=0.0, devices={1: fitted(300, area=1e5)})
     result = modal_analysis(light)
     assert result.energy_damping_ratios[0] == pytest.approx(result.damping_ratios[0], rel=5e-3)
-    heavy = dataclasses.replace(light, walls={1: fitted(300, area=3e6)})
+    heavy = dataclasses.replace(light, devices={1: fitted(300, area=3e6)})
     result = modal_analysis(heavy)
     assert 0.015 < 1 - result.energy_damping_ratios[0] / result.damping_ratios[0] < 0.05
     # Strong viscous dampers in stories 1-2 of ten: the real mode ignores that they lock those stories,
@@ -187,7 +187,7 @@ def test_a_heavily_damped_root_no_undamped_mode_leads_to_is_found_by_bisection()
     # argument principle counts it and the sector bisection finds it.
     wall = FDMKDamper(G1=1.21, G2=1.126, eta1=0.795, eta2=1.45, r=0.945, area=7.35e5)
     building = ShearBuilding([210.0, 410.0], [2.4e5, 4.2e5], damping_ratio=0.0665, damping_model="modal",
-                             walls={2: wall})
+                             devices={2: wall})
     system = modal._System(building)
     from_starts = [modal._newton(system, s, x) for s, x in modal._start_guesses(system)]
     assert sum(root is not None for root in from_starts) == 1
@@ -207,7 +207,7 @@ def test_poles_are_roots_of_the_characteristic_matrix_built_here():
     wall = fitted(300, area=5e5)
     building = ShearBuilding([600.0] * 4, [3e5, 2.8e5, 2.6e5, 2.4e5], story_heights=[3500.0] * 4,
                              gravity_loads=[2.4e7, 1.8e7, 1.2e7, 6e6],
-                             walls={1: wall, 2: SupportedDamper(wall, 3e5)})
+                             devices={1: wall, 2: SupportedDamper(wall, 3e5)})
     result = modal_analysis(building)
     assert result.pole_count == 4
     for s, shape in zip(result.poles, result.mode_shapes.T, strict=True):
@@ -258,7 +258,7 @@ def test_strain_dependent_walls_and_unstable_frames_are_refused():
 def test_an_overdamped_building_has_no_modes():
     # c = 5e5 N*s/mm on a 100 t, 1e5 N/mm story: 80 x critical, both poles real.
     dashpot = FDMKDamper(G1=0.0, G2=0.0, eta1=5.0, eta2=0.0, r=1.0, area=1e6)
-    building = ShearBuilding([100.0], [1e5], walls={1: dashpot})
+    building = ShearBuilding([100.0], [1e5], devices={1: dashpot})
     result = modal_analysis(building)
     assert result.poles.size == 0 and result.pole_count == 0
     with pytest.raises(ValueError, match="no oscillatory mode"):
@@ -271,7 +271,7 @@ def test_huge_maxwell_walls_beside_the_search_contour():
     # the phase once hid between two samples.  Reference: the state-space eigenvalues.
     wall = fitted(225, area=0.5e6 * 562.34)
     building = ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES,
-                             walls={story: wall for story in range(1, 7)})
+                             devices={story: wall for story in range(1, 7)})
     expected, _ = state_space_eigenvalues(building)
     result = modal_analysis(building)
     assert result.pole_count == expected.size == 5
@@ -297,7 +297,7 @@ def test_a_building_beyond_the_story_limit_is_refused_before_any_work():
 
     wall = fitted(300)
     for stories in (modal.MAX_STORIES + 1, 3000):
-        tall = ShearBuilding([500.0] * stories, [6e5] * stories, walls={1: wall})
+        tall = ShearBuilding([500.0] * stories, [6e5] * stories, devices={1: wall})
         start = time.perf_counter()
         with pytest.raises(ValueError, match=rf"a complex modal analysis takes buildings of at most 100 stories, "
                                              rf"got {stories} stories"):

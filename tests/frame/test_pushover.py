@@ -18,7 +18,7 @@ GOLDEN = (1.0 + math.sqrt(5.0)) / 2.0
 def two_story(strengths=(3.0e5, 1.6e5), hardening=0.0, *, gravity=None, walls=None, k=1.0e5, m=100.0, h=3000.0):
     return vdw.ShearBuilding([m, m], [k, k], story_heights=[h, h],
                              hysteresis=[vdw.Bilinear(f, hardening) for f in strengths],
-                             gravity_loads=gravity, walls=walls)
+                             gravity_loads=gravity, devices=walls)
 
 
 def test_elastic_perfectly_plastic_without_p_delta_closed_form():

@@ -31,7 +31,7 @@ def _yielding_frame() -> vdw.ShearBuilding:
     plain = vdw.paper.fitted(300, area=0.4e6)
     return vdw.ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES, story_heights=TEN_STORY_HEIGHTS,
                              gravity_loads=TEN_STORY_GRAVITY, hysteresis=models,
-                             walls={1: [HEATED, plain], 2: vdw.SupportedDamper(plain, 2e5), 5: plain})
+                             devices={1: [HEATED, plain], 2: vdw.SupportedDamper(plain, 2e5), 5: plain})
 
 
 @pytest.fixture(scope="module")
@@ -122,7 +122,7 @@ def test_a_saved_result_must_be_named_npz(result, tmp_path):
 
 def test_walls_that_follow_their_amplitude_come_back_with_their_histories(tmp_path):
     wall = vdw.paper.strain_dependent(area=2e5, thickness=8.0)
-    building = vdw.ShearBuilding([300.0, 250.0], [2e5, 1.5e5], walls={1: wall, 2: wall}, story_heights=[3500.0] * 2)
+    building = vdw.ShearBuilding([300.0, 250.0], [2e5, 1.5e5], devices={1: wall, 2: wall}, story_heights=[3500.0] * 2)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         result = vdw.simulate(building, tapered_pulse().scaled(2.0))
@@ -290,7 +290,7 @@ def test_the_checks_pass_a_file_as_saved_and_hold_the_analysis_identities(result
 def _variants():
     frame = vdw.ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES)  # no heights, no walls
     walled = vdw.ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES, story_heights=TEN_STORY_HEIGHTS,
-                               walls={1: vdw.paper.fitted(300, area=0.4e6), 3: vdw.paper.fitted(450, area=0.2e6)})
+                               devices={1: vdw.paper.fitted(300, area=0.4e6), 3: vdw.paper.fitted(450, area=0.2e6)})
     strain_dependent = vdw.paper.strain_dependent(area=0.5e6, thickness=10.0, common_order=False)
     return {
         "bare frame without heights": (frame, {}),
@@ -299,7 +299,7 @@ def _variants():
             dataclasses.replace(walled, gravity_loads=tuple(TEN_STORY_GRAVITY),
                                 hysteresis=[vdw.Bilinear(0.02 * TEN_STORY_GRAVITY[0], 0.0)] * 10),
             {"collapse_drift_ratio": 0.002}),
-        "strain-compatible walls": (dataclasses.replace(frame, walls={1: strain_dependent, 2: strain_dependent}),
+        "strain-compatible walls": (dataclasses.replace(frame, devices={1: strain_dependent, 2: strain_dependent}),
                                     {"strain_compatible": True}),
     }
 

@@ -112,7 +112,7 @@ def test_substeps_interpolate_the_record_and_other_steps_are_refused():
 
 def test_warns_when_strain_leaves_identified_range():
     wall = FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5, area=2e5, strain_range=(2.0, 3.0))
-    building = ShearBuilding([300.0], [3e5], walls={1: wall})
+    building = ShearBuilding([300.0], [3e5], devices={1: wall})
     with pytest.warns(UserWarning, match=r"outside the range.*story 1: 6 % \(range 200-300 %\)"):
         simulate(building, smooth_motion(0.01, duration=4.0))
     with pytest.warns(UserWarning, match=r"story 1: 582 % \(range 200-300 %\)"):
@@ -166,7 +166,7 @@ def test_fast_memory_meets_the_bar_over_100000_steps():
 
 
 def test_simulate_accepts_a_float32_step():
-    frame = ShearBuilding([300.0, 250.0], [2e5, 1.5e5], walls={1: FDMKDamper(**README_WALL)})
+    frame = ShearBuilding([300.0, 250.0], [2e5, 1.5e5], devices={1: FDMKDamper(**README_WALL)})
     motion = tapered_pulse()
     for step in (0.01, 0.005):
         single = simulate(frame, motion, dt=np.float32(step))
@@ -190,7 +190,7 @@ def test_realistic_long_runs_are_not_refused():
 
 
 def test_steps_out_of_range_and_unknown_methods_and_memories_are_refused():
-    frame = ShearBuilding([300.0], [2e5], walls={1: FDMKDamper(**README_WALL)})
+    frame = ShearBuilding([300.0], [2e5], devices={1: FDMKDamper(**README_WALL)})
     motion = tapered_pulse()
     cases = [
         (lambda: simulate(frame, GroundMotion([0.0, 1.0, 0.0], 1e-300)), r"dt = 1e-300 s is outside the range"),
@@ -209,7 +209,7 @@ def test_a_building_unstable_under_its_gravity_loads_is_refused_naming_the_story
     # Story 2: P/h = 3.6e6 N / 3000 mm = 1200 N/mm above its 1000 N/mm: K + K_G is not positive definite.
     def building(load_2, hysteresis=None, walls=None):
         return ShearBuilding([100.0, 100.0], [5000.0, 1000.0], story_heights=[3000.0, 3000.0],
-                             gravity_loads=[6.0e6, load_2], hysteresis=hysteresis, walls=walls)
+                             gravity_loads=[6.0e6, load_2], hysteresis=hysteresis, devices=walls)
 
     motion = tapered_pulse()
     for unstable in (building(3.6e6), building(3.6e6, hysteresis=[None, Bilinear(2.0e4, 0.05)])):

@@ -29,7 +29,7 @@ def ten_story(wall=None, elastic=False):
     if elastic:
         frame = dataclasses.replace(frame, hysteresis=None, gravity_loads=None)
     wall = paper.strain_dependent(area=0.5e6, thickness=10.0, common_order=False) if wall is None else wall
-    return dataclasses.replace(frame, walls={story: (wall,) for story in range(1, 7)})
+    return dataclasses.replace(frame, devices={story: (wall,) for story in range(1, 7)})
 
 
 def run(building, motion, **options):
@@ -56,7 +56,7 @@ def test_iteration_converges_to_a_fixed_point_on_every_shared_record(name, pga):
     for damper, strain in zip(result.equivalent_walls, result.wall_effective_strain, strict=True):
         assert damper == wall.at(wall.clamped(strain))
     walls = {s: (d,) for s, d in zip(range(1, 7), result.equivalent_walls, strict=True)}
-    fixed = dataclasses.replace(building, walls=walls)
+    fixed = dataclasses.replace(building, devices=walls)
     rerun = run(fixed, motion)
     chose = result.wall_effective_strain / 0.65
     np.testing.assert_allclose(peak_wall_strain(rerun), chose, rtol=0.01)
@@ -104,7 +104,7 @@ def test_result_fields_and_the_equivalent_linear_building():
     building = dataclasses.replace(ten_story(), damping_ratio=0.03, damping_modes=(1, 3))
     mixed = dict(building.walls)
     mixed[7] = (paper.fitted(300, area=0.25e6),)  # a fixed wall keeps its parameters
-    building = dataclasses.replace(building, walls=mixed)
+    building = dataclasses.replace(building, devices=mixed)
     result = run(building, motion, strain_compatible=True)
     assert result.equivalent_walls[-1] == paper.fitted(300, area=0.25e6)
     assert result.wall_effective_strain[-1] == pytest.approx(0.65 * result.peak_drift[6] / 10.0)

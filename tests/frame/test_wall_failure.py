@@ -25,7 +25,7 @@ def five_story(walls, hysteresis="bilinear"):
     models = ([vdw.Bilinear(0.12 * w, 0.03) for w in weight] if hysteresis == "bilinear"
               else [vdw.BoucWen(0.12 * w, 0.03, exponent=2.0) for w in weight])
     return vdw.ShearBuilding(masses=masses, stiffnesses=[3.0e5, 2.7e5, 2.4e5, 2.0e5, 1.6e5],
-                             story_heights=[3500.0] * 5, gravity_loads=weight, hysteresis=models, walls=walls)
+                             story_heights=[3500.0] * 5, gravity_loads=weight, hysteresis=models, devices=walls)
 
 
 def quiet_simulate(*args, **kwargs):

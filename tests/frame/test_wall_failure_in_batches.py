@@ -24,7 +24,7 @@ def three_story(limits=LIMITS):
     wall = dataclasses.replace(WALL, limits=limits)
     return vdw.ShearBuilding(masses=masses, stiffnesses=[1.5e5, 1.3e5, 1.0e5], story_heights=[3500.0] * 3,
                              gravity_loads=weight, hysteresis=[vdw.Bilinear(0.1 * w, 0.03) for w in weight],
-                             walls={1: [wall], 2: [wall.resized(1.9e5)], 3: [wall.resized(1.5e5)]})
+                             devices={1: [wall], 2: [wall.resized(1.9e5)], 3: [wall.resized(1.5e5)]})
 
 
 MOTIONS = [synthetic_ground_motion(duration=8.0, dt=0.01, seed=seed, strong_motion_end=5.0, name=f"s{seed}")

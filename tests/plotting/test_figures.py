@@ -79,7 +79,7 @@ def test_the_wall_amplitude_figure_names_its_traces_and_the_wall_and_story(tmp_p
     from vdw_frames.plotting import plot_wall_amplitude, walls
 
     building = vdw.ShearBuilding(masses=[400.0, 380.0], stiffnesses=[3.0e5, 2.7e5],
-                                 walls={2: [vdw.paper.strain_dependent(area=0.3e6, thickness=8.0)]})
+                                 devices={2: [vdw.paper.strain_dependent(area=0.3e6, thickness=8.0)]})
     with warnings.catch_warnings():  # (whether the wall leaves its tested range is not this test's subject)
         warnings.simplefilter("ignore", UserWarning)
         result = vdw.simulate(building, default_record())

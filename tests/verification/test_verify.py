@@ -139,7 +139,7 @@ def test_device_demands_equal_the_maxima_of_the_histories(verified):
         c = [name for name, _ in result.cases].index(case)
         # the bound's building written out: every wall's G1, G2, eta1, eta2 times lambda
         building = ShearBuilding(masses=(100.0, 100.0, 80.0), stiffnesses=(1.2e5, 1.0e5, 0.8e5), damping_ratio=0.03,
-                                 walls={1: r1_wall(factor), 2: r1_wall(factor), 3: r1_wall(0.8 * factor)},
+                                 devices={1: r1_wall(factor), 2: r1_wall(factor), 3: r1_wall(0.8 * factor)},
                                  story_heights=(3500.0, 3200.0, 3200.0))
         for r in (0, 7):
             history = simulate(building, result.suite.motions[r].scaled(float(result.suite.factors[r])))
@@ -245,7 +245,7 @@ def _heated(temperature: float = 21.2, factor: float = 1.0) -> ShearBuilding:
     thermal = ThermalProperties(ISD110_LOSS_PEAK, 1.8, temperature)
     walls = {1: r1_wall(factor), 2: r1_wall(factor), 3: r1_wall(0.8 * factor)}
     return ShearBuilding(masses=(100.0, 100.0, 80.0), stiffnesses=(1.2e5, 1.0e5, 0.8e5), damping_ratio=0.03,
-                         walls={s: dataclasses.replace(w, thermal=thermal) for s, w in walls.items()},
+                         devices={s: dataclasses.replace(w, thermal=thermal) for s, w in walls.items()},
                          story_heights=(3500.0, 3200.0, 3200.0))
 
 
@@ -315,7 +315,7 @@ def _past_the_loss_peak(temperature: float = 21.2) -> ShearBuilding:
     thermal = ThermalProperties(ISD110_LOSS_PEAK, 1.8, temperature)
     wall = FDMKDamper(G1=0.5, G2=1.0, eta1=0.0, eta2=1.0, r=1.0, area=2.0e5, thickness=10.0, thermal=thermal)
     return ShearBuilding(masses=(100.0, 100.0, 80.0), stiffnesses=(1.2e5, 1.0e5, 0.8e5), damping_ratio=0.03,
-                         walls={1: wall, 2: wall, 3: wall}, story_heights=(3500.0, 3200.0, 3200.0))
+                         devices={1: wall, 2: wall, 3: wall}, story_heights=(3500.0, 3200.0, 3200.0))
 
 
 def _by_hand(wall, temperature, frequency):

@@ -24,7 +24,7 @@ Units: N, mm, s; moduli MPa, viscosities MPa*s^r.
 from .bank import WallBank
 from .damper import FDMKDamper, WallState
 from .device import Device
-from .devices import device_response
+from .devices import DeviceState, device_response
 from .fast_memory import FastMemory
 from .fractional import BDF2, DampedTwoStep, Discretisation, GrunwaldLetnikov, Trapezoidal
 from .friction import FrictionDamper
@@ -38,7 +38,7 @@ from .thermal import ISD110_LOSS_PEAK, WLF, Arrhenius, LogLinear, ThermalPropert
 from .viscous import FluidViscousDamper
 from .wall import Wall
 
-__all__ = ["BDF2", "ISD110_LOSS_PEAK", "WLF", "Arrhenius", "DampedTwoStep", "Device", "Discretisation",
+__all__ = ["BDF2", "ISD110_LOSS_PEAK", "WLF", "Arrhenius", "DampedTwoStep", "Device", "DeviceState", "Discretisation",
            "FDMKDamper", "FastMemory", "FluidViscousDamper", "FrictionDamper", "GrunwaldLetnikov", "LogLinear",
            "Material", "PronySeries", "SineTestResult", "StrainDependentDamper", "SupportedDamper",
            "ThermalProperties", "Trapezoidal", "Wall", "WallBank", "WallLimits", "WallState", "device_response",

@@ -158,3 +158,57 @@ def device_response(device: Device, deformation: ArrayLike, dt: float) -> dict[s
     force, heat, stored = np.zeros(history.size), np.zeros(history.size), np.zeros(history.size)
     _drive(states, motion, history, float(dt), force, heat, stored)
     return {"force": force, "heat": heat, "stored": stored}
+
+
+class DeviceState:
+    """Time-stepping state of one device that is not a wall, with OpenSees ``UniaxialMaterial``-like
+    trial/commit semantics (the walls' is :class:`~vdw_frames.element.damper.WallState`).
+
+    ``force, tangent = state.trial(deformation)`` gives the force (N, along the story: magnification x the
+    device's) at the next step for a story drift ``deformation`` (mm) and its derivative (N/mm, Newmark's
+    velocity term included), the committed state untouched; any number of trials may precede
+    :meth:`commit`, which accepts the last one and advances a step of ``dt`` s; :meth:`revert_to_last_commit`
+    discards it.  The device's velocity is Newmark's, v = 2/dt (u - u_n) - v_n, as in the frame.
+    """
+
+    def __init__(self, device: Device, dt: float) -> None:
+        self.device = device
+        self.dt = time_step(dt)
+        self._states = device_states([(1, device)], self.dt)
+        viscous = self._states.viscous
+        self._motion = viscous.kinematics if viscous.coefficient.size else self._states.friction.kinematics
+        self._drift, self._force, self._tangent = np.zeros(1), np.zeros(1), np.zeros(1)
+        self._tried = False
+
+    def trial(self, deformation: float) -> tuple[float, float]:
+        """(force N, tangent N/mm) at the story drift ``deformation`` (mm) this step; nothing committed."""
+        self._drift[0] = finite_array("deformation", [deformation])[0]
+        devices_trial(self._states, self._drift, self.dt, self._force, self._tangent)
+        self._tried = True
+        return float(self._force[0]), float(self._tangent[0])
+
+    def commit(self) -> None:
+        """Accept the last trial (a ValueError without one)."""
+        if not self._tried:
+            raise ValueError("commit needs a trial first")
+        devices_commit(self._states)
+        self._tried = False
+
+    def revert_to_last_commit(self) -> None:
+        """Discard the last trial."""
+        self._tried = False
+
+    @property
+    def committed_force(self) -> float:
+        """The device's own force at the last commit (N)."""
+        return float(self._motion.force[0])
+
+    @property
+    def heat(self) -> float:
+        """Energy dissipated since rest at the last commit (N*mm)."""
+        return float(self._motion.heat[0])
+
+    @property
+    def stored(self) -> float:
+        """Energy stored at the last commit (N*mm)."""
+        return float(self._motion.stored[0])

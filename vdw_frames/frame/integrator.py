@@ -263,11 +263,13 @@ def _residual(u, dt, least, frame, stories, devices, work):
     for s in range(n):
         work.drift[s] = u[s] - (u[s - 1] if s > 0 else 0.0)
     _story_state(stories, work)
-    if devices.total:
-        devices_trial(devices, work.drift, dt, work.device_force, work.device_tangent)
     for s in range(n):
         work.story_total[s] = (work.story_force[s] + geometric[s] * work.drift[s]
-                               + work.wall_tangent[s] * work.drift[s] + work.wall_history[s] + work.device_force[s])
+                               + work.wall_tangent[s] * work.drift[s] + work.wall_history[s])
+    if devices.total:  # a loop of their own: a building without them runs as before they existed
+        devices_trial(devices, work.drift, dt, work.device_force, work.device_tangent)
+        for s in range(n):
+            work.story_total[s] += work.device_force[s]
     scale = least
     for i in range(n):
         damped = 0.0
@@ -401,7 +403,7 @@ def _iterate(strategy, limit, least, dt, frame, stories, devices, newton, work):
     for iteration in range(limit + 1):
         scale = _residual(u, dt, least, frame, stories, devices, work)
         norm = _largest(work.residual)
-        if exact_solve and _tangent_changed(frame, work):
+        if exact_solve and _tangent_changed(frame, devices, work):
             exact_solve = False
         if iteration > 0 and (frame.linear or (
                 norm <= newton.force_tolerance * scale
@@ -411,10 +413,12 @@ def _iterate(strategy, limit, least, dt, frame, stories, devices, newton, work):
             return False, made
         for s in range(n):
             if strategy == _INITIAL:
-                work.stiffness_diagonal[s] = work.initial_stiffness[s] + work.wall_tangent[s] + work.device_tangent[s]
+                work.stiffness_diagonal[s] = work.initial_stiffness[s] + work.wall_tangent[s]
             else:
-                work.stiffness_diagonal[s] = (work.story_tangent[s] + geometric[s] + work.wall_tangent[s]
-                                              + work.device_tangent[s])
+                work.stiffness_diagonal[s] = work.story_tangent[s] + geometric[s] + work.wall_tangent[s]
+        if devices.total:
+            for s in range(n):
+                work.stiffness_diagonal[s] += work.device_tangent[s]
         _solve(frame, dt, work)
         made += 1
         step_length = 1.0
@@ -428,11 +432,13 @@ def _iterate(strategy, limit, least, dt, frame, stories, devices, newton, work):
 
 
 @njit(cache=True, inline="always")
-def _tangent_changed(frame, work):
+def _tangent_changed(frame, devices, work):
     """Whether a story's tangent differs from the one the last correction was solved with."""
     for s in range(work.stiffness_diagonal.shape[0]):
-        if (work.story_tangent[s] + frame.geometric[s] + work.wall_tangent[s]
-                + work.device_tangent[s]) != work.stiffness_diagonal[s]:
+        tangent = work.story_tangent[s] + frame.geometric[s] + work.wall_tangent[s]
+        if devices.total:
+            tangent += work.device_tangent[s]
+        if tangent != work.stiffness_diagonal[s]:
             return True
     return False
 

@@ -1,5 +1,6 @@
-"""FDMK walls inside any OpenSeesPy model, exactly (:class:`WallBridge`), and the Prony material
-(:func:`prony_material`), an approximation for OpenSees scripts that cannot host the bridge.
+"""FDMK walls inside any OpenSeesPy model, exactly (:class:`WallBridge`), the Prony material
+(:func:`prony_material`), an approximation for OpenSees scripts that cannot host the bridge, and the other
+device kinds as OpenSees's own materials (:func:`device_material`, :func:`device_element`).
 
 OpenSees has no fractional material and OpenSeesPy cannot run a material written in Python.  The bridge
 makes the walls exact anyway, because within one time step a wall's force is affine in its
@@ -56,6 +57,42 @@ walls added after the model's nodes exist and before the first :meth:`WallBridge
 
 Units: the model's.  The walls' parameters are in N, mm, s (MPa, MPa*s^r, mm^2, mm): the OpenSees
 model must use N, mm, s too (and tonne for masses), the package's units.
+
+Other devices (:func:`device_material_arguments`, :func:`device_material`, :func:`device_element`)
+--------------------------------------------------------------------------------------------------
+Fluid viscous and friction dampers need no bridge: OpenSees has their laws as uniaxial materials.  The
+material is built *in story units*: its strain is the story drift d (the element's deformation, between
+the floors) and its stress the force the device adds to the story, f F, so that a ``zeroLength`` element
+between the two floors carries a device of any ``magnification`` f.  The device itself deforms by f d and
+carries F (the element's force / f).  Scaling the parameters does this exactly:
+
+* :class:`~vdw_frames.FluidViscousDamper` with a brace K_b: ``ViscousDamper`` (K, Cd, alpha) =
+  (f^2 K_b, f^(1 + alpha) C, alpha).  The device's force obeys the Maxwell law dF/dt = K_b (u' - g_C(F)),
+  u = f d, g_C(F) = sgn(F) (|F| / C)^(1/alpha).  The story force G = f F then obeys
+  dG/dt = f dF/dt = f^2 K_b (d' - g_C(G / f) / f), and g_C(G / f) / f = sgn(G) (|G| / (f C))^(1/alpha) / f
+  = sgn(G) (|G| / (f^(1 + alpha) C))^(1/alpha) = g_(f^(1 + alpha) C)(G): the same law with K = f^2 K_b and
+  Cd = f^(1 + alpha) C.  OpenSees's material (SRC/material/uniaxial/ViscousDamper.cpp, Akcelyan and Lignos)
+  integrates that law over the step by adaptive Dormand-Prince with the strain rate varying linearly
+  from the last committed one (Newmark's average acceleration), its arguments ``K C Alpha <LGap> <NM RelTol
+  AbsTol MaxHalf>`` (defaults: no gap, Dormand-Prince, RelTol 1e-6, AbsTol 1e-10, MaxHalf 15), only the
+  first three given.  Its tangent is 0 (``getTangent``): Newton then iterates on the rest of the stiffness,
+  converging where the brace is soft against 4 M / dt^2.  The package's own stepping (the implicit
+  trapezoid, :mod:`vdw_frames.element.viscous`) differs from it at O(dt^2).
+* a pure linear dashpot (no brace, alpha = 1): ``Viscous`` (C, alpha) = (f^2 C, 1) (ViscousMaterial.cpp:
+  stress = C |rate|^alpha sgn(rate), damping tangent C at alpha = 1): F = C f d', G = f^2 C d'.
+* :class:`~vdw_frames.FrictionDamper`: ``ElasticPP`` (E, epsyP) = (f^2 k, F_s / (f k)) (epsyN = -epsyP, by
+  default).  The device is elastic, F = k f d, until |F| = F_s; the story force G = f F = f^2 k d until
+  |G| = f F_s, at d = f F_s / (f^2 k) = F_s / (f k).  ElasticPP (ElasticPPMaterial.cpp) is that law by its
+  return mapping, trial stress E (strain - committed plastic strain) held at +-E epsyP, the tangent E or
+  0: the package's own rule (:func:`vdw_frames.element.friction.friction_trial`), exact for any step.
+  ``Steel01`` with b = 0 is the same law reached through its kinematic-hardening bookkeeping (and
+  optional isotropic parameters); ElasticPP states it with the device's two parameters and nothing to
+  set to zero, so it is the one used.
+
+Both sides step with Newmark's average acceleration: a friction frame equals :func:`vdw_frames.simulate`
+to the Newton tolerance, an FVD frame to the two integrators' O(dt^2) difference
+(tests/interop/test_devices_opensees.py).  The walls go through :class:`WallBridge` (or
+:func:`prony_material`); :func:`device_material` refuses them.
 """
 
 from __future__ import annotations
@@ -70,12 +107,15 @@ from .._validation import positive, whole_number
 from ..element.bank import DEFAULT_MEMORY, WallBank, kernel_constants, memory_strategy
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation, get_method
+from ..element.friction import FrictionDamper
 from ..element.prony import PronySeries
+from ..element.viscous import FluidViscousDamper
 
 if TYPE_CHECKING:
     from ..element.wall import Wall
 
-__all__ = ["WallBridge", "opensees_module", "prony_material"]
+__all__ = ["WallBridge", "device_element", "device_material", "device_material_arguments", "opensees_module",
+           "prony_material"]
 
 # A zero history force sent as this (N): OpenSees <= 3.7.1 warns on sig0 = 0 (see the module docstring).
 _QUIET_ZERO = 1e-200
@@ -529,3 +569,63 @@ def _material(ops: Any, kind: str | float, tag: int, *arguments: str | float | i
         ops.uniaxialMaterial(kind, tag, *arguments)
     except Exception as error:  # OpenSeesError
         raise ValueError(f"OpenSees refused uniaxialMaterial {kind} {tag} ({error}): is the tag taken?") from error
+
+
+def device_material_arguments(device: object) -> tuple[str | float, ...]:
+    """The ``uniaxialMaterial`` type and parameters (without the tag) of ``device`` in story units: strain
+    the story drift (mm), stress the force the device adds to the story (N), its magnification f folded
+    into the parameters (see the module docstring for the proof):
+
+    * :class:`~vdw_frames.FluidViscousDamper` with a stiffness: ``("ViscousDamper", f^2 K_b, f^(1 + alpha) C,
+      alpha)`` (N/mm, N (s/mm)^alpha, -);
+    * a pure (linear) dashpot: ``("Viscous", f^2 C, 1.0)`` (N s/mm);
+    * :class:`~vdw_frames.FrictionDamper`: ``("ElasticPP", f^2 k, F_s / (f k))`` (N/mm, mm).
+
+    ValueError for anything else (the walls go through :class:`WallBridge`)."""
+    if isinstance(device, FluidViscousDamper):
+        f, alpha = device.magnification, device.alpha
+        if device.stiffness is None:
+            return ("Viscous", f * f * device.C, 1.0)
+        return ("ViscousDamper", f * f * device.stiffness, f ** (1.0 + alpha) * device.C, alpha)
+    if isinstance(device, FrictionDamper):
+        f = device.magnification
+        return ("ElasticPP", f * f * device.stiffness, device.slip_force / (f * device.stiffness))
+    kind = getattr(type(device), "kind", None) or type(device).__name__
+    raise ValueError(f"no native OpenSees material for a {kind} device ({device!r}): fluid viscous and friction "
+                     "dampers only; FDMK walls go through WallBridge (or prony_material)")
+
+
+def device_material(ops: Any, tag: int, device: object) -> int:
+    """Build ``device`` (a :class:`~vdw_frames.FluidViscousDamper` or :class:`~vdw_frames.FrictionDamper`)
+    as the native OpenSees uniaxial material :func:`device_material_arguments` names, with tag ``tag``;
+    returns ``tag``.  In story units: use it in a ``zeroLength`` element between the story's two floors
+    (:func:`device_element`).  Units: N, mm, s."""
+    ops = opensees_module(ops)
+    tag = whole_number("tag", tag, 1)
+    kind, *parameters = device_material_arguments(device)
+    _material(ops, kind, tag, *parameters)
+    return tag
+
+
+def device_element(ops: Any, tag: int, node_i: int, node_j: int, device: object, dof: int = 1) -> int:
+    """``device`` between nodes ``node_i`` and ``node_j``: its material (:func:`device_material`, material tag
+    ``tag``) in a ``zeroLength`` element (element tag ``tag``) acting in node degree of freedom ``dof``
+    (1-based), deformation u_j - u_i = the story drift (mm), force the force the device adds to the story
+    (N: magnification x the device's own).  ``-doRayleigh 0``: the device takes no Rayleigh damping, as in
+    :func:`vdw_frames.simulate`.  Returns ``tag``."""
+    ops = opensees_module(ops)
+    tag = whole_number("tag", tag, 1)
+    dof = whole_number("dof", dof, 1)
+    nodes = set(ops.getNodeTags())
+    for name, node in (("node_i", node_i), ("node_j", node_j)):
+        if isinstance(node, bool) or not isinstance(node, (int, np.integer)) or int(node) not in nodes:
+            raise ValueError(f"{name} must be the tag of an existing node, got {node!r}")
+    if int(node_i) == int(node_j):
+        raise ValueError(f"a device needs two different nodes, got node_i = node_j = {int(node_i)}")
+    direction = _direction(int(_first(ops.getNDM(int(node_j)))), int(_first(ops.getNDF(int(node_j)))), dof)
+    device_material(ops, tag, device)
+    try:
+        ops.element("zeroLength", tag, int(node_i), int(node_j), "-mat", tag, "-dir", direction, "-doRayleigh", 0)
+    except Exception as error:  # OpenSeesError
+        raise ValueError(f"OpenSees refused zeroLength element {tag} ({error}): is the tag taken?") from error
+    return tag
