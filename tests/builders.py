@@ -7,7 +7,16 @@ import numpy as np
 from reference import tapered_sine
 from shared_data import EXAMPLE_BUILDING
 
-from vdw_frames import Bilinear, FDMKDamper, GroundMotion, ShearBuilding, SupportedDamper, paper
+from vdw_frames import (
+    Bilinear,
+    FDMKDamper,
+    FluidViscousDamper,
+    FrictionDamper,
+    GroundMotion,
+    ShearBuilding,
+    SupportedDamper,
+    paper,
+)
 from vdw_frames.config import load_building
 
 # ---------------------------------------------------------------------------------------------- parameter sets
@@ -169,3 +178,53 @@ def replace_somewhere(spec, path: list[int], value):
 def peer_at2(count_line: str, rows: list[str], header=EL_CENTRO_HEADER) -> str:
     """The text of a PEER-style AT2 file: ``header`` lines, the count line, the rows of values."""
     return "\n".join([*header, count_line, *rows]) + "\n"
+
+
+# ---------------------------------------------------------------------------------------------- every device kind
+# A four-story frame with one device kind a story: a fitted-300 wall, 20 mm thick (story 1), a linear FVD (story 2), a
+# nonlinear FVD with a brace on a diagonal (story 3) and two friction dampers (story 4).  Sizes give each
+# story's device some 5-20 % of the story's force at the tapered pulse's drifts.
+MIXED_FVD_LINEAR = dict(C=150.0, alpha=1.0)
+MIXED_FVD_NONLINEAR = dict(C=1500.0, alpha=0.5, stiffness=8e4, magnification=0.8)
+MIXED_FRICTION = dict(slip_force=2.0e4, stiffness=6e4)
+MIXED_DEVICES_TOML = """\
+masses = [300.0, 300.0, 300.0, 250.0]
+stiffnesses = [2.0e5, 1.8e5, 1.6e5, 1.4e5]
+story_heights = [3500.0, 3500.0, 3500.0, 3500.0]
+
+[[walls]]
+stories = [1]
+parameters = "fitted-300"
+area = 3.0e5
+thickness = 20.0
+
+[[devices]]
+type = "fluid_viscous"
+stories = [2]
+C = 150.0
+alpha = 1.0
+
+[[devices]]
+type = "fluid_viscous"
+stories = [3]
+C = 1500.0
+alpha = 0.5
+stiffness = 8.0e4
+magnification = 0.8
+
+[[devices]]
+type = "friction"
+stories = [4]
+per_story = 2
+slip_force = 2.0e4
+stiffness = 6.0e4
+"""
+
+
+def mixed_devices_building():
+    """The frame of :data:`MIXED_DEVICES_TOML`, made by the constructor."""
+    friction = FrictionDamper(**MIXED_FRICTION)
+    return ShearBuilding([300.0, 300.0, 300.0, 250.0], [2.0e5, 1.8e5, 1.6e5, 1.4e5], story_heights=[3500.0] * 4,
+                         devices={1: paper.fitted(300, area=3.0e5, thickness=20.0),
+                                  2: FluidViscousDamper(**MIXED_FVD_LINEAR),
+                                  3: FluidViscousDamper(**MIXED_FVD_NONLINEAR), 4: [friction, friction]})

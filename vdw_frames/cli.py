@@ -19,12 +19,13 @@ import warnings
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TextIO
+from typing import TYPE_CHECKING, Any, TextIO, cast
 
 import numpy as np
 
 if TYPE_CHECKING:
     from .element.damper import FDMKDamper
+    from .element.device import Device
     from .element.wall import Wall
     from .frame.building import ShearBuilding
     from .frame.results import SimulationResult
@@ -122,7 +123,6 @@ def _sine_test(args: argparse.Namespace) -> int:
 
 
 def _simulate(args: argparse.Namespace) -> int:
-    from . import plotting
     from .config import load_analysis
     from .frame.simulation import simulate
     from .motion import G, read_at2
@@ -160,13 +160,15 @@ def _simulate(args: argparse.Namespace) -> int:
         raise ValueError(f"{error} (the record scaled by {flag})" if flag is not None else str(error)) from None
     dt = args.dt if args.dt is not None else motion.dt
     period = 2.0 * math.pi / building.lowest_circular_frequencies(1)[0]  # no full eigendecomposition
+    others = len(building.other_device_list)
     print(f"{args.building}: {building.stories} stories, T1 = {period:.3f} s (bare frame), "
-          f"{len(building.wall_list)} FDMK walls")
+          f"{len(building.wall_list)} FDMK walls" + (f", {others} other devices" if others else ""))
     rest = f" and {args.free_vibration:g} s of rest" if args.free_vibration > 0.0 else ""
     print(f"record {motion.name}{scaling}{rest}: PGA = {motion.pga / G:.3f} g, dt = {dt:g} s, {result.time.size} of "
           f"{_steps(motion, dt, args.free_vibration)} steps analysed")
     _print_wall_assumptions(building)
     _print_story_table(result, args.free_vibration)
+    _print_devices(result)
     if result.strain_iterations is not None:
         state = "converged" if result.strain_converged else "did NOT converge"
         assert result.wall_effective_strain is not None  # a strain-compatible result carries both
@@ -175,30 +177,58 @@ def _simulate(args: argparse.Namespace) -> int:
                           for (story, _), strain in zip(building.wall_list, result.wall_effective_strain,
                                                         strict=True)))
     _print_wall_states(result)
-    energy = result.energy
-    heat = energy.wall_heat if energy.wall_heat is not None else energy.wall_work
-    if building.wall_list:
-        share = heat[-1] / energy.input[-1] if energy.input[-1] > 0 else 0.0
-        print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; walls dissipate "
-              f"{100 * share:.0f} % of the input energy as heat")
-    else:
-        print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; no walls")
+    _print_energy_shares(result)
     print(_outcome(result))
     if save is not None:
         summary = _write_summary(result, save / "summary.csv")
         histories = result.save(save / "result.npz")
         print(f"saved: {summary} (per-story peaks), {histories} (every history; SimulationResult.load)")
     if out is not None:
-        title = f"{Path(args.building).name}, {motion.name}{scaling}"
-        paths = [plotting.plot_drift_envelope({"response": result}, out / "drift_envelope.png", title=title),
-                 plotting.plot_roof_displacement({"response": result}, out / "roof_displacement.png", title=title),
-                 plotting.plot_energy(result, out / "energy.png", title=title)]
-        if building.wall_list:
-            story = int(np.argmax(result.peak_story_wall_force)) + 1
-            paths.append(plotting.plot_wall_hysteresis(result, story, out / "wall_hysteresis.png",
-                                                       title=f"{title}: story {story} walls"))
-        print("figures: " + ", ".join(str(p) for p in paths))
+        _simulate_figures(result, out, f"{Path(args.building).name}, {motion.name}{scaling}")
     return 0
+
+
+def _print_energy_shares(result: SimulationResult) -> None:
+    """Peak base shear; the shares of the input energy the walls and the other devices dissipate."""
+    energy, building = result.energy, result.building
+    heat = energy.wall_heat if energy.wall_heat is not None else energy.wall_work
+    if energy.wall_heat is None and energy.device_heat is not None and energy.device_stored is not None:
+        heat = heat - energy.device_heat - energy.device_stored  # wall_work is every device's work
+    total = energy.input[-1]
+    if building.wall_list:
+        share = heat[-1] / total if total > 0 else 0.0
+        print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; walls dissipate "
+              f"{100 * share:.0f} % of the input energy as heat")
+    else:
+        print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; no walls")
+    if energy.device_heat is not None:
+        share = energy.device_heat[-1] / total if total > 0 else 0.0
+        print(f"the other devices dissipate {100 * share:.0f} % of the input energy")
+
+
+def _simulate_figures(result: SimulationResult, out: Path, title: str) -> None:
+    """The ``simulate`` command's figures in ``out``: drift envelope, roof displacement, energy, the walls'
+    loop of the story of the largest wall force, each other device's loop."""
+    from . import plotting
+
+    building = result.building
+    paths = [plotting.plot_drift_envelope({"response": result}, out / "drift_envelope.png", title=title),
+             plotting.plot_roof_displacement({"response": result}, out / "roof_displacement.png", title=title),
+             plotting.plot_energy(result, out / "energy.png", title=title)]
+    if building.wall_list:
+        story = int(np.argmax(result.peak_story_wall_force)) + 1
+        paths.append(plotting.plot_wall_hysteresis(result, story, out / "wall_hysteresis.png",
+                                                   title=f"{title}: story {story} walls"))
+    if building.other_device_list:
+        from .plotting.devices import MAX_PANELS, distinct_devices, largest_devices
+
+        chosen = largest_devices(result)
+        if len(distinct_devices(result)) > MAX_PANELS:
+            print(f"device loops: the {MAX_PANELS} devices of the largest peak force (of "
+                  f"{len(distinct_devices(result))} distinct ones)")
+        paths.append(plotting.plot_device_loops(result, out / "device_loops.png", chosen,
+                                                title=f"{title}: device loops"))
+    print("figures: " + ", ".join(str(p) for p in paths))
 
 
 def _steps(motion: GroundMotion, dt: float, free_vibration: float = 0.0) -> int:
@@ -223,37 +253,39 @@ def _outcome(result: SimulationResult) -> str:
     return f"outcome: ran to t = {end:.3f} s, converged, no collapse"
 
 
-def _story_columns() -> tuple[tuple[str, str, float, int, int], ...]:
+def _story_columns(others: bool = False) -> tuple[tuple[str, str, float, int, int], ...]:
     """The story table's columns: CSV name (its unit), printed heading, scale to the printed unit, width,
-    decimals.  :func:`_story_peaks` gives their values."""
+    decimals.  :func:`_story_peaks` gives their values.  ``others``: the building has devices other than walls,
+    whose force the story's device force includes (headed "devices kN" then)."""
     from .motion import G
 
     return (("peak_drift_mm", "drift mm", 1.0, 9, 2), ("peak_drift_ratio_fraction", "ratio %", 100.0, 8, 3),
             ("residual_drift_mm", "resid. mm", 1.0, 9, 2), ("peak_ductility", "ductility", 1.0, 9, 2),
             ("peak_floor_acceleration_mm_s2", "floor acc g", 1.0 / G, 11, 3),
-            ("peak_story_wall_force_N", "walls kN", 1e-3, 10, 1),
+            ("peak_story_wall_force_N", "devices kN" if others else "walls kN", 1e-3, 10, 1),
             ("peak_story_wall_strain_fraction", "strain %", 100.0, 9, 1))
 
 
 def _story_peaks(result: SimulationResult) -> list[list[float | None]]:
     """Per story, the values of :func:`_story_columns` in their CSV units; None where one does not exist (no
-    story heights, a linear story, a story without walls)."""
+    story heights, a linear story, a story without devices; the strain: a story without walls).  The story's device
+    force is that of all its devices, walls and others."""
     # Each peak once (they are properties, computed over the whole history at every access).
     drift, ratio, residual = result.peak_drift, result.peak_drift_ratio, result.residual_drift
     ductility, acceleration = result.peak_ductility, result.peak_absolute_acceleration
     wall_force, wall_strain = result.peak_story_wall_force, np.abs(result.story_wall_strain).max(axis=0, initial=0.0)
     rows: list[list[float | None]] = []
     for k in range(result.building.stories):
-        walled = k + 1 in result.building.walls
+        walled, damped = k + 1 in result.building.walls, k + 1 in result.building.devices
         rows.append([float(drift[k]), float(ratio[k]) if ratio is not None else None, float(residual[k]),
                      float(ductility[k]) if not np.ma.is_masked(ductility[k]) else None, float(acceleration[k]),
-                     float(wall_force[k]) if walled else None, float(wall_strain[k]) if walled else None])
+                     float(wall_force[k]) if damped else None, float(wall_strain[k]) if walled else None])
     return rows
 
 
 def _print_story_table(result: SimulationResult, free_vibration: float = 0.0) -> None:
     """Per story: peak drift and drift ratio, residual drift, peak ductility, floor acceleration, walls."""
-    columns = _story_columns()
+    columns = _story_columns(bool(result.building.other_device_list))
     print(f"{'story':>5s} " + " ".join(f"{heading:>{width}s}" for _, heading, _, width, _ in columns))
     for k, values in enumerate(_story_peaks(result), 1):
         print(f"{k:5d} " + " ".join(f"{value * scale:{width}.{decimals}f}" if value is not None else f"{'-':>{width}s}"
@@ -261,6 +293,40 @@ def _print_story_table(result: SimulationResult, free_vibration: float = 0.0) ->
     resid = (f"drift after {free_vibration:g} s of rest" if free_vibration > 0.0 else
              "drift at the record's last step (--free-vibration S to measure it at rest)")
     print(f"ductility: peak drift / yield drift of the story model ('-': a linear story); resid.: {resid}")
+
+
+def _device_name(device: object) -> str:
+    """A device as tables name it: ``describe()`` of a fluid viscous or friction damper; a wall's kind, shear
+    area (m^2) and layer thickness (mm)."""
+    from .frame.building import is_wall
+
+    if is_wall(device):
+        wall = cast("Wall", device)
+        return f"{type(wall).__name__} A={wall.area / 1e6:.4g} m^2, t={wall.thickness:.4g} mm"
+    return cast("Device", device).describe()
+
+
+def _print_devices(result: SimulationResult) -> None:
+    """Per story, the devices it holds (equal ones counted); per device that is not a wall, its peak force,
+    deformation and velocity along the device."""
+    building = result.building
+    if not building.other_device_list:
+        return  # walls only: the story table names them
+    print("devices per story (in parallel; their total force in the story table's devices kN):")
+    for story, devices in building.devices.items():
+        counted: dict[object, int] = {}  # devices are frozen dataclasses: equal ones hash alike
+        for device in devices:
+            counted[device] = counted.get(device, 0) + 1
+        print(f"{story:5d}  " + "; ".join(f"{count} x {_device_name(device)}" for device, count in counted.items()))
+    others = building.other_device_list
+    force, deformation = np.abs(result.device_force).max(axis=0), np.abs(result.device_deformation).max(axis=0)
+    velocity = np.abs(result.device_velocity).max(axis=0)
+    print(f"{'device':>6s} {'story':>5s} {'force kN':>9s} {'deform. mm':>10s} {'vel. mm/s':>9s}  device")
+    for j, (story, device) in enumerate(others):
+        print(f"{j + 1:6d} {story:5d} {force[j] / 1e3:9.1f} {deformation[j]:10.2f} {velocity[j]:9.1f}  "
+              f"{_device_name(device)}")
+    print("devices: peak |force|, |deformation| and |velocity| along each device (deformation = magnification x "
+          "drift)")
 
 
 def _write_summary(result: SimulationResult, path: Path) -> Path:
@@ -482,8 +548,9 @@ def _collapse(args: argparse.Namespace) -> int:
     out = _output_folder(args.out)
     criterion = CollapseCriterion(drift_ratio=args.drift_limit, wall_failure=args.wall_failure)
     search = HuntAndFill(tolerance=args.tolerance)
-    buildings = {"bare frame": building.without_walls(), "with walls": building} if args.bare and \
-        building.wall_list else {"building": building}
+    # The bare frame is without any device; the building's label stays "with walls" (the report's, since 0.2).
+    buildings = {"bare frame": building.without_devices(), "with walls": building} if args.bare and \
+        building.devices else {"building": building}
     results = {}
     for label, frame in buildings.items():
         try:
@@ -533,7 +600,7 @@ def _add_collapse_command(commands: _Commands) -> None:
     collapse.add_argument("--tolerance", type=float, default=0.02,
                           help="hunt-and-fill tolerance on the collapse intensity (default 0.02)")
     collapse.add_argument("--bare", action="store_true",
-                          help="also assess the frame without its walls, for comparison")
+                          help="also assess the frame without its walls and other devices, for comparison")
     collapse.add_argument("--out", default="collapse_report", help="output folder (default ./collapse_report)")
     collapse.set_defaults(run=_collapse)
 
@@ -611,7 +678,8 @@ def _verify(args: argparse.Namespace) -> int:
     for name, text in (("suite.csv", verification_report.suite_csv(result)),
                        ("spectra.csv", verification_report.spectra_csv(result)),
                        ("drifts.csv", verification_report.drifts_csv(result)),
-                       ("walls.csv", verification_report.walls_csv(result))):
+                       ("walls.csv", verification_report.walls_csv(result)),
+                       *((("devices.csv", verification_report.devices_csv(result)),) if result.devices else ())):
         write_text(out / name, text, "CSV file")
     title = f"ASCE 7-16 design verification of {Path(args.building).name}"
     path = write_text(out / "report.md", verification_report.markdown(result, figures, title), "report")
@@ -621,8 +689,13 @@ def _verify(args: argparse.Namespace) -> int:
     for c, (case, factor) in enumerate(result.cases[1:], 1):
         storage, loss = result.stiffness_factors[c, :, 0], result.stiffness_factors[c, :, 1]
         at = result.ambient_range(case)
-        print(f"{case} bound: lambda {factor:g}{f', walls from {at}' if at else ''}: K' x "
-              f"{storage.min():.3f}-{storage.max():.3f}, K'' x {loss.min():.3f}-{loss.max():.3f} at {frequency:.3f} Hz")
+        walls = (f": K' x {storage.min():.3f}-{storage.max():.3f}, K'' x {loss.min():.3f}-{loss.max():.3f} at "
+                 f"{frequency:.3f} Hz") if storage.size else ""
+        others = "; other devices' C or slip force x lambda" if result.devices else ""
+        print(f"{case} bound: lambda {factor:g}{f', walls from {at}' if at else ''}{walls}{others}")
+    if result.devices:
+        print("other devices' demands, the largest over the suite at each bound (along the device):")
+        print("\n".join(verification_report.device_rows(result)))
     for criterion in result.criteria:
         print(f"{'pass' if criterion.passed else 'FAIL'}: {criterion.name}: {criterion.text}")
     print(f"verification: {'PASS' if result.passed else 'FAIL'}")

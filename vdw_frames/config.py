@@ -18,7 +18,7 @@ Keys (units N-mm-s-tonne)::
     risk_category = "II"                # optional (default "II")
 
     [verification]                      # optional, for ``vdw-frames verify``
-    bounds = [0.8, 1.2]                 # the walls' lambda_min, lambda_max (ASCE 7-16 Sec. 18.2.4.5)
+    bounds = [0.8, 1.2]                 # the devices' lambda_min, lambda_max (ASCE 7-16 Sec. 18.2.4.5)
     bounds_source = "..."               # where they come from (optional)
     ambient = [0.0, 40.0]               # degC, the walls' service temperatures (optional; walls with thermal)
     lambda_includes_temperature = false # whether bounds already include temperature (optional; not with ambient)
@@ -54,8 +54,25 @@ Keys (units N-mm-s-tonne)::
     residual = 0.0                      # share of its force a failed wall keeps, in [0, 1)
     source = "..."                      # where the limits come from (the paper gives none)
 
-In TOML a wall group's ``[walls.thermal]`` and ``[walls.limits]`` tables follow its ``[[walls]]`` entry.
-JSON files use the same keys ("walls" a list of objects).  TOML is read by tomllib (tomli before Python 3.11).
+    [[devices]]                         # any number of device groups, optional: any kind of damping device
+    type = "fluid_viscous"              # "fluid_viscous" or "friction" (vdw_frames.element.devices.KINDS), or "wall"
+    stories = [1, 2]                    # or "all" (default)
+    per_story = 2                       # devices in parallel in each of those stories (1 ... 1000, default 1)
+    C = 2.0e3                           # fluid_viscous: N (s/mm)^alpha; F = C |v|^alpha sgn(v)
+    alpha = 0.5                         # fluid_viscous: velocity exponent in (0, 1]
+    stiffness = 2.0e5                   # fluid_viscous: K_b, N/mm, the brace in series (optional for alpha = 1)
+    # slip_force = 5.0e5                # friction: N, and stiffness (N/mm) until it slips
+    magnification = 1.0                 # optional: device deformation / story drift (1 chevron, cos(theta) diagonal)
+
+A device group's parameters are its class's arguments by name (:class:`~vdw_frames.FluidViscousDamper`,
+:class:`~vdw_frames.FrictionDamper`), each one number or one per listed story.  ``type = "wall"`` takes the
+keys of a ``[[walls]]`` group (and its ``thermal`` and ``limits`` tables) instead.  A story's devices are
+its walls of ``[[walls]]`` first, then those of ``[[devices]]`` in the file's order; they act in parallel.
+
+In TOML a wall group's ``[walls.thermal]`` and ``[walls.limits]`` tables follow its ``[[walls]]`` entry (a
+``type = "wall"`` device group's, ``[devices.thermal]`` and ``[devices.limits]``).
+JSON files use the same keys ("walls" and "devices" lists of objects).  TOML is read by tomllib (tomli before
+Python 3.11).
 
 Strain-dependent walls
 ----------------------
@@ -101,6 +118,8 @@ from ._files import read_text
 from ._validation import show, whole_number
 from .element.catalogue import fitted, strain_dependent
 from .element.damper import FDMKDamper
+from .element.device import Device
+from .element.devices import KINDS
 from .element.limits import WallLimits
 from .element.strain_dependent import StrainDependentDamper
 from .element.thermal import ISD110_LOSS_PEAK, WLF, Arrhenius, LogLinear, ThermalProperties, conduction_time
@@ -111,12 +130,15 @@ from .verification.spectrum import SITE_KEYS, Site, site_from_values
 from .verification.verify import PropertyBounds
 
 _BUILDING_KEYS = {"masses", "stiffnesses", "story_heights", "damping_ratio", "damping_modes", "damping_model",
-                  "gravity_loads", "hysteresis", "walls", "strain_compatible", "site", "verification"}
+                  "gravity_loads", "hysteresis", "walls", "devices", "strain_compatible", "site", "verification"}
 _VERIFICATION_KEYS = {"ambient", "bounds", "bounds_source", "lambda_includes_temperature"}
 _HYSTERESIS_KEYS = {"bilinear": {"model", "yield_forces", "hardening"},
                     "bouc-wen": {"model", "yield_forces", "hardening", "exponent", "beta", "gamma"}}
 _STRAIN_COMPATIBLE_KEYS = {"effective_strain_ratio", "initial_strain", "tolerance", "max_iterations"}
 _WALL_KEYS = {"stories", "per_story", "parameters", "area", "thickness", "thermal", "limits"}
+_GROUP_KEYS = {"type", "stories", "per_story"}
+WALL_TYPE = "wall"
+"""A ``[[devices]]`` group's ``type`` for FDMK walls (the keys of a ``[[walls]]`` group)."""
 _THERMAL_KEYS = {"shift", "heat_capacity", "temperature", "cooling_time"}
 _LIMIT_KEYS = {"strain", "stress", "temperature", "residual", "source"}
 _SHIFT_LAWS: dict[str, tuple[type[WLF] | type[Arrhenius] | type[LogLinear], set[str]]] = {
@@ -150,7 +172,7 @@ def load_verification(path: str | os.PathLike[str]) -> tuple[ShearBuilding, Site
     """(building, site, property bounds) from a building file for ``vdw-frames verify``: its ``[site]`` table
     (keys of :func:`vdw_frames.verification.spectrum.site_from_values`: ``sms``, ``sm1`` or ``ss``, ``s1``,
     ``site_class``; ``tl``; ``risk_category``) and its ``[verification]`` table (``bounds = [lambda_min,
-    lambda_max]``, the walls' property modification factors of ASCE 7-16 Sec. 18.2.4.5, ``bounds_source``,
+    lambda_max]``, the devices' property modification factors of ASCE 7-16 Sec. 18.2.4.5, ``bounds_source``,
     where they come from, and optionally ``ambient = [coldest, hottest]``, degC, the walls' service temperatures:
     :class:`~vdw_frames.verification.PropertyBounds`); None for a table the file does not have."""
     path, data = _read_data(path)
@@ -237,6 +259,8 @@ def building_from_dict(data: dict[str, Any]) -> ShearBuilding:
         raise ValueError(f"damping_modes must be a list of two mode numbers, got {data['damping_modes']!r}")
     if not isinstance(data.get("walls", []), list):
         raise ValueError(f"walls must be a list of wall groups, got {data['walls']!r}")
+    if not isinstance(data.get("devices", []), list):
+        raise ValueError(f"devices must be a list of device groups, got {show(data['devices'])}")
     stories = len(data["masses"])
     # One value per story in every list, checked before the walls, whose per-story lists would otherwise be
     # blamed for a masses or stiffnesses list of the wrong length.
@@ -246,18 +270,26 @@ def building_from_dict(data: dict[str, Any]) -> ShearBuilding:
                              f"{len(data[key])} values")
     simulate_options(data)  # validated here too; load_analysis returns it
     site_and_bounds(data)  # likewise: a typo in [site] or [verification] is refused by every command
-    dampers: dict[int, list[FDMKDamper | StrainDependentDamper]] = {}
-    for group in data.get("walls", []):
-        walls, per_story = _wall_group(group, stories)
-        for story, wall in walls:
-            dampers.setdefault(story, []).extend([wall] * per_story)
+    dampers: dict[int, list[object]] = {}  # walls and the registered kinds
+    groups = [(None, group) for group in data.get("walls", [])] + \
+        [(_device_type(group), group) for group in data.get("devices", [])]
+    for kind, group in groups:
+        members: list[tuple[int, object]]
+        if kind is None or kind == WALL_TYPE:
+            walls, per_story = _wall_group(group if kind is None else _without_type(group), stories)
+            members = list(walls)
+        else:
+            devices, per_story = _device_group(kind, group, stories)
+            members = list(devices)
+        for story, device in members:
+            dampers.setdefault(story, []).extend([device] * per_story)
     # damping_modes only when the file gives them: else the building picks its default.
     modes = tuple(data["damping_modes"]) if "damping_modes" in data else None
     return ShearBuilding(
         data["masses"], data["stiffnesses"],
         damping_ratio=data.get("damping_ratio", 0.05),
         damping_modes=modes,
-        devices={story: tuple(walls) for story, walls in dampers.items()},
+        devices={story: tuple(devices) for story, devices in sorted(dampers.items())},
         story_heights=data.get("story_heights"),
         hysteresis=_hysteresis(data.get("hysteresis"), stories),
         gravity_loads=data.get("gravity_loads"),
@@ -324,6 +356,58 @@ def _wall_group(group: object, stories: int) -> tuple[list[tuple[int, FDMKDamper
             made[size] = _wall(dict(group, **each))
         walls.append((story, made[size]))
     return walls, per_story
+
+
+def _device_type(group: object) -> str:
+    """The ``type`` of a ``[[devices]]`` group: a registered kind (:data:`vdw_frames.element.devices.KINDS`) or
+    ``"wall"``; a ValueError naming an unknown one and listing the known."""
+    known = sorted([*KINDS, WALL_TYPE])
+    if not isinstance(group, dict):
+        raise ValueError(f"each devices entry must be a table, got {show(group)}")
+    if "type" not in group:
+        raise ValueError(f"each devices entry needs a type, one of {known}")
+    kind = group["type"]
+    if not isinstance(kind, str) or kind not in known:
+        raise ValueError(f"unknown device type {show(kind)}; the known types are {known}")
+    return kind
+
+
+def _without_type(group: dict[str, Any]) -> dict[str, Any]:
+    return {key: value for key, value in group.items() if key != "type"}
+
+
+def _device_group(kind: str, group: dict[str, Any], stories: int) -> tuple[list[tuple[int, Device]], int]:
+    """([(story, device)], devices per story) of one ``[[devices]]`` entry of a registered ``kind``: its
+    class's arguments by name, each one number or one per listed story."""
+    cls = KINDS[kind]
+    parameters = {item.name for item in dataclasses.fields(cls)}
+    unknown = set(group) - parameters - _GROUP_KEYS
+    if unknown:
+        raise ValueError(f"unknown {kind} device keys {sorted(unknown)}; expected some of "
+                         f"{sorted(parameters | _GROUP_KEYS)}")
+    story_numbers = _story_numbers(group.get("stories", "all"), stories)
+    per_story = whole_number(f"{kind} devices per_story", group.get("per_story", 1), 1)
+    if per_story > MAX_PER_STORY:
+        raise ValueError(f"{kind} devices per_story must be at most {MAX_PER_STORY}, got {per_story}")
+    given = {key: group[key] for key in parameters if key in group}
+    for key, values in given.items():
+        if isinstance(values, list) and len(values) != len(story_numbers):
+            raise ValueError(f"{kind} devices {key} must be one number or one per listed story "
+                             f"({len(story_numbers)} stories), got {len(values)} values")
+    devices: list[tuple[int, Device]] = []
+    made: dict[str, Device] = {}  # one device per distinct set of values: the rest are the same
+    for index, story in enumerate(story_numbers):
+        each = {key: values[index] if isinstance(values, list) else values for key, values in given.items()}
+        key = repr(sorted(each.items()))
+        if key not in made:
+            try:
+                made[key] = cls(**each)
+            except TypeError as error:  # a required parameter missing
+                raise ValueError(f"{kind} devices: {error}; give {sorted(parameters)}") from None
+            except ValueError as error:
+                raise ValueError(f"{kind} devices (story {story}): {error}") from None
+        devices.append((story, made[key]))
+    return devices, per_story
 
 
 def _wall(group: dict[str, Any]) -> FDMKDamper | StrainDependentDamper:

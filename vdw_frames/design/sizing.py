@@ -1,4 +1,10 @@
-"""Sizing walls to a target damping ratio of one mode, from the complex modal analysis.
+"""Sizing walls (and any damping device) to a target damping ratio of one mode, from the complex modal analysis.
+
+:func:`size_devices` takes any device as the template (a wall, a linear or nonlinear fluid viscous damper, a
+friction damper: :class:`~vdw_frames.element.device.Device`), scaled by ``device.resized`` (a wall's area, an
+FVD's C and K_b, a friction damper's slip force and stiffness), with nonlinear devices linearised at a stated
+design story drift amplitude (:func:`~vdw_frames.modal_analysis`); :func:`size_walls` and
+:func:`damping_curve` are its walls-only forms, as before.
 
 The walls are one template wall per story, its shear area scaled by ``factor x weight[story]``:
 
@@ -31,7 +37,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -39,9 +45,20 @@ from scipy.linalg import eigh
 
 from .._validation import damping_ratio as check_damping_ratio
 from .._validation import finite_array, whole_number
+from ..element.device import Device
+from ..element.devices import is_stepped_device
+from ..element.strain_dependent import StrainDependentDamper
 from ..element.supported import WALL_TYPES
-from ..frame.building import ShearBuilding, require_fixed_walls, story_matrix
-from ..frame.modal import complex_modes, require_modal_size
+from ..frame.building import ShearBuilding, is_wall, require_fixed_walls, story_matrix
+from ..frame.modal import (
+    complex_modes,
+    drift_amplitudes,
+    linearisation_notes,
+    linearised_modes,
+    modal_analysis,
+    nonlinear_devices,
+    require_modal_size,
+)
 
 if TYPE_CHECKING:
     from ..element.wall import Wall
@@ -95,57 +112,96 @@ def _check_wall(wall: object) -> None:
                          f"parameters at one amplitude with wall.at(strain)), got {type(wall).__name__}")
 
 
-class _Sizer:
-    """The mode's complex pole as a function of the area factor, for one building, wall and distribution."""
+def _check_device(device: object) -> None:
+    """A template :func:`size_devices` can scale: any device of the :class:`~vdw_frames.element.device.Device`
+    protocol with a fixed linearisation (a strain-dependent wall: pick it at one amplitude first)."""
+    if isinstance(device, StrainDependentDamper):
+        _check_wall(device)
+    if not isinstance(device, Device) or not (is_wall(device) or is_stepped_device(device)):
+        raise ValueError(f"device must be a damping device (FDMKDamper, SupportedDamper, FluidViscousDamper, "
+                         f"FrictionDamper), got {type(device).__name__}")
 
-    def __init__(self, building: ShearBuilding, wall: Wall | None, mode: int, distribution: str,
-                 stories: int | Sequence[int] | str | None) -> None:
+
+class _Sizer:
+    """The mode's complex pole as a function of the size factor, for one building, template and distribution.
+
+    ``walls_only``: the template and the building's scaled devices must be walls (:func:`size_walls`,
+    :func:`damping_curve`); otherwise any device (:func:`size_devices`).  ``amplitudes``: the story drift
+    amplitudes (mm) amplitude-dependent devices are linearised at (None: none may be present)."""
+
+    def __init__(self, building: ShearBuilding, wall: Device | None, mode: int, distribution: str,
+                 stories: int | Sequence[int] | str | None, *, walls_only: bool = True,
+                 amplitudes: np.ndarray | None = None) -> None:
         if not isinstance(building, ShearBuilding):
             raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
-        require_modal_size(building, "wall sizing (size_walls, damping_curve)", MAX_STORIES)
-        require_fixed_walls(building, "wall sizing")
+        what = "wall sizing (size_walls, damping_curve)" if walls_only else "device sizing (size_devices)"
+        require_modal_size(building, what, MAX_STORIES)
+        require_fixed_walls(building, "wall sizing" if walls_only else "device sizing")
         if not isinstance(distribution, str) or distribution not in DISTRIBUTIONS:
             raise ValueError(f"distribution must be one of {DISTRIBUTIONS}, got {distribution!r}")
+        check = _check_wall if walls_only else _check_device
+        own = building.wall_list if walls_only else building.device_list
+        kind = "walls" if walls_only else "devices"
         if distribution == "existing":
             if wall is not None:
-                raise ValueError("the 'existing' distribution scales the building's own walls: give wall=None")
-            if not building.wall_list:
-                raise ValueError("the 'existing' distribution scales the building's own walls, but it has none")
-            if stories is not None and _stories(building, stories) != tuple(sorted(building.walls)):
-                raise ValueError(f"the 'existing' distribution keeps the walled stories {sorted(building.walls)}; "
-                                 f"got stories={stories!r}")
-            for _, existing in building.wall_list:
-                _check_wall(existing)
+                raise ValueError(f"the 'existing' distribution scales the building's own {kind}: give "
+                                 f"{'wall' if walls_only else 'device'}=None")
+            if not own:
+                raise ValueError(f"the 'existing' distribution scales the building's own {kind}, but it has none")
+            occupied = sorted({story for story, _ in own})
+            if stories is not None and _stories(building, stories) != tuple(occupied):
+                held = "walled stories" if walls_only else "stories of its devices"
+                raise ValueError(f"the 'existing' distribution keeps the {held} {occupied}; got stories={stories!r}")
+            for _, existing in own:
+                check(existing)
         else:
-            _check_wall(wall)
+            check(wall)
         self.mode = whole_number("mode", mode, 1)
         if self.mode > building.stories:
             raise ValueError(f"mode must be a mode number in 1 ... {building.stories}, got {mode!r}")
         self.building, self.wall, self.distribution = building, wall, distribution
-        self.stories = _stories(building, stories)
+        self.walls_only, self.amplitudes = walls_only, amplitudes
+        self.stories = _stories(building, stories, walls_only)
         self.weights = _weights(building, distribution, self.stories, self.mode)
-        poles, _, _ = complex_modes(building, walls=False)
+        poles, _, _ = complex_modes(building, devices=False)
         self.bare = poles[self.mode - 1]
         self._cache: dict[float, complex] = {}
 
     def building_for(self, factor: float) -> ShearBuilding:
-        if self.wall is None:  # "existing": every wall of the building scaled alike
-            return self.building.with_walls({story: tuple(wall.resized(factor) for wall in walls)
-                                             for story, walls in self.building.walls.items()})
-        return self.building.with_walls({story: (self.wall.resized(factor * self.weights[story - 1]),)
-                                         for story in self.stories if self.weights[story - 1] > 0.0})
+        if self.wall is None:  # "existing": every wall (every device) of the building scaled alike
+            if self.walls_only:
+                return self.building.with_walls({story: tuple(wall.resized(factor) for wall in walls)
+                                                 for story, walls in self.building.walls.items()})
+            return self.building.with_devices({story: tuple(device.resized(factor) for device in devices)
+                                               for story, devices in self.building.devices.items()})
+        sized = {story: (self.wall.resized(factor * self.weights[story - 1]),)
+                 for story in self.stories if self.weights[story - 1] > 0.0}
+        if is_wall(self.wall):
+            return self.building.with_walls(cast("dict[int, tuple[Wall | StrainDependentDamper, ...]]", sized))
+        # Devices of the template's kind are replaced; every other device is kept, before the sized ones.
+        merged: dict[int, list[Device]] = {}
+        for story, device in self.building.device_list:
+            if type(device) is not type(self.wall):
+                merged.setdefault(story, []).append(device)
+        for story, group in sized.items():
+            merged.setdefault(story, []).extend(group)
+        return self.building.with_devices({story: tuple(group) for story, group in merged.items()})
 
     def story_areas(self) -> np.ndarray:
         """Wall area per story at factor 1 (mm^2; 0 where a story has no wall)."""
         if self.wall is None:
             return np.array([sum(wall.area for wall in self.building.walls.get(story, ()))
                              for story in range(1, self.building.stories + 1)])
-        return self.weights * self.wall.area
+        return self.weights * cast("Wall", self.wall).area
 
     def pole(self, factor: float) -> complex:
-        """The mode's pole with walls of ``factor`` (NaN when the mode is no longer oscillatory)."""
+        """The mode's pole with devices of ``factor`` (NaN when the mode is no longer oscillatory)."""
         if factor not in self._cache:
-            poles, _, _ = complex_modes(self.building_for(factor))
+            building = self.building_for(factor)
+            if self.amplitudes is not None and nonlinear_devices(building):
+                poles, _, _, _ = linearised_modes(building, self.amplitudes, self.mode)
+            else:
+                poles, _, _ = complex_modes(building)
             self._cache[factor] = poles[self.mode - 1] if poles.size >= self.mode else complex(np.nan, np.nan)
         return self._cache[factor]
 
@@ -172,9 +228,14 @@ class _Sizer:
     def describe(self, factor: float) -> str:
         stories = story_text(self.stories)
         if self.wall is None:
-            return f"{factor:.3g} x the areas of the building's own walls (every wall alike, {stories})"
-        area = factor * self.wall.area
+            kind = "the areas of the building's own walls (every wall" if self.walls_only else \
+                "the building's own devices (every device"
+            return f"{factor:.3g} x {kind} alike, {stories})"
         per = "per story" if self.distribution == "uniform" else "in the story with the largest weight"
+        if not self.walls_only:
+            return (f"{factor:.3g} x {self.wall.describe()} ({per}; {self.distribution} distribution over "
+                    f"{stories})")
+        area = factor * cast("Wall", self.wall).area
         return (f"{factor:.3g} x the wall's area ({area:.4g} mm^2 {per}; {self.distribution} distribution over "
                 f"{stories})")
 
@@ -218,10 +279,95 @@ def size_walls(building: ShearBuilding, wall: Wall | None, target_damping: float
     """
     target = check_damping_ratio(target_damping, "target_damping")
     sizer = _Sizer(building, wall, mode, distribution, stories)
+    return sizer.building_for(_solve(sizer, target))
+
+
+@dataclass(frozen=True)
+class DeviceSizing:
+    """The result of :func:`size_devices`.
+
+    ``building``: the sized building; ``device``: the template (None for the ``"existing"`` distribution);
+    ``factor`` (-): its size factor (``device.resized(factor x weight)`` on each story); ``weights``: the
+    distribution over the stories (largest 1); ``mode``, ``target_damping`` (-) and ``damping_ratio`` (-, the
+    sized building's complex-mode ratio of that mode, :func:`~vdw_frames.modal_analysis`), ``period`` (s);
+    ``bare_damping_ratio`` (-): the frame without devices; ``drift_amplitudes`` (mm, one a story): the story
+    drift amplitudes the amplitude-dependent devices were linearised at (None when none is present) and
+    ``linearisation``: one line per such device saying how and at which amplitude.
+    """
+
+    building: ShearBuilding
+    device: Device | None
+    factor: float
+    weights: np.ndarray
+    mode: int
+    target_damping: float
+    damping_ratio: float
+    period: float
+    bare_damping_ratio: float
+    drift_amplitudes: np.ndarray | None
+    linearisation: tuple[str, ...]
+    description: str
+
+    def report(self) -> str:
+        """A few lines for a design note: what was sized, to what damping, and the linearisation amplitudes."""
+        lines = [f"mode {self.mode}: damping ratio {self.damping_ratio:.6f} (target {self.target_damping:.6f}, bare "
+                 f"frame {self.bare_damping_ratio:.6f}), period {self.period:.4g} s, with {self.description}"]
+        if self.linearisation:
+            lines.append("equivalent linearisation (the damping ratio holds at these amplitudes only):")
+            lines.extend(f"  {note}" for note in self.linearisation)
+        return "\n".join(lines)
+
+
+def size_devices(building: ShearBuilding, device: Device | None, target_damping: float, *, mode: int = 1,
+                 distribution: str = "uniform", stories: int | Sequence[int] | str | None = None,
+                 drift_amplitude: float | ArrayLike | None = None) -> DeviceSizing:
+    """Size damping devices of any kind so that ``mode`` reaches the total damping ratio ``target_damping``.
+
+    ``device``: the template, any device (:class:`~vdw_frames.FDMKDamper`, :class:`~vdw_frames.SupportedDamper`,
+    :class:`~vdw_frames.FluidViscousDamper`, :class:`~vdw_frames.FrictionDamper`), put on the ``stories`` as
+    ``device.resized(factor x weight[story])`` with the weights of ``distribution`` (module docstring): a wall's
+    area (and support), an FVD's C and brace K_b, a friction damper's slip force and stiffness scale
+    together, so its slip deformation F_s / k is kept.  The building's devices of the template's kind (any wall,
+    for a wall) are replaced; its other devices are kept and count in the damping.  ``distribution="existing"``
+    with ``device=None`` scales every device of the building by the same factor instead.
+
+    ``drift_amplitude`` (mm, one number or one a story): the design story drift amplitude at which devices
+    whose stiffness depends on their amplitude (nonlinear FVDs, friction dampers) are linearised
+    (:func:`~vdw_frames.modal_analysis`), e.g. a design drift ratio times the story heights; needed (a
+    ValueError otherwise) when such a device is present, and stated in the result.  The damping reached holds at
+    that amplitude only: a friction damper's added damping falls at both smaller and larger drifts.
+
+    The ratio is the complex-mode value -Re s / |s|, inherent damping included, met to 1e-6; the smallest
+    devices that reach it are returned.  ValueError when the target is not above the bare frame's ratio or
+    above the largest achievable one (the message states that maximum), and for buildings above
+    :data:`MAX_STORIES` (30) stories, before any work.  Returns a :class:`DeviceSizing`.
+    """
+    target = check_damping_ratio(target_damping, "target_damping")
+    amplitudes = drift_amplitudes(building, drift_amplitude) if isinstance(building, ShearBuilding) else None
+    sizer = _Sizer(building, device, mode, distribution, stories, walls_only=False, amplitudes=amplitudes)
+    probe = sizer.building_for(1.0)
+    nonlinear = nonlinear_devices(probe)
+    if nonlinear and amplitudes is None:
+        story, culprit = nonlinear[0]
+        raise ValueError(f"size_devices(): story {story}'s {culprit.describe()} depends on its amplitude: give "
+                         "drift_amplitude (mm, the design story drift amplitude it is linearised at: one number, or "
+                         "one a story)")
+    factor = _solve(sizer, target)
+    sized = sizer.building_for(factor)
+    result = modal_analysis(sized, sizer.mode, drift_amplitude=amplitudes if nonlinear else None)
     bare = float(-sizer.bare.real / abs(sizer.bare))
+    return DeviceSizing(sized, device, factor, sizer.weights, sizer.mode, target, float(result.damping_ratios[0]),
+                        float(result.periods[0]), bare, amplitudes if nonlinear else None,
+                        linearisation_notes(sized, amplitudes), sizer.describe(factor))
+
+
+def _solve(sizer: _Sizer, target: float) -> float:
+    """The smallest size factor whose mode reaches ``target`` (ValueErrors as :func:`size_walls` states them)."""
+    bare = float(-sizer.bare.real / abs(sizer.bare))
+    kind = "walls" if sizer.walls_only else "devices"
     if target <= bare:
         raise ValueError(f"target_damping {target!r} is not above the bare frame's mode-{sizer.mode} damping ratio "
-                         f"{bare:.4f}: no walls are needed")
+                         f"{bare:.4f}: no {kind} are needed")
     best_factor, best_ratio = sizer.best()
     if target > best_ratio:
         limit = " (still growing at the largest size tried)" if best_factor >= SEARCH_FACTORS[1] else ""
@@ -233,16 +379,16 @@ def size_walls(building: ShearBuilding, wall: Wall | None, target_damping: float
     while sizer.damping(low) > target:
         low *= 1e-2
         if low < 1e-12:
-            raise ValueError(f"target_damping {target!r} is reached by vanishingly small walls")
+            raise ValueError(f"target_damping {target!r} is reached by vanishingly small {kind}")
     from scipy.optimize import brentq
 
-    factor = brentq(lambda f: sizer.damping(f) - target, low, best_factor, xtol=1e-12, rtol=1e-10)
-    return sizer.building_for(factor)
+    return float(brentq(lambda f: sizer.damping(f) - target, low, best_factor, xtol=1e-12, rtol=1e-10))
 
 
-def _stories(building: ShearBuilding, stories: int | Sequence[int] | str | None) -> tuple[int, ...]:
+def _stories(building: ShearBuilding, stories: int | Sequence[int] | str | None,
+             walls_only: bool = True) -> tuple[int, ...]:
     if stories is None:
-        stories = sorted(building.walls) or "all"
+        stories = (sorted(building.walls) if walls_only else sorted(building.devices)) or "all"
     if isinstance(stories, str):
         if stories != "all":
             raise ValueError(f"stories must be 'all' or a list of story numbers, got {stories!r}")

@@ -353,15 +353,16 @@ def group_walls(walls: Sequence[tuple[int, Wall]]) -> tuple[list[tuple[int, _Com
     """Walls of one story that see the same strain history, stepped once as one wall of their summed area.
 
     ``walls``: (story, wall) pairs.  Two walls in parallel on a story are one wall of the summed area when
-    their material, order and thickness agree and their supports scale with their areas (equal
-    flexibility x area).  Returns ([(story, combined wall)], the group index of every wall (walls,)).
+    their material, order, thickness and magnification agree and their supports scale with their areas
+    (equal flexibility x area).  Returns ([(story, combined wall)], the group index of every wall (walls,)).
     """
     keys: dict[tuple, int] = {}
     members: list[list[int]] = []
     for index, (story, wall) in enumerate(walls):
         G1, G2, eta1, eta2, area, thickness, flexibility = (float(x) for x in kernel_constants(wall))
         key = (story, G1, G2, eta1, eta2, wall_order(wall), thickness, flexibility * area,
-               getattr(wall, "thermal", None), getattr(wall, "limits", None), amplitude_key(wall))
+               getattr(wall, "thermal", None), getattr(wall, "limits", None), amplitude_key(wall),
+               wall.magnification)
         if key not in keys:
             keys[key] = len(members)
             members.append([])

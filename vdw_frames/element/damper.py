@@ -28,6 +28,7 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -45,6 +46,7 @@ from .._validation import (
     wall_geometry,
 )
 from .bank import DEFAULT_MEMORY, MEMORY_STRATEGIES, WallBank, kernel_constants, memory_strategy
+from .device import describe_number, magnification_factor
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, Discretisation, get_method
 from .kernel import AMPLITUDE, FAILURE_MODE, FAILURE_MODES, FAILURE_STEP, HEAT, TEMPERATURE
@@ -52,6 +54,9 @@ from .limits import WallLimits, check_temperature_limit
 from .prony import PronySeries, fit_prony
 from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, property_factors, shift_factor
 from .wall import SteppedWall, StiffnessMethods
+
+if TYPE_CHECKING:
+    from .supported import SupportedDamper
 
 __all__ = ["DEFAULT_MEMORY", "MEMORY_STRATEGIES", "FDMKDamper", "WallState", "driven_force"]
 
@@ -83,6 +88,11 @@ class FDMKDamper(StiffnessMethods):
     limits : WallLimits, optional
         Strain, stress and temperature at which the wall fails (:mod:`vdw_frames.element.limits`); None
         (default): it never fails.
+    magnification : float
+        The wall's deformation / the interstory drift (-, > 0; default 1): its geometry in the frame, as for
+        every device (:mod:`vdw_frames.element.device`).  Not part of the material: the wall's own
+        stiffness methods (``complex_stiffness``, ``stiffness_transfer``) are along the wall; the story sees
+        magnification^2 times them (:meth:`story_stiffness`).
     """
 
     G1: float
@@ -95,8 +105,10 @@ class FDMKDamper(StiffnessMethods):
     strain_range: tuple[float, float] | None = field(default=None, compare=False)
     thermal: ThermalProperties | None = None
     limits: WallLimits | None = None
+    magnification: float = 1.0
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "magnification", magnification_factor(self.magnification))
         for name in ("G1", "G2", "eta1", "eta2"):
             object.__setattr__(self, name, non_negative(name, getattr(self, name)))
         object.__setattr__(self, "r", fractional_order(self.r))
@@ -247,6 +259,16 @@ class FDMKDamper(StiffnessMethods):
         with np.errstate(over="ignore", invalid="ignore"):
             return self._checked("K*(f)", self.complex_modulus(f) * self.stiffness_scale, f)
 
+    def story_stiffness(self, f: ArrayLike, drift_amplitude: float | None = None) -> np.ndarray:
+        """magnification^2 K(i 2 pi f) (N/mm): what the story sees at frequencies f (Hz, >= 0; 0 is the static
+        stiffness G1 area / thickness).  ``drift_amplitude`` (mm) is accepted for the :class:`Device` protocol
+        and not used: the wall is linear."""
+        return story_stiffness_of(self, f)
+
+    def describe(self) -> str:
+        """'FDMK wall G1=..., G2=..., eta1=..., eta2=..., r=..., A=..., t=...' for tables."""
+        return f"FDMK wall {wall_parameters(self)}"
+
     def prony(self, f_min: float, f_max: float, tolerance: float = 0.01) -> PronySeries:
         """A generalized Maxwell model (:class:`~vdw_frames.element.prony.PronySeries`) matching K*(f) within
         ``tolerance`` (relative, on |K*|) over [``f_min``, ``f_max``] Hz (at most 6 decades) with the fewest
@@ -276,6 +298,24 @@ class FDMKDamper(StiffnessMethods):
         :class:`~vdw_frames.element.fast_memory.FastMemory` with its own tolerance.
         """
         return driven_force(self, displacement, dt, method, memory)
+
+
+def story_stiffness_of(wall: FDMKDamper | SupportedDamper, f: ArrayLike) -> np.ndarray:
+    """magnification^2 K(i 2 pi f) (N/mm) of a wall of fixed parameters (an FDMKDamper or a SupportedDamper)
+    at frequencies f (Hz, finite, >= 0)."""
+    frequency = finite_array("f", f, ndim=None)
+    if (frequency < 0.0).any():
+        raise ValueError(f"f must be >= 0 Hz, got {show(frequency[frequency < 0.0].flat[0])}")
+    with np.errstate(over="ignore"):
+        s = 2j * np.pi * frequency
+    return wall.magnification**2 * wall.stiffness_transfer(s)
+
+
+def wall_parameters(wall: FDMKDamper) -> str:
+    """'G1=..., G2=..., eta1=..., eta2=..., r=..., A=..., t=...' (and its magnification when not 1)."""
+    text = ", ".join(f"{name}={describe_number(getattr(wall, name))}" for name in ("G1", "G2", "eta1", "eta2", "r"))
+    geometry = f", f={describe_number(wall.magnification)}" if wall.magnification != 1.0 else ""
+    return f"{text}, A={describe_number(wall.area)}, t={describe_number(wall.thickness)}{geometry}"
 
 
 def driven_force(wall: SteppedWall, displacement: ArrayLike, dt: float, method: str | Discretisation = DEFAULT_METHOD,

@@ -8,6 +8,9 @@ set at 0.5 Hz), 1.1 % (n = 2), 0.2 % (n = 3) and 0.07 % from n = 5 on; what rema
 (<= 0.05 %, worst for a classical Maxwell branch at 10 Hz, whose loss modulus is small) is the
 discretisation, not the transient.  The default ``cycles=5`` therefore gives the steady loop to 0.1 %;
 ``tests/element/test_sine.py::test_last_loop_is_steady`` asserts this bound.
+
+Walls only (FDMK walls, with or without a support), driven along the wall: the paper's material test.  The
+other devices (fluid viscous, friction) are driven by :func:`vdw_frames.element.devices.device_response`.
 """
 
 from __future__ import annotations

@@ -55,6 +55,7 @@ from .._validation import (
     wall_geometry,
 )
 from .damper import DEFAULT_MEMORY, FDMKDamper, WallState, driven_force
+from .device import describe_number, device_amplitude, magnification_factor
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, Discretisation
 from .limits import WallLimits, check_temperature_limit
@@ -91,6 +92,9 @@ class StrainDependentDamper:
         Total shear area of the viscoelastic layers, mm^2.
     thickness : float
         Thickness of one viscoelastic layer, mm; strain = displacement / thickness.
+    magnification : float
+        The wall's deformation / the interstory drift (-, > 0; default 1), as for every device
+        (:mod:`vdw_frames.element.device`): geometry, not material; :meth:`at` keeps it.
 
     Notes
     -----
@@ -108,8 +112,10 @@ class StrainDependentDamper:
     thickness: float = 10.0
     thermal: ThermalProperties | None = None
     limits: WallLimits | None = None
+    magnification: float = 1.0
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "magnification", magnification_factor(self.magnification))
         refuse_non_numbers("strains", self.strains)
         strains = finite_array("strains", self.strains)
         if strains.size < 2:
@@ -175,7 +181,7 @@ class StrainDependentDamper:
     @classmethod
     def from_nodes(cls, nodes: Mapping[str, Sequence[float] | np.ndarray], area: float = 1.0e6,
                    thickness: float = 10.0, thermal: ThermalProperties | None = None,
-                   limits: WallLimits | None = None) -> StrainDependentDamper:
+                   limits: WallLimits | None = None, magnification: float = 1.0) -> StrainDependentDamper:
         """A wall from a mapping of node values {"strains", "G1", "G2", "eta1", "eta2", "r"} (units as for the
         constructor; e.g. :data:`vdw_frames.paper.strain_dependence.STRAIN_DEPENDENT_COMMON`)."""
         missing = {"strains", *PARAMETERS} - set(nodes)
@@ -183,7 +189,7 @@ class StrainDependentDamper:
             raise ValueError(f"nodes lacks {sorted(missing)}")
         return cls(strains=tuple(nodes["strains"]), G1=tuple(nodes["G1"]), G2=tuple(nodes["G2"]),
                    eta1=tuple(nodes["eta1"]), eta2=tuple(nodes["eta2"]), r=tuple(nodes["r"]), area=area,
-                   thickness=thickness, thermal=thermal, limits=limits)
+                   thickness=thickness, thermal=thermal, limits=limits, magnification=magnification)
 
     @classmethod
     def constant(cls, damper: FDMKDamper, strain_range: tuple[float, float] | list[float]) -> StrainDependentDamper:
@@ -194,7 +200,7 @@ class StrainDependentDamper:
             raise ValueError(f"strain_range must be two amplitudes (low, high), got {strain_range!r}")
         nodes = {name: (getattr(damper, name),) * 2 for name in PARAMETERS}
         return cls.from_nodes({"strains": tuple(strain_range), **nodes}, damper.area, damper.thickness,
-                              damper.thermal, damper.limits)
+                              damper.thermal, damper.limits, damper.magnification)
 
     def scaled(self, factor: float) -> StrainDependentDamper:
         """This wall with its moduli and viscosities (G1, G2, eta1, eta2) times ``factor`` (> 0) at every node
@@ -315,6 +321,21 @@ class StrainDependentDamper:
         :meth:`complex_modulus`)."""
         return self.complex_modulus(f, strain) * self.stiffness_scale
 
+    def story_stiffness(self, f: ArrayLike, drift_amplitude: float | None = None) -> np.ndarray:
+        """magnification^2 K(i 2 pi f) (N/mm) at frequencies f (Hz, >= 0) of the wall at the strain amplitude
+        of the story drift amplitude ``drift_amplitude`` (mm): magnification x drift / thickness, :meth:`at`
+        that amplitude (clamped to the range with a warning).  A ValueError without an amplitude: its
+        stiffness depends on it."""
+        amplitude = device_amplitude(drift_amplitude, self.magnification, "strain-dependent wall")
+        return self.at(amplitude / self.thickness).story_stiffness(f)
+
+    def describe(self) -> str:
+        """'strain-dependent FDMK wall (n nodes, 225-450 %), A=..., t=...' for tables."""
+        low, high = self.strain_range
+        geometry = f", f={describe_number(self.magnification)}" if self.magnification != 1.0 else ""
+        return (f"strain-dependent FDMK wall ({len(self.strains)} nodes, {100 * low:.4g}-{100 * high:.4g} %), "
+                f"A={describe_number(self.area)}, t={describe_number(self.thickness)}{geometry}")
+
     # ---------------------------------------------------------------------------------------- internals
     @staticmethod
     def _one_amplitude(strain: ArrayLike) -> np.ndarray:
@@ -332,7 +353,7 @@ class StrainDependentDamper:
     def _damper(self, parameters: dict[str, float]) -> FDMKDamper:
         return FDMKDamper(G1=parameters["G1"], G2=parameters["G2"], eta1=parameters["eta1"], eta2=parameters["eta2"],
                           r=parameters["r"], area=self.area, thickness=self.thickness, strain_range=self.strain_range,
-                          thermal=self.thermal, limits=self.limits)
+                          thermal=self.thermal, limits=self.limits, magnification=self.magnification)
 
     def _warn_outside(self, strain: np.ndarray) -> None:
         low, high = self.strain_range

@@ -23,7 +23,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validation import positive, positive_frequencies, require_finite, scaled_value
-from .damper import DEFAULT_MEMORY, FDMKDamper, WallState, driven_force
+from .damper import DEFAULT_MEMORY, FDMKDamper, WallState, driven_force, story_stiffness_of, wall_parameters
+from .device import describe_number
 from .fast_memory import FastMemory
 from .fractional import DEFAULT_METHOD, Discretisation
 from .limits import WallLimits
@@ -38,7 +39,9 @@ class SupportedDamper(StiffnessMethods):
 
     Accepted wherever a wall is: :class:`~vdw_frames.ShearBuilding` dampers, :func:`~vdw_frames.sine_test`,
     :func:`~vdw_frames.simulate`, :func:`~vdw_frames.run_batch`.  It has the stiffness methods of a wall
-    (the modulus methods belong to the material, ``damper``).
+    (the modulus methods belong to the material, ``damper``).  Its geometry is its wall's
+    (:attr:`magnification` reads ``damper.magnification``): the assembly, wall and support in series,
+    deforms by magnification x the interstory drift.
     """
 
     damper: FDMKDamper
@@ -50,6 +53,11 @@ class SupportedDamper(StiffnessMethods):
         object.__setattr__(self, "support_stiffness", positive("support_stiffness", self.support_stiffness))
 
     # The wall's own properties, for code that reads them off any wall assembly.
+    @property
+    def magnification(self) -> float:
+        """The assembly's deformation / the interstory drift (-): its wall's (:class:`FDMKDamper` ``magnification``)."""
+        return self.damper.magnification
+
     @property
     def r(self) -> float:
         return self.damper.r
@@ -113,6 +121,15 @@ class SupportedDamper(StiffnessMethods):
         """K*(f) = K' + i K'' (N/mm) of the assembly at frequencies f (Hz)."""
         f = positive_frequencies("f", f)
         return self.stiffness_transfer(2j * np.pi * f)
+
+    def story_stiffness(self, f: ArrayLike, drift_amplitude: float | None = None) -> np.ndarray:
+        """magnification^2 K(i 2 pi f) (N/mm) of the assembly: what the story sees at f (Hz, >= 0);
+        ``drift_amplitude`` (mm) is not used (the assembly is linear)."""
+        return story_stiffness_of(self, f)
+
+    def describe(self) -> str:
+        """'FDMK wall ..., support k_s=...' for tables."""
+        return f"FDMK wall {wall_parameters(self.damper)}, support k_s={describe_number(self.support_stiffness)}"
 
     def prony(self, f_min: float, f_max: float, tolerance: float = 0.01) -> PronySeries:
         """A generalized Maxwell model of the assembly (wall and support) over [``f_min``, ``f_max``] Hz;

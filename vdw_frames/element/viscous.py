@@ -257,9 +257,16 @@ def viscous_trial(states, i, deformation, velocity):
             force = math.copysign(force, target)
             dashpot_velocity = math.copysign(ratio * ratio, target)
         else:
-            # F + K dt/2 g(F) = target: from above the root (|target|, and the root of K dt/2 g(F) = |target|)
+            # F + K dt/2 g(F) = target, from the last trial's force (an earlier Newton iterate of this step, or the
+            # committed force: near the root) when it has the target's sign, else from above the root (|target|,
+            # and the root of K dt/2 g(F) = |target|).  From below, Newton's first step lands above the root
+            # (r is convex) and at most at |target|; from above, the iterates fall monotonically onto it.
             size = abs(target)
-            force = min(size, C * (size / (stiffness * half)) ** alpha) if size > 0.0 else 0.0
+            last = motion.trial_force[i] if target > 0.0 else -motion.trial_force[i]
+            if last > 0.0:
+                force = min(last, size)
+            else:
+                force = min(size, C * (size / (stiffness * half)) ** alpha) if size > 0.0 else 0.0
             for _ in range(100):
                 speed, slope = _dashpot_velocity(force, C, alpha)
                 step = (force + stiffness * half * speed - size) / (1.0 + stiffness * half * slope)

@@ -25,7 +25,8 @@ class Wall(Protocol):
     """A wall assembly: frequency response, kernel constants for time stepping, scaling and resizing.
 
     ``r`` (-) its fractional order, ``area`` (mm^2) and ``thickness`` (mm) its viscoelastic layers,
-    ``strain_range`` ((low, high), dimensionless, or None) where its parameters were identified.
+    ``strain_range`` ((low, high), dimensionless, or None) where its parameters were identified,
+    ``magnification`` (-) its geometry in the frame.
     """
 
     # Read-only: the wall types are frozen dataclasses (a SupportedDamper reads them off its wall).
@@ -41,6 +42,11 @@ class Wall(Protocol):
     @property
     def strain_range(self) -> tuple[float, float] | None: ...
 
+    @property
+    def magnification(self) -> float:
+        """Its deformation / the interstory drift (-): its geometry (:mod:`vdw_frames.element.device`)."""
+        ...
+
     def complex_stiffness(self, f: ArrayLike) -> np.ndarray:
         """K*(f) = K' + i K'' (N/mm) at frequencies f (Hz)."""
         ...
@@ -51,6 +57,14 @@ class Wall(Protocol):
 
     def kernel_constants(self) -> tuple[float, ...]:
         """The step kernel's row of 7 constants (:mod:`vdw_frames.element.kernel`)."""
+        ...
+
+    def story_stiffness(self, f: ArrayLike, drift_amplitude: float | None = None) -> np.ndarray:
+        """magnification^2 K(i 2 pi f) (N/mm) at frequencies f (Hz): what the story sees (the Device protocol)."""
+        ...
+
+    def describe(self) -> str:
+        """Its kind and parameters, for tables."""
         ...
 
     def scaled(self, factor: float) -> Wall:

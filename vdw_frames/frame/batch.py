@@ -32,7 +32,7 @@ from ..element.damper import DEFAULT_MEMORY
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation
 from ..motion.record import GroundMotion, target_acceleration
-from .building import ShearBuilding
+from .building import ShearBuilding, is_wall
 from .results import SimulationResult
 from .simulation import simulate
 from .strain_compatible import StrainCompatibleOptions, strain_compatible_options
@@ -71,6 +71,8 @@ class BatchTask:
             "peak_temperature_rise": _story_temperature_rise(result),
             "wall_failed": result.wall_failed,
             "wall_failure_time": np.array([np.inf if t is None else t for t in result.wall_failure_time]),
+            **{f"peak_device_{name}": np.abs(getattr(result, f"device_{name}")).max(axis=0, initial=0.0)
+               for name in ("force", "deformation", "velocity")},
         }
 
 
@@ -92,6 +94,8 @@ def _run(task: BatchTask) -> dict[str, Any]:
     return task.run()
 
 
+DEVICE_PEAKS = ("peak_device_force", "peak_device_deformation", "peak_device_velocity")
+"""The peaks of each device that is not a wall (N, mm, mm/s along the device), (motions, scales, devices)."""
 PEAKS = ("peak_drift", "peak_drift_ratio", "peak_absolute_acceleration", "peak_base_shear", "peak_story_wall_force",
          "residual_drift", "peak_temperature_rise")
 _UNITS = {"peak_drift": "mm", "peak_drift_ratio": "-", "peak_absolute_acceleration": "mm/s2",
@@ -120,7 +124,9 @@ class BatchResult:
     walls) bool: which walls failed in each run (walls with :class:`~vdw_frames.element.limits.WallLimits`;
     ``building.wall_list`` order, their stories in ``wall_stories``); ``wall_failure_time`` (s, same
     shape, masked where the wall stood); with property factors or temperatures: failed in any variant, at
-    the earliest time.
+    the earliest time.  ``peak_device_force`` (N), ``peak_device_deformation`` (mm), ``peak_device_velocity``
+    (mm/s): (motions, scales, devices), the peaks along each device that is not a wall (fluid viscous,
+    friction), ``building.other_device_list`` order; with property factors, their envelope too.
     """
 
     motion_names: tuple[str, ...]
@@ -142,6 +148,9 @@ class BatchResult:
     governing_factor: dict[str, np.ndarray] | None = None
     ambient_temperatures: tuple[float, ...] | None = None
     governing_temperature: dict[str, np.ndarray] | None = None
+    peak_device_force: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 0, 0)))
+    peak_device_deformation: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 0, 0)))
+    peak_device_velocity: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 0, 0)))
 
     def to_csv(self, path: str | os.PathLike[str]) -> Path:
         """Write one row per (motion, scale, story) with every peak and the outcome (``None`` ratios left
@@ -187,10 +196,12 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
     ``free_vibration``, ``newton``) go to every :func:`simulate` too.  Collapse and non-convergence
     are outcomes, recorded in ``collapsed`` and ``converged``, not failures.  ``method`` and ``memory``
     are checked before anything is submitted.
-    ``property_factors`` (e.g. (0.8, 1.0, 1.2)): property-modification factors of the walls (ASCE 7-16
+    ``property_factors`` (e.g. (0.8, 1.0, 1.2)): property-modification factors of the devices (ASCE 7-16
     Sec. 18.2.4.5) other than temperature (aging, environment, testing, specification): the batch runs once
     per factor with every wall's moduli and viscosities scaled (``wall.scaled(factor)``; supports
-    unchanged) and returns the envelope of the peaks, with the governing factor of each (:class:`BatchResult`).
+    unchanged) and every other device's force-defining property (``device.scaled(factor)``: a fluid viscous
+    damper's C, a friction damper's slip force) and returns the envelope of the peaks, with the governing
+    factor of each (:class:`BatchResult`).
     ``ambient_temperatures`` (e.g. (0.0, 21.2, 40.0), degC): the same over ambient temperatures, every wall
     with a thermal description starting at (and cooling towards) each (``wall.at_ambient(T)``) and heating
     itself; the envelope names the governing temperature of each peak.  Both together: every combination.
@@ -255,6 +266,8 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
     walls = len(building.wall_list)
     failed = stack("wall_failed").reshape(len(motions), factors.shape[1], walls).astype(bool)
     failure_time = stack("wall_failure_time").reshape(failed.shape)
+    others = len(building.other_device_list)
+    stacked.update({name: stack(name).reshape(len(motions), factors.shape[1], others) for name in DEVICE_PEAKS})
     return BatchResult(motion_names=tuple(m.name for m in motions), scales=np.array(factors), pga=pga, **stacked,
                        wall_stories=tuple(story for story, _ in building.wall_list), wall_failed=failed,
                        wall_failure_time=np.ma.masked_array(np.where(failed, failure_time, 0.0), mask=~failed))
@@ -278,8 +291,9 @@ def _label(motions: Sequence[GroundMotion], m: int) -> str:
 def _property_envelope(building: ShearBuilding, property_factors: ArrayLike | None,
                        ambient_temperatures: ArrayLike | None, executor: concurrent.futures.Executor | None,
                        run: Callable[[ShearBuilding, concurrent.futures.Executor], BatchResult]) -> BatchResult:
-    """Envelope of ``run(variant, executor)`` over every wall variant: each property factor f (``wall.scaled(f)``)
-    at each ambient temperature T (``wall.at_ambient(T)`` for walls with a thermal description); see run_batch."""
+    """Envelope of ``run(variant, executor)`` over every device variant: each property factor f (``scaled(f)``
+    of every device) at each ambient temperature T (``wall.at_ambient(T)`` for walls with a thermal
+    description); see run_batch."""
     factors = np.array([1.0]) if property_factors is None else \
         finite_array("property_factors", property_factors, ndim=None).ravel()
     if factors.size == 0 or (factors <= 0).any():
@@ -297,8 +311,9 @@ def _property_envelope(building: ShearBuilding, property_factors: ArrayLike | No
             if temperature is None or getattr(wall, "thermal", None) is None:
                 return wall
             return wall.at_ambient(temperature)
-        return building.with_walls({story: tuple(wall_variant(wall) for wall in walls)
-                                    for story, walls in building.walls.items()})
+        return building.with_devices({story: tuple(wall_variant(device) if is_wall(device) else device.scaled(factor)
+                                                   for device in devices)
+                                      for story, devices in building.devices.items()})
 
     combinations = [(float(f), t) for f in factors for t in temperatures]
     variants = [variant(f, t) for f, t in combinations]
@@ -307,7 +322,7 @@ def _property_envelope(building: ShearBuilding, property_factors: ArrayLike | No
     envelope: dict[str, Any] = {}
     by_factor: dict[str, np.ndarray] = {}
     by_temperature: dict[str, np.ndarray] = {}
-    for name in PEAKS:
+    for name in (*PEAKS, *DEVICE_PEAKS):
         if getattr(results[0], name) is None:
             envelope[name] = None
             continue

@@ -453,8 +453,9 @@ class ShearBuilding:
 
         Solves (-w^2 M + i w C + K + K_G + K_d(w)) U = -M 1 at w = 2 pi f for frequencies f in Hz (a
         scalar or a 1-D array, finite, >= 0), with each wall's exact complex stiffness (G*(i w) area /
-        thickness, eqs. (3)-(5), in series with its support if any) and the P-Delta stiffness K_G: the
-        linear (initial-stiffness) building.
+        thickness, eqs. (3)-(5), in series with its support if any) times its magnification^2, each
+        linear device's ``story_stiffness(f)`` and the P-Delta stiffness K_G: the linear
+        (initial-stiffness) building.
         Strain-dependent walls are refused (their stiffness depends on the amplitude): use the
         equivalent-linear building ``simulate(..., strain_compatible=True).building`` or walls
         ``wall.at(strain)``.  ValueError, naming the frequency, where the system is singular (an
@@ -484,8 +485,8 @@ class ShearBuilding:
                 raise ValueError(f"the dynamic stiffness overflows at f = {show(frequency[~np.isfinite(omega)][0])} Hz")
             per_story = np.zeros((omega.size, self.stories), dtype=complex)
             # Fixed walls only (frequency_response checked): no strain-dependent wall.
-            for story, wall in cast("list[tuple[int, Wall]]", self.wall_list):
-                per_story[:, story - 1] += wall.stiffness_transfer(1j * omega)
+            for story, wall in cast("list[tuple[int, Wall]]", self.wall_list):  # magnification^2 K(i omega)
+                per_story[:, story - 1] += wall.magnification**2 * wall.stiffness_transfer(1j * omega)
             for story, device in self.other_device_list:  # linear (frequency_response checked)
                 per_story[:, story - 1] += device.story_stiffness(frequency)
             base = self.stiffness_matrix + story_matrix(np.asarray(self.geometric_stiffness, dtype=float))
@@ -557,16 +558,17 @@ def _walls_replaced(devices: dict[int, tuple[Device, ...]], walls: object) -> di
 
 
 def static_wall_stiffness(building: ShearBuilding) -> np.ndarray:
-    """The walls' static (zero-frequency) stiffness summed per story, N/mm: K(s = 0) of every wall
-    (G1 A / h, in series with its support for a SupportedDamper; 0 for a Maxwell-only wall).  A wall that
+    """The walls' static (zero-frequency) stiffness summed per story, N/mm: magnification^2 K(s = 0) of every
+    wall (G1 A / h, in series with its support for a SupportedDamper; 0 for a Maxwell-only wall).  A wall that
     follows its strain amplitude counts as at rest, with the G1 of its lowest amplitude node (where a
     time-history analysis starts it): its static stiffness at larger strains is not part of the model."""
     stiffness = np.zeros(building.stories)
     for story, wall in building.wall_list:
         if isinstance(wall, StrainDependentDamper):
-            stiffness[story - 1] += wall.G1[0] * wall.stiffness_scale
+            along = wall.G1[0] * wall.stiffness_scale
         else:
-            stiffness[story - 1] += float(np.real(wall.stiffness_transfer(0.0)))
+            along = float(np.real(wall.stiffness_transfer(0.0)))
+        stiffness[story - 1] += wall.magnification**2 * along  # the story sees magnification^2 x the wall's
     return stiffness
 
 

@@ -1,14 +1,22 @@
-"""Complex modal analysis of a shear building with FDMK walls: poles, periods, damping ratios, shapes.
+"""Complex modal analysis of a shear building with damping devices: poles, periods, damping ratios, shapes.
 
-The linear (initial-stiffness) building with its walls has the characteristic matrix
+The linear (initial-stiffness) building with its devices has the characteristic matrix
 
-    T(s) = s^2 M + s C + K + K_G + sum_walls B^T k(s) B,
+    T(s) = s^2 M + s C + K + K_G + sum_devices B^T f^2 k(s) B,
 
 M the floor masses (tonne), C the inherent damping (N*s/mm, Rayleigh or modal), K the initial elastic
-story stiffness and K_G the P-Delta stiffness -P/h (N/mm), and k(s) each wall's Laplace-domain stiffness
-``wall.stiffness_transfer(s)`` (N/mm; paper eqs. (3)-(5) times area/thickness, in series with the
-support of a :class:`~vdw_frames.SupportedDamper`).  The modes are the roots of det T(s) = 0 with
-Im s > 0 on the principal branch of s^r: a *nonlinear* eigenproblem, since k(s) contains s^r.
+story stiffness and K_G the P-Delta stiffness -P/h (N/mm), f each device's magnification (its deformation
+/ the story drift, :mod:`vdw_frames.element.device`) and k(s) its Laplace-domain stiffness along it (N/mm):
+a wall's ``wall.stiffness_transfer(s)`` (paper eqs. (3)-(5) times area/thickness, in series with the
+support of a :class:`~vdw_frames.SupportedDamper`), a linear fluid viscous damper's C s (in series with its
+brace K_b: K_b C s / (K_b + C s)).  A device whose stiffness depends on its amplitude (a nonlinear FVD, a
+friction damper, a strain-dependent wall) is linearised at a stated story drift amplitude
+(:func:`modal_analysis`); the first two enter as k(s) = K'(omega) + s K''(omega) / omega with K' + i K'' their
+equivalent complex stiffness at omega, frozen while the roots are found and iterated, mode by mode, until
+omega = |s| of that mode (the secant method on omega -> |s_j(omega)|, to 1e-12).
+
+The modes are the roots of det T(s) = 0 with Im s > 0 on the principal branch of s^r: a *nonlinear*
+eigenproblem, since k(s) contains s^r.
 
 Method
 ------
@@ -83,10 +91,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import eigh
 
-from .._validation import whole_number
-from .building import ShearBuilding, require_fixed_walls, require_stable_under_gravity, story_matrix
+from .._validation import finite_array, show, whole_number
+from ..element.strain_dependent import StrainDependentDamper
+from ..element.viscous import FluidViscousDamper
+from .building import ShearBuilding, is_wall, require_fixed_walls, require_stable_under_gravity, story_matrix
 
 if TYPE_CHECKING:
+    from ..element.device import Device
     from ..element.wall import Wall
 
 MAX_STORIES = 100
@@ -108,19 +119,23 @@ _Box = tuple[float, float, float, float]
 
 @dataclass(frozen=True)
 class ModalResult:
-    """Complex modes of a building with walls (:func:`modal_analysis`), arrays over ``modes``.
+    """Complex modes of a building with its devices (:func:`modal_analysis`), arrays over ``modes``.
 
     ``modes``: mode numbers (1-based, ordered by |s|).  ``poles``: s (rad/s, Im s > 0);
     ``periods``: 2 pi / |s| (s); ``damping_ratios``: -Re s / |s| (-); ``mode_shapes``: complex
     floor displacements, one column per mode, scaled so the entry of largest modulus is 1.
-    ``bare_poles``, ``bare_periods``, ``bare_damping_ratios``: the same frame without walls (inherent
+    ``bare_poles``, ``bare_periods``, ``bare_damping_ratios``: the same frame without devices (inherent
     damping and P-Delta kept); ``added_damping`` = damping_ratios - bare_damping_ratios.
     ``energy_damping_ratios``: the energy estimate xi_inherent + sum W_c / (4 pi W_s) (module
     docstring), with ``energy_inherent`` its inherent part and ``effective_periods`` (s) the periods of
     the real modes it uses (walls at their storage stiffness); mode j of the bare frame and of the real
     modes is paired with complex mode j (NaN where there is none: see :func:`modal_analysis`).
     ``pole_count``: the number of roots of det T in the search sector by the argument principle (= the
-    number of modes found; with walls).
+    number of modes found; with devices; with amplitude-dependent devices, that of the building linearised
+    at mode 1's frequency).  ``drift_amplitudes`` (mm, one a story): the story drift amplitudes the
+    amplitude-dependent devices were linearised at (None when there is none), ``linearisation`` one line per
+    such device saying how and at what amplitude, ``linearisation_frequencies`` (Hz) the frequency |s| / 2 pi
+    each mode's linearisation converged to (NaN without such devices).
     """
 
     modes: np.ndarray
@@ -136,6 +151,9 @@ class ModalResult:
     energy_inherent: np.ndarray
     effective_periods: np.ndarray
     pole_count: int
+    drift_amplitudes: np.ndarray | None = None
+    linearisation: tuple[str, ...] = ()
+    linearisation_frequencies: np.ndarray | None = None
 
     @property
     def frequencies(self) -> np.ndarray:
@@ -144,33 +162,52 @@ class ModalResult:
 
     @property
     def energy_added_damping(self) -> np.ndarray:
-        """The walls' part of the energy estimate, sum W_c / (4 pi W_s) (-)."""
+        """The devices' part of the energy estimate, sum W_c / (4 pi W_s) (-)."""
         return self.energy_damping_ratios - self.energy_inherent
 
 
 # ---------------------------------------------------------------------------------------------- T(s)
 class _System:
-    """T(s) of a building (with or without its walls), vectorised over many s."""
+    """T(s) of a building (with or without its devices), vectorised over many s.
 
-    def __init__(self, building: ShearBuilding, walls: bool = True) -> None:
+    Walls and linear fluid viscous dampers enter with their exact Laplace-domain stiffness
+    (:func:`device_transfer`); a nonlinear device (a nonlinear FVD, a friction damper) with its equivalent
+    linear one at the story drift amplitude ``amplitudes[story]`` (mm) and the circular frequency ``frozen``
+    (rad/s): k(s) = K'(omega) + s K''(omega) / omega (a spring and a dashpot with K*(i omega) = K' + i K''),
+    which :func:`modal_analysis` iterates to omega = |s| (module docstring)."""
+
+    def __init__(self, building: ShearBuilding, devices: bool = True, amplitudes: np.ndarray | None = None,
+                 frozen: float | None = None) -> None:
         self.n = building.stories
         self.mass = np.asarray(building.masses, dtype=float)
         self.damping = np.asarray(building.damping_matrix, dtype=float)
         self.stiffness = np.asarray(building.stiffness_matrix) + story_matrix(np.asarray(building.geometric_stiffness))
         # Fixed walls only (modal_analysis checked): no strain-dependent wall.
-        self.walls = cast("list[tuple[int, Wall]]", building.wall_list) if walls else []
-        # Equal walls are evaluated once: (wall, how many of it each story holds).
-        counts: dict[Wall, np.ndarray] = {}
-        for story, wall in self.walls:
-            counts.setdefault(wall, np.zeros(self.n))[story - 1] += 1.0
-        self.wall_groups = list(counts.items())
+        listed = building.device_list if devices else []
+        self.has_devices = bool(listed)
+        # Equal linear devices are evaluated once: (device, how many of it each story holds).
+        counts: dict[Device, np.ndarray] = {}
+        self.frozen_storage = np.zeros(self.n)  # K'(omega) of the nonlinear devices per story, N/mm
+        self.frozen_dashpot = np.zeros(self.n)  # K''(omega) / omega, N*s/mm
+        for story, device in listed:
+            if is_linear_device(device):
+                counts.setdefault(device, np.zeros(self.n))[story - 1] += 1.0
+                continue
+            if amplitudes is None or frozen is None:
+                raise ValueError(f"story {story}'s {device.describe()} is nonlinear: its equivalent linear stiffness "
+                                 "needs a drift amplitude (drift_amplitude=..., mm)")
+            value = complex(device.story_stiffness(frozen / (2.0 * np.pi), float(amplitudes[story - 1]))[()])
+            self.frozen_storage[story - 1] += value.real
+            self.frozen_dashpot[story - 1] += value.imag / frozen
+        self.groups = list(counts.items())
 
     def wall_stiffness(self, s: ArrayLike) -> np.ndarray:
-        """Sum of the walls' k(s) per story (N/mm), shape (len(s), stories)."""
+        """Sum of the devices' k(s) per story (N/mm), shape (len(s), stories)."""
         s = np.atleast_1d(np.asarray(s, dtype=complex))
         per_story = np.zeros((s.size, self.n), dtype=complex)
-        for wall, count in self.wall_groups:
-            per_story += np.multiply.outer(wall.stiffness_transfer(s), count)
+        for device, count in self.groups:
+            per_story += np.multiply.outer(device_transfer(device, s), count)
+        per_story += self.frozen_storage + np.multiply.outer(s, self.frozen_dashpot)
         return per_story
 
     def matrices(self, s: ArrayLike, per_story: np.ndarray | None = None) -> np.ndarray:
@@ -186,13 +223,31 @@ class _System:
     def derivative(self, s: complex) -> np.ndarray:
         """T'(s) = 2 s M + C + sum B^T k'(s) B (k' by the Cauchy integral on a small circle)."""
         matrix = (2.0 * s * np.diag(self.mass) + self.damping).astype(complex)
-        if self.walls:
+        if self.has_devices:
             radius = _CAUCHY_RADIUS * abs(s)
             turns = np.exp(2j * np.pi * np.arange(_CAUCHY_POINTS) / _CAUCHY_POINTS)
             values = self.wall_stiffness(s + radius * turns)
             slope = (values * turns.conj()[:, None]).sum(axis=0) / (_CAUCHY_POINTS * radius)
             _add_stories(matrix[None], slope[None])
         return matrix
+
+
+def is_linear_device(device: object) -> bool:
+    """Whether ``device``'s force is linear in its motion: a wall of fixed parameters (strain-dependent walls are
+    fixed before: :func:`modal_analysis`) or a linear fluid viscous damper."""
+    return is_wall(device) or bool(getattr(device, "linear", False))
+
+
+def device_transfer(device: Device, s: ArrayLike) -> np.ndarray:
+    """magnification^2 k(s) (N/mm) of a linear device at complex s (rad/s): a wall's ``stiffness_transfer``; a
+    linear fluid viscous damper's C s, in series with its brace K_b: K_b C s / (K_b + C s)."""
+    s = np.asarray(s, dtype=complex)
+    if isinstance(device, FluidViscousDamper):
+        dashpot = device.C * s
+        along = dashpot if device.stiffness is None else device.stiffness * dashpot / (device.stiffness + dashpot)
+    else:
+        along = cast("Wall", device).stiffness_transfer(s)
+    return device.magnification**2 * along
 
 
 def _add_stories(matrix: np.ndarray, per_story: np.ndarray) -> None:
@@ -264,11 +319,17 @@ def _start_guesses(system: _System) -> list[tuple[complex, np.ndarray]]:
     return starts
 
 
-def complex_modes(building: ShearBuilding, walls: bool = True) -> tuple[np.ndarray, np.ndarray, int]:
-    """(poles ascending in |s|, shapes as columns, argument-principle count) of the linear building."""
+def complex_modes(building: ShearBuilding, devices: bool = True, amplitudes: np.ndarray | None = None,
+                  frozen: float | None = None) -> tuple[np.ndarray, np.ndarray, int]:
+    """(poles ascending in |s|, shapes as columns, argument-principle count) of the linear building: with its
+    devices (``devices``; nonlinear ones linearised at the story drift ``amplitudes`` (mm) and the circular
+    frequency ``frozen`` (rad/s): :class:`_System`), or the bare frame."""
     require_modal_size(building, "a complex modal analysis")
-    require_stable_under_gravity(building if walls else building.without_walls(), "the complex modal analysis")
-    system = _System(building, walls)
+    require_stable_under_gravity(building if devices else building.without_devices(), "the complex modal analysis")
+    return _modes_of(_System(building, devices, amplitudes, frozen))
+
+
+def _modes_of(system: _System) -> tuple[np.ndarray, np.ndarray, int]:
     roots: list[tuple[complex, np.ndarray]] = []
     for guess, vector in _start_guesses(system):
         _add_root(roots, _newton(system, guess, vector))
@@ -407,15 +468,17 @@ def _phase(system: _System, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 # ---------------------------------------------------------------------------------------------- energy
-def _energy_estimate(building: ShearBuilding, count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(xi_E, xi_inherent, omega) of the first ``count`` stiffened real modes (module docstring)."""
-    system = _System(building)
-    mass = np.diag(system.mass)
-    omega_bare = np.sqrt(np.abs(eigh(system.stiffness, mass, eigvals_only=True)))
+def _energy_estimate(systems: Callable[[float], _System], count: int,
+                     starts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(xi_E, xi_inherent, omega) of the first ``count`` stiffened real modes (module docstring); ``systems(omega)``
+    is T with its nonlinear devices linearised at omega (rad/s; the same system at every omega without them),
+    ``starts`` the frequencies (rad/s) the iteration starts from."""
     ratios, inherent, frequencies = [], [], []
     for j in range(count):
-        omega = omega_bare[j]
+        omega = starts[j]
         for _ in range(100):
+            system = systems(omega)
+            mass = np.diag(system.mass)
             storage = system.wall_stiffness(1j * omega)[0]
             values, shapes = eigh(system.stiffness + story_matrix(storage.real), mass)
             updated = np.sqrt(abs(values[j]))
@@ -423,6 +486,8 @@ def _energy_estimate(building: ShearBuilding, count: int) -> tuple[np.ndarray, n
             omega = updated
             if converged:
                 break
+        system = systems(omega)
+        mass = np.diag(system.mass)
         storage = system.wall_stiffness(1j * omega)[0]
         shape = shapes[:, j] / np.abs(shapes[:, j]).max()  # mass-normalised shapes of huge masses underflow
         drift = np.diff(shape, prepend=0.0)
@@ -435,25 +500,166 @@ def _energy_estimate(building: ShearBuilding, count: int) -> tuple[np.ndarray, n
     return np.array(ratios), np.array(inherent), np.array(frequencies)
 
 
-# ---------------------------------------------------------------------------------------------- public
-def modal_analysis(building: ShearBuilding, modes: int | Sequence[int] | None = None) -> ModalResult:
-    """Complex modal analysis of the linear ``building`` with its walls (module docstring for the method).
+# ---------------------------------------------------------------------------------------------- linearisation
+def drift_amplitudes(building: ShearBuilding, drift_amplitude: float | ArrayLike | None) -> np.ndarray | None:
+    """The story drift amplitudes (mm, one a story) a nonlinear device is linearised at: ``drift_amplitude`` a
+    number (every story) or a sequence of one a story, each finite and > 0; None stays None."""
+    if drift_amplitude is None:
+        return None
+    values = finite_array("drift_amplitude", drift_amplitude, ndim=None)
+    if values.ndim > 1 or (values.ndim == 1 and values.size != building.stories):
+        raise ValueError(f"drift_amplitude must be one amplitude (mm) or one a story ({building.stories}), got "
+                         f"shape {values.shape}")
+    if (values <= 0.0).any():
+        raise ValueError(f"drift_amplitude must be > 0 mm, got {show(values[values <= 0.0].flat[0])}")
+    return np.broadcast_to(values, (building.stories,)).astype(float)
 
-    ``modes``: None (every oscillatory mode: normally one per floor; heavy walls can overdamp some, and
+
+def nonlinear_devices(building: ShearBuilding) -> list[tuple[int, Device]]:
+    """(story, device) of every device whose stiffness depends on its amplitude: nonlinear fluid viscous dampers,
+    friction dampers and strain-dependent walls."""
+    return [(story, device) for story, device in building.device_list
+            if isinstance(device, StrainDependentDamper) or not is_linear_device(device)]
+
+
+def linearisation_notes(building: ShearBuilding, amplitudes: np.ndarray | None) -> tuple[str, ...]:
+    """One line per amplitude-dependent device: what it is and the amplitude it is linearised at."""
+    notes = []
+    for story, device in nonlinear_devices(building):
+        if amplitudes is None:
+            continue
+        drift = float(amplitudes[story - 1])
+        along = device.magnification * drift
+        how = ("its parameters at the strain amplitude " f"{along / device.thickness:.4g}"
+               if isinstance(device, StrainDependentDamper) else
+               "equivalent linear stiffness K_eff + i K'' of the same energy per cycle, at each mode's own "
+               "frequency |s|")
+        notes.append(f"story {story}: {device.describe()} linearised at story drift amplitude {drift:.4g} mm "
+                     f"(device {along:.4g} mm): {how}")
+    return tuple(notes)
+
+
+def _fixed_walls(building: ShearBuilding, amplitudes: np.ndarray | None) -> ShearBuilding:
+    """The building with each strain-dependent wall at the strain amplitude of its story's drift amplitude
+    (magnification x drift / thickness; clamped to its range with a warning); unchanged without amplitudes."""
+    if amplitudes is None or not building.strain_dependent:
+        return building
+    walls = {story: tuple(wall.at(wall.magnification * amplitudes[story - 1] / wall.thickness)
+                          if isinstance(wall, StrainDependentDamper) else wall for wall in group)
+             for story, group in building.walls.items()}
+    return building.with_walls(cast("dict[int, tuple[Wall | StrainDependentDamper, ...]]", walls))
+
+
+def linearised_modes(building: ShearBuilding, amplitudes: np.ndarray | None,
+                     wanted: int | None = None) -> tuple[np.ndarray, np.ndarray, int, np.ndarray]:
+    """(poles, shapes, count, frozen omega per mode (rad/s; NaN without nonlinear devices)) of the building with
+    every device, nonlinear ones linearised at ``amplitudes`` (mm) and, mode by mode, at the mode's own
+    frequency omega = |s|: the fixed point of omega -> |s_j(omega)|, found by the secant method to 1e-12
+    (module docstring).  ``wanted``: the modes to find (default all the first system has)."""
+    if not nonlinear_devices(building):
+        poles, shapes, count = complex_modes(building)
+        return poles, shapes, count, np.full(poles.size, np.nan)
+    require_modal_size(building, "a complex modal analysis")
+    require_stable_under_gravity(building, "the complex modal analysis")
+    bare = np.sqrt(np.abs(eigh(np.asarray(building.stiffness_matrix), np.asarray(building.mass_matrix),
+                               eigvals_only=True)))
+    first, _, first_count = _modes_of(_System(building, True, amplitudes, float(bare[0])))
+    available = first.size if wanted is None else min(wanted, max(first.size, 1))
+    poles = np.full(available, complex(np.nan, np.nan))
+    shapes = np.full((building.stories, available), complex(np.nan, np.nan))
+    frozen = np.full(available, np.nan)
+    count = first_count
+    for j in range(available):
+        start = abs(first[j]) if j < first.size else bare[min(j, bare.size - 1)]
+        found = _fixed_point(building, amplitudes, j, float(start))
+        if found is None:
+            continue
+        poles[j], shapes[:, j], frozen[j], mode_count = found
+        if j == 0:
+            count = mode_count
+    return poles, shapes, count, frozen
+
+
+def _fixed_point(building: ShearBuilding, amplitudes: np.ndarray | None, j: int,
+                 omega: float) -> tuple[complex, np.ndarray, float, int] | None:
+    """Mode j (0-based) of the building linearised at omega = |s_j|: (s, shape, omega, count), or None when the
+    linearised building has no mode j.  Secant iteration on g(omega) = |s_j(omega)| - omega."""
+    def residual(frequency: float) -> tuple[float, complex, np.ndarray, int] | None:
+        poles, shapes, count = _modes_of(_System(building, True, amplitudes, frequency))
+        if poles.size <= j:
+            return None
+        return abs(poles[j]) - frequency, poles[j], shapes[:, j], count
+
+    previous = residual(omega)
+    if previous is None:
+        return None
+    omega_previous, omega = omega, omega + previous[0]
+    for _ in range(60):
+        current = residual(omega)
+        if current is None:
+            return None
+        if abs(current[0]) <= 1e-12 * omega:
+            return current[1], current[2], omega, current[3]
+        slope = (current[0] - previous[0]) / (omega - omega_previous)
+        step = -current[0] / slope if slope != 0.0 and np.isfinite(slope) else current[0]
+        if not 0.5 * omega < omega + step < 2.0 * omega:  # a wild secant step: fall back to the fixed point
+            step = current[0]
+        omega_previous, previous, omega = omega, current, omega + step
+    raise RuntimeError(f"modal analysis: the equivalent linearisation of mode {j + 1} did not converge "
+                       f"(omega = {omega!r} rad/s); please report this building")
+
+
+# ---------------------------------------------------------------------------------------------- public
+def modal_analysis(building: ShearBuilding, modes: int | Sequence[int] | None = None,
+                   drift_amplitude: float | ArrayLike | None = None) -> ModalResult:
+    """Complex modal analysis of the linear ``building`` with all its devices (module docstring for the method).
+
+    ``modes``: None (every oscillatory mode: normally one per floor; heavy devices can overdamp some, and
     fractional walls can add a heavily damped one), a mode number or a sequence of them (1-based, in
     order of |s|).  Bare-frame values of a mode the bare frame lacks, and energy estimates beyond the
     number of floors, are NaN.  The building is taken at its initial stiffness with P-Delta
     (``stiffnesses`` and ``geometric_stiffness``; story hysteresis is ignored) and its inherent
-    damping (``damping_model``).  Walls may be :class:`~vdw_frames.FDMKDamper` or
-    :class:`~vdw_frames.SupportedDamper`; strain-dependent walls are refused (give them parameters at
-    one amplitude with ``wall.at(strain)``).  Buildings of more than :data:`MAX_STORIES` (100) stories are
-    refused before any work.  Returns a :class:`ModalResult` (rad/s, s, -).
+    damping (``damping_model``).
+
+    Devices: walls (:class:`~vdw_frames.FDMKDamper`, :class:`~vdw_frames.SupportedDamper`) and linear fluid
+    viscous dampers (alpha = 1) exactly, through their Laplace-domain stiffness times magnification^2.
+    Devices whose stiffness depends on their amplitude are linearised at the story drift amplitude
+    ``drift_amplitude`` (mm: one number for every story, or one a story; the device's own amplitude is
+    magnification x drift), the result's ``linearisation`` says which device at which amplitude:
+
+    * a nonlinear fluid viscous damper: the dashpot of the same energy per cycle,
+      C_eq = lambda C (omega u_0)^(alpha - 1) / pi (FEMA 356, 2000, Sec. 9.3.4.3; with a brace, at the
+      dashpot's own amplitude: :meth:`~vdw_frames.FluidViscousDamper.complex_stiffness`);
+    * a friction damper: K_eff = F_s / u_0 and K'' = 4 F_s (u_0 - F_s / k) / (pi u_0^2) (FEMA 356 Sec. 9.3.3 and
+      eq. 9-36: the secant stiffness and the damping W_D / (4 pi W_S));
+    * a strain-dependent wall: its parameters at the strain amplitude magnification x drift / thickness
+      (:meth:`~vdw_frames.StrainDependentDamper.at`).
+
+    ASCE 7-16 Sec. 18.1 names both families (displacement-dependent: hysteretic or friction; velocity-dependent:
+    viscous or viscoelastic) and its alternative (linear) procedures use an effective damping of each mode from
+    such devices; the equations implemented are FEMA 356's.  A nonlinear device enters T(s) as a spring K'(omega)
+    and a dashpot K''(omega) / omega, frozen at omega and iterated, mode by mode, to omega = |s| of that mode
+    (the undamped natural frequency of the damped pole), as the walls' storage stiffness is iterated for the
+    start and the energy estimate.  For one story, the ratio is then W_D / (4 pi W_S) exactly.
+    Without ``drift_amplitude``, a nonlinear device is a ValueError naming it.
+
+    Buildings of more than :data:`MAX_STORIES` (100) stories are refused before any work.  Returns a
+    :class:`ModalResult` (rad/s, s, -).
     """
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
+    amplitudes = drift_amplitudes(building, drift_amplitude)
+    nonlinear = nonlinear_devices(building)
+    if nonlinear and amplitudes is None:
+        story, device = nonlinear[0]
+        raise ValueError(f"modal_analysis(): story {story}'s {device.describe()} depends on its amplitude: give "
+                         "drift_amplitude (mm, the story drift amplitude it is linearised at: one number, or one a "
+                         "story)")
+    notes = linearisation_notes(building, amplitudes)
+    building = _fixed_walls(building, amplitudes)
     require_fixed_walls(building, "modal_analysis()")
-    poles, shapes, count = complex_modes(building)
-    bare_poles, _, _ = complex_modes(building, walls=False)
+    poles, shapes, count, frozen = linearised_modes(building, amplitudes)
+    bare_poles, _, _ = complex_modes(building, devices=False)
     selected = _mode_numbers(modes, poles.size)
     index = selected - 1
     # Mode j of the bare frame and of the real-mode estimate, where they exist (NaN beyond).
@@ -461,7 +667,17 @@ def modal_analysis(building: ShearBuilding, modes: int | Sequence[int] | None = 
     bare[: min(bare_poles.size, poles.size)] = bare_poles[: poles.size]
     real_modes = min(int(selected.max(initial=0)), building.stories)
     energy, inherent, omega = (np.full(poles.size, np.nan) for _ in range(3))
-    energy[:real_modes], inherent[:real_modes], omega[:real_modes] = _energy_estimate(building, real_modes)
+    if nonlinear:
+        def systems(frequency: float) -> _System:
+            return _System(building, True, amplitudes, frequency)
+        starts = np.where(np.isfinite(poles[:real_modes]), np.abs(poles[:real_modes]), np.abs(bare[:real_modes]))
+    else:
+        plain = _System(building)
+
+        def systems(frequency: float) -> _System:
+            return plain
+        starts = np.sqrt(np.abs(eigh(plain.stiffness, np.diag(plain.mass), eigvals_only=True)))[:real_modes]
+    energy[:real_modes], inherent[:real_modes], omega[:real_modes] = _energy_estimate(systems, real_modes, starts)
     damping = -poles.real / np.abs(poles)
     bare_damping = -bare.real / np.abs(bare)
     return ModalResult(
@@ -478,6 +694,9 @@ def modal_analysis(building: ShearBuilding, modes: int | Sequence[int] | None = 
         energy_inherent=inherent[index],
         effective_periods=2.0 * np.pi / omega[index],
         pole_count=count,
+        drift_amplitudes=amplitudes if nonlinear else None,
+        linearisation=notes,
+        linearisation_frequencies=frozen[index] / (2.0 * np.pi),
     )
 
 

@@ -13,7 +13,7 @@ finds strain-compatible soil properties (SHAKE: Schnabel, Lysmer & Seed 1972):
 2. the building is analysed with each wall's :class:`FDMKDamper` at its amplitude (an ordinary
    :func:`simulate` run; the walls' fractional memory starts from rest in every run);
 3. each wall's effective strain is ``effective_strain_ratio`` (default 0.65) times its peak strain,
-   max |drift| / thickness over the record;
+   magnification x max |drift| / thickness over the record;
 4. each wall takes the parameters at its effective strain (clamped to its range, with a warning
    naming the wall and the strain reached);
 5. 2-4 repeat until every wall's effective strain differs by less than ``tolerance`` (1 %) from the
@@ -158,7 +158,7 @@ def strain_compatible_simulation(building: ShearBuilding, ground_motion: GroundM
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
     walls = [wall for _, wall in building.wall_list]
     dependent = np.array([isinstance(wall, StrainDependentDamper) for wall in walls], dtype=bool)
-    thickness = np.array([wall.thickness for wall in walls])
+    thickness = np.array([wall.thickness / wall.magnification for wall in walls])  # strain per mm of drift
     stories = np.array([story for story, _ in building.wall_list], dtype=int) - 1
     strain = np.array([_initial_strain(wall, options.initial_strain) if isinstance(wall, StrainDependentDamper)
                        else 0.0 for wall in walls])

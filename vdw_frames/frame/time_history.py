@@ -133,7 +133,8 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     out = _histories(rows, floors, len(groups), len(others), heated=heated, heat_rows=heat_rows,
                      amplitudes=amplitudes)
     stories = story_arrays(building.story_models, building.stiffnesses)
-    device_arrays = DeviceArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64), np.ones(len(groups)),
+    device_arrays = DeviceArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64),
+                                 np.array([combined.wall.magnification for _, combined in groups], dtype=float),
                                  bank.arrays, device_states(others, dt))
     work = scratch(floors, len(groups))
     if initial_state is None:

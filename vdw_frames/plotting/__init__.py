@@ -9,6 +9,7 @@ suffix (``.png``, ``.pdf``, ``.svg``, ...); a path without one gets ``.png`` add
   :func:`plot_wall_hysteresis`, :func:`plot_story_hysteresis`, :func:`plot_energy`;
 - :mod:`.walls`: the walls of analyses -- :func:`plot_wall_temperature`, :func:`plot_wall_loops`,
   :func:`plot_wall_amplitude`;
+- :mod:`.devices`: the other devices (fluid viscous, friction) -- :func:`plot_device_loops`;
 - :mod:`.ida`: :func:`plot_ida_curves`, :func:`plot_fragility`;
 - :mod:`.design`: :func:`plot_damping_curve`;
 - :mod:`.collapse`: FEMA P695 assessments -- :func:`plot_collapse_ida`, :func:`plot_pushover`,
@@ -18,6 +19,7 @@ suffix (``.png``, ``.pdf``, ``.svg``, ...); a path without one gets ``.png`` add
 
 from .collapse import plot_collapse_fragility, plot_collapse_ida, plot_pushover
 from .design import plot_damping_curve
+from .devices import plot_device_loops
 from .element import plot_loops
 from .ida import plot_fragility, plot_ida_curves
 from .response import (
@@ -30,7 +32,8 @@ from .response import (
 from .verification import plot_story_drifts, plot_suite_spectra
 from .walls import plot_wall_amplitude, plot_wall_loops, plot_wall_temperature
 
-__all__ = ["plot_collapse_fragility", "plot_collapse_ida", "plot_damping_curve", "plot_drift_envelope", "plot_energy",
+__all__ = ["plot_collapse_fragility", "plot_collapse_ida", "plot_damping_curve", "plot_device_loops",
+           "plot_drift_envelope", "plot_energy",
            "plot_fragility", "plot_ida_curves", "plot_loops", "plot_pushover", "plot_roof_displacement",
            "plot_story_drifts", "plot_story_hysteresis", "plot_suite_spectra", "plot_wall_amplitude",
            "plot_wall_hysteresis", "plot_wall_loops", "plot_wall_temperature"]

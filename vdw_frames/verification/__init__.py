@@ -18,6 +18,7 @@ from .spectrum import RISK_CATEGORIES, SITE_CLASSES, Site, mce_spectrum, site_co
 from .suite import PeriodRange, ScaledSuite, period_range, scaled_suite
 from .verify import (
     Criterion,
+    DeviceDemand,
     PropertyBounds,
     VerificationResult,
     WallDemand,
@@ -26,6 +27,6 @@ from .verify import (
     verify,
 )
 
-__all__ = ["RISK_CATEGORIES", "SITE_CLASSES", "Criterion", "PeriodRange", "PropertyBounds", "ScaledSuite", "Site",
-           "VerificationResult", "WallDemand", "composed_factors", "mce_spectrum", "period_range", "scaled_suite",
-           "site_coefficients", "site_from_values", "stiffness_factors", "verify"]
+__all__ = ["RISK_CATEGORIES", "SITE_CLASSES", "Criterion", "DeviceDemand", "PeriodRange", "PropertyBounds",
+           "ScaledSuite", "Site", "VerificationResult", "WallDemand", "composed_factors", "mce_spectrum",
+           "period_range", "scaled_suite", "site_coefficients", "site_from_values", "stiffness_factors", "verify"]

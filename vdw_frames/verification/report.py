@@ -65,6 +65,29 @@ def walls_csv(result: VerificationResult) -> str:
     return _csv(rows)
 
 
+def devices_csv(result: VerificationResult) -> str:
+    """One row per device that is not a wall and per case: its largest force, deformation and velocity over the
+    suite at that bound (:class:`~vdw_frames.verification.verify.DeviceDemand`)."""
+    rows: list[list[object]] = [["device", "story", "description", "velocity_dependent", "case", "lambda", "force_N",
+                                 "deformation_mm", "velocity_mm_s"]]
+    for d in result.devices:
+        for case, factor in result.cases:
+            rows.append([d.device + 1, d.story, d.description, int(d.velocity_dependent), case, repr(factor),
+                         repr(d.force[case]), repr(d.deformation[case]), repr(d.velocity[case])])
+    return _csv(rows)
+
+
+def device_rows(result: VerificationResult) -> list[str]:
+    """The devices' demands as the CLI prints them: one line per device and case (kN, mm, mm/s)."""
+    lines = [f"{'device':>6s} {'story':>5s} {'case':>8s} {'force kN':>9s} {'deform. mm':>10s} {'vel. mm/s':>9s}  "
+             "device (nominal)"]
+    for d in result.devices:
+        for case, _ in result.cases:
+            lines.append(f"{d.device + 1:6d} {d.story:5d} {case:>8s} {d.force[case] / 1e3:9.1f} "
+                         f"{d.deformation[case]:10.2f} {d.velocity[case]:9.1f}  {d.description}")
+    return lines
+
+
 def markdown(result: VerificationResult, figures: Mapping[str, str], title: str) -> str:
     """The report: site, suite, bounds, each criterion with pass/fail, the drift table, the wall demands and the
     prototype test specification; ``figures`` maps a caption to a file name relative to the report."""
@@ -88,7 +111,10 @@ def markdown(result: VerificationResult, figures: Mapping[str, str], title: str)
         lines.append(f"| {motion.name} | {factor:.3f} | {misfit:.3f} | {factor * motion.pga / G:.3f} |")
     lines += ["", "## Property bounds (Sec. 18.2.4.5)", "",
               f"- lambda_min = {result.bounds.lower:g}, lambda_max = {result.bounds.upper:g} ({result.bounds.source}); "
-              "every wall's moduli and viscosities times lambda (`wall.scaled`)"]
+              "every wall's moduli and viscosities times lambda (`wall.scaled`)"
+              + ("; every fluid viscous damper's C and every friction damper's slip force times lambda "
+                 "(`device.scaled`: the upper bound gives the largest device forces, the lower usually the "
+                 "largest displacements)" if result.devices else "")]
     included = {True: "include", False: "do not include", None: "are not stated to include or exclude"}
     lines.append(f"- the lambdas {included[result.bounds.lambda_includes_temperature]} the effect of temperature")
     if result.bounds.ambient is not None:
@@ -125,6 +151,15 @@ def markdown(result: VerificationResult, figures: Mapping[str, str], title: str)
         lines.append(f"| {w.wall + 1} | {w.story} | {w.deformation:.1f} | {100 * w.strain:.0f} | {w.velocity:.0f} | "
                      f"{w.force / 1e3:.1f} | {w.cycle_energy / 1e6:.2f} | {w.cumulative_energy / 1e6:.2f} | {rise} | "
                      f"{w.governing} |")
+    if result.devices:
+        lines += ["", "Other devices: the largest force, deformation and velocity along each device over the suite, "
+                  "at each bound (velocity-dependent: force a function of the velocity, ASCE 7-16 Sec. 18.1).", "",
+                  "| device | story | description | case | force (kN) | deformation (mm) | velocity (mm/s) |",
+                  "|---" * 7 + "|"]
+        for d in result.devices:
+            for case, _ in result.cases:
+                lines.append(f"| {d.device + 1} | {d.story} | {d.description} | {case} | {d.force[case] / 1e3:.1f} | "
+                             f"{d.deformation[case]:.2f} | {d.velocity[case]:.1f} |")
     lines += ["", result.specification, ""]
     if any(any(row) for row in result.unacceptable):
         lines += ["## Unacceptable responses", ""]
@@ -135,12 +170,14 @@ def markdown(result: VerificationResult, figures: Mapping[str, str], title: str)
         lines.append("")
     for caption, name in figures.items():
         lines += [f"![{caption}]({name})", "", f"*{caption}*", ""]
-    lines += ["Files: suite.csv, spectra.csv, drifts.csv, walls.csv.",
+    lines += [f"Files: suite.csv, spectra.csv, drifts.csv, walls.csv{', devices.csv' if result.devices else ''}.",
               f"Largest single peak drift ratio: {100 * float(np.max(result.peak_drift_ratio)):.3f} %.", ""]
     return "\n".join(lines)
 
 
 def _span(values: np.ndarray) -> str:
-    """'a' or 'a-b': the range of the walls' factors."""
+    """'a' or 'a-b': the range of the walls' factors ('-' without walls)."""
+    if len(values) == 0:
+        return "-"
     low, high = float(min(values)), float(max(values))
     return f"{low:.3f}" if abs(high - low) < 5e-4 else f"{low:.3f}-{high:.3f}"

@@ -34,6 +34,20 @@ nominal, upper- and lower-bound wall properties and judges the results:
   f d(delta) between successive upward zero crossings of the deformation) and cumulative energy (N mm: the work
   over the record), and temperature rise (K, walls that heat); from them, the prototype test specification
   written by :func:`prototype_test_specification` (this package's rule, stated there).
+* **other devices** (fluid viscous and friction dampers, :mod:`vdw_frames.element.devices`): each bound scales
+  every such device by its lambda through ``device.scaled(lambda)`` -- a fluid viscous damper's C (its force at
+  a given velocity: lambda_max gives the largest damper forces, lambda_min the least damping, so usually the
+  largest displacements), a friction damper's slip force (the largest forces at lambda_max; whether the
+  smaller slip force gives the larger drifts depends on the amplitude, and both bounds are run and reported);
+  exponent alpha, brace and elastic stiffness are kept.  One pair of factors serves
+  every device of the building (a device kind with factors of its own needs a verification of its own).  Per
+  device, :class:`DeviceDemand` reports the largest force (N), deformation (mm) and velocity (mm/s) along the
+  device over the suite, at each bound.  ASCE 7-16 Sec. 18.1 (definitions, read in an extract of the 2016
+  text) calls a device velocity-dependent when its force-displacement relation is primarily a function of the
+  relative velocity between its ends, displacement-dependent when its force response is primarily a function
+  of the relative displacement (the ASCE 7-22 draft's Sec. 18.1.2, read too, classes devices the same way, "or
+  a combination thereof"); that the device demands are the force, displacement and velocity at both bounds is
+  this package's reading of Sec. 18.2.4.5 and 18.6 (their text was NOT read).
 
 Units: N, mm, s; drift ratios -, energies N mm, temperatures K.
 """
@@ -44,7 +58,7 @@ import concurrent.futures
 import math
 import warnings
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -52,8 +66,10 @@ import numpy as np
 from .. import _warnings
 from .._parallel import check_executor, executor_for, fan_out, reissue
 from .._validation import positive, show, text
+from ..element.device import Device
 from ..element.thermal import service_temperature
-from ..frame.building import ShearBuilding
+from ..element.viscous import FluidViscousDamper
+from ..frame.building import ShearBuilding, is_wall
 from ..frame.results import SimulationResult
 from ..frame.simulation import simulate
 from ..motion.record import GroundMotion
@@ -246,15 +262,24 @@ class PropertyBounds:
             wall = wall.at_ambient(temperature)
         return wall.scaled(factor) if factor != 1.0 else wall
 
+    def device(self, device: Device, case: str) -> Device:
+        """A device that is not a wall as analysed in ``case``: ``device.scaled(lambda)`` (a fluid viscous
+        damper's C, a friction damper's slip force; module docstring), itself at the nominal case."""
+        factor = dict(self.cases)[case]
+        return device.scaled(factor) if factor != 1.0 else device
+
     def building(self, building: ShearBuilding, case: str, frequency: float | None = None) -> ShearBuilding:
-        """``building`` with every wall as analysed in ``case`` (:meth:`wall`); ``frequency`` (Hz) at which the
-        ambient ends are chosen, by default 1 / T_1 of ``building`` with its walls (complex modal analysis)."""
+        """``building`` with every wall as analysed in ``case`` (:meth:`wall`) and every other device too
+        (:meth:`device`), each on its story in its place; ``frequency`` (Hz) at which the ambient ends are chosen,
+        by default 1 / T_1 of ``building`` with its walls (complex modal analysis)."""
         if self.ambient is not None and case != "nominal" and frequency is None:
             for _, wall in building.wall_list:
                 _thermal_needed(wall, self.ambient)
             frequency = 1.0 / period_range(building).first_period
-        return building.with_walls({story: tuple(self.wall(wall, case, frequency) for wall in walls)
-                                    for story, walls in building.walls.items()})
+        return building.with_devices({
+            story: tuple(self.wall(device, case, frequency) if is_wall(device) else self.device(device, case)
+                         for device in devices)
+            for story, devices in building.devices.items()})
 
 
 def _thermal_needed(wall: Any, ambient: tuple[float, float]) -> None:
@@ -308,6 +333,24 @@ class WallDemand:
 
 
 @dataclass(frozen=True)
+class DeviceDemand:
+    """The demands on one device that is not a wall (a fluid viscous or friction damper) over the suite, at
+    each bound (module docstring): ``story``; ``device``: its index in ``building.other_device_list`` (the
+    columns of a result's device histories); ``description``: ``device.describe()`` (nominal properties);
+    ``velocity_dependent``: True for a fluid viscous damper; ``force`` (N), ``deformation`` (mm) and
+    ``velocity`` (mm/s): case name ("nominal", "upper", "lower") -> the largest magnitude along the device
+    over the suite's records."""
+
+    story: int
+    device: int
+    description: str
+    velocity_dependent: bool
+    force: dict[str, float]
+    deformation: dict[str, float]
+    velocity: dict[str, float]
+
+
+@dataclass(frozen=True)
 class Criterion:
     """One acceptance criterion: ``name``, ``clause``, ``passed``, ``value`` and ``limit`` (its units in
     ``text``), ``governing`` ("bound, record / story" that decides it) and a one-line ``text``."""
@@ -335,7 +378,8 @@ class VerificationResult:
     ``stiffness_factors`` (-, (cases, walls, 2)): each case's K' and K'' of every wall over the nominal, at
     1 / ``first_period`` (:func:`stiffness_factors`; they differ where an ambient range is bounded);
     ``ambient_ends`` (degC, (cases, walls)): the ambient temperature each wall starts from in each case
-    (:meth:`PropertyBounds.ambient_end`; None: its own).
+    (:meth:`PropertyBounds.ambient_end`; None: its own).  ``devices``: a :class:`DeviceDemand` per device that
+    is not a wall; ``device_peaks``: each analysis's :func:`device_peaks`, name -> (cases, records, devices).
     """
 
     site: Site
@@ -356,6 +400,8 @@ class VerificationResult:
     first_period: float
     stiffness_factors: np.ndarray
     ambient_ends: tuple[tuple[float | None, ...], ...] = ()
+    devices: tuple[DeviceDemand, ...] = ()
+    device_peaks: dict[str, np.ndarray] = field(default_factory=dict)
 
     def ambient_range(self, case: str) -> str:
         """The ambient temperatures (degC) the walls start from in ``case``, as text ("" for their own)."""
@@ -455,13 +501,27 @@ def wall_peaks(result: SimulationResult) -> dict[str, np.ndarray]:
             "temperature_rise": np.full(walls, np.nan) if rise is None else np.asarray(rise, dtype=float)}
 
 
+DEVICE_PEAKS = ("force", "deformation", "velocity")
+"""The per-device peaks of one analysis (:func:`device_peaks`): N, mm, mm/s."""
+
+
+def device_peaks(result: SimulationResult) -> dict[str, np.ndarray]:
+    """The largest |force| (N), |deformation| (mm) and |velocity| (mm/s) along every device that is not a wall,
+    (devices,) in ``building.other_device_list`` order: the maxima of the result's ``device_force``,
+    ``device_deformation`` and ``device_velocity`` histories (Newmark's velocity, as the devices were stepped)."""
+    count = len(result.building.other_device_list)
+    return {name: np.abs(getattr(result, f"device_{name}")).max(axis=0, initial=0.0).reshape(count)
+            for name in DEVICE_PEAKS}
+
+
 def _summary(result: SimulationResult, valid_drift_ratio: float | None) -> dict[str, Any]:
     """What verify keeps of one analysis: outcome, peak drift ratios, reasons it is unacceptable, wall peaks."""
     peak_drift = result.peak_drift_ratio
     assert peak_drift is not None  # verify refuses buildings without story heights
     return {"collapsed": bool(result.collapsed), "converged": bool(result.converged),
             "peak_drift_ratio": np.asarray(peak_drift, dtype=float),
-            "reasons": "; ".join(unacceptable_reasons(result, valid_drift_ratio)), **wall_peaks(result)}
+            "reasons": "; ".join(unacceptable_reasons(result, valid_drift_ratio)), **wall_peaks(result),
+            **{f"device_{name}": value for name, value in device_peaks(result).items()}}
 
 
 @dataclass(frozen=True)
@@ -538,13 +598,15 @@ def acceptance(peak_drift_ratio: np.ndarray, unacceptable: Sequence[Sequence[str
 
 
 # ----------------------------------------------------------------------------------------------- test spec
-def prototype_test_specification(walls: Sequence[WallDemand], frequency: float) -> str:
+def prototype_test_specification(walls: Sequence[WallDemand], frequency: float,
+                                 devices: Sequence[DeviceDemand] = ()) -> str:
     """The prototype test specification (ASCE 7-16 Sec. 18.6; the clause's sequence and tolerances were NOT
     read, so this is this package's rule, stated in the text): per wall, sinusoidal cycles at ``frequency``
     (Hz, 1 / T_1 with the walls) at the largest deformation; the number of cycles the energy-equivalent one,
     ceil(cumulative / largest cycle energy), but not fewer than 5; where the largest velocity exceeds the sine's
     2 pi f A, a second frequency v_max / (2 pi A) that reaches it; the temperature rise to be reached or
-    accounted for where the walls heat."""
+    accounted for where the walls heat.  Per other device (``devices``), the largest deformation, velocity and
+    force over both bounds, which its tests are to reach."""
     frequency = positive("frequency", frequency)
     lines = [f"Prototype tests (ASCE 7-16 Sec. 18.6 as this package reads it; the clause's own sequence was not "
              f"available): sinusoidal cycles at f1 = {frequency:.3f} Hz (1/T1 with the walls) unless stated."]
@@ -562,6 +624,10 @@ def prototype_test_specification(walls: Sequence[WallDemand], frequency: float) 
         if demand.temperature_rise is not None and np.isfinite(demand.temperature_rise):
             text += f"; temperature rise {demand.temperature_rise:.1f} K to be reached or accounted for"
         lines.append(text)
+    for other in devices:
+        lines.append(f"- device {other.device + 1} (story {other.story}, {other.description}): deformation +/- "
+                     f"{max(other.deformation.values()):.1f} mm, velocity up to {max(other.velocity.values()):.0f} "
+                     f"mm/s, force up to {max(other.force.values()) / 1e3:.1f} kN (largest of the bounds)")
     return "\n".join(lines)
 
 
@@ -602,8 +668,9 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
         if not isinstance(bounds, (tuple, list)) or len(bounds) != 2:
             raise ValueError(f"bounds must be PropertyBounds or (lambda_min, lambda_max), got {show(bounds)}")
         bounds = PropertyBounds(*bounds)
-    if not building.walls:
-        raise ValueError("the building has no walls: there are no device properties to bound")
+    if not building.devices:
+        raise ValueError("the building has no walls and no other damping devices: there are no device properties "
+                         "to bound")
     category = site.risk_category if risk_category is None else spectrum.risk_category(risk_category)
     collapse = positive("collapse_drift_ratio", collapse_drift_ratio)
     valid = None if valid_drift_ratio is None else positive("valid_drift_ratio", valid_drift_ratio)
@@ -638,6 +705,15 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
     peaks = {name: np.array([[summaries[(c, r)][name] for r in range(n_records)] for c in range(n_cases)])
              for name in WALL_PEAKS}
     walls = _wall_demands(building, peaks, cases, names)
+    others = {name: np.array([[summaries[(c, r)][f"device_{name}"] for r in range(n_records)]
+                              for c in range(n_cases)]).reshape(n_cases, n_records, len(building.other_device_list))
+              for name in DEVICE_PEAKS}
+    devices = tuple(
+        DeviceDemand(story=story, device=j, description=device.describe(),
+                     velocity_dependent=isinstance(device, FluidViscousDamper),
+                     **{name: {case: float(others[name][c, :, j].max()) for c, (case, _) in enumerate(cases)}
+                        for name in DEVICE_PEAKS})
+        for j, (story, device) in enumerate(building.other_device_list))
     factors = stiffness_factors(building, bounds, 1.0 / first)
     return VerificationResult(
         site=site, suite=suite, bounds=bounds, cases=cases, peak_drift_ratio=drifts,
@@ -645,10 +721,11 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
         converged=np.array([[summaries[(c, r)]["converged"] for r in range(n_records)] for c in range(n_cases)]),
         unacceptable=unacceptable, drift_statistic=statistic, drift_limit=limit, allowed_unacceptable=allowed,
         criteria=criteria, walls=walls, wall_peaks=peaks,
-        specification=prototype_test_specification(walls, 1.0 / first), first_period=first,
+        specification=prototype_test_specification(walls, 1.0 / first, devices), first_period=first,
         stiffness_factors=factors,
         ambient_ends=tuple(tuple(bounds.ambient_end(wall, case, 1.0 / first) for _, wall in building.wall_list)
-                           for case, _ in cases))
+                           for case, _ in cases),
+        devices=devices, device_peaks=others)
 
 
 def _wall_demands(building: ShearBuilding, peaks: dict[str, np.ndarray], cases: Sequence[tuple[str, float]],

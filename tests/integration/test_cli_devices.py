@@ -1,0 +1,89 @@
+"""The command line with fluid viscous and friction dampers beside the walls: the story table names each
+device on its story, the device table prints the peaks of the package's own histories, and each device's loop
+is drawn (the loop's data checked against the histories, not only that a file exists)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import matplotlib.axes
+import numpy as np
+import pytest
+from builders import MIXED_DEVICES_TOML, tapered_pulse, write_file
+
+from vdw_frames import FluidViscousDamper, ShearBuilding, cli, simulate
+from vdw_frames.config import load_building
+from vdw_frames.motion import default_record_path, read_at2
+from vdw_frames.plotting import plot_device_loops
+from vdw_frames.plotting.devices import MAX_PANELS, distinct_devices, largest_devices
+
+
+@pytest.mark.filterwarnings("ignore:wall peak strain outside the range")  # the shipped record strains it 105 %
+def test_simulate_names_every_device_and_prints_their_peaks(tmp_path, capsys):
+    path = write_file(tmp_path, "mixed.toml", MIXED_DEVICES_TOML)
+    code = cli.main(["simulate", str(path), "--record", str(default_record_path()), "--out", str(tmp_path)])
+    assert code == 0
+    out = capsys.readouterr().out
+    assert "1 FDMK walls, 4 other devices" in out
+    lines = out.splitlines()
+    listing = lines.index("devices per story (in parallel; their total force in the story table's devices kN):")
+    assert lines[listing + 1:listing + 5] == ["    1  1 x FDMKDamper A=0.3 m^2, t=20 mm",
+                                              "    2  1 x FVD C=150.0, alpha=1.0",
+                                              "    3  1 x FVD C=1500.0, alpha=0.5, K_b=80000.0, f=0.8",
+                                              "    4  2 x friction F_s=20000.0, k=60000.0"]
+    expected = simulate(load_building(path), read_at2(default_record_path()))
+    rows = [line.split(None, 5) for line in lines[listing + 6:listing + 10]]
+    for j, row in enumerate(rows):
+        assert int(row[0]) == j + 1 and int(row[1]) == [2, 3, 4, 4][j]
+        assert float(row[2]) == pytest.approx(np.abs(expected.device_force[:, j]).max() / 1e3, abs=0.051)
+        assert float(row[3]) == pytest.approx(np.abs(expected.device_deformation[:, j]).max(), abs=0.0051)
+        assert float(row[4]) == pytest.approx(np.abs(expected.device_velocity[:, j]).max(), abs=0.051)
+    # the story table's device force of story 3 is f x the FVD's force (magnification 0.8), of story 4 two slip forces
+    table = {int(line.split()[0]): line.split() for line in lines[3:7]}
+    assert "devices kN" in lines[2]
+    assert float(table[3][6]) == pytest.approx(0.8 * np.abs(expected.device_force[:, 1]).max() / 1e3, abs=0.06)
+    assert float(table[4][6]) == pytest.approx(2 * 20.0, abs=0.051)
+    assert table[2][7] == "-"  # no wall: no strain
+    share = expected.energy.device_heat[-1] / expected.energy.input[-1]
+    assert f"the other devices dissipate {100 * share:.0f} % of the input energy" in out
+    assert (tmp_path / "device_loops.png").stat().st_size > 10_000
+
+
+def test_the_device_loops_are_the_histories(tmp_path, monkeypatch):
+    building = load_building(write_file(tmp_path, "mixed.toml", MIXED_DEVICES_TOML))
+    result = simulate(building, tapered_pulse())
+    assert distinct_devices(result) == [1, 2, 3]  # the two equal friction dampers of story 4 are one loop
+    drawn = []
+    original = matplotlib.axes.Axes.plot
+
+    def record(self, *args, **kwargs):
+        if len(args) >= 2:
+            drawn.append((np.asarray(args[0]), np.asarray(args[1])))
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(matplotlib.axes.Axes, "plot", record)
+    path = plot_device_loops(result, tmp_path / "loops", title="pulse")
+    assert path.name == "loops.png" and path.stat().st_size > 10_000
+    assert len(drawn) == 3
+    for (x, y), j in zip(drawn, (0, 1, 2), strict=True):
+        np.testing.assert_array_equal(x, result.device_deformation[:, j])
+        np.testing.assert_array_equal(y, result.device_force[:, j] / 1e3)
+
+
+def test_device_loops_are_bounded_and_checked(tmp_path):
+    many = ShearBuilding([100.0] * 2, [1e5] * 2, devices={
+        1: [FluidViscousDamper(10.0 + k, 1.0) for k in range(10)], 2: [FluidViscousDamper(50.0 + k, 1.0)
+                                                                      for k in range(5)]})
+    result = simulate(many, dataclasses.replace(tapered_pulse(), acceleration=tapered_pulse().acceleration[:200]))
+    assert len(distinct_devices(result)) == 15
+    with pytest.raises(ValueError, match=f"15 devices asked for: one figure draws at most {MAX_PANELS}"):
+        plot_device_loops(result, tmp_path)
+    chosen = largest_devices(result)
+    peaks = np.abs(result.device_force).max(axis=0)
+    assert len(chosen) == MAX_PANELS and set(chosen) == set(np.argsort(-peaks)[:MAX_PANELS] + 1)
+    assert plot_device_loops(result, tmp_path, chosen).name == "device_loops.png"
+    for bad in (0, 16, 1.5, "1"):
+        with pytest.raises(ValueError, match=r"device numbers in 1 \.\.\. 15"):
+            plot_device_loops(result, tmp_path, [bad])
+    with pytest.raises(ValueError, match="no device other than walls"):
+        plot_device_loops(simulate(ShearBuilding([100.0], [1e5]), tapered_pulse()), tmp_path)
