@@ -53,7 +53,8 @@ class ShearBuilding:
         :class:`~vdw_frames.StrainDependentDamper`), :class:`~vdw_frames.FluidViscousDamper` and
         :class:`~vdw_frames.FrictionDamper`; several on one story act in parallel.  A device's deformation
         is its magnification (1 for walls) times the interstory drift (:mod:`vdw_frames.element.device`).
-        ``walls=`` (the keyword before 0.3) still works, with a DeprecationWarning.
+        ``walls=`` (the keyword before 0.3) still works, with a DeprecationWarning
+        (``dataclasses.replace(building, walls=...)`` replaces its walls and keeps its other devices).
     story_heights : sequence of float, optional
         Story heights, mm, for drift ratios, P-Delta and the collapse check.
     hysteresis : sequence or dict, optional
@@ -100,9 +101,10 @@ class ShearBuilding:
         if walls is not None:
             _warnings.warn("ShearBuilding(walls=...) is deprecated since 0.3 and will be removed in 0.4: give every "
                            "device, walls included, through devices=", DeprecationWarning, stacklevel=2)
-            if devices is not None:
+            if devices is not None and not isinstance(devices, _OwnDevices):
                 raise ValueError("give the devices through devices= only (walls= is its deprecated name), not both")
-            devices = walls
+            # dataclasses.replace(building, walls=...) passes the building's own devices back: walls replace its walls
+            devices = _walls_replaced({} if devices is None else devices, walls)
         for name, value in (("masses", masses), ("stiffnesses", stiffnesses), ("damping_ratio", damping_ratio),
                             ("damping_modes", damping_modes), ("devices", {} if devices is None else devices),
                             ("story_heights", story_heights), ("hysteresis", hysteresis),
@@ -208,7 +210,7 @@ class ShearBuilding:
             seen.add(story)
             if devices:
                 normalised[story] = devices
-        return dict(sorted(normalised.items()))
+        return _OwnDevices(sorted(normalised.items()))
 
     @staticmethod
     def _normalise_hysteresis(hysteresis: object, stories: int) -> tuple[Bilinear | BoucWen | None, ...] | None:
@@ -440,15 +442,7 @@ class ShearBuilding:
     def with_walls(self, walls: dict[int, tuple[Wall | StrainDependentDamper, ...]]) -> ShearBuilding:
         """The same frame with ``walls`` (a dict as for the constructor) instead of its own walls; its other
         devices are kept, on their stories, after the walls."""
-        if not isinstance(walls, dict):
-            raise ValueError(f"walls must be a dict {{story: wall or list}}, got {type(walls).__name__}")
-        merged: dict[Any, list[Any]] = {}
-        for story, entry in walls.items():
-            merged.setdefault(story, []).extend(entry if isinstance(entry, (list, tuple)) else (entry,))
-        for story, device in self.other_device_list:
-            key = next((k for k in merged if k == story), story)
-            merged.setdefault(key, []).append(device)
-        return dataclasses.replace(self, devices={story: tuple(group) for story, group in merged.items()})
+        return dataclasses.replace(self, devices=_walls_replaced(self.devices, walls))
 
     def without_nonlinear_devices(self) -> ShearBuilding:
         """The same building without its devices whose stiffness depends on their amplitude (nonlinear fluid
@@ -548,6 +542,28 @@ class ShearBuilding:
         spectrum = np.fft.rfft(ground, size)
         response = self.frequency_response(np.fft.rfftfreq(size, dt))
         return np.fft.irfft(response * spectrum[:, None], size, axis=0)[: ground.size]
+
+
+class _OwnDevices(dict):
+    """A building's normalised ``devices``: what ``dataclasses.replace(building, walls=...)`` passes back as
+    ``devices=`` beside the deprecated keyword (then the walls replace its walls), told apart from devices
+    a caller gives with ``walls=`` (refused)."""
+
+
+def _walls_replaced(devices: dict[int, tuple[Device, ...]], walls: object) -> dict[Any, tuple[Any, ...]]:
+    """``walls`` (a dict as for the constructor) in place of the walls among ``devices``; the other devices
+    kept, on their stories, after the walls."""
+    if not isinstance(walls, dict):
+        raise ValueError(f"walls must be a dict {{story: wall or list}}, got {type(walls).__name__}")
+    merged: dict[Any, list[Any]] = {}
+    for story, entry in walls.items():
+        merged.setdefault(story, []).extend(entry if isinstance(entry, (list, tuple)) else (entry,))
+    for story, group in devices.items():
+        for device in group:
+            if not is_wall(device):
+                key = next((k for k in merged if k == story), story)
+                merged.setdefault(key, []).append(device)
+    return {story: tuple(group) for story, group in merged.items()}
 
 
 def static_wall_stiffness(building: ShearBuilding) -> np.ndarray:

@@ -1,0 +1,201 @@
+"""Fluid viscous and friction dampers driven alone (vdw_frames.element.devices.device_response), against closed
+forms written in the tests: the energy per cycle of a nonlinear dashpot, lambda C omega^alpha u0^(1 + alpha) with
+lambda integrated numerically here; a friction damper's loop area 4 F_s (u0 - F_s/k) and its force history
+against an elastic-perfectly-plastic return mapping written here; the bad inputs every device refuses."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad, solve_ivp
+
+import vdw_frames as vdw
+from vdw_frames.element.devices import device_response
+from vdw_frames.element.viscous import energy_factor
+
+ALPHAS = (0.3, 0.5, 0.75, 1.0)
+
+
+def cycle_integral(alpha):
+    """lambda(alpha) = int_0^(2 pi) |cos theta|^(1 + alpha) d theta (-), by quadrature: the work of
+    F = C |v|^alpha sgn(v) over one cycle of u0 sin(omega t) is C (u0 omega)^alpha u0 times it."""
+    quarter, _ = quad(lambda theta: math.cos(theta) ** (1.0 + alpha), 0.0, math.pi / 2, epsabs=0.0, epsrel=1e-13)
+    return 4.0 * quarter
+
+
+def one_minus_cosine(amplitude, frequency, cycles, steps_per_cycle):
+    """u0 (1 - cos omega t) (mm) from rest (zero deformation and velocity, so Newmark's velocity starts right)
+    and its step (s); a steady sine of amplitude u0 about u0 once started."""
+    dt = 1.0 / (frequency * steps_per_cycle)
+    t = np.arange(cycles * steps_per_cycle + 1) * dt
+    return amplitude * (1.0 - np.cos(2 * np.pi * frequency * t)), dt
+
+
+@pytest.mark.parametrize("alpha", ALPHAS)
+def test_the_energy_factor_is_the_cycle_integral_of_the_dashpot_work(alpha):
+    assert energy_factor(alpha) == pytest.approx(cycle_integral(alpha), rel=1e-12)
+    assert cycle_integral(1.0) == pytest.approx(math.pi, rel=1e-13)
+
+
+# A nonlinear dashpot alone is refused (test_a_fluid_viscous_damper_refuses_bad_input_naming_the_value): alpha < 1
+# is driven through a brace only.
+@pytest.mark.parametrize(("alpha", "brace"), [(alpha, True) for alpha in ALPHAS] + [(1.0, False)],
+                         ids=[f"alpha={alpha}-brace" for alpha in ALPHAS] + ["alpha=1-dashpot"])
+def test_a_nonlinear_dashpot_dissipates_lambda_C_omega_alpha_u0_1_plus_alpha_a_cycle(alpha, brace):
+    """The last of four cycles of a steady sine: heat per cycle against lambda C omega^alpha u0^(1 + alpha)
+    (Soong and Dargush 1997, Sec. 6.2): asserted to 1e-4, inside the issue's 0.5 % (measured: 8e-7 for a linear
+    dashpot, 1e-6 to 4.5e-6 with a brace 1e4 times stiffer than the dashpot's peak force per mm: the brace's
+    deformation, 1e-4 of the amplitude and a quarter-cycle out of phase, changes the dashpot's amplitude to
+    second order only)."""
+    C, u0, frequency, steps = 250.0, 20.0, 1.5, 2000
+    omega = 2 * np.pi * frequency
+    peak_force = C * (omega * u0) ** alpha
+    stiffness = 1e4 * peak_force / u0 if brace else None
+    damper = vdw.FluidViscousDamper(C, alpha, stiffness=stiffness)
+    deformation, dt = one_minus_cosine(u0, frequency, 4, steps)
+    response = device_response(damper, deformation, dt)
+    per_cycle = response["heat"][-1] - response["heat"][-1 - steps]
+    expected = cycle_integral(alpha) * C * omega**alpha * u0 ** (1.0 + alpha)
+    assert per_cycle == pytest.approx(expected, rel=1e-4)
+    # The frame's trapezoidal work of the force on the deformation over the cycle is the heat (the brace's
+    # stored energy returns to its value a cycle before).
+    force = response["force"][-1 - steps:]
+    work = np.sum(0.5 * (force[1:] + force[:-1]) * np.diff(deformation[-1 - steps:]))
+    stored = response["stored"][-1] - response["stored"][-1 - steps]
+    assert work == pytest.approx(per_cycle + stored, rel=1e-10)
+
+
+@pytest.mark.parametrize("alpha", [0.3, 0.5, 1.0])
+def test_a_damper_with_a_brace_dissipates_what_its_dashpot_force_does_on_the_dashpot(alpha):
+    """Heat + stored energy F^2 / (2 K_b) equals the trapezoidal work of the force on the device's deformation,
+    step by step, with a soft brace (K_b twice the peak force per amplitude: it deforms by up to half the
+    amplitude)."""
+    C, u0, frequency = 250.0, 20.0, 1.5
+    omega = 2 * np.pi * frequency
+    damper = vdw.FluidViscousDamper(C, alpha, stiffness=2.0 * C * (omega * u0) ** alpha / u0)
+    deformation, dt = one_minus_cosine(u0, frequency, 3, 500)
+    response = device_response(damper, deformation, dt)
+    force = response["force"]
+    work = np.concatenate([[0.0], np.cumsum(0.5 * (force[1:] + force[:-1]) * np.diff(deformation))])
+    np.testing.assert_allclose(response["heat"] + response["stored"], work, rtol=0, atol=1e-10 * work.max())
+    np.testing.assert_allclose(response["stored"], force**2 / (2 * damper.stiffness), rtol=1e-13, atol=0)
+    assert np.all(np.diff(response["heat"]) >= -1e-9 * work.max())  # a dashpot never gives heat back
+
+
+@pytest.mark.parametrize("alpha", [0.3, 0.5, 1.0])
+def test_a_damper_with_a_soft_brace_converges_at_second_order_to_the_maxwell_equation(alpha):
+    """The series form dF/dt = K_b (du/dt - sgn(F) (|F|/C)^(1/alpha)) under u0 (1 - cos omega t), solved by
+    scipy's Radau to 1e-12 (the reference), with a brace as stiff as the dashpot's peak force per amplitude
+    (the brace takes a large share): the implicit trapezoid's force is within 1e-4 of the peak at 400 steps a
+    cycle (measured 1.2e-5 to 1.6e-5) and its error falls by 4 (measured 3.995 to 4.000) when the step halves:
+    second order."""
+    C, u0, frequency = 250.0, 20.0, 1.5
+    omega = 2 * np.pi * frequency
+    stiffness = C * (omega * u0) ** alpha / u0
+
+    def rate(t, force):
+        dashpot = np.sign(force[0]) * (abs(force[0]) / C) ** (1.0 / alpha)
+        return [stiffness * (u0 * omega * np.sin(omega * t) - dashpot)]
+
+    reference = solve_ivp(rate, (0.0, 2.0 / frequency), [0.0], method="Radau", rtol=1e-12, atol=1e-9,
+                          dense_output=True)
+    errors = []
+    for steps in (200, 400):
+        deformation, dt = one_minus_cosine(u0, frequency, 2, steps)
+        force = device_response(vdw.FluidViscousDamper(C, alpha, stiffness), deformation, dt)["force"]
+        expected = reference.sol(np.arange(deformation.size) * dt)[0]
+        errors.append(np.abs(force - expected).max() / np.abs(expected).max())
+    assert errors[1] < 1e-4
+    assert 3.5 < errors[0] / errors[1] < 4.5
+
+
+def elastic_perfectly_plastic(deformation, slip_force, stiffness):
+    """The force (N) of an elastic-perfectly-plastic spring along a deformation history (mm) from rest: the
+    return mapping written out (elastic predictor, projection onto |F| <= F_s)."""
+    force = np.zeros_like(deformation)
+    for n in range(1, deformation.size):
+        trial = force[n - 1] + stiffness * (deformation[n] - deformation[n - 1])
+        force[n] = min(max(trial, -slip_force), slip_force)
+    return force
+
+
+@pytest.mark.parametrize("magnification", [1.0, 0.7])
+def test_a_friction_damper_follows_the_elastic_perfectly_plastic_return_mapping(magnification):
+    """An irregular history (a decaying sine with a drift and noise): the device's force is the EPP spring's at
+    magnification x the drift, and the story's is magnification x that (1e-12)."""
+    slip_force, stiffness = 4.0e5, 5.0e4
+    rng = np.random.default_rng(30)
+    t = np.arange(3001) * 0.005
+    drift = 25.0 * np.exp(-0.1 * t) * np.sin(2 * np.pi * 1.3 * t) + 3.0 * t + np.cumsum(rng.normal(0, 0.3, t.size))
+    drift -= drift[0]
+    damper = vdw.FrictionDamper(slip_force, stiffness, magnification=magnification)
+    response = device_response(damper, drift, 0.005)
+    expected = magnification * elastic_perfectly_plastic(magnification * drift, slip_force, stiffness)
+    assert np.abs(expected).max() == pytest.approx(magnification * slip_force)  # it slips
+    np.testing.assert_allclose(response["force"], expected, rtol=0, atol=1e-12 * slip_force)
+
+
+@pytest.mark.parametrize("u0_over_uy", [1.5, 4.0, 20.0])
+def test_a_friction_damper_loop_has_the_area_4_Fs_u0_minus_uy(u0_over_uy):
+    """The loop of a steady sine: 4 F_s (u0 - F_s/k) (the rigid-plastic rectangle less its elastic parts), by
+    the trapezoidal work of the force on the deformation and by the device's heat, within 1e-5 (measured
+    <= 6e-7; the trapezoid is exact on the loop's straight pieces, off only on the two steps where it starts
+    to slip; the heat is off by half that step's force change times its slip)."""
+    slip_force, stiffness, frequency, steps = 4.0e5, 5.0e4, 1.0, 4000
+    u0 = u0_over_uy * slip_force / stiffness
+    deformation, dt = one_minus_cosine(u0, frequency, 3, steps)
+    response = device_response(vdw.FrictionDamper(slip_force, stiffness), deformation, dt)
+    force, cycle = response["force"], slice(-1 - steps, None)
+    area = np.sum(0.5 * (force[cycle][1:] + force[cycle][:-1]) * np.diff(deformation[cycle]))
+    expected = 4.0 * slip_force * (u0 - slip_force / stiffness)
+    assert area == pytest.approx(expected, rel=1e-5)
+    assert response["heat"][-1] - response["heat"][-1 - steps] == pytest.approx(expected, rel=1e-5)
+
+
+# ---------------------------------------------------------------------------------------------- bad input
+@pytest.mark.parametrize(("arguments", "named"), [
+    (dict(C=100.0, alpha=0.0, stiffness=1e4), "alpha.*0.0"),
+    (dict(C=100.0, alpha=-0.5, stiffness=1e4), r"alpha.*-0\.5"),
+    (dict(C=100.0, alpha=1.2, stiffness=1e4), r"alpha.*1\.2"),
+    (dict(C=100.0, alpha=math.nan, stiffness=1e4), "alpha.*nan"),
+    (dict(C=100.0, alpha=0.5), r"alpha = 0\.5.*stiffness"),
+    (dict(C=0.0, alpha=1.0), "C.*0.0"),
+    (dict(C=-5.0, alpha=0.5, stiffness=1e4), r"C.*-5\.0"),
+    (dict(C=math.inf, alpha=1.0), "C.*inf"),
+    (dict(C=math.nan, alpha=1.0), "C.*nan"),
+    (dict(C=100.0, alpha=0.5, stiffness=0.0), "stiffness.*0.0"),
+    (dict(C=100.0, alpha=0.5, stiffness=-1e4), "stiffness.*-10000.0"),
+    (dict(C=100.0, alpha=1.0, stiffness=math.inf), "stiffness.*inf"),
+    (dict(C=100.0, alpha=1.0, magnification=0.0), "magnification.*0.0"),
+    (dict(C=100.0, alpha=1.0, magnification=-0.7), r"magnification.*-0\.7"),
+    (dict(C=100.0, alpha=1.0, magnification=math.nan), "magnification.*nan"),
+])
+def test_a_fluid_viscous_damper_refuses_bad_input_naming_the_value(arguments, named):
+    with pytest.raises(ValueError, match=named):
+        vdw.FluidViscousDamper(**arguments)
+
+
+@pytest.mark.parametrize(("arguments", "named"), [
+    (dict(slip_force=0.0, stiffness=1e4), "slip_force.*0.0"),
+    (dict(slip_force=-3.0, stiffness=1e4), r"slip_force.*-3\.0"),
+    (dict(slip_force=math.inf, stiffness=1e4), "slip_force.*inf"),
+    (dict(slip_force=math.nan, stiffness=1e4), "slip_force.*nan"),
+    (dict(slip_force=1e5, stiffness=0.0), "stiffness.*0.0"),
+    (dict(slip_force=1e5, stiffness=-2.0), r"stiffness.*-2\.0"),
+    (dict(slip_force=1e5, stiffness=math.inf), "stiffness.*inf"),
+    (dict(slip_force=1e5, stiffness=1e4, magnification=0.0), "magnification.*0.0"),
+    (dict(slip_force=1e5, stiffness=1e4, magnification=-1.0), r"magnification.*-1\.0"),
+])
+def test_a_friction_damper_refuses_bad_input_naming_the_value(arguments, named):
+    with pytest.raises(ValueError, match=named):
+        vdw.FrictionDamper(**arguments)
+
+
+def test_a_device_of_an_unknown_type_in_a_building_is_refused_naming_its_type():
+    class Sponge:
+        magnification = 1.0
+
+    with pytest.raises(ValueError, match=r"devices\[2\].*FluidViscousDamper.*FrictionDamper.*got Sponge"):
+        vdw.ShearBuilding([300.0, 300.0], [2e5, 2e5], devices={2: [vdw.FrictionDamper(1e5, 1e4), Sponge()]})
