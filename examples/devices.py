@@ -33,6 +33,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+import textwrap
 import time
 import warnings
 from pathlib import Path
@@ -151,7 +152,7 @@ def plot_loops(results: dict[str, vdw.SimulationResult], path: Path) -> None:
     for axis, (name, result) in zip(axes.flat, results.items(), strict=True):
         story, description, force, deformation, _ = next(item for item in device_histories(result) if item[0] == 1)
         axis.plot(deformation, force / 1e3, lw=0.7)
-        axis.set_title(f"{name}: story {story}\n{description}", fontsize=9)
+        axis.set_title(f"{name}: story {story}\n{textwrap.fill(description, 70)}", fontsize=8)
         axis.set_xlabel("device deformation (mm)")
         axis.set_ylabel("device force (kN)")
         axis.grid(alpha=0.3)
