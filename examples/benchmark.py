@@ -579,7 +579,7 @@ def part_p695():
         print(f"\n(f) FEMA P695 assessment: skipped ({error})")
         return
     walled = load_building(ROOT / "examples" / "ten_story.toml")
-    buildings = {"bare frame": walled.without_walls(), "with walls": walled}
+    buildings = {"bare frame": walled.without_devices(), "with walls": walled}
     cores = os.cpu_count() or 1
     print(f"\n(f) FEMA P695 collapse assessment of the example frame, far-field set ({len(records)} records), "
           f"SDC Dmax, {cores} worker processes")

@@ -78,8 +78,8 @@ def run(args) -> int:
     walled = load_building(BUILDING_FILE)
     ideal = walled.with_walls({story: tuple(dataclasses.replace(wall.at(3.0), thermal=None, limits=None)
                                             for wall in walls) for story, walls in walled.walls.items()})
-    buildings = {"bare frame": walled.without_walls(), "with VDW": walled, "ideal walls": ideal}
-    period = walled.without_walls().periods[0]
+    buildings = {"bare frame": walled.without_devices(), "with VDW": walled, "ideal walls": ideal}
+    period = walled.without_devices().periods[0]
     args.out.mkdir(parents=True, exist_ok=True)
     print(f"IDA: {len(motions)} records ({', '.join(m.name for m in motions)}), Sa(T1 = {period:.2f} s) from "
           f"{args.step:g} g in steps of {args.step:g} g up to {args.cap:g} g or collapse")

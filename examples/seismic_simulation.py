@@ -83,7 +83,7 @@ def run_models(building: vdw.ShearBuilding, motion: vdw.GroundMotion) -> dict[st
     """The bare frame and the three wall models (module docstring) under ``motion``."""
     options = dict(free_vibration=FREE_VIBRATION)
     return {
-        "bare frame": vdw.simulate(building.without_walls(), motion, **options),
+        "bare frame": vdw.simulate(building.without_devices(), motion, **options),
         MODELS[0]: vdw.simulate(building, motion, **options),
         MODELS[1]: vdw.simulate(building, motion, strain_compatible=True, **options),
         MODELS[2]: vdw.simulate(classical_walls(building, 3.0), motion, **options),
@@ -118,7 +118,7 @@ def run(args) -> int:
           f"PGA = {motion.pga / G:.3f} g")
     weight = float(np.sum(walled.masses)) * G
     strengths = np.array([model.yield_force for model in walled.story_models])
-    print(f"frame: T1 = {walled.without_walls().periods[0]:.2f} s (bare, elastic), story strengths "
+    print(f"frame: T1 = {walled.without_devices().periods[0]:.2f} s (bare, elastic), story strengths "
           f"{strengths[0] / weight:.3f} W at the base to {strengths[-1] / weight:.3f} W at the top "
           f"(W = {weight / 1e6:.1f} MN), 3 % hardening, P-Delta")
     walls = walled.wall_list

@@ -63,7 +63,7 @@ PERIOD_RANGE = (0.2, 2.0)  # x T1: the range over which each record is scaled to
 
 def example_frame() -> vdw.ShearBuilding:
     """The example's bare frame (examples/ten_story.toml without its walls)."""
-    return load_building(BUILDING_FILE).without_walls()
+    return load_building(BUILDING_FILE).without_devices()
 
 
 def example_walls() -> dict[int, vdw.StrainDependentDamper]:
