@@ -45,6 +45,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import vdw_frames as vdw
+from vdw_frames.cli import plain_warnings
 from vdw_frames.config import load_building
 from vdw_frames.design import damping_curve, size_devices
 from vdw_frames.motion import G, default_record, read_at2
@@ -231,4 +232,5 @@ def run(args: argparse.Namespace) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    with plain_warnings():  # one line "warning: ...", as the vdw-frames command prints them
+        sys.exit(main())

@@ -22,11 +22,11 @@ from vdw_frames import Bilinear, FDMKDamper, ShearBuilding, modal_analysis
     (dict(masses=[1.0, -2.0]), "masses must be > 0"), (dict(masses=[1.0, np.nan]), "masses must be finite"),
     (dict(stiffnesses=[1.0, 0.0]), "stiffnesses must be > 0"), (dict(stiffnesses=[1.0]), "stiffnesses has 1"),
     (dict(damping_ratio=1.0), "damping_ratio"), (dict(damping_ratio=-0.1), "damping_ratio"),
-    (dict(damping_modes=(1, 3)), "damping_modes"), (dict(walls={3: SMALL_README_WALL}), "story"),
-    (dict(walls={0: SMALL_README_WALL}), "story"), (dict(walls={1: "wall"}), "FDMKDamper"),
+    (dict(damping_modes=(1, 3)), "damping_modes"), (dict(devices={3: SMALL_README_WALL}), "story"),
+    (dict(devices={0: SMALL_README_WALL}), "story"), (dict(devices={1: "wall"}), "FDMKDamper"),
     (dict(story_heights=[3000.0]), "story_heights"), (dict(story_heights=[3000.0, -1.0]), "story_heights"),
     (dict(damping_modes=(1, None)), "damping_modes"), (dict(damping_modes=(1, np.inf)), "damping_modes"),
-    (dict(damping_modes=2), "damping_modes"), (dict(walls=[SMALL_README_WALL]), "walls must be a dict"),
+    (dict(damping_modes=2), "damping_modes"), (dict(devices=[SMALL_README_WALL]), "devices must be a dict"),
 ])
 def test_masses_stiffnesses_damping_walls_and_heights_are_validated(kwargs, match):
     arguments = dict(masses=[1.0, 1.0], stiffnesses=[1.0, 1.0]) | kwargs
@@ -79,7 +79,7 @@ def test_modal_damping_gives_the_same_ratio_in_every_mode():
 def test_frequency_response_equals_the_one_story_closed_form():
     mass, stiffness = 100.0, 4e4
     wall = FDMKDamper(**README_WALL, area=2e4)
-    frame = ShearBuilding([mass], [stiffness], damping_ratio=0.02, walls={1: wall})
+    frame = ShearBuilding([mass], [stiffness], damping_ratio=0.02, devices={1: wall})
     f = np.linspace(0.0, 40.0, 5000)  # more than one chunk of the batched solve
     a0, a1 = frame.rayleigh_coefficients
     omega = 2 * np.pi * f
@@ -143,7 +143,7 @@ def test_frequency_domain_refuses_a_frame_unstable_under_its_gravity_loads():
     # Story 2: P/h = 8e6 / 10 = 8e5 N/mm against k0 = 6e5 plus a wall whose K(0) = G1 A / t = 8.69e4 N/mm.
     # It returned a bounded stationary_response before; modal_analysis already refused the frame.
     wall = FDMKDamper(G1=8.69, G2=3.58, eta1=0.75, eta2=0.98, r=0.6, area=1e5, thickness=10.0)
-    unstable = ShearBuilding([500.0] * 3, [8e5, 6e5, 4e5], walls={2: wall}, story_heights=[10.0] * 3,
+    unstable = ShearBuilding([500.0] * 3, [8e5, 6e5, 4e5], devices={2: wall}, story_heights=[10.0] * 3,
                              gravity_loads=[3e6, 8e6, 1e6])
     message = (r"the frame is unstable under its gravity loads: story 2's P/h = 800000 N/mm is not below its "
                r"stiffness at rest \(k0 and walls\) 686900 N/mm")

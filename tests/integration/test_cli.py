@@ -105,7 +105,7 @@ def test_cli_reports_bad_input_as_an_error(tmp_path, capsys):
     bad.write_text(json.dumps({"masses": [1.0, 1.0], "stiffnesses": [1.0, 1.0],
                                "walls": [{"stories": [3], "parameters": "fitted-300"}]}))
     assert cli.main(["simulate", str(bad), "--record", str(default_record_path())]) == 2
-    assert "bad.json: device story must be a story number in 1 ... 2, got 3" in capsys.readouterr().err
+    assert "bad.json: wall story must be a story number in 1 ... 2, got 3" in capsys.readouterr().err
 
 
 def test_a_malformed_building_file_is_one_error_line(tmp_path, capsys):
