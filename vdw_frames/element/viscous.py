@@ -13,10 +13,10 @@ deformation, u_d,n+1 = u_d,n + dt/2 (v_d,n + v_d,n+1) -- the rule of Newmark's a
 which the frame uses for its own velocities, so a linear FVD (alpha = 1) in a linear frame is the
 bilinear (Tustin) transform of the continuous system, exactly.  Each trial solves the scalar equation
 F + K_b dt/2 g(F) = F_n + K_b (u - u_n) - K_b dt/2 g(F_n), g(F) = sgn(F)(|F|/C)^(1/alpha), strictly
-increasing in F (one root), by Newton's method from above its root (g is convex for F > 0 when
-alpha <= 1: the iterates fall monotonically onto it), or in closed form where it is linear (alpha = 1) or
-quadratic (alpha = 0.5, the common exponent: 13 times faster a trial than the iteration); the consistent
-tangent is
+increasing in F (one root), by Newton's method from the last trial's force, any iterate above the root
+of K_b dt/2 g(F) = |target| moved there once (g is convex for F > 0 when alpha <= 1: from above the root
+the iterates fall monotonically onto it), or in closed form where it is linear (alpha = 1) or quadratic
+(alpha = 0.5, the common exponent: 13 times faster a trial than the iteration); the consistent tangent is
 dF/du = K_b / (1 + K_b dt/2 g'(F)).  The rule is unconditionally stable; a brace much stiffer than the
 oil over a step (K_b dt/2 g'(F) >> 1) makes the force of a sudden change alternate about the true one,
 decaying as (1 - x)/(1 + x) a step with x = K_b dt/2 g'(F), as the trapezoidal rule does.  A pure dashpot
