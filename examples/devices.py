@@ -8,7 +8,7 @@ that mode 1 has the same added damping ratio above the bare frame's (the complex
 damping ratio peaks), so every alternative gets 80 % of the walls' most, 8 %, and the example says so:
 
 - "VDW walls": the paper's 300 % set (fixed parameters, neither heating nor failing: the classical walls);
-- "linear FVD": fluid viscous dampers, alpha = 1, with a brace in series (template C = 10 N s/mm,
+- "linear FVD": fluid viscous dampers, alpha = 1, with a brace in series (template C = 10 kN s/mm,
   K_b = 1 000 kN/mm; sizing scales both);
 - "nonlinear FVD": alpha = 0.5 (template C = 100 kN (s/mm)^0.5, the same brace);
 - "friction": slip force and elastic stiffness in a fixed ratio (slip deformation 2 mm).

@@ -424,17 +424,27 @@ def _design(args: argparse.Namespace) -> int:
         building = building.walls_at(None if args.strain is None else args.strain / 100.0)
     modes = modal_analysis(building, drift_amplitude=args.drift_amplitude)
     walls = building.wall_list
-    print(f"{args.building}: {building.stories} stories, {len(walls)} walls, inherent damping "
+    others = len(building.other_device_list)
+    print(f"{args.building}: {building.stories} stories, {len(walls)} walls"
+          + (f", {others} other devices" if others else "") + f", inherent damping "
           f"{100 * building.damping_ratio:g} % ({building.damping_model}); the linear building, complex modes")
-    print(f"{'mode':>4s} {'T bare s':>9s} {'xi bare %':>9s} {'T walls s':>9s} {'xi %':>7s} {'energy %':>8s} "
-          f"{'added %':>8s} {'walls %':>8s}")
+    # With other devices the columns are those of every device, not of the walls alone.
+    period, share = ("T walls s", "walls %") if not others else ("T dev. s", "dev. %")
+    print(f"{'mode':>4s} {'T bare s':>9s} {'xi bare %':>9s} {period:>9s} {'xi %':>7s} {'energy %':>8s} "
+          f"{'added %':>8s} {share:>8s}")
     for k in range(min(args.modes, modes.modes.size)):
         print(f"{modes.modes[k]:4d} {modes.bare_periods[k]:9.3f} {100 * modes.bare_damping_ratios[k]:9.2f} "
               f"{modes.periods[k]:9.3f} {100 * modes.damping_ratios[k]:7.2f} "
               f"{100 * modes.energy_damping_ratios[k]:8.2f} "
               f"{100 * modes.added_damping[k]:8.2f} {100 * modes.energy_added_damping[k]:8.2f}")
     print("xi: complex modes, -Re s/|s|; energy: xi_inherent + sum W_c/(4 pi W_s) in the real mode (FEMA 356 "
-          "eq. 9-36 form); added: xi - xi bare; walls: the walls' own share sum W_c/(4 pi W_s)")
+          "eq. 9-36 form); added: xi - xi bare; "
+          + ("walls: the walls' own share sum W_c/(4 pi W_s)" if not others else
+             "dev.: the devices' own share sum W_c/(4 pi W_s), walls and other devices"))
+    if modes.linearisation:
+        print("equivalent linearisation (the periods and damping ratios above hold at these amplitudes only):")
+        for note in modes.linearisation:
+            print(f"  {note}")
     if not walls:
         print("no walls in the building file: add a [[walls]] group to size them")
         return 0

@@ -385,7 +385,7 @@ def _device_group(kind: str, group: dict[str, Any], stories: int) -> tuple[list[
     if unknown:
         raise ValueError(f"unknown {kind} device keys {sorted(unknown)}; expected some of "
                          f"{sorted(parameters | _GROUP_KEYS)}")
-    story_numbers = _story_numbers(group.get("stories", "all"), stories)
+    story_numbers = _story_numbers(group.get("stories", "all"), stories, f"{kind} devices")
     per_story = whole_number(f"{kind} devices per_story", group.get("per_story", 1), 1)
     if per_story > MAX_PER_STORY:
         raise ValueError(f"{kind} devices per_story must be at most {MAX_PER_STORY}, got {per_story}")
@@ -437,8 +437,9 @@ def _wall(group: dict[str, Any]) -> FDMKDamper | StrainDependentDamper:
     return wall
 
 
-def _story_numbers(story_numbers: object, stories: int) -> list[int]:
-    """The story numbers of a ``stories`` key ("all" or a list of distinct story numbers)."""
+def _story_numbers(story_numbers: object, stories: int, what: str = "walls") -> list[int]:
+    """The story numbers of a ``stories`` key ("all" or a list of distinct story numbers) of a group of ``what``
+    (for the messages: "walls", "friction devices", ...)."""
     if story_numbers == "all":
         return list(range(1, stories + 1))
     if isinstance(story_numbers, list):
@@ -447,16 +448,16 @@ def _story_numbers(story_numbers: object, stories: int) -> list[int]:
             try:
                 number = whole_number("story", given, 1)
             except ValueError:
-                raise ValueError(f"walls stories must be story numbers in 1 ... {stories}, got {show(given)} "
+                raise ValueError(f"{what} stories must be story numbers in 1 ... {stories}, got {show(given)} "
                                  f"in {show(story_numbers)}") from None
             if number > stories:
-                raise ValueError(f"wall story must be a story number in 1 ... {stories}, got {number}")
+                raise ValueError(f"{what} story must be a story number in 1 ... {stories}, got {number}")
             numbers.append(number)
         if len(set(numbers)) != len(numbers):
-            raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got "
+            raise ValueError(f"{what} stories must be 'all' or a list of distinct story numbers, got "
                              f"{show(story_numbers)}")
         return numbers
-    raise ValueError(f"walls stories must be 'all' or a list of distinct story numbers, got {show(story_numbers)}")
+    raise ValueError(f"{what} stories must be 'all' or a list of distinct story numbers, got {show(story_numbers)}")
 
 
 def _table(name: str, value: object, keys: set[str]) -> dict[str, Any]:

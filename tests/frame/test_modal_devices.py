@@ -172,3 +172,20 @@ def test_linearised_poles_are_roots_of_the_characteristic_matrix_built_here():
         matrix = s**2 * mass + s * damping + stiffness
         singular = np.linalg.svd(matrix, compute_uv=False)
         assert singular[-1] <= 1e-11 * singular[0]
+
+
+def test_complex_modes_keeps_its_old_walls_keyword_with_a_deprecation_warning():
+    """complex_modes(building, walls=False) (before 0.3) is complex_modes(building, devices=False): the bare frame,
+    whose undamped poles are i omega with omega^2 the eigenvalues of M^-1 K (scipy's eigh, written here)."""
+    from scipy.linalg import eigh
+
+    from vdw_frames.frame.modal import complex_modes
+
+    building = ShearBuilding([200.0, 150.0], [3e5, 2e5], damping_ratio=0.0,
+                             devices={1: [FluidViscousDamper(500.0, 1.0)]})
+    with pytest.warns(DeprecationWarning, match=r"complex_modes\(walls=...\) is deprecated.*devices="):
+        poles, _, _ = complex_modes(building, walls=False)
+    omega = np.sqrt(eigh(np.asarray(building.stiffness_matrix), np.diag([200.0, 150.0]), eigvals_only=True))
+    np.testing.assert_allclose(poles, 1j * omega, rtol=1e-10, atol=1e-12 * omega.max())
+    damped, _, _ = complex_modes(building, devices=True)
+    assert (damped.real < 0).all()  # walls=True would have kept the dashpot: devices=True does

@@ -87,3 +87,37 @@ def test_device_loops_are_bounded_and_checked(tmp_path):
             plot_device_loops(result, tmp_path, [bad])
     with pytest.raises(ValueError, match="no device other than walls"):
         plot_device_loops(simulate(ShearBuilding([100.0], [1e5]), tapered_pulse()), tmp_path)
+
+
+NONLINEAR_DEVICES_TOML = """masses = [200.0, 200.0]
+stiffnesses = [2.0e5, 1.8e5]
+story_heights = [3500.0, 3500.0]
+[[devices]]
+type = "fluid_viscous"
+C = 2.0e4
+alpha = 0.5
+stiffness = 2.0e5
+[[devices]]
+type = "friction"
+slip_force = 1.0e5
+stiffness = 5.0e4
+stories = [2]
+"""
+
+
+def test_design_states_the_amplitude_its_modal_table_of_nonlinear_devices_holds_at(tmp_path, capsys):
+    """The modal table of a building of nonlinear FVDs and friction dampers depends on --drift-amplitude: the
+    output says at which amplitude each device is linearised, and its columns are the devices', not "walls"
+    (it printed "T walls s" and "the walls' own share" for a building with no wall, and no amplitude)."""
+    from vdw_frames import modal_analysis
+
+    path = write_file(tmp_path, "nonlinear.toml", NONLINEAR_DEVICES_TOML)
+    assert cli.main(["design", str(path), "--drift-amplitude", "20", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "T walls" not in out and "walls' own share" not in out
+    assert "0 walls, 3 other devices" in out
+    assert "equivalent linearisation (the periods and damping ratios above hold at these amplitudes only):" in out
+    assert "story 2: friction F_s=100000.0, k=50000.0 linearised at story drift amplitude 20 mm (device 20 mm)" in out
+    row = next(line for line in out.splitlines() if line.split()[:1] == ["1"]).split()
+    expected = modal_analysis(load_building(path), drift_amplitude=20.0)
+    assert float(row[4]) == pytest.approx(100 * expected.damping_ratios[0], abs=0.0051)

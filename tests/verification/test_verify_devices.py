@@ -161,3 +161,16 @@ def test_the_verify_command_prints_and_writes_the_device_demands(tmp_path, capsy
     # a friction damper's force never exceeds its (bounded) slip force
     assert expected.devices[1].force["upper"] <= 1.25 * 4.0e4 * (1 + 1e-12)
     assert expected.devices[1].force["lower"] <= 0.8 * 4.0e4 * (1 + 1e-12)
+
+
+def test_the_prototype_specification_says_which_period_its_frequency_comes_from_with_other_devices():
+    """f1 is 1/T1 of period_range, which leaves the nonlinear FVDs and friction dampers out: the printed line says
+    so when the building has such devices (it said "with the walls" only)."""
+    from vdw_frames.verification.verify import DeviceDemand, prototype_test_specification
+
+    demand = DeviceDemand(story=1, device=0, description="friction F_s=1e5, k=1e4", velocity_dependent=False,
+                          force={"upper": 1e5}, deformation={"upper": 20.0}, velocity={"upper": 300.0})
+    text = prototype_test_specification([], 0.8, [demand])
+    assert "1/T1 with the walls and linear devices; nonlinear FVDs and friction dampers left out" in text
+    assert "force up to 100.0 kN" in text
+    assert "(1/T1 with the walls)" in prototype_test_specification([], 0.8)

@@ -13,10 +13,10 @@ deformation, u_d,n+1 = u_d,n + dt/2 (v_d,n + v_d,n+1) -- the rule of Newmark's a
 which the frame uses for its own velocities, so a linear FVD (alpha = 1) in a linear frame is the
 bilinear (Tustin) transform of the continuous system, exactly.  Each trial solves the scalar equation
 F + K_b dt/2 g(F) = F_n + K_b (u - u_n) - K_b dt/2 g(F_n), g(F) = sgn(F)(|F|/C)^(1/alpha), strictly
-increasing in F (one root), by Newton's method from above its root (g is convex for F > 0 when
-alpha <= 1: the iterates fall monotonically onto it), or in closed form where it is linear (alpha = 1) or
-quadratic (alpha = 0.5, the common exponent: 13 times faster a trial than the iteration); the consistent
-tangent is
+increasing in F (one root), by Newton's method from the last trial's force, any iterate above the root
+of K_b dt/2 g(F) = |target| moved there once (g is convex for F > 0 when alpha <= 1: from above the root
+the iterates fall monotonically onto it), or in closed form where it is linear (alpha = 1) or quadratic
+(alpha = 0.5, the common exponent: 13 times faster a trial than the iteration); the consistent tangent is
 dF/du = K_b / (1 + K_b dt/2 g'(F)).  The rule is unconditionally stable; a brace much stiffer than the
 oil over a step (K_b dt/2 g'(F) >> 1) makes the force of a sudden change alternate about the true one,
 decaying as (1 - x)/(1 + x) a step with x = K_b dt/2 g'(F), as the trapezoidal rule does.  A pure dashpot
@@ -258,17 +258,22 @@ def viscous_trial(states, i, deformation, velocity):
             dashpot_velocity = math.copysign(ratio * ratio, target)
         else:
             # F + K dt/2 g(F) = target, from the last trial's force (an earlier Newton iterate of this step, or the
-            # committed force: near the root) when it has the target's sign, else from above the root (|target|,
-            # and the root of K dt/2 g(F) = |target|).  From below, Newton's first step lands above the root
-            # (r is convex) and at most at |target|; from above, the iterates fall monotonically onto it.
+            # committed force: near the root) when it has the target's sign and is below |target|, else from
+            # |target|.  Any iterate above U, the root of K dt/2 g(F) = |target| (itself above the root, and near
+            # it where the dashpot takes most of the step), is moved to U once: from there the iterates fall
+            # monotonically onto the root (r is convex).  Without it, Newton from far above (a warm start far
+            # from the root, or the first step from below, which overshoots) falls by only (1 - alpha) an
+            # iteration -- 100 iterations short of the root at alpha = 0.05 -- and g may overflow there.
             size = abs(target)
             last = motion.trial_force[i] if target > 0.0 else -motion.trial_force[i]
-            if last > 0.0:
-                force = min(last, size)
-            else:
-                force = min(size, C * (size / (stiffness * half)) ** alpha) if size > 0.0 else 0.0
+            force = last if 0.0 < last < size else size
+            bounded = False
             for _ in range(100):
                 speed, slope = _dashpot_velocity(force, C, alpha)
+                if not bounded and not stiffness * half * speed <= size:
+                    bounded = True
+                    force = C * (size / (stiffness * half)) ** alpha
+                    speed, slope = _dashpot_velocity(force, C, alpha)
                 step = (force + stiffness * half * speed - size) / (1.0 + stiffness * half * slope)
                 force -= step
                 if not abs(step) > 1e-15 * size:

@@ -91,6 +91,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import eigh
 
+from .. import _warnings
 from .._validation import finite_array, show, whole_number
 from ..element.strain_dependent import StrainDependentDamper
 from ..element.viscous import FluidViscousDamper
@@ -320,10 +321,15 @@ def _start_guesses(system: _System) -> list[tuple[complex, np.ndarray]]:
 
 
 def complex_modes(building: ShearBuilding, devices: bool = True, amplitudes: np.ndarray | None = None,
-                  frozen: float | None = None) -> tuple[np.ndarray, np.ndarray, int]:
+                  frozen: float | None = None, *, walls: bool | None = None) -> tuple[np.ndarray, np.ndarray, int]:
     """(poles ascending in |s|, shapes as columns, argument-principle count) of the linear building: with its
     devices (``devices``; nonlinear ones linearised at the story drift ``amplitudes`` (mm) and the circular
-    frequency ``frozen`` (rad/s): :class:`_System`), or the bare frame."""
+    frequency ``frozen`` (rad/s): :class:`_System`), or the bare frame.  ``walls=`` (the keyword before 0.3)
+    still works as ``devices=``, with a DeprecationWarning."""
+    if walls is not None:
+        _warnings.warn("complex_modes(walls=...) is deprecated since 0.3 and will be removed in 0.4: give devices=",
+                       DeprecationWarning, stacklevel=2)
+        devices = walls
     require_modal_size(building, "a complex modal analysis")
     require_stable_under_gravity(building if devices else building.without_devices(), "the complex modal analysis")
     return _modes_of(_System(building, devices, amplitudes, frozen))

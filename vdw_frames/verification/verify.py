@@ -602,14 +602,18 @@ def prototype_test_specification(walls: Sequence[WallDemand], frequency: float,
                                  devices: Sequence[DeviceDemand] = ()) -> str:
     """The prototype test specification (ASCE 7-16 Sec. 18.6; the clause's sequence and tolerances were NOT
     read, so this is this package's rule, stated in the text): per wall, sinusoidal cycles at ``frequency``
-    (Hz, 1 / T_1 with the walls) at the largest deformation; the number of cycles the energy-equivalent one,
-    ceil(cumulative / largest cycle energy), but not fewer than 5; where the largest velocity exceeds the sine's
-    2 pi f A, a second frequency v_max / (2 pi A) that reaches it; the temperature rise to be reached or
-    accounted for where the walls heat.  Per other device (``devices``), the largest deformation, velocity and
-    force over both bounds, which its tests are to reach."""
+    (Hz, 1 / T_1 with the walls and linear devices, as :func:`~vdw_frames.verification.suite.period_range` takes
+    it; the text says so when there are other devices) at the largest deformation; the number of cycles the
+    energy-equivalent one, ceil(cumulative / largest cycle energy), but not fewer than 5; where the largest
+    velocity exceeds the sine's 2 pi f A, a second frequency v_max / (2 pi A) that reaches it; the temperature
+    rise to be reached or accounted for where the walls heat.  Per other device (``devices``), the largest
+    deformation, velocity and force over both bounds, which its tests are to reach."""
     frequency = positive("frequency", frequency)
     lines = [f"Prototype tests (ASCE 7-16 Sec. 18.6 as this package reads it; the clause's own sequence was not "
              f"available): sinusoidal cycles at f1 = {frequency:.3f} Hz (1/T1 with the walls) unless stated."]
+    if devices:  # T1 as the suite's period range takes it (period_range): no assumed amplitude in it
+        lines[0] = lines[0].replace("(1/T1 with the walls)", "(1/T1 with the walls and linear devices; nonlinear "
+                                    "FVDs and friction dampers left out)")
     for demand in walls:
         if demand.deformation <= 0:
             lines.append(f"- wall {demand.wall + 1} (story {demand.story}): no deformation")
