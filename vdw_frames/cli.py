@@ -345,7 +345,7 @@ def _print_wall_assumptions(building: ShearBuilding) -> None:
     """The walls' constants from outside the paper -- how they heat and fail -- with their sources, once each."""
     lines: dict[str, None] = {}  # ordered, each line once
     for _, wall in building.wall_list:
-        thermal, limits = getattr(wall, "thermal", None), getattr(wall, "limits", None)
+        thermal, limits = wall.thermal, wall.limits
         if thermal is not None:
             lines[f"walls heat from {thermal.temperature:g} degC, rho c = {thermal.heat_capacity:g} J/(cm^3 K), "
                   f"shift law {type(thermal.shift).__name__}: {thermal.shift.source or 'no source given'}"] = None
@@ -551,7 +551,7 @@ def _collapse(args: argparse.Namespace) -> int:
             period = float(period)
         except ValueError:
             raise ValueError(f"--period must be T1 or seconds, got {args.period!r}") from None
-    if args.wall_failure and not any(getattr(wall, "limits", None) is not None for _, wall in building.wall_list):
+    if args.wall_failure and not any(wall.limits is not None for _, wall in building.wall_list):
         # Else the flag would change nothing while the report lists wall failure among the limit states.
         raise ValueError(f"--wall-failure: no wall of {args.building} has limits (a [walls.limits] table), so none "
                          "can fail; give the walls limits or leave out --wall-failure")

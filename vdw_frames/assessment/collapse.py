@@ -378,7 +378,7 @@ def strain_caution(building: ShearBuilding) -> str:
     """What walls outside their identified strains mean for collapse intensities, by the walls' kind."""
     walls = [wall for _, wall in building.wall_list]
     following = any(isinstance(wall, StrainDependentDamper) for wall in walls)
-    failing = any(getattr(wall, "limits", None) is not None for wall in walls)
+    failing = any(wall.limits is not None for wall in walls)
     text = ("amplitude-following walls take the nearest identified set's parameters there (an extrapolation)"
             if following else "walls of fixed parameters stay linear there")
     if failing:

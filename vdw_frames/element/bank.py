@@ -56,12 +56,12 @@ def memory_strategy(memory: str | FastMemory) -> FastMemory | None:
 def wall_order(wall: Any) -> float:
     """A wall's fractional order r (-): its own, or the common r of an amplitude-following wall
     (:attr:`vdw_frames.element.strain_dependent.StrainDependentDamper.common_order`, a ValueError if none)."""
-    return float(wall.common_order) if hasattr(wall, "amplitude_table") else float(wall.r)
+    return float(wall.common_order) if wall.follows_amplitude else float(wall.r)
 
 
 def amplitude_key(wall: Any) -> tuple | None:
     """What makes two amplitude-following walls behave alike (their node table), None for fixed walls."""
-    return tuple(map(tuple, wall.amplitude_table())) if hasattr(wall, "amplitude_table") else None
+    return tuple(map(tuple, wall.amplitude_table())) if wall.follows_amplitude else None
 
 
 def kernel_constants(wall: SteppedWall) -> np.ndarray:
@@ -132,10 +132,9 @@ class WallBank:
         """Every wall at rest: base parameters, temperature, limits, the diffusive nodes of followed walls."""
         count = len(self.walls)
         constants = np.array([kernel_constants(wall) for wall in self.walls]).reshape(-1, 7)
-        thermals = [getattr(wall, "thermal", None) for wall in self.walls]
-        limits = [getattr(wall, "limits", None) for wall in self.walls]
-        tables = [wall.amplitude_table() if hasattr(wall, "amplitude_table") else np.zeros((0, 5))
-                  for wall in self.walls]
+        thermals = [wall.thermal for wall in self.walls]
+        limits = [wall.limits for wall in self.walls]
+        tables = [wall.amplitude_table() for wall in self.walls]
         walls = kernel.wall_records(count)
         base, thermal_group, energy, limits_group, tracker = (walls[group].view(np.recarray) for group in kernel.GROUPS)
         base["energy_followed"] = [t is not None or lim is not None for t, lim in zip(thermals, limits, strict=True)]
@@ -226,7 +225,7 @@ class WallBank:
             mode_ratio[d, : m.mode_ratio.size] = m.mode_ratio
         constants = np.array([kernel_constants(wall) for wall in self.walls]).reshape(-1, 7)
         for w, wall in enumerate(self.walls):  # the coefficients at the temperature at rest
-            wall_thermal = getattr(wall, "thermal", None)
+            wall_thermal = wall.thermal
             if wall_thermal is not None:
                 # held at the law's range, as every step is; the analysis warns of it itself (thermal.outside)
                 constants[w, 2:4] *= wall_thermal.viscosity_factor(wall_thermal.temperature, wall_order(wall),
@@ -346,15 +345,19 @@ class _CombinedWall:
 
     @property
     def thermal(self) -> ThermalProperties | None:
-        return getattr(self.wall, "thermal", None)
+        return self.wall.thermal
 
     @property
     def limits(self) -> WallLimits | None:
-        return getattr(self.wall, "limits", None)
+        return self.wall.limits
 
     def amplitude_table(self) -> np.ndarray:
         """The wrapped wall's amplitude table ((0, 5) for a wall of fixed parameters)."""
-        return self.wall.amplitude_table() if hasattr(self.wall, "amplitude_table") else np.zeros((0, 5))
+        return self.wall.amplitude_table()
+
+    @property
+    def follows_amplitude(self) -> bool:
+        return self.wall.follows_amplitude
 
     @property
     def common_order(self) -> float:
@@ -377,7 +380,7 @@ def group_walls(walls: Sequence[tuple[int, Wall]]) -> tuple[list[tuple[int, _Com
     for index, (story, wall) in enumerate(walls):
         G1, G2, eta1, eta2, area, thickness, flexibility = (float(x) for x in kernel_constants(wall))
         key = (story, G1, G2, eta1, eta2, wall_order(wall), thickness, flexibility * area,
-               getattr(wall, "thermal", None), getattr(wall, "limits", None), amplitude_key(wall),
+               wall.thermal, wall.limits, amplitude_key(wall),
                wall.magnification)
         if key not in keys:
             keys[key] = len(members)

@@ -28,7 +28,7 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -106,6 +106,14 @@ class FDMKDamper(StiffnessMethods):
     thermal: ThermalProperties | None = None
     limits: WallLimits | None = None
     magnification: float = 1.0
+
+    # A wall of fixed parameters: linear viscoelastic (eqs. (3)-(5)) at a fixed temperature; no amplitude table.
+    follows_amplitude: ClassVar[bool] = False
+    linear: ClassVar[bool] = True
+
+    def amplitude_table(self) -> np.ndarray:
+        """The kernel's amplitude table, (0, 5): a wall of fixed parameters follows no amplitude."""
+        return np.zeros((0, 5))
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "magnification", magnification_factor(self.magnification))

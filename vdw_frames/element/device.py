@@ -36,6 +36,7 @@ class Device(Protocol):
 
     * ``kind`` (class attribute): its registered name (:data:`vdw_frames.element.devices.KINDS`);
     * ``magnification`` (-): the geometry factor above, > 0;
+    * ``linear``: whether its force is linear in its motion (a wall of fixed parameters, a linear FVD);
     * :meth:`story_stiffness`: the complex stiffness f^2 K*(f) the story sees (N/mm), exact for a linear
       device, the equivalent linear one at a stated drift amplitude for a nonlinear one;
     * :meth:`scaled`: its force-defining properties times a property-modification factor;
@@ -49,6 +50,11 @@ class Device(Protocol):
 
     @property
     def magnification(self) -> float: ...
+
+    @property
+    def linear(self) -> bool:
+        """Whether its force is linear in its motion (then :meth:`story_stiffness` needs no amplitude)."""
+        ...
 
     def story_stiffness(self, f: ArrayLike, drift_amplitude: float | None = None) -> np.ndarray:
         """magnification^2 K*(f) (N/mm) at frequencies f (Hz); a nonlinear device's at ``drift_amplitude`` (mm)."""

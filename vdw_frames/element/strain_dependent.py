@@ -38,7 +38,7 @@ import dataclasses
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import overload
+from typing import ClassVar, overload
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -113,6 +113,10 @@ class StrainDependentDamper:
     thermal: ThermalProperties | None = None
     limits: WallLimits | None = None
     magnification: float = 1.0
+
+    # Its parameters follow its own strain amplitude: nonlinear, stepped with its amplitude table.
+    follows_amplitude: ClassVar[bool] = True
+    linear: ClassVar[bool] = False
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "magnification", magnification_factor(self.magnification))

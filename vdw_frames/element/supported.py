@@ -18,6 +18,7 @@ Units: stiffness N/mm, frequency Hz, s in rad/s, displacement mm, force N.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -46,6 +47,13 @@ class SupportedDamper(StiffnessMethods):
 
     damper: FDMKDamper
     support_stiffness: float
+
+    follows_amplitude: ClassVar[bool] = False
+    linear: ClassVar[bool] = True
+
+    def amplitude_table(self) -> np.ndarray:
+        """The kernel's amplitude table, (0, 5): its wall has fixed parameters."""
+        return np.zeros((0, 5))
 
     def __post_init__(self) -> None:
         if not isinstance(self.damper, FDMKDamper):

@@ -489,7 +489,7 @@ def property_factors(wall: Any, temperatures: ArrayLike, frequency: float) -> Pr
     at ``frequency`` (Hz, > 0) over ``temperatures`` (degC, service temperatures: :func:`service_temperature`);
     outside the shift law's range the law is held at the range's end, with a warning (:func:`held_temperature`,
     as the time domain does)."""
-    if getattr(wall, "thermal", None) is None:
+    if wall.thermal is None:
         raise ValueError("property factors from temperature need a wall with a thermal description "
                          "(thermal=ThermalProperties(...))")
     values = np.atleast_1d(np.asarray(temperatures, dtype=float))

@@ -12,12 +12,16 @@ Units: frequency Hz, s in rad/s, stiffness N/mm, damping coefficient N*s/mm.
 
 from __future__ import annotations
 
-from typing import Protocol, runtime_checkable
+from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validation import positive_frequencies, require_finite, show
+
+if TYPE_CHECKING:
+    from .limits import WallLimits
+    from .thermal import ThermalProperties
 
 
 @runtime_checkable
@@ -45,6 +49,24 @@ class Wall(Protocol):
     @property
     def magnification(self) -> float:
         """Its deformation / the interstory drift (-): its geometry (:mod:`vdw_frames.element.device`)."""
+        ...
+
+    @property
+    def linear(self) -> bool:
+        """Whether its force is linear in its motion (True: fixed parameters; the Device protocol)."""
+        ...
+
+    @property
+    def thermal(self) -> ThermalProperties | None: ...
+
+    @property
+    def limits(self) -> WallLimits | None: ...
+
+    @property
+    def follows_amplitude(self) -> bool: ...
+
+    def amplitude_table(self) -> np.ndarray:
+        """(0, 5): a wall of fixed parameters follows no amplitude (:class:`SteppedWall`)."""
         ...
 
     def complex_stiffness(self, f: ArrayLike) -> np.ndarray:
@@ -78,8 +100,11 @@ class Wall(Protocol):
 
 @runtime_checkable
 class SteppedWall(Protocol):
-    """What the time-stepping kernel needs of a wall (a :class:`Wall`, or a strain-dependent wall that follows
-    its amplitude): its layers' ``area`` (mm^2) and ``thickness`` (mm) and its kernel constants."""
+    """What the time-stepping kernel (:class:`~vdw_frames.element.bank.WallBank`) reads of a wall (a
+    :class:`Wall`, or a strain-dependent wall that follows its amplitude), all of it: its layers' ``area``
+    (mm^2) and ``thickness`` (mm), its kernel constants, its thermal description and limits (None: none),
+    whether it follows its own strain amplitude (``follows_amplitude``, then its ``common_order`` r and its
+    ``amplitude_table()``, (nodes, 5); (0, 5) for a wall of fixed parameters, whose order is ``r``)."""
 
     @property
     def area(self) -> float: ...
@@ -87,8 +112,21 @@ class SteppedWall(Protocol):
     @property
     def thickness(self) -> float: ...
 
+    @property
+    def thermal(self) -> ThermalProperties | None: ...
+
+    @property
+    def limits(self) -> WallLimits | None: ...
+
+    @property
+    def follows_amplitude(self) -> bool: ...
+
     def kernel_constants(self) -> tuple:
         """The step kernel's row of 7 constants (:mod:`vdw_frames.element.kernel`)."""
+        ...
+
+    def amplitude_table(self) -> np.ndarray:
+        """(nodes, 5): log strain, G1, G2, eta1, eta2 at its amplitude nodes; (0, 5) for fixed parameters."""
         ...
 
 

@@ -301,14 +301,14 @@ def _property_envelope(building: ShearBuilding, property_factors: ArrayLike | No
     temperatures: list[float | None] = [None]
     if ambient_temperatures is not None:
         temperatures = [float(t) for t in finite_array("ambient_temperatures", ambient_temperatures, ndim=None).ravel()]
-        if not temperatures or not any(getattr(wall, "thermal", None) is not None for _, wall in building.wall_list):
+        if not temperatures or not any(wall.thermal is not None for _, wall in building.wall_list):
             raise ValueError("ambient_temperatures needs one or more temperatures (degC) and walls with a thermal "
                              f"description (thermal=ThermalProperties(...)), got {show(ambient_temperatures)}")
 
     def variant(factor: float, temperature: float | None) -> ShearBuilding:
         def wall_variant(wall: Any) -> Any:
             wall = wall.scaled(factor)
-            if temperature is None or getattr(wall, "thermal", None) is None:
+            if temperature is None or wall.thermal is None:
                 return wall
             return wall.at_ambient(temperature)
         return building.with_devices({story: tuple(wall_variant(device) if is_wall(device) else device.scaled(factor)

@@ -251,7 +251,7 @@ class ShearBuilding:
         """True when every device's force is linear in its motion: walls of fixed parameters and linear fluid
         viscous dampers (a wall that heats, follows its amplitude or fails is stepped as linear within each
         step, its coefficients changing between steps)."""
-        return all(getattr(device, "linear", True) for _, device in self.other_device_list)
+        return all(device.linear for _, device in self.other_device_list)
 
     @property
     def story_models(self) -> tuple[Bilinear | BoucWen | None, ...]:
@@ -449,7 +449,7 @@ class ShearBuilding:
         viscous dampers, friction dampers): what a period that must not depend on an amplitude is computed with
         (an FVD adds no static stiffness; a friction damper's elastic stiffness before it slips is left out, so
         the period is that of the frame while they slip)."""
-        kept = {story: tuple(d for d in devices if is_wall(d) or getattr(d, "linear", False))
+        kept = {story: tuple(d for d in devices if is_wall(d) or d.linear)
                 for story, devices in self.devices.items()}
         return dataclasses.replace(self, devices={story: group for story, group in kept.items() if group})
 
@@ -616,7 +616,7 @@ def require_linear_devices(building: ShearBuilding, analysis: str) -> None:
     """ValueError naming the first device that is not linear (a nonlinear FVD, a friction damper), which
     ``analysis`` cannot take without an amplitude to linearise it at."""
     for story, device in building.other_device_list:
-        if not getattr(device, "linear", False):
+        if not device.linear:
             raise ValueError(f"{analysis} needs linear devices, but story {story} has a {device.describe()}, whose "
                              "stiffness depends on its amplitude: analyse in time (simulate), or linearise it at an "
                              "amplitude (modal_analysis(..., drift_amplitude=...))")

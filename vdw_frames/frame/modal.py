@@ -233,10 +233,10 @@ class _System:
         return matrix
 
 
-def is_linear_device(device: object) -> bool:
+def is_linear_device(device: Device) -> bool:
     """Whether ``device``'s force is linear in its motion: a wall of fixed parameters (strain-dependent walls are
     fixed before: :func:`modal_analysis`) or a linear fluid viscous damper."""
-    return is_wall(device) or bool(getattr(device, "linear", False))
+    return is_wall(device) or device.linear
 
 
 def device_transfer(device: Device, s: ArrayLike) -> np.ndarray:

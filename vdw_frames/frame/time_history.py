@@ -42,6 +42,7 @@ from .integrator import (
 from .results import FrameState, SimulationResult, energy_history
 
 if TYPE_CHECKING:
+    from ..element.strain_dependent import StrainDependentDamper
     from ..element.wall import Wall
 
 MAX_MODAL_DAMPING_STORIES = 300
@@ -314,13 +315,13 @@ def is_strain_range_warning(message: str) -> bool:
     return _PEAK_OUTSIDE in message or _AMPLITUDE_OUTSIDE in message
 
 
-def wall_model(wall: object) -> str:
+def wall_model(wall: Wall | StrainDependentDamper) -> str:
     """A wall's model as the warnings name it: its class, and whether it follows its amplitude."""
     name = type(wall).__name__
-    return f"{name}, amplitude followed" if hasattr(wall, "amplitude_table") else name
+    return f"{name}, amplitude followed" if wall.follows_amplitude else name
 
 
-def peak_strain_warning(walls: Sequence[tuple[int, object]], peak_wall_strain: np.ndarray,
+def peak_strain_warning(walls: Sequence[tuple[int, Wall | StrainDependentDamper]], peak_wall_strain: np.ndarray,
                         model: str | None = None) -> str | None:
     """The warning (None: none) for the walls whose peak strain (-, in ``walls`` order) lies above the range
     their parameters were identified at (``strain_range``), each named by story and model (``model``, or
@@ -330,12 +331,12 @@ def peak_strain_warning(walls: Sequence[tuple[int, object]], peak_wall_strain: n
     counted instead (``SimulationResult.wall_time_below_range``)."""
     outside = []
     for index, (story, wall) in enumerate(walls):
-        strain_range = getattr(wall, "strain_range", None)
+        strain_range = wall.strain_range
         if strain_range is None:
             continue
         low, high = strain_range
         peak = float(peak_wall_strain[index])
-        if peak > high or (peak < low and not hasattr(wall, "amplitude_table")):
+        if peak > high or (peak < low and not wall.follows_amplitude):
             outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %), "
                            f"{model or wall_model(wall)}")
     return _PEAK_OUTSIDE + "; ".join(dict.fromkeys(outside)) if outside else None
@@ -350,7 +351,7 @@ def _warn_strain_range(walls: Sequence[tuple[int, Wall]], peak_wall_strain: np.n
     dies out is counted, not warned about (``result.wall_time_below_range``)."""
     beyond = []
     for index, (story, wall) in enumerate(walls):
-        if wall.strain_range is None or not hasattr(wall, "amplitude_table"):
+        if wall.strain_range is None or not wall.follows_amplitude:
             continue
         low, high = wall.strain_range
         if peak_amplitude is None:  # pragma: no cover - amplitude-following walls are followed

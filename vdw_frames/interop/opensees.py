@@ -303,8 +303,7 @@ class WallBridge:
         if self.bank is not None:
             raise ValueError("add every wall before the first analyze(): the walls are stepped together")
         kernel_constants(damper)  # refuses anything that is not a wall assembly
-        if hasattr(damper, "amplitude_table") or getattr(damper, "thermal", None) is not None \
-                or getattr(damper, "limits", None) is not None:
+        if damper.follows_amplitude or damper.thermal is not None or damper.limits is not None:
             raise ValueError("the bridge holds each wall's tangent K_t in an OpenSees Elastic material for the whole "
                              "analysis, so it takes walls of fixed parameters only: no strain-dependent "
                              "(amplitude-following), heating (thermal=...) or failing (limits=...) walls; run such "

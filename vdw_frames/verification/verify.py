@@ -283,7 +283,7 @@ class PropertyBounds:
 
 
 def _thermal_needed(wall: Any, ambient: tuple[float, float]) -> None:
-    if getattr(wall, "thermal", None) is None:
+    if wall.thermal is None:
         raise ValueError(f"ambient bounds {ambient} degC need walls with a thermal description "
                          "(thermal=ThermalProperties(...)); a wall has none")
 
@@ -304,9 +304,9 @@ def stiffness_factors(building: ShearBuilding, bounds: PropertyBounds, frequency
 
 def _isothermal(wall: Any) -> Any:
     """The wall at its starting temperature and, for an amplitude-dependent wall, at its range's centre."""
-    if hasattr(wall, "centre_strain"):
+    if wall.follows_amplitude:
         wall = wall.at(wall.centre_strain)
-    thermal = getattr(wall, "thermal", None)
+    thermal = wall.thermal
     return wall.at_temperature(thermal.temperature) if thermal is not None else wall
 
 
@@ -460,7 +460,7 @@ def unacceptable_reasons(result: SimulationResult, valid_drift_ratio: float | No
     peak_strain = np.abs(result.wall_strain).max(axis=0, initial=0.0)
     beyond = []
     for j, (_, wall) in enumerate(walls):
-        identified = getattr(wall, "strain_range", None)
+        identified = wall.strain_range
         if identified is not None and not failed[j] and peak_strain[j] > identified[1]:
             beyond.append((j, peak_strain[j], identified[1]))
     if beyond:
