@@ -108,6 +108,7 @@ class FDMKDamper(StiffnessMethods):
     magnification: float = 1.0
 
     # A wall of fixed parameters: linear viscoelastic (eqs. (3)-(5)) at a fixed temperature; no amplitude table.
+    kind: ClassVar[str] = "wall"  # building files' type
     follows_amplitude: ClassVar[bool] = False
     linear: ClassVar[bool] = True
 

@@ -20,7 +20,7 @@ Units: frequency Hz, deformation mm, force N, stiffness N/mm.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import NamedTuple, Protocol, runtime_checkable
+from typing import ClassVar, NamedTuple, Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -34,7 +34,8 @@ class Device(Protocol):
 
     A subclass (a frozen dataclass) provides:
 
-    * ``kind`` (class attribute): its registered name (:data:`vdw_frames.element.devices.KINDS`);
+    * ``kind`` (class attribute): its name in building files (``"wall"`` for every wall; the other kinds'
+      are registered in :data:`vdw_frames.element.devices.KINDS`);
     * ``magnification`` (-): the geometry factor above, > 0;
     * ``linear``: whether its force is linear in its motion (a wall of fixed parameters, a linear FVD);
     * :meth:`story_stiffness`: the complex stiffness f^2 K*(f) the story sees (N/mm), exact for a linear
@@ -47,6 +48,8 @@ class Device(Protocol):
     the kind's module's (:mod:`vdw_frames.element.devices`; the walls keep their own bank,
     :mod:`vdw_frames.element.bank`).
     """
+
+    kind: ClassVar[str]
 
     @property
     def magnification(self) -> float: ...

@@ -115,6 +115,7 @@ class StrainDependentDamper:
     magnification: float = 1.0
 
     # Its parameters follow its own strain amplitude: nonlinear, stepped with its amplitude table.
+    kind: ClassVar[str] = "wall"  # building files' type
     follows_amplitude: ClassVar[bool] = True
     linear: ClassVar[bool] = False
 

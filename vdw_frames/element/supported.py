@@ -48,6 +48,7 @@ class SupportedDamper(StiffnessMethods):
     damper: FDMKDamper
     support_stiffness: float
 
+    kind: ClassVar[str] = "wall"  # building files' type
     follows_amplitude: ClassVar[bool] = False
     linear: ClassVar[bool] = True
 

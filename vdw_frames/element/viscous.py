@@ -251,8 +251,9 @@ def viscous_trial(states, i, deformation, velocity):
             # the form without cancellation, 2 |target| / (1 + sqrt(1 + 4 a |target|)) (the common exponent, in
             # closed form: no iteration, no power)
             size, a = abs(target), stiffness * half / (C * C)
-            force = 2.0 * size / (1.0 + math.sqrt(1.0 + 4.0 * a * size))
-            tangent = stiffness / (1.0 + 2.0 * a * force)
+            root = math.sqrt(1.0 + 4.0 * a * size)
+            force = 2.0 * size / (1.0 + root)
+            tangent = stiffness / root  # K / (1 + 2 a F), = K / root exactly: finite where a overflows
             ratio = force / C
             force = math.copysign(force, target)
             dashpot_velocity = math.copysign(ratio * ratio, target)

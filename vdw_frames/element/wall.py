@@ -12,7 +12,7 @@ Units: frequency Hz, s in rad/s, stiffness N/mm, damping coefficient N*s/mm.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Protocol, runtime_checkable
+from typing import TYPE_CHECKING, ClassVar, Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -50,6 +50,8 @@ class Wall(Protocol):
     def magnification(self) -> float:
         """Its deformation / the interstory drift (-): its geometry (:mod:`vdw_frames.element.device`)."""
         ...
+
+    kind: ClassVar[str]  # "wall": its type in building files (the Device protocol)
 
     @property
     def linear(self) -> bool:

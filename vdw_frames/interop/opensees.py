@@ -112,6 +112,7 @@ from ..element.prony import PronySeries
 from ..element.viscous import FluidViscousDamper
 
 if TYPE_CHECKING:
+    from ..element.device import Device
     from ..element.wall import Wall
 
 __all__ = ["WallBridge", "device_element", "device_material", "device_material_arguments", "opensees_module",
@@ -570,7 +571,7 @@ def _material(ops: Any, kind: str | float, tag: int, *arguments: str | float | i
         raise ValueError(f"OpenSees refused uniaxialMaterial {kind} {tag} ({error}): is the tag taken?") from error
 
 
-def device_material_arguments(device: object) -> tuple[str | float, ...]:
+def device_material_arguments(device: Device) -> tuple[str | float, ...]:
     """The ``uniaxialMaterial`` type and parameters (without the tag) of ``device`` in story units: strain
     the story drift (mm), stress the force the device adds to the story (N), its magnification f folded
     into the parameters (see the module docstring for the proof):
@@ -589,12 +590,11 @@ def device_material_arguments(device: object) -> tuple[str | float, ...]:
     if isinstance(device, FrictionDamper):
         f = device.magnification
         return ("ElasticPP", f * f * device.stiffness, device.slip_force / (f * device.stiffness))
-    kind = getattr(type(device), "kind", None) or type(device).__name__
-    raise ValueError(f"no native OpenSees material for a {kind} device ({device!r}): fluid viscous and friction "
+    raise ValueError(f"no native OpenSees material for a {device.kind} device ({device!r}): fluid viscous and friction "
                      "dampers only; FDMK walls go through WallBridge (or prony_material)")
 
 
-def device_material(ops: Any, tag: int, device: object) -> int:
+def device_material(ops: Any, tag: int, device: Device) -> int:
     """Build ``device`` (a :class:`~vdw_frames.FluidViscousDamper` or :class:`~vdw_frames.FrictionDamper`)
     as the native OpenSees uniaxial material :func:`device_material_arguments` names, with tag ``tag``;
     returns ``tag``.  In story units: use it in a ``zeroLength`` element between the story's two floors
@@ -606,7 +606,7 @@ def device_material(ops: Any, tag: int, device: object) -> int:
     return tag
 
 
-def device_element(ops: Any, tag: int, node_i: int, node_j: int, device: object, dof: int = 1) -> int:
+def device_element(ops: Any, tag: int, node_i: int, node_j: int, device: Device, dof: int = 1) -> int:
     """``device`` between nodes ``node_i`` and ``node_j``: its material (:func:`device_material`, material tag
     ``tag``) in a ``zeroLength`` element (element tag ``tag``) acting in node degree of freedom ``dof``
     (1-based), deformation u_j - u_i = the story drift (mm), force the force the device adds to the story
