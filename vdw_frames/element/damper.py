@@ -28,7 +28,7 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -53,10 +53,7 @@ from .kernel import FAILURE_MODES
 from .limits import WallLimits, check_temperature_limit
 from .prony import PronySeries, fit_prony
 from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, property_factors, shift_factor
-from .wall import SteppedWall, StiffnessMethods
-
-if TYPE_CHECKING:
-    from .supported import SupportedDamper
+from .wall import SteppedWall, StiffnessMethods, Wall
 
 __all__ = ["DEFAULT_MEMORY", "MEMORY_STRATEGIES", "FDMKDamper", "WallState", "driven_force"]
 
@@ -309,7 +306,7 @@ class FDMKDamper(StiffnessMethods):
         return driven_force(self, displacement, dt, method, memory)
 
 
-def story_stiffness_of(wall: FDMKDamper | SupportedDamper, f: ArrayLike) -> np.ndarray:
+def story_stiffness_of(wall: Wall, f: ArrayLike) -> np.ndarray:
     """magnification^2 K(i 2 pi f) (N/mm) of a wall of fixed parameters (an FDMKDamper or a SupportedDamper)
     at frequencies f (Hz, finite, >= 0)."""
     frequency = finite_array("f", f, ndim=None)
