@@ -57,6 +57,7 @@ from ..frame.modal import (
     linearised_modes,
     modal_analysis,
     nonlinear_devices,
+    require_amplitude,
     require_modal_size,
 )
 
@@ -346,12 +347,8 @@ def size_devices(building: ShearBuilding, device: Device | None, target_damping:
     amplitudes = drift_amplitudes(building, drift_amplitude) if isinstance(building, ShearBuilding) else None
     sizer = _Sizer(building, device, mode, distribution, stories, walls_only=False, amplitudes=amplitudes)
     probe = sizer.building_for(1.0)
+    require_amplitude(probe, amplitudes, "size_devices()")
     nonlinear = nonlinear_devices(probe)
-    if nonlinear and amplitudes is None:
-        story, culprit = nonlinear[0]
-        raise ValueError(f"size_devices(): story {story}'s {culprit.describe()} depends on its amplitude: give "
-                         "drift_amplitude (mm, the design story drift amplitude it is linearised at: one number, or "
-                         "one a story)")
     factor = _solve(sizer, target)
     sized = sizer.building_for(factor)
     result = modal_analysis(sized, sizer.mode, drift_amplitude=amplitudes if nonlinear else None)

@@ -521,6 +521,17 @@ def drift_amplitudes(building: ShearBuilding, drift_amplitude: float | ArrayLike
     return np.broadcast_to(values, (building.stories,)).astype(float)
 
 
+def require_amplitude(building: ShearBuilding, amplitudes: np.ndarray | None, analysis: str) -> None:
+    """ValueError naming the first device whose stiffness depends on its amplitude when ``analysis`` was given
+    no drift amplitude (mm) to linearise it at."""
+    nonlinear = nonlinear_devices(building)
+    if nonlinear and amplitudes is None:
+        story, device = nonlinear[0]
+        raise ValueError(f"{analysis}: story {story}'s {device.describe()} depends on its amplitude: give "
+                         "drift_amplitude (mm, the story drift amplitude it is linearised at: one number, or one a "
+                         "story)")
+
+
 def nonlinear_devices(building: ShearBuilding) -> list[tuple[int, Device]]:
     """(story, device) of every device whose stiffness depends on its amplitude: nonlinear fluid viscous dampers,
     friction dampers and strain-dependent walls."""
@@ -655,12 +666,8 @@ def modal_analysis(building: ShearBuilding, modes: int | Sequence[int] | None = 
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
     amplitudes = drift_amplitudes(building, drift_amplitude)
+    require_amplitude(building, amplitudes, "modal_analysis()")
     nonlinear = nonlinear_devices(building)
-    if nonlinear and amplitudes is None:
-        story, device = nonlinear[0]
-        raise ValueError(f"modal_analysis(): story {story}'s {device.describe()} depends on its amplitude: give "
-                         "drift_amplitude (mm, the story drift amplitude it is linearised at: one number, or one a "
-                         "story)")
     notes = linearisation_notes(building, amplitudes)
     building = _fixed_walls(building, amplitudes)
     require_fixed_walls(building, "modal_analysis()")
