@@ -76,7 +76,7 @@ def test_a_story_holds_its_walls_first_then_the_devices_in_file_order():
     ({"type": "fluid_viscous", "C": [1.0, 2.0], "alpha": 1.0}, "one number or one per listed story"),
     ({"type": "fluid_viscous", "C": 1.0, "alpha": 1.0, "per_story": 1001}, "at most 1000"),
     ({"type": "fluid_viscous", "C": 1.0, "alpha": 1.0, "stories": [2]},
-     "fluid_viscous devices story must be a story number in 1 ... 1, got 2"),
+     "fluid_viscous device story must be a story number in 1 ... 1, got 2"),
     ({"type": "friction", "slip_force": 1.0, "stiffness": 1.0, "stories": [1, 1]},
      r"friction devices stories must be 'all' or a list of distinct story numbers, got \[1, 1\]"),
     ({"type": "wall", "parameters": "fitted-300", "C": 1.0}, "unknown walls keys"),

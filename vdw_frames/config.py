@@ -451,7 +451,9 @@ def _story_numbers(story_numbers: object, stories: int, what: str = "walls") -> 
                 raise ValueError(f"{what} stories must be story numbers in 1 ... {stories}, got {show(given)} "
                                  f"in {show(story_numbers)}") from None
             if number > stories:
-                raise ValueError(f"{what} story must be a story number in 1 ... {stories}, got {number}")
+                # singular: "wall story", "friction device story"
+                raise ValueError(f"{what.removesuffix('s')} story must be a story number in 1 ... {stories}, got "
+                                 f"{number}")
             numbers.append(number)
         if len(set(numbers)) != len(numbers):
             raise ValueError(f"{what} stories must be 'all' or a list of distinct story numbers, got "
