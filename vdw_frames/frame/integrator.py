@@ -49,6 +49,8 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
+from numba import types
+from numba.extending import overload
 
 from .._jit import njit
 from .._validation import positive, whole_number
@@ -134,7 +136,7 @@ class DeviceArrays(NamedTuple):
     group_story: np.ndarray  # (G,) int64, 0-based
     group_magnification: np.ndarray  # (G,) -: wall deformation / story drift
     bank: BankArrays
-    others: DeviceStates
+    others: DeviceStates | None  # None without any (the step loop then compiles without them)
 
 
 class Histories(NamedTuple):
@@ -211,6 +213,99 @@ def scratch(stories: int, groups: int) -> Scratch:
 
 
 # ---------------------------------------------------------------------------------------------- compiled
+# The devices beyond the walls, specialised by type when compiled: a building without any passes None
+# (DeviceArrays.others), and these compile to nothing, so its step loop is the code it ran before they existed.
+def _add_device_forces(devices, dt, work):  # pragma: no cover - compiled only (the overload below)
+    """Every device's trial at ``work.drift``; their forces into ``work.story_total``."""
+
+
+def _add_device_tangents(devices, work):  # pragma: no cover - compiled only
+    """Their tangents into ``work.stiffness_diagonal``."""
+
+
+def _with_device_tangent(devices, work, s, tangent):  # pragma: no cover - compiled only
+    """``tangent`` of story ``s`` with its devices' tangent."""
+
+
+def _commit_devices(row, devices, out):  # pragma: no cover - compiled only
+    """Accept their last trials and record them in row ``row`` of the histories."""
+
+
+def _replay_devices(devices, drift, dt, work):  # pragma: no cover - compiled only
+    """Commit them at the story drifts ``drift`` (replay); their story forces added to ``work.story_total``."""
+
+
+def _record_devices(row, devices, out):  # pragma: no cover - compiled only
+    """Row ``row`` of their histories from their committed states."""
+
+
+@overload(_add_device_forces, inline="always")
+def _add_device_forces_typed(devices, dt, work):
+    if isinstance(devices, types.NoneType):
+        return lambda devices, dt, work: None
+
+    def add(devices, dt, work):
+        devices_trial(devices, work.drift, dt, work.device_force, work.device_tangent)
+        for s in range(work.drift.shape[0]):
+            work.story_total[s] += work.device_force[s]
+    return add
+
+
+@overload(_add_device_tangents, inline="always")
+def _add_device_tangents_typed(devices, work):
+    if isinstance(devices, types.NoneType):
+        return lambda devices, work: None
+
+    def add(devices, work):
+        for s in range(work.stiffness_diagonal.shape[0]):
+            work.stiffness_diagonal[s] += work.device_tangent[s]
+    return add
+
+
+@overload(_with_device_tangent, inline="always")
+def _with_device_tangent_typed(devices, work, s, tangent):
+    if isinstance(devices, types.NoneType):
+        return lambda devices, work, s, tangent: tangent
+    return lambda devices, work, s, tangent: tangent + work.device_tangent[s]
+
+
+@overload(_record_devices, inline="always")
+def _record_devices_typed(row, devices, out):
+    if isinstance(devices, types.NoneType):
+        return lambda row, devices, out: None
+
+    def record(row, devices, out):
+        record_devices(devices.viscous.kinematics, row, out.device_force, out.device_deformation,
+                       out.device_velocity, out.device_heat, out.device_stored)
+        record_devices(devices.friction.kinematics, row, out.device_force, out.device_deformation,
+                       out.device_velocity, out.device_heat, out.device_stored)
+    return record
+
+
+@overload(_commit_devices, inline="always")
+def _commit_devices_typed(row, devices, out):
+    if isinstance(devices, types.NoneType):
+        return lambda row, devices, out: None
+
+    def commit(row, devices, out):
+        devices_commit(devices)
+        _record_devices(row, devices, out)
+    return commit
+
+
+@overload(_replay_devices, inline="always")
+def _replay_devices_typed(devices, drift, dt, work):
+    if isinstance(devices, types.NoneType):
+        return lambda devices, drift, dt, work: None
+
+    def replay_devices(devices, drift, dt, work):
+        devices_trial(devices, drift, dt, work.device_force, work.device_tangent)
+        devices_commit(devices)
+        for s in range(drift.shape[0]):
+            work.story_total[s] += work.device_force[s]
+    return replay_devices
+
+
 @njit(cache=True, inline="always")
 def _story_state(stories, work):
     """Every story's trial at ``work.drift``: force, tangent and the state value to commit."""
@@ -266,10 +361,7 @@ def _residual(u, dt, least, frame, stories, devices, work):
     for s in range(n):
         work.story_total[s] = (work.story_force[s] + geometric[s] * work.drift[s]
                                + work.wall_tangent[s] * work.drift[s] + work.wall_history[s])
-    if devices.total:  # a loop of their own: a building without them runs as before they existed
-        devices_trial(devices, work.drift, dt, work.device_force, work.device_tangent)
-        for s in range(n):
-            work.story_total[s] += work.device_force[s]
+    _add_device_forces(devices, dt, work)
     scale = least
     for i in range(n):
         damped = 0.0
@@ -416,9 +508,7 @@ def _iterate(strategy, limit, least, dt, frame, stories, devices, newton, work):
                 work.stiffness_diagonal[s] = work.initial_stiffness[s] + work.wall_tangent[s]
             else:
                 work.stiffness_diagonal[s] = work.story_tangent[s] + geometric[s] + work.wall_tangent[s]
-        if devices.total:
-            for s in range(n):
-                work.stiffness_diagonal[s] += work.device_tangent[s]
+        _add_device_tangents(devices, work)
         _solve(frame, dt, work)
         made += 1
         step_length = 1.0
@@ -435,9 +525,8 @@ def _iterate(strategy, limit, least, dt, frame, stories, devices, newton, work):
 def _tangent_changed(frame, devices, work):
     """Whether a story's tangent differs from the one the last correction was solved with."""
     for s in range(work.stiffness_diagonal.shape[0]):
-        tangent = work.story_tangent[s] + frame.geometric[s] + work.wall_tangent[s]
-        if devices.total:
-            tangent += work.device_tangent[s]
+        tangent = _with_device_tangent(devices, work, s,
+                                       work.story_tangent[s] + frame.geometric[s] + work.wall_tangent[s])
         if tangent != work.stiffness_diagonal[s]:
             return True
     return False
@@ -550,9 +639,7 @@ def integrate(excitation, frame, stories, walls, newton, out, work):
             work.wall_deformation[g] = walls.group_magnification[g] * work.drift[walls.group_story[g]]
         kernel.bank_commit(bank, start + step, work.wall_deformation, work.wall_force, work.wall_strain)
         _record_walls(step, bank.states, out, work)
-        if walls.others.total:
-            devices_commit(walls.others)
-            _record_devices(step + 1, walls.others, out)
+        _commit_devices(step + 1, walls.others, out)
         u = work.displacement
         for i in range(n):
             increment = u[i] - out.displacement[step, i]
@@ -602,11 +689,7 @@ def replay(drift, dt, stories, walls, out, work):
         kernel.bank_commit(walls.bank, j - 1, deformation, force, strain)
         for s in range(n):
             story_wall[s] = 0.0
-        if walls.others.total:
-            devices_trial(walls.others, drift[j], dt, work.device_force, work.device_tangent)
-            devices_commit(walls.others)
-            for s in range(n):
-                story_wall[s] += work.device_force[s]
+        _replay_devices(walls.others, drift[j], dt, work)
         for g in range(groups):
             story_wall[walls.group_story[g]] += walls.group_magnification[g] * force[g]
             out.group_force[0, g] = force[g]
@@ -614,18 +697,8 @@ def replay(drift, dt, stories, walls, out, work):
         for s in range(n):
             wall_work += 0.5 * (story_wall[s] + out.story_wall_force[0, s]) * (drift[j, s] - drift[j - 1, s])
             out.story_wall_force[0, s] = story_wall[s]
-    if walls.others.total:
-        _record_devices(0, walls.others, out)
+    _record_devices(0, walls.others, out)
     return wall_work
-
-
-@njit(cache=True, inline="always")
-def _record_devices(row, devices, out):
-    """Row ``row`` of the other devices' histories from their committed states."""
-    record_devices(devices.viscous.kinematics, row, out.device_force, out.device_deformation, out.device_velocity,
-                   out.device_heat, out.device_stored)
-    record_devices(devices.friction.kinematics, row, out.device_force, out.device_deformation, out.device_velocity,
-                   out.device_heat, out.device_stored)
 
 
 @njit(cache=True, inline="always")

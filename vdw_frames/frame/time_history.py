@@ -135,7 +135,7 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     stories = story_arrays(building.story_models, building.stiffnesses)
     device_arrays = DeviceArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64),
                                  np.array([combined.wall.magnification for _, combined in groups], dtype=float),
-                                 bank.arrays, device_states(others, dt))
+                                 bank.arrays, device_states(others, dt) if others else None)
     work = scratch(floors, len(groups))
     if initial_state is None:
         out.acceleration[0] = -ground[0]
