@@ -84,7 +84,7 @@ def _add_to_stories(motion, i, force, tangent):
     tangent[s] += factor * factor * motion.trial_tangent[i]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, allocates=False)  # called: inlined into the integrator's overloads, numba's SSA pass warns
 def devices_trial(states, drift, dt, force, tangent):
     """Every device at the story drifts ``drift`` (n,) mm of a step of ``dt`` s: the stories' device forces
     (N) and tangents (N/mm) into ``force`` and ``tangent`` (n,), the devices' trials into their states."""
@@ -110,7 +110,7 @@ def _commit_kinematics(motion, i):
     motion.heat[i], motion.stored[i] = motion.trial_heat[i], motion.trial_stored[i]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, allocates=False)  # called: inlined into the integrator's overloads, numba's SSA pass warns
 def devices_commit(states):
     """Accept every device's last trial."""
     viscous = states.viscous
