@@ -386,7 +386,7 @@ class ShearBuilding:
         w = self.circular_frequencies
         return a0 / (2.0 * w) + a1 * w / 2.0
 
-    @property
+    @cached_property  # once a building: read in per-story loops (a 10 000-story table was O(n^2))
     def walls(self) -> dict[int, tuple[Wall | StrainDependentDamper, ...]]:
         """{story: its walls} (FDMK walls among :attr:`devices`), stories ascending."""
         walls = {story: tuple(cast("Wall | StrainDependentDamper", d) for d in devices if is_wall(d))
