@@ -25,82 +25,6 @@ if TYPE_CHECKING:
 
 
 @runtime_checkable
-class Wall(Protocol):
-    """A wall assembly: frequency response, kernel constants for time stepping, scaling and resizing.
-
-    ``r`` (-) its fractional order, ``area`` (mm^2) and ``thickness`` (mm) its viscoelastic layers,
-    ``strain_range`` ((low, high), dimensionless, or None) where its parameters were identified,
-    ``magnification`` (-) its geometry in the frame.
-    """
-
-    # Read-only: the wall types are frozen dataclasses (a SupportedDamper reads them off its wall).
-    @property
-    def r(self) -> float: ...
-
-    @property
-    def area(self) -> float: ...
-
-    @property
-    def thickness(self) -> float: ...
-
-    @property
-    def strain_range(self) -> tuple[float, float] | None: ...
-
-    @property
-    def magnification(self) -> float:
-        """Its deformation / the interstory drift (-): its geometry (:mod:`vdw_frames.element.device`)."""
-        ...
-
-    kind: ClassVar[str]  # "wall": its type in building files (the Device protocol)
-
-    @property
-    def linear(self) -> bool:
-        """Whether its force is linear in its motion (True: fixed parameters; the Device protocol)."""
-        ...
-
-    @property
-    def thermal(self) -> ThermalProperties | None: ...
-
-    @property
-    def limits(self) -> WallLimits | None: ...
-
-    @property
-    def follows_amplitude(self) -> bool: ...
-
-    def amplitude_table(self) -> np.ndarray:
-        """(0, 5): a wall of fixed parameters follows no amplitude (:class:`SteppedWall`)."""
-        ...
-
-    def complex_stiffness(self, f: ArrayLike) -> np.ndarray:
-        """K*(f) = K' + i K'' (N/mm) at frequencies f (Hz)."""
-        ...
-
-    def stiffness_transfer(self, s: ArrayLike) -> np.ndarray:
-        """K(s) (N/mm) for complex s (rad/s)."""
-        ...
-
-    def kernel_constants(self) -> tuple[float, ...]:
-        """The step kernel's row of 7 constants (:mod:`vdw_frames.element.kernel`)."""
-        ...
-
-    def story_stiffness(self, f: ArrayLike, drift_amplitude: float | None = None) -> np.ndarray:
-        """magnification^2 K(i 2 pi f) (N/mm) at frequencies f (Hz): what the story sees (the Device protocol)."""
-        ...
-
-    def describe(self) -> str:
-        """Its kind and parameters, for tables."""
-        ...
-
-    def scaled(self, factor: float) -> Wall:
-        """Moduli and viscosities times ``factor`` (property-modification factors; supports unchanged)."""
-        ...
-
-    def resized(self, factor: float) -> Wall:
-        """``factor`` walls' worth: area times ``factor`` (a support too)."""
-        ...
-
-
-@runtime_checkable
 class SteppedWall(Protocol):
     """What the time-stepping kernel (:class:`~vdw_frames.element.bank.WallBank`) reads of a wall (a
     :class:`Wall`, or a strain-dependent wall that follows its amplitude), all of it: its layers' ``area``
@@ -129,6 +53,63 @@ class SteppedWall(Protocol):
 
     def amplitude_table(self) -> np.ndarray:
         """(nodes, 5): log strain, G1, G2, eta1, eta2 at its amplitude nodes; (0, 5) for fixed parameters."""
+        ...
+
+
+@runtime_checkable
+class Wall(SteppedWall, Protocol):
+    """A wall assembly: frequency response, kernel constants for time stepping, scaling and resizing.
+
+    ``r`` (-) its fractional order, ``area`` (mm^2) and ``thickness`` (mm) its viscoelastic layers,
+    ``strain_range`` ((low, high), dimensionless, or None) where its parameters were identified,
+    ``magnification`` (-) its geometry in the frame.
+    """
+
+    # Read-only: the wall types are frozen dataclasses (a SupportedDamper reads them off its wall).
+    @property
+    def r(self) -> float: ...
+
+    @property
+    def strain_range(self) -> tuple[float, float] | None: ...
+
+    @property
+    def magnification(self) -> float:
+        """Its deformation / the interstory drift (-): its geometry (:mod:`vdw_frames.element.device`)."""
+        ...
+
+    kind: ClassVar[str]  # "wall": its type in building files (the Device protocol)
+
+    @property
+    def linear(self) -> bool:
+        """Whether its force is linear in its motion (True: fixed parameters; the Device protocol)."""
+        ...
+
+    def complex_stiffness(self, f: ArrayLike) -> np.ndarray:
+        """K*(f) = K' + i K'' (N/mm) at frequencies f (Hz)."""
+        ...
+
+    def stiffness_transfer(self, s: ArrayLike) -> np.ndarray:
+        """K(s) (N/mm) for complex s (rad/s)."""
+        ...
+
+    def kernel_constants(self) -> tuple[float, ...]:
+        """The step kernel's row of 7 constants (:mod:`vdw_frames.element.kernel`)."""
+        ...
+
+    def story_stiffness(self, f: ArrayLike, drift_amplitude: float | None = None) -> np.ndarray:
+        """magnification^2 K(i 2 pi f) (N/mm) at frequencies f (Hz): what the story sees (the Device protocol)."""
+        ...
+
+    def describe(self) -> str:
+        """Its kind and parameters, for tables."""
+        ...
+
+    def scaled(self, factor: float) -> Wall:
+        """Moduli and viscosities times ``factor`` (property-modification factors; supports unchanged)."""
+        ...
+
+    def resized(self, factor: float) -> Wall:
+        """``factor`` walls' worth: area times ``factor`` (a support too)."""
         ...
 
 
