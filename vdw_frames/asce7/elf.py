@@ -4,12 +4,19 @@ Every function cites its table, section or equation of ASCE 7-16.  Units: accele
 heights in mm at the interface (converted to ft where the code's equation is in ft: T_a of Eq. 12.8-7),
 weights and forces in N (any consistent force unit works).
 
-Sources: ASCE/SEI 7-16 "Minimum Design Loads and Associated Criteria for Buildings and Other Structures".
-Eqs. 12.8-2 to 12.8-7, 12.8-11/12, 12.8-15 to 12.8-17, the definition of k (Sec. 12.8.3) and of theta and
-theta_max (Sec. 12.8.7), and the values of Table 12.8-1 were checked against secondary copies of the text
-(design-software manuals, course notes and forum quotes of ASCE 7-10/7-16 found with the project's search
-tool; the wording is unchanged from ASCE 7-10).  Tables 1.5-2, 11.6-1, 11.6-2 and 12.12-1 and Sec. 11.6's
-S_1 >= 0.75 g rule are from the standard as recalled; check them against the standard.
+Sources: ASCE/SEI 7-16 "Minimum Design Loads and Associated Criteria for Buildings and Other Structures".  The
+standard's own text could not be read here; the clauses were checked against secondary copies found with the
+project's search tool: Eqs. 12.8-2 ... 12.8-7 and 12.8-11/12 and k (Sec. 12.8.3) in ideCAD's ASCE 7-16 help
+pages ("12.8 Equivalent Lateral Force Method") and published ASCE 7-16 calculations; Sec. 12.8.6 and 12.12.1 in
+ideCAD's "Determination and Limitation of Story Drifts per ASCE 7-16" and STRUCTURE magazine's "ASCE 7-16
+Provisions for Lateral Drift Determination" (Sec. 12.8.6.2: drift at the computed period, no C_u T_a cap);
+Eqs. 12.8-16/17 (theta, theta_max = 0.5 / (beta C_d) <= 0.25, theta <= 0.10 needs no P-Delta) as quoted from
+ASCE 7-10 (unchanged in 7-16) on eng-tips and by Dlubal; Table 12.8-1's values in the asce7-16 Python package
+and a vendor's tool (rhces.com); Table 12.12-1 "all other structures" (0.020 / 0.015 / 0.010 h_sx) in the ASCE 7-22
+summary of callout.app (the same values as 7-16); Sec. 12.3.4.2 (rho = 1.3 in SDC D-F unless a condition is met)
+quoted in a Santa Ana permit calculation.  Tables 1.5-2, 11.6-1 and 11.6-2 and Sec. 11.6's S_1 >= 0.75 g rule are
+from the standard as recalled (Table 11.6's D rows, S_DS >= 0.50 and S_D1 >= 0.20, agree with the ASCE 7-22
+worked example of steelcalculator.app); check them against the standard.
 """
 
 from __future__ import annotations

@@ -1,12 +1,12 @@
 """Seismic force-resisting systems: ASCE 7-16 Table 12.2-1 (R, Omega_0, C_d, height limits) and Table 12.8-2
 (C_t, x of the approximate period).
 
-Every number carries its table and row.  Values are those of ASCE 7-16 as printed in Table 12.2-1, part C
-("Moment-resisting frame systems"), and Table 12.8-2.  The text of Table 12.2-1 could not be read in full
-from a copy of ASCE 7-16 when this was written: R, Omega_0, C_d and the height limits below are from the
-standard as recalled and agree with the ASCE 7-05/7-10 Table 12.2-1 extracts and design examples seen
-(e.g. R = 8, Omega_0 = 3, C_d = 5.5 for steel special moment frames; C.3 limited to 35 ft in SDC D).
-Check them against the standard before relying on them.
+Every number carries its table and row.  The standard's own Table 12.2-1 could not be read here: R = 8,
+Omega_0 = 3, C_d = 5.5 of steel special moment frames (row C.1) agree with the worked examples read (e.g.
+steelcalculator.app's ASCE 7-22 ELF example); the other rows' coefficients (C.3 steel intermediate, C.4 steel
+ordinary, C.5 reinforced-concrete special moment frames) and all height limits are from the standard as
+recalled (they are unchanged since ASCE 7-05).  Check them against ASCE 7-16 before relying on them.
+Table 12.8-2 (C_t, x) agrees with the secondary copies read (design-software pages, permit calculations).
 
 Footnotes of Table 12.2-1 that raise or relax the height limits (e.g. for one-story buildings or light roofs
 with intermediate and ordinary steel moment frames, Sec. 12.2.5.6, 12.2.5.7) are NOT applied: the limits
@@ -41,6 +41,7 @@ PERIOD_ROWS = {
     "steel-buckling-restrained-braced-frame": "Table 12.8-2, steel buckling-restrained braced frames",
     "other": "Table 12.8-2, all other structural systems",
 }
+"""The row of ASCE 7-16 Table 12.8-2 each key of :data:`PERIOD_PARAMETERS` comes from."""
 
 
 @dataclass(frozen=True)
