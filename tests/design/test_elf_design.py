@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from vdw_frames import Bilinear, BoucWen
-from vdw_frames.design import FrameDesign, design_frame
+from vdw_frames.design import FrameDesign, design_frame, elf
 from vdw_frames.verification import Site
 
 G = 9806.65
@@ -258,6 +258,15 @@ def test_bad_input_gets_one_clear_error(kwargs, message):
     with pytest.raises(ValueError, match=message):
         design_frame(arguments["site"], arguments["system"], arguments["weights"], arguments["story_heights"],
                      **options)
+
+
+def test_non_finite_weights_and_an_unsettled_period_are_refused(monkeypatch):
+    site = Site(0.9, 0.45, 8.0, "II")
+    with pytest.raises(ValueError, match="weights"):
+        design_frame(site, "steel-smf", [3.0e6, math.nan], [3600.0] * 2)
+    monkeypatch.setattr(elf, "MAX_ITERATIONS", 1)  # one iteration cannot settle T_1 from C_u T_a
+    with pytest.raises(ValueError, match=r"T_1 did not settle in 1 iterations .*give a minimum_stiffness"):
+        design_frame(site, "steel-smf", [3.0e6] * 4, [3600.0] * 4)
 
 
 def test_a_site_outside_the_tabulated_rules_is_refused_before_design():

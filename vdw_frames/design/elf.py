@@ -247,14 +247,15 @@ def _story_shears(weights: np.ndarray, heights_above_base: np.ndarray, k: float,
     return cvx, forces, np.cumsum(forces[::-1])[::-1]
 
 
-def _drift_stiffness(shear: float, load: float, height: float, allowable: float, cd: float, ie: float) -> float:
-    """The least stiffness (N/mm) of a story whose design drift with P-Delta (Sec. 12.8.7) meets ``allowable``."""
-    plain = cd * shear / (ie * allowable)
+def _drift_stiffness(shears: np.ndarray, loads: np.ndarray, heights: np.ndarray, allowable: np.ndarray, cd: float,
+                     ie: float) -> np.ndarray:
+    """The least stiffness (N/mm) of each story whose design drift with P-Delta (Sec. 12.8.7) meets ``allowable``:
+    k_1 = C_d V_x / (I_e allowable) where theta = P_x / (k_1 h_sx) <= 0.10, else the smaller of k_1 + P_x / h_sx
+    (amplified drift at the limit) and the stiffness at theta = 0.10 (not amplified)."""
+    plain = cd * shears / (ie * allowable)
     # theta = 0.10 there; 1e-12 stiffer so that rounding cannot put theta a hair above 0.10 (and amplify the drift)
-    threshold = load / (code.THETA_AMPLIFY * height) * (1.0 + 1e-12)
-    if plain >= threshold:
-        return plain
-    return min(plain + load / height, threshold)
+    threshold = loads / (code.THETA_AMPLIFY * heights) * (1.0 + 1e-12)
+    return np.where(plain >= threshold, plain, np.minimum(plain + loads / heights, threshold))
 
 
 def _floors(weights: ArrayLike, story_heights: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -332,8 +333,7 @@ def _stiffness(site: Site, spec: SeismicSystem, ie: float, w: np.ndarray, h: np.
                                                                      drift_period, spec.r, ie, minimum=False)
         drift_k = code.distribution_exponent(drift_period)
         _, _, drift_shears = _story_shears(w, levels, drift_k, cs_drift * float(w.sum()))
-        by_drift = np.array([_drift_stiffness(drift_shears[i], loads[i], h[i], allowable[i], spec.cd, ie)
-                             for i in range(h.size)])
+        by_drift = _drift_stiffness(drift_shears, loads, h, allowable, spec.cd, ie)
         stiffnesses = np.maximum(np.maximum(by_drift, stability), minimum)
         t1 = first_period(masses, stiffnesses)
         if abs(t1 - drift_period) <= PERIOD_TOLERANCE * t1:
