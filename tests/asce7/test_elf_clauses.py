@@ -203,3 +203,32 @@ def test_stability_coefficient_and_theta_max():
 def test_bad_input_is_refused_with_the_value_named(call, message):
     with pytest.raises(ValueError, match=message):
         call()
+
+
+HOSTILE = [math.nan, math.inf, -1.0, 0.0, 1e308, 5e-324, 10**400, "", "II", None, [1.0, "x"], np.array([[1.0]]),
+           True, 1j, object()]
+CALLS = {
+    "seismic_response_coefficient": (seismic_response_coefficient, (1.0, 0.6, 0.6, 8.0, 1.0, 8.0, 1.0)),
+    "seismic_design_category": (seismic_design_category, (1.0, 0.6, 0.6, "II")),
+    "vertical_distribution": (vertical_distribution, ([1.0e6, 2.0e6], [3000.0, 6000.0], 1.5)),
+    "stability_coefficient": (stability_coefficient, ([1e6], [20.0], 1.0, [1e5], [3000.0], 5.5)),
+    "theta_max": (theta_max, (1.0, 5.5)),
+    "upper_limit_coefficient": (upper_limit_coefficient, (0.3,)),
+    "approximate_period": (approximate_period, (30000.0, SYSTEMS["steel-smf"])),
+    "distribution_exponent": (distribution_exponent, (1.0,)),
+}
+
+
+@pytest.mark.parametrize("name", sorted(CALLS))
+@pytest.mark.parametrize("value", HOSTILE, ids=repr)
+def test_hostile_arguments_give_finite_values_or_a_value_error(name, value):
+    function, arguments = CALLS[name]
+    for position in range(len(arguments)):
+        hostile = list(arguments)
+        hostile[position] = value
+        try:
+            result = function(*hostile)
+        except ValueError:
+            continue
+        numbers = [part for part in (result if isinstance(result, tuple) else (result,)) if not isinstance(part, str)]
+        assert all(np.isfinite(np.asarray(part, dtype=float)).all() for part in numbers), (name, position, result)

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .._validation import show
+from .._validation import non_negative, positive, show, text
 
 SDC_LETTERS = ("A", "B", "C", "D", "E", "F")
 """Seismic design categories of ASCE 7-16 Sec. 11.6."""
@@ -68,6 +68,22 @@ class SeismicSystem:
     x: float
     period_row: str
     moment_frame: bool = True
+
+    def __post_init__(self) -> None:
+        for name in ("key", "name", "table_row", "period_row"):
+            if not text(name, getattr(self, name)).strip():
+                raise ValueError(f"{name} must not be empty")
+        for name, label in (("r", "R"), ("omega0", "Omega_0"), ("cd", "C_d"), ("ct", "C_t"), ("x", "x")):
+            object.__setattr__(self, name, positive(f"{name} ({label})", getattr(self, name)))
+        limits = self.height_limits_ft
+        if not isinstance(limits, dict) or set(limits) != set(SDC_LETTERS[1:]):
+            raise ValueError(f"height_limits_ft must map each of B, C, D, E, F to a height in ft (None = NL, "
+                             f"0.0 = NP), got {show(limits)}")
+        object.__setattr__(self, "height_limits_ft", {
+            sdc: None if limits[sdc] is None else non_negative(f"height_limits_ft[{sdc!r}] (ft)", limits[sdc])
+            for sdc in SDC_LETTERS[1:]})
+        if not isinstance(self.moment_frame, bool):
+            raise ValueError(f"moment_frame must be True or False, got {show(self.moment_frame)}")
 
     def height_limit_ft(self, sdc: str) -> float | None:
         """The height limit (ft) in seismic design category ``sdc``: None = not limited (NL), 0.0 = not

@@ -230,8 +230,12 @@ def first_period(masses: np.ndarray, stiffnesses: np.ndarray) -> float:
     """T_1 (s) of the bare elastic shear building: the smallest eigenvalue of M^-1/2 K M^-1/2 (tridiagonal).
     ``masses`` tonne, ``stiffnesses`` N/mm (story 1 first)."""
     k_next = np.append(stiffnesses[1:], 0.0)
-    diagonal = (stiffnesses + k_next) / masses
-    off = -stiffnesses[1:] / np.sqrt(masses[:-1] * masses[1:])
+    with np.errstate(over="ignore", invalid="ignore"):
+        diagonal = (stiffnesses + k_next) / masses
+        off = -stiffnesses[1:] / np.sqrt(masses[:-1] * masses[1:])
+    if not (np.isfinite(diagonal).all() and np.isfinite(off).all()):
+        raise ValueError(f"the story stiffnesses {show(stiffnesses.tolist())} N/mm over the masses overflow: "
+                         "give stiffnesses and weights of a building")
     if masses.size == 1:
         omega2 = float(diagonal[0])
     else:
@@ -435,7 +439,11 @@ def design_frame(site: Site, system: str | SeismicSystem, weights: ArrayLike, st
     base_shear = cs * weight
     k = code.distribution_exponent(period)
     cvx, forces, shears = _story_shears(w, np.cumsum(h), k, base_shear)
-    strengths = shears * factors * overstrength * strength_scale
+    with np.errstate(over="ignore"):
+        strengths = shears * factors * overstrength * strength_scale
+    if not np.isfinite(strengths).all():
+        raise ValueError(f"the story strengths overflow (overstrength = {show(overstrength)}, story shears up to "
+                         f"{shears.max():.6g} N)")
     models = [make_model(float(value)) for value in strengths]
     for story, model in enumerate(models, start=1):
         if not isinstance(model, STORY_MODELS):
