@@ -231,7 +231,7 @@ CALLS = {
 
 
 @pytest.mark.parametrize("name", sorted(CALLS))
-@pytest.mark.parametrize("value", HOSTILE, ids=repr)
+@pytest.mark.parametrize("value", HOSTILE, ids=lambda value: "object" if type(value) is object else repr(value))
 def test_hostile_arguments_give_finite_values_or_a_value_error(name, value):
     function, arguments = CALLS[name]
     for position in range(len(arguments)):

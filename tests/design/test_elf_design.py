@@ -286,7 +286,7 @@ VALID = {"site": Site(0.9, 0.45, 8.0, "II"), "system": "steel-smf", "weights": [
 
 
 @pytest.mark.parametrize("argument", sorted(VALID))
-@pytest.mark.parametrize("value", HOSTILE, ids=repr)
+@pytest.mark.parametrize("value", HOSTILE, ids=lambda value: "object" if type(value) is object else repr(value))
 def test_hostile_values_give_a_design_or_a_value_error(argument, value):
     arguments = {**VALID, argument: value}
     try:
