@@ -277,7 +277,7 @@ def _target(value: object) -> float:
 def mce_drift_amplitudes(frame: ShearBuilding, site: Site, period: float, damping: float) -> np.ndarray:
     """Story drift amplitudes (mm) of mode 1 at MCE_R, the estimate of the module docstring: the bare ``frame``'s
     undamped first mode (shape and Gamma_1), the site's MCE_R S_a at ``period`` (s) divided by B at ``damping``
-    (-, Table 18.7-1), times (T / 2 pi)^2."""
+    (-, Table 18.7-1), times (T / 2 pi)^2; floored at 1e-6 mm."""
     mass = np.asarray(frame.mass_matrix)
     stiffness = np.asarray(frame.stiffness_matrix) + story_matrix(np.asarray(frame.geometric_stiffness))
     _, shapes = eigh(stiffness, mass)
@@ -285,7 +285,8 @@ def mce_drift_amplitudes(frame: ShearBuilding, site: Site, period: float, dampin
     gamma = float(shape @ mass @ np.ones(frame.stories) / (shape @ mass @ shape))
     spectral = float(np.asarray(site.spectral_acceleration(period))) / damping_coefficient(damping)
     displacement = spectral * (period / (2.0 * np.pi)) ** 2
-    return np.abs(gamma * np.diff(shape, prepend=0.0)) * displacement
+    # Floored at 1 nm: a story that does not drift in the mode still needs an amplitude > 0 to linearise at.
+    return np.maximum(np.abs(gamma * np.diff(shape, prepend=0.0)) * displacement, 1e-6)
 
 
 @dataclass(frozen=True)
