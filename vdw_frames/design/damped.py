@@ -44,8 +44,9 @@
      round's, through design_frame's ``minimum_stiffness``), when devices alone cannot pass: a device limit
      failed, the last enlargement cut the largest drift statistic over its limit by less than
      :data:`STALL_FRACTION`, or the target is out of reach.  A wall's added damping has a maximum
-     (:func:`size_devices` finds it): a target beyond it is kept as the goal, and the round's devices are sized
-     for the bare ratio + :data:`REACH_FRACTION` of the largest added damping (stated in the round).
+     (:func:`~vdw_frames.design.size_devices` finds it): a target beyond it is kept as the goal, and the round's
+     devices are sized for the bare ratio + :data:`REACH_FRACTION` of the largest added damping (stated in the
+     round).
 
    Every :class:`DesignRound` records what changed, why, and the verification's numbers.  When no round
    passes, :attr:`DampedDesign.failure` names each failed criterion or limit and by how much (demand / limit).
@@ -86,7 +87,7 @@ from ..verification.spectrum import Site
 from ..verification.suite import MIN_CYCLES, period_range
 from ..verification.verify import PropertyBounds, VerificationResult, verify
 from .elf import FrameDesign, design_frame
-from .sizing import DISTRIBUTIONS, DeviceSizing, _Sizer, _solve, size_devices
+from .sizing import DISTRIBUTIONS, DeviceSizing, _Sizer, _solve
 
 TARGET_STEP = 0.05
 """Added to the target damping ratio when a round fails (this package's rule)."""
@@ -131,7 +132,8 @@ class LimitCheck:
 
     def text(self) -> str:
         unit = DEVICE_LIMITS.get(self.limit.split(" ")[0], "-")
-        return (f"{self.limit} of {self.where}: demand {self.demand:.4g} vs limit {self.value:.4g} {unit} "
+        unit = "" if unit == "-" else f" {unit}"
+        return (f"{self.limit} of {self.where}: demand {self.demand:.4g} vs limit {self.value:.4g}{unit} "
                 f"(ratio {self.ratio:.3f})")
 
 
@@ -303,26 +305,25 @@ class _Sized:
 
 def _size_once(frame: ShearBuilding, device: Device, target: float, distribution: str,
                amplitudes: np.ndarray) -> tuple[DeviceSizing, float, float | None]:
-    """(sizing, the ratio sized for, the largest achievable ratio or None): ``target``, or where it is out of reach
-    :data:`REACH_FRACTION` of the largest added damping (:func:`size_devices` finds the largest)."""
-    try:
-        return size_devices(frame, device, target, distribution=distribution, drift_amplitude=amplitudes), target, None
-    except ValueError as error:
-        if not _out_of_reach(error):
-            raise
+    """(sizing, the ratio sized for, the largest achievable ratio or None): :func:`~vdw_frames.design.size_devices`
+    for ``target``, or where it is out of reach for the bare ratio + :data:`REACH_FRACTION` of the largest added damping.  Done as
+    size_devices does it, on one sizer: its complex poles are cached, so the search for the largest ratio (which
+    size_devices makes too) runs once."""
     sizer = _Sizer(frame, device, 1, distribution, None, walls_only=False, amplitudes=amplitudes)
     bare = float(-sizer.bare.real / abs(sizer.bare))
-    largest = sizer.best()[1]
-    reachable = bare + REACH_FRACTION * (largest - bare)
-    # As size_devices does it, on the same sizer: its complex poles are cached, the search for the maximum not redone.
-    factor = _solve(sizer, reachable)
+    largest: float | None = None
+    if target > bare:  # below: _solve's ValueError says the bare frame has that much already
+        best = sizer.best()[1]
+        if target > best:
+            largest, target = best, bare + REACH_FRACTION * (best - bare)
+    factor = _solve(sizer, target)
     sized = sizer.building_for(factor)
     nonlinear = bool(nonlinear_devices(sized))
     result = modal_analysis(sized, 1, drift_amplitude=amplitudes if nonlinear else None)
-    sizing = DeviceSizing(sized, device, factor, sizer.weights, 1, reachable, float(result.damping_ratios[0]),
+    sizing = DeviceSizing(sized, device, factor, sizer.weights, 1, target, float(result.damping_ratios[0]),
                           float(result.periods[0]), bare, amplitudes if nonlinear else None,
                           linearisation_notes(sized, amplitudes), sizer.describe(factor))
-    return sizing, reachable, largest
+    return sizing, target, largest
 
 
 def _size(frame: ShearBuilding, device: Device, target: float, site: Site, distribution: str) -> _Sized:
@@ -430,8 +431,8 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
     :data:`~vdw_frames.asce7.SYSTEMS` or a SeismicSystem), ``weights`` (N per floor, floor 1 first),
     ``story_heights`` (mm) and ``frame_options``: as :func:`~vdw_frames.design.elf.design_frame` takes them
     (``strength_scale`` is this function's; ``minimum_stiffness`` (N/mm) is kept as the floor of the stiffening).
-    ``device``: the prototype (a wall, FluidViscousDamper or FrictionDamper) :func:`size_devices` scales over the
-    stories by ``distribution``; ``target_damping`` (-, in (0, 1)): the total damping ratio of mode 1 to start from.
+    ``device``: the prototype (a wall, FluidViscousDamper or FrictionDamper)
+    :func:`~vdw_frames.design.size_devices` scales over the stories by ``distribution``; ``target_damping`` (-, in (0, 1)): the total damping ratio of mode 1 to start from.
     ``bounds`` (lambda_min, lambda_max) and ``records`` (None: the FEMA P695 far-field set, the ``[p695]`` extra):
     for :func:`~vdw_frames.verification.verify`.  ``irregular``: the structure has the irregularities of Sec.
     18.2.1.1's exception (V_min = 1.0 V).  ``rounds`` (1 ... :data:`MAX_ROUNDS`): most verifications.
