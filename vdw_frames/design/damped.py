@@ -306,9 +306,9 @@ class _Sized:
 def _size_once(frame: ShearBuilding, device: Device, target: float, distribution: str,
                amplitudes: np.ndarray) -> tuple[DeviceSizing, float, float | None]:
     """(sizing, the ratio sized for, the largest achievable ratio or None): :func:`~vdw_frames.design.size_devices`
-    for ``target``, or where it is out of reach for the bare ratio + :data:`REACH_FRACTION` of the largest added damping.  Done as
-    size_devices does it, on one sizer: its complex poles are cached, so the search for the largest ratio (which
-    size_devices makes too) runs once."""
+    for ``target``, or where it is out of reach for the bare ratio + :data:`REACH_FRACTION` of the largest added
+    damping.  Done as size_devices does it, on one sizer: its complex poles are cached, so the search for the
+    largest ratio (which size_devices makes too) runs once."""
     sizer = _Sizer(frame, device, 1, distribution, None, walls_only=False, amplitudes=amplitudes)
     bare = float(-sizer.bare.real / abs(sizer.bare))
     largest: float | None = None
@@ -432,7 +432,8 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
     ``story_heights`` (mm) and ``frame_options``: as :func:`~vdw_frames.design.elf.design_frame` takes them
     (``strength_scale`` is this function's; ``minimum_stiffness`` (N/mm) is kept as the floor of the stiffening).
     ``device``: the prototype (a wall, FluidViscousDamper or FrictionDamper)
-    :func:`~vdw_frames.design.size_devices` scales over the stories by ``distribution``; ``target_damping`` (-, in (0, 1)): the total damping ratio of mode 1 to start from.
+    :func:`~vdw_frames.design.size_devices` scales over the stories by ``distribution``; ``target_damping``
+    (-, in (0, 1)): the total damping ratio of mode 1 to start from.
     ``bounds`` (lambda_min, lambda_max) and ``records`` (None: the FEMA P695 far-field set, the ``[p695]`` extra):
     for :func:`~vdw_frames.verification.verify`.  ``irregular``: the structure has the irregularities of Sec.
     18.2.1.1's exception (V_min = 1.0 V).  ``rounds`` (1 ... :data:`MAX_ROUNDS`): most verifications.
