@@ -48,6 +48,7 @@ __all__ = [
     "SupportedDamper",
     "ThermalProperties",
     "WallLimits",
+    "design_frame",
     "identify",
     "incremental_dynamic_analysis",
     "modal_analysis",
@@ -61,8 +62,10 @@ __all__ = [
 ]
 
 _LAZY = {"paper": ("vdw_frames.paper", None), "identify": ("vdw_frames.paper", "identify"),
-         "size_walls": ("vdw_frames.design", "size_walls")}
-_SUBPACKAGES = ("config", "design", "element", "frame", "interop", "motion", "paper", "plotting", "verification")
+         "size_walls": ("vdw_frames.design", "size_walls"),
+         "design_frame": ("vdw_frames.design", "design_frame")}
+_SUBPACKAGES = ("asce7", "config", "design", "element", "frame", "interop", "motion", "paper", "plotting",
+                "verification")
 
 
 def __getattr__(name: str) -> Any:

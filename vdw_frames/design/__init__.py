@@ -7,11 +7,15 @@
 - :mod:`.layers`: :func:`size_layers` (:class:`LayerSizing`: layer thicknesses that keep strain-dependent
   walls inside their identified amplitudes over a suite of records).
 
+- :mod:`.elf`: :func:`design_frame` (:class:`FrameDesign`): the frame by ASCE 7-16 Chapter 12 (the equivalent
+  lateral force procedure, Sec. 12.8): strengths and stiffnesses of a shear building for a site and a system.
+
 Units: N, mm, s, tonne; periods s, areas mm^2.
 """
 
+from .elf import FrameDesign, design_frame
 from .layers import LayerSizing, size_layers
 from .sizing import DISTRIBUTIONS, DeviceSizing, SizingCurve, damping_curve, size_devices, size_walls
 
-__all__ = ["DISTRIBUTIONS", "DeviceSizing", "LayerSizing", "SizingCurve", "damping_curve", "size_devices",
-           "size_layers", "size_walls"]
+__all__ = ["DISTRIBUTIONS", "DeviceSizing", "FrameDesign", "LayerSizing", "SizingCurve", "damping_curve",
+           "design_frame", "size_devices", "size_layers", "size_walls"]

@@ -1,0 +1,132 @@
+"""Seismic force-resisting systems: ASCE 7-16 Table 12.2-1 (R, Omega_0, C_d, height limits) and Table 12.8-2
+(C_t, x of the approximate period).
+
+Every number carries its table and row.  Values are those of ASCE 7-16 as printed in Table 12.2-1, part C
+("Moment-resisting frame systems"), and Table 12.8-2.  The text of Table 12.2-1 could not be read in full
+from a copy of ASCE 7-16 when this was written: R, Omega_0, C_d and the height limits below are from the
+standard as recalled and agree with the ASCE 7-05/7-10 Table 12.2-1 extracts and design examples seen
+(e.g. R = 8, Omega_0 = 3, C_d = 5.5 for steel special moment frames; C.3 limited to 35 ft in SDC D).
+Check them against the standard before relying on them.
+
+Footnotes of Table 12.2-1 that raise or relax the height limits (e.g. for one-story buildings or light roofs
+with intermediate and ordinary steel moment frames, Sec. 12.2.5.6, 12.2.5.7) are NOT applied: the limits
+here are the table's plain entries.
+
+Height limits (ft) by seismic design category: ``None`` = NL (not limited), ``0.0`` = NP (not permitted).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .._validation import show
+
+SDC_LETTERS = ("A", "B", "C", "D", "E", "F")
+"""Seismic design categories of ASCE 7-16 Sec. 11.6."""
+
+PERIOD_PARAMETERS: dict[str, tuple[float, float]] = {
+    # ASCE 7-16 Table 12.8-2 "Values of approximate period parameters C_t and x" (h_n in ft).
+    "steel-moment-frame": (0.028, 0.8),  # steel moment-resisting frames
+    "concrete-moment-frame": (0.016, 0.9),  # concrete moment-resisting frames
+    "steel-eccentrically-braced-frame": (0.03, 0.75),  # steel eccentrically braced frames
+    "steel-buckling-restrained-braced-frame": (0.03, 0.75),  # steel buckling-restrained braced frames
+    "other": (0.02, 0.75),  # all other structural systems
+}
+"""C_t and x of ASCE 7-16 Table 12.8-2 by structural system, for h_n in ft (T_a = C_t h_n^x, Eq. 12.8-7)."""
+
+PERIOD_ROWS = {
+    "steel-moment-frame": "Table 12.8-2, steel moment-resisting frames",
+    "concrete-moment-frame": "Table 12.8-2, concrete moment-resisting frames",
+    "steel-eccentrically-braced-frame": "Table 12.8-2, steel eccentrically braced frames",
+    "steel-buckling-restrained-braced-frame": "Table 12.8-2, steel buckling-restrained braced frames",
+    "other": "Table 12.8-2, all other structural systems",
+}
+
+
+@dataclass(frozen=True)
+class SeismicSystem:
+    """One seismic force-resisting system of ASCE 7-16 Table 12.2-1 with its Table 12.8-2 period parameters.
+
+    ``key``: the short name (:data:`SYSTEMS`); ``name``: the table's wording; ``table_row``: where the
+    design coefficients come from; ``r`` R (response modification coefficient), ``omega0`` Omega_0 (overstrength
+    factor), ``cd`` C_d (deflection amplification factor), all dimensionless; ``height_limits_ft``: SDC ("B" ..
+    "F") -> the structural height limit h_n in ft, None = NL (not limited), 0.0 = NP (not permitted);
+    ``ct``, ``x``: C_t and x of Table 12.8-2 (h_n in ft; T_a in s); ``period_row``: their row;
+    ``moment_frame``: True for moment-resisting frames (ASCE 7-16 Sec. 12.12.1.1: drift limit divided by rho
+    in SDC D-F).
+    """
+
+    key: str
+    name: str
+    table_row: str
+    r: float
+    omega0: float
+    cd: float
+    height_limits_ft: dict[str, float | None] = field(hash=False)
+    ct: float
+    x: float
+    period_row: str
+    moment_frame: bool = True
+
+    def height_limit_ft(self, sdc: str) -> float | None:
+        """The height limit (ft) in seismic design category ``sdc``: None = not limited (NL), 0.0 = not
+        permitted (NP).  SDC A has no limits (ASCE 7-16 Sec. 11.7 applies instead of Table 12.2-1)."""
+        letter = str(sdc).strip().upper()
+        if letter not in SDC_LETTERS:
+            raise ValueError(f"seismic design category must be one of {', '.join(SDC_LETTERS)}, got {show(sdc)}")
+        if letter == "A":
+            return None
+        return self.height_limits_ft[letter]
+
+    def describe(self) -> str:
+        """One line: the system, its coefficients and where they come from."""
+        limits = ", ".join(f"{sdc}: {'NL' if limit is None else 'NP' if limit == 0.0 else f'{limit:g} ft'}"
+                           for sdc, limit in self.height_limits_ft.items())
+        return (f"{self.name} (ASCE 7-16 {self.table_row}): R = {self.r:g}, Omega_0 = {self.omega0:g}, "
+                f"C_d = {self.cd:g}; height limits {limits}; C_t = {self.ct:g}, x = {self.x:g} "
+                f"(ASCE 7-16 {self.period_row})")
+
+
+def _limits(b: float | None, c: float | None, d: float | None, e: float | None,
+            f: float | None) -> dict[str, float | None]:
+    return {"B": b, "C": c, "D": d, "E": e, "F": f}
+
+
+NL = None  # not limited
+NP = 0.0  # not permitted
+
+SYSTEMS: dict[str, SeismicSystem] = {
+    "steel-smf": SeismicSystem(
+        "steel-smf", "Steel special moment frames", "Table 12.2-1 row C.1", r=8.0, omega0=3.0, cd=5.5,
+        height_limits_ft=_limits(NL, NL, NL, NL, NL),
+        ct=PERIOD_PARAMETERS["steel-moment-frame"][0], x=PERIOD_PARAMETERS["steel-moment-frame"][1],
+        period_row=PERIOD_ROWS["steel-moment-frame"]),
+    "steel-imf": SeismicSystem(
+        "steel-imf", "Steel intermediate moment frames", "Table 12.2-1 row C.3", r=4.5, omega0=3.0, cd=4.0,
+        # D: 35 ft, E and F: NP (the footnotes that permit taller or lighter buildings are not applied)
+        height_limits_ft=_limits(NL, NL, 35.0, NP, NP),
+        ct=PERIOD_PARAMETERS["steel-moment-frame"][0], x=PERIOD_PARAMETERS["steel-moment-frame"][1],
+        period_row=PERIOD_ROWS["steel-moment-frame"]),
+    "steel-omf": SeismicSystem(
+        "steel-omf", "Steel ordinary moment frames", "Table 12.2-1 row C.4", r=3.5, omega0=3.0, cd=3.0,
+        # D, E, F: NP (the footnotes that permit light one-story buildings are not applied)
+        height_limits_ft=_limits(NL, NL, NP, NP, NP),
+        ct=PERIOD_PARAMETERS["steel-moment-frame"][0], x=PERIOD_PARAMETERS["steel-moment-frame"][1],
+        period_row=PERIOD_ROWS["steel-moment-frame"]),
+    "rc-smf": SeismicSystem(
+        "rc-smf", "Special reinforced concrete moment frames", "Table 12.2-1 row C.5", r=8.0, omega0=3.0,
+        cd=5.5, height_limits_ft=_limits(NL, NL, NL, NL, NL),
+        ct=PERIOD_PARAMETERS["concrete-moment-frame"][0], x=PERIOD_PARAMETERS["concrete-moment-frame"][1],
+        period_row=PERIOD_ROWS["concrete-moment-frame"]),
+}
+"""The seismic force-resisting systems the design knows (ASCE 7-16 Table 12.2-1 part C, Table 12.8-2)."""
+
+
+def seismic_system(key: object) -> SeismicSystem:
+    """The :class:`SeismicSystem` named ``key`` (one of :data:`SYSTEMS`, case-insensitive), or ``key`` itself
+    when it is one; ValueError listing the keys otherwise."""
+    if isinstance(key, SeismicSystem):
+        return key
+    if isinstance(key, str) and key.strip().lower() in SYSTEMS:
+        return SYSTEMS[key.strip().lower()]
+    raise ValueError(f"system must be one of {', '.join(SYSTEMS)} (ASCE 7-16 Table 12.2-1), got {show(key)}")
