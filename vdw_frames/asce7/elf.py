@@ -46,6 +46,10 @@ SDC_SHORT = ((0.167, "A", "A"), (0.33, "B", "C"), (0.50, "C", "D"), (math.inf, "
 SDC_ONE_SECOND = ((0.067, "A", "A"), (0.133, "B", "C"), (0.20, "C", "D"), (math.inf, "D", "D"))
 """ASCE 7-16 Table 11.6-2: (S_D1 upper bound (exclusive), SDC for Risk Category I/II/III, SDC for IV)."""
 
+BOUNDARY_TOLERANCE = 1e-9
+"""Relative distance below a row boundary of Tables 11.6-1/2 at which a value counts as on the boundary (rounding
+of S_DS = 2/3 S_MS and S_D1 = 2/3 S_M1 in floating point)."""
+
 THETA_AMPLIFY = 0.10
 """ASCE 7-16 Sec. 12.8.7: P-Delta need not be considered where theta <= 0.10; above it, displacements and
 forces are multiplied by 1 / (1 - theta) (the clause's alternative to a rational analysis)."""
@@ -83,10 +87,12 @@ def seismic_design_category(sds: float, sd1: float, s1: float | None, risk: obje
     sd1 = positive("sd1 (S_D1, g)", sd1)
     category = risk_category(risk)
     column = 2 if category == "IV" else 1
-    if s1 is not None and positive("s1 (S_1, g)", s1) >= 0.75:
+    if s1 is not None and positive("s1 (S_1, g)", s1) >= 0.75 * (1.0 - BOUNDARY_TOLERANCE):
         return "F" if category == "IV" else "E"
-    by_sds = str(next(row[column] for row in SDC_SHORT if sds < row[0]))
-    by_sd1 = str(next(row[column] for row in SDC_ONE_SECOND if sd1 < row[0]))
+    # A value within BOUNDARY_TOLERANCE below a boundary counts as on it: S_D1 = 2/3 x 0.3 is 0.19999999999999998
+    # in floating point, and the table puts S_D1 = 0.20 in the upper row.
+    by_sds = str(next(row[column] for row in SDC_SHORT if sds < row[0] * (1.0 - BOUNDARY_TOLERANCE)))
+    by_sd1 = str(next(row[column] for row in SDC_ONE_SECOND if sd1 < row[0] * (1.0 - BOUNDARY_TOLERANCE)))
     return max(by_sds, by_sd1)  # letters order as the categories' severity
 
 

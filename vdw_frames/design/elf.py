@@ -38,7 +38,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -51,9 +51,7 @@ from ..asce7.systems import SeismicSystem, seismic_system
 from ..frame.building import ShearBuilding
 from ..frame.hysteresis import STORY_MODELS, Bilinear, BoucWen
 from ..motion.record import G
-
-if TYPE_CHECKING:
-    from ..verification.spectrum import Site
+from ..verification.spectrum import Site
 
 PERIOD_TOLERANCE = 1e-10
 """Relative change of T_1 between two iterations of the stiffness at which the fixed point is accepted."""
@@ -252,7 +250,8 @@ def _story_shears(weights: np.ndarray, heights_above_base: np.ndarray, k: float,
 def _drift_stiffness(shear: float, load: float, height: float, allowable: float, cd: float, ie: float) -> float:
     """The least stiffness (N/mm) of a story whose design drift with P-Delta (Sec. 12.8.7) meets ``allowable``."""
     plain = cd * shear / (ie * allowable)
-    threshold = load / (code.THETA_AMPLIFY * height)  # theta = 0.10 there
+    # theta = 0.10 there; 1e-12 stiffer so that rounding cannot put theta a hair above 0.10 (and amplify the drift)
+    threshold = load / (code.THETA_AMPLIFY * height) * (1.0 + 1e-12)
     if plain >= threshold:
         return plain
     return min(plain + load / height, threshold)
@@ -382,7 +381,7 @@ def design_frame(site: Site, system: str | SeismicSystem, weights: ArrayLike, st
         0 < s <= 1: the design story shears for strength are multiplied by it (Chapter 18's V_min / V).
         Drift is checked with the unreduced Chapter 12 forces.
     damping_ratio, damping_modes
-        The building's inherent damping (ShearBuilding).
+        The building's inherent damping (ShearBuilding); the default modes (1, 2) become (1, 1) for one story.
 
     Returns
     -------
@@ -396,6 +395,8 @@ def design_frame(site: Site, system: str | SeismicSystem, weights: ArrayLike, st
         it; SDC A (Sec. 11.7: ELF does not apply); a strength_scale outside (0, 1]; no fixed point of T_1; a
         story with theta > theta_max.
     """
+    if not isinstance(site, Site):
+        raise ValueError(f"site must be a vdw_frames.verification.Site (S_MS, S_M1, T_L, ...), got {show(site)}")
     spec = seismic_system(system)
     category = code.risk_category(site.risk_category if risk_category is None else risk_category)
     w, h = _floors(weights, story_heights)
@@ -440,7 +441,8 @@ def design_frame(site: Site, system: str | SeismicSystem, weights: ArrayLike, st
         if not isinstance(model, STORY_MODELS):
             raise ValueError(f"story_model returned {show(model)} for story {story}; it must return a Bilinear "
                              "or BoucWen model")
-    building = ShearBuilding(w / G, stiffnesses, damping_ratio=damping_ratio, damping_modes=damping_modes,
+    modes = None if h.size == 1 and tuple(damping_modes) == (1, 2) else damping_modes  # one story: its only mode
+    building = ShearBuilding(w / G, stiffnesses, damping_ratio=damping_ratio, damping_modes=modes,
                              story_heights=h, hysteresis=models, gravity_loads=loads)
     assumptions = _assumptions(spec, site, category, sdc, rho_value, rho is None, divisor, strength_scale, period)
     return FrameDesign(
