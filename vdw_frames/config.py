@@ -146,6 +146,7 @@ _HYSTERESIS_KEYS = {"bilinear": {"model", "yield_forces", "hardening"},
 _STRAIN_COMPATIBLE_KEYS = {"effective_strain_ratio", "initial_strain", "tolerance", "max_iterations"}
 _WALL_KEYS = {"stories", "per_story", "parameters", "area", "thickness", "thermal", "limits", "magnification"}
 _GROUP_KEYS = {"type", "stories", "per_story"}
+_ALL_DEVICE_KEYS = {item.name for kind in KINDS.values() for item in dataclasses.fields(kind)}
 WALL_TYPE = "wall"
 """A ``[[devices]]`` group's ``type`` for FDMK walls (the keys of a ``[[walls]]`` group)."""
 _THERMAL_KEYS = {"shift", "heat_capacity", "temperature", "cooling_time"}
@@ -839,3 +840,181 @@ def _toml_string(text: str) -> str:
     """A TOML basic string: quotes, backslashes and control characters escaped."""
     return '"' + "".join(_TOML_ESCAPES.get(c, f"\\u{ord(c):04x}" if ord(c) < 0x20 or ord(c) == 0x7F else c)
                          for c in text) + '"'
+
+
+# ------------------------------------------------------------------------------- design input (site.toml)
+DESIGN_DEVICES = ("none", "walls", "fvd", "friction")
+"""The ``device`` choices of a design input (``vdw-frames design-building --device``)."""
+DEVICE_TYPES = {"walls": WALL_TYPE, "fvd": "fluid_viscous", "friction": "friction"}
+"""The building-file ``type`` of each design device choice."""
+_DESIGN_INPUT_KEYS = {"site", "building", "design"}
+_DESIGN_BUILDING_KEYS = {"weights", "masses", "story_heights", "damping_ratio", "damping_modes"}
+_DESIGN_KEYS = {"system", "device", "target_damping", "overstrength", "hardening", "rho", "minimum_stiffness",
+                "irregular", "rounds", "bounds", "bounds_source", "records", "distribution", "p695",
+                "prototype", "device_limits"}
+DEFAULT_PROTOTYPES: dict[str, dict[str, Any]] = {
+    "walls": {"type": WALL_TYPE, "parameters": "fitted-300"},
+    "fvd": {"type": "fluid_viscous", "C": 1.0e3, "alpha": 0.5},
+    "friction": {"type": "friction", "slip_force": 1.0e5, "stiffness": 1.0e5},
+}
+"""The device prototypes a design input without ``[design.prototype]`` gets (size_devices scales them): the
+paper's wall identified at 300 % (A = 1e6 mm^2, h = 10 mm); a nonlinear FVD of alpha = 0.5 without a brace; a
+friction damper slipping at 1 mm (slip force / stiffness, which resizing keeps).  This package's choices."""
+
+
+@dataclasses.dataclass(frozen=True)
+class DesignInput:
+    """What a design input file (``site.toml``, :func:`load_design_input`) gives: ``site``; ``weights`` (N per
+    floor, floor 1 first) and ``story_heights`` (mm); ``frame_options`` (keywords of
+    :func:`vdw_frames.design.elf.design_frame`: overstrength, hardening, rho, minimum_stiffness, damping_ratio,
+    damping_modes); ``system`` and ``device`` (None where the file does not say); ``prototype`` (a device,
+    None where the file gives no ``[design.prototype]``); ``target_damping``, ``rounds``, ``bounds``
+    (PropertyBounds or None), ``records`` (a P695 set name or a folder, resolved against the file's folder;
+    None where not given), ``irregular``, ``distribution``, ``p695``, ``device_limits``."""
+
+    site: Site
+    weights: tuple[float, ...]
+    story_heights: tuple[float, ...]
+    frame_options: dict[str, Any]
+    system: str | None = None
+    device: str | None = None
+    prototype: Device | None = None
+    target_damping: float | None = None
+    rounds: int | None = None
+    bounds: PropertyBounds | None = None
+    records: str | None = None
+    irregular: bool = False
+    distribution: str | None = None
+    p695: bool = False
+    device_limits: dict[str, float] = dataclasses.field(default_factory=dict)
+
+
+def load_design_input(path: str | os.PathLike[str]) -> DesignInput:
+    """The design input of ``vdw-frames design-building`` from a ``.toml`` or ``.json`` file::
+
+        [site]                      # as a building file's (site_from_values): sms, sm1 or ss, s1, site_class;
+        ss = 0.75                   #   tl; risk_category (default "II")
+        s1 = 0.3
+        site_class = "C"
+        tl = 8.0
+        risk_category = "II"
+
+        [building]
+        weights = [5.884e6, ...]    # N, seismic weight of each floor, floor 1 first (or masses = [...], tonne)
+        story_heights = [4000, ...] # mm, as many
+        damping_ratio = 0.05        # optional: inherent damping (default 0.05), damping_modes = [1, 2]
+
+        [design]                    # optional, every key optional
+        system = "steel-smf"        # steel-smf, steel-imf, steel-omf, rc-smf (ASCE 7-16 Table 12.2-1)
+        device = "walls"            # none (default: the bare frame by Chapter 12), walls, fvd, friction
+        target_damping = 0.15       # mode-1 damping ratio the devices are first sized for, in (0, 1)
+        overstrength = 1.0          # story strength / design story shear (>= 1)
+        hardening = 0.03            # post-yield stiffness ratio of the Bilinear stories
+        rho = 1.3                   # redundancy factor (default by SDC, Sec. 12.3.4)
+        minimum_stiffness = 0.0     # N/mm, one number or one a story
+        irregular = false           # Sec. 18.2.1.1: V_min = 1.0 V for the irregular structures it names
+        rounds = 4                  # most verification rounds
+        bounds = [0.8, 1.2]         # property modification factors (Sec. 18.2.4.5), needed with devices
+        bounds_source = "..."       # where they come from
+        records = "far-field"       # the verification's records: a FEMA P695 set or a folder of .AT2 files
+        distribution = "stiffness"  # how size_devices spreads the devices over the stories
+        p695 = false                # the FEMA P695 collapse assessment of the final design
+
+        [design.prototype]          # optional: the device size_devices scales (keys of a [[devices]] group)
+        type = "wall"               # wall, fluid_viscous or friction; must agree with device
+        parameters = "fitted-300"
+        thickness = 12.0
+
+        [design.device_limits]      # optional: stroke (mm), velocity (mm/s), strain (-), temperature_rise (K)
+        stroke = 60.0
+
+    A relative ``records`` folder is read from the input file's folder.  ValueError naming the file and the key
+    for anything malformed: unknown keys, weights and story heights of different lengths, both or neither of
+    weights and masses, a prototype of another type than ``device``, an unknown device.
+    """
+    file, data = _read_data(path)
+    try:
+        return _design_input(data, Path(file).parent)
+    except ValueError as error:
+        raise ValueError(f"{file}: {error}") from None
+
+
+def _design_input(data: object, folder: Path) -> DesignInput:
+    table = _table("design input", data, _DESIGN_INPUT_KEYS)
+    if "site" not in table or "building" not in table:
+        raise ValueError("a design input needs a [site] and a [building] table")
+    site = site_from_values(_table("site", table["site"], set(SITE_KEYS)))
+    weights, heights, options = _design_floors(_table("building", table["building"], _DESIGN_BUILDING_KEYS))
+    design = _table("design", table.get("design", {}), _DESIGN_KEYS)
+    options.update({key: design[key] for key in ("overstrength", "hardening", "rho", "minimum_stiffness")
+                    if key in design})
+    device = design.get("device")
+    if device is not None and device not in DESIGN_DEVICES:
+        raise ValueError(f"unknown design device {show(device)}; expected one of {list(DESIGN_DEVICES)}")
+    bounds = None
+    if "bounds" in design:
+        source = design.get("bounds_source", "stated in the design input")
+        bounds = site_and_bounds({"verification": {"bounds": design["bounds"], "bounds_source": source}})[1]
+    elif "bounds_source" in design:
+        raise ValueError("design bounds_source without bounds")
+    records = design.get("records")
+    if records is not None:
+        if not isinstance(records, str) or not records.strip():
+            raise ValueError(f"design records must be a FEMA P695 set name or a folder, got {show(records)}")
+        if "/" in records or os.sep in records or (folder / records).is_dir():
+            records = str(folder / records)
+    flags = {}
+    for key in ("irregular", "p695"):
+        if key in design and not isinstance(design[key], bool):
+            raise ValueError(f"design {key} must be true or false, got {show(design[key])}")
+        flags[key] = bool(design.get(key, False))
+    limits = _table("design device_limits", design.get("device_limits", {}),
+                    {"stroke", "velocity", "strain", "temperature_rise"})
+    system = design.get("system")
+    if system is not None and not isinstance(system, str):
+        raise ValueError(f"design system must be a name such as 'steel-smf', got {show(system)}")
+    return DesignInput(site=site, weights=weights, story_heights=heights, frame_options=options, system=system,
+                       device=device, prototype=_prototype(design, device), target_damping=design.get("target_damping"),
+                       rounds=design.get("rounds"), bounds=bounds, records=records, irregular=flags["irregular"],
+                       distribution=design.get("distribution"), p695=flags["p695"], device_limits=dict(limits))
+
+
+def _design_floors(floors: dict[str, Any]) -> tuple[tuple[float, ...], tuple[float, ...], dict[str, Any]]:
+    """(weights N, story heights mm, design_frame options) of a design input's ``[building]`` table."""
+    if ("weights" in floors) == ("masses" in floors):
+        raise ValueError("building needs either weights (N per floor) or masses (tonne per floor), not both")
+    if "story_heights" not in floors:
+        raise ValueError("building needs story_heights (mm, story 1 first)")
+    values: dict[str, tuple[float, ...]] = {}
+    for key in ("weights", "masses", "story_heights"):
+        if key in floors:
+            given = floors[key]
+            if not isinstance(given, list) or not given or \
+                    not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in given):
+                raise ValueError(f"building {key} must be a list of numbers, got {show(given)}")
+            values[key] = tuple(float(v) for v in given)
+    from .motion.record import G
+
+    weights = values["weights"] if "weights" in values else tuple(m * G for m in values["masses"])
+    heights = values["story_heights"]
+    if len(weights) != len(heights):
+        raise ValueError(f"weights and story heights of different lengths: {len(weights)} "
+                         f"{'weights' if 'weights' in values else 'masses'} and {len(heights)} story heights")
+    options: dict[str, Any] = {key: floors[key] for key in ("damping_ratio", "damping_modes") if key in floors}
+    if "damping_modes" in options:
+        options["damping_modes"] = tuple(options["damping_modes"])
+    return weights, heights, options
+
+
+def _prototype(design: dict[str, Any], device: str | None) -> Device | None:
+    """The device of a design input's ``[design.prototype]`` table (None without one), of ``device``'s type."""
+    if "prototype" not in design:
+        return None
+    group = _table("design prototype", design["prototype"], _WALL_KEYS | _GROUP_KEYS | _ALL_DEVICE_KEYS)
+    kind = _device_type(group)
+    if device not in (None, "none") and DEVICE_TYPES[device] != kind:
+        raise ValueError(f"the design prototype is of type {kind!r} but device is {device!r} "
+                         f"(type {DEVICE_TYPES[device]!r})")
+    if "stories" in group or "per_story" in group:
+        raise ValueError("the design prototype is one device: no stories or per_story")
+    return building_from_dict({"masses": [1.0], "stiffnesses": [1.0], "devices": [group]}).device_list[0][1]
