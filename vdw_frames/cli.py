@@ -809,11 +809,11 @@ def _design_building(args: argparse.Namespace) -> int:
 
     given = load_design_input(args.site)
     system = args.system or given.system or "steel-smf"
-    device = args.device or given.device or "none"
-    if given.prototype is not None and device == "none":
-        raise ValueError(f"{args.site}: [design.prototype] gives a device but the design is bare (--device none); "
-                         "give --device")
-    if given.prototype is not None and given.prototype.kind != DEVICE_TYPES[device]:
+    # The device: the flag's, else the input's device, else its prototype's type, else none (the bare frame).
+    inferred = next((name for name, kind in DEVICE_TYPES.items()
+                     if given.prototype is not None and given.prototype.kind == kind), None)
+    device = args.device or given.device or inferred or "none"
+    if given.prototype is not None and device != "none" and given.prototype.kind != DEVICE_TYPES[device]:
         raise ValueError(f"--device {device}: the input's [design.prototype] is of type {given.prototype.kind!r}, "
                          f"not {DEVICE_TYPES[device]!r}")
     target = _target_damping(args.target_damping if args.target_damping is not None else
@@ -824,17 +824,19 @@ def _design_building(args: argparse.Namespace) -> int:
     bounds = PropertyBounds(args.bounds[0], args.bounds[1], "given on the command line") if args.bounds is not None \
         else given.bounds
     records_name = args.records or given.records or "far-field"
-    out = _output_folder(args.out)
     started = time.perf_counter()
     # The frame first: every bad value of the input (system, risk category, heights, lengths) fails here, before
-    # any record is read or analysis run.
+    # any folder is made, record read or analysis run.
     frame = design_frame(given.site, system, given.weights, given.story_heights, **given.frame_options)
+    out = _output_folder(args.out)
     print(given.site.describe())
     print(f"{frame.system.name} ({frame.system.table_row}), SDC {frame.sdc}, T_a = {frame.ta:.3f} s, "
           f"T_1 = {frame.analytical_period:.3f} s, T = {frame.period:.3f} s, C_s = {frame.cs:.4g} "
           f"(Eq. {frame.cs_equation}), V = {frame.base_shear / 1e3:.1f} kN")
     period_system = _period_system(frame.system)
     if device == "none":
+        if given.prototype is not None:
+            print("note: the input's [design.prototype] is not used: the design is bare (--device none)")
         collapse = None
         if p695:
             from .assessment import collapse_assessment
@@ -898,8 +900,9 @@ def _add_design_building_command(commands: _Commands) -> None:
     design.add_argument("--system", help="seismic force-resisting system: steel-smf (default), steel-imf, steel-omf, "
                                          "rc-smf (ASCE 7-16 Table 12.2-1)")
     design.add_argument("--device", choices=DESIGN_DEVICES,
-                        help="damping devices: none (default: the bare frame by Chapter 12 only), walls, fvd, "
-                             "friction (Chapter 18, verified)")
+                        help="damping devices: none (the bare frame by Chapter 12 only), walls, fvd, friction "
+                             "(Chapter 18, verified); default: the input's [design] device, else its "
+                             "[design.prototype]'s type, else none")
     design.add_argument("--target-damping", type=float,
                         help=f"mode-1 damping ratio the devices are first sized for, in (0, 1) (default "
                              f"{DEFAULT_TARGET_DAMPING:g})")

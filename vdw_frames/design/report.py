@@ -6,7 +6,7 @@
 - ``design.md``: the ELF table (ASCE 7-16 Sec. 12.8), the Chapter 18 reduction, the device schedule with the
   verification's peak demands, every verification round, the FEMA P695 result (with the statement that one
   archetype is not a system qualification), the times and every assumption;
-- CSV tables: ``elf.csv`` (one row a story), ``devices.csv`` (one row a device) and ``rounds.csv`` (one row a
+- CSV tables: ``elf.csv`` (one row a story), ``devices.csv`` (one row a device, if any) and ``rounds.csv`` (one row a
   verification round); the final verification's ``verification_suite.csv``, ``verification_drifts.csv``,
   ``verification_walls.csv`` and ``verification_devices.csv`` (the tables ``vdw-frames verify`` writes as
   ``suite.csv``, ``drifts.csv``, ...);
@@ -80,7 +80,9 @@ def write_design_report(design: FrameDesign | DampedDesign, out_dir: str | os.Pa
                   comment=f"{heading}\nWritten by vdw_frames.design.report (vdw-frames design-building); units N, "
                           "mm, s, tonne.\nFormat: vdw_frames.config.")
     frame.save(folder / "elf.csv")
-    write_text(folder / "devices.csv", _csv(device_rows(building, verification)), "device schedule")
+    schedule = device_rows(building, verification)
+    if schedule:  # a bare frame has none
+        write_text(folder / "devices.csv", _csv(schedule), "device schedule")
     figures = {"design_profiles.png": "Story shears and strengths; design drifts against Delta_a / rho"}
     plot_design_profiles(frame, folder / "design_profiles.png")
     if isinstance(design, DampedDesign) and verification is not None:
@@ -203,9 +205,11 @@ def _markdown(design: Any, frame: FrameDesign, building: ShearBuilding,  # noqa:
         lines += ["The frame designed by the equivalent lateral force procedure alone (no damping devices, no "
                   "response-history verification: run `vdw-frames verify` on the building file for it).", ""]
     rerun = f" --records {records}" if records else ""
-    lines += ["Files: `building.toml` (the designed building: `vdw-frames simulate`, `verify` and `collapse` read "
-              "it), `elf.csv`, `devices.csv`" + (", `rounds.csv`, `verification_*.csv` (the final verification's "
-                                                 "tables)" if damped else "") + ", the figures below.", ""]
+    files = ["`building.toml` (the designed building: `vdw-frames simulate`, `verify` and `collapse` read it)",
+             "`elf.csv`"]
+    files += ["`devices.csv`"] if building.devices else []
+    files += ["`rounds.csv`", "`verification_*.csv` (the final verification's tables)"] if damped else []
+    lines += ["Files: " + ", ".join(files) + ", the figures below.", ""]
     if damped:
         lines += [f"The final verification is repeated, independently, by `vdw-frames verify building.toml{rerun}` "
                   "(the site and the bounds are in the file).", ""]
