@@ -845,7 +845,7 @@ def _design_building(args: argparse.Namespace) -> int:
                 collapse = collapse_assessment(frame.building, "far-field", system=period_system, progress=True)
             except ImportError as error:  # the optional extra is missing: one error line, exit 2
                 raise ValueError(str(error)) from None
-        path = write_design_report(frame, out, bounds=bounds, collapse=collapse)
+        path = write_design_report(frame, out, collapse=collapse)
         print(f"ELF design, no devices (--device walls, fvd or friction for a damped design): "
               f"{time.perf_counter() - started:.1f} s")
         print(f"report: {path}")

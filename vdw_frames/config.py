@@ -854,12 +854,13 @@ _DESIGN_KEYS = {"system", "device", "target_damping", "overstrength", "hardening
                 "prototype", "device_limits"}
 DEFAULT_PROTOTYPES: dict[str, dict[str, Any]] = {
     "walls": {"type": WALL_TYPE, "parameters": "fitted-300"},
-    "fvd": {"type": "fluid_viscous", "C": 1.0e3, "alpha": 0.5},
+    "fvd": {"type": "fluid_viscous", "C": 1.0e3, "alpha": 0.5, "stiffness": 1.0e5},
     "friction": {"type": "friction", "slip_force": 1.0e5, "stiffness": 1.0e5},
 }
 """The device prototypes a design input without ``[design.prototype]`` gets (size_devices scales them): the
-paper's wall identified at 300 % (A = 1e6 mm^2, h = 10 mm); a nonlinear FVD of alpha = 0.5 without a brace; a
-friction damper slipping at 1 mm (slip force / stiffness, which resizing keeps).  This package's choices."""
+paper's wall identified at 300 % (A = 1e6 mm^2, h = 10 mm); a nonlinear FVD of alpha = 0.5 with a brace of
+K_b = 100 C (N/mm; resizing keeps the ratio); a friction damper slipping at 1 mm (slip force / stiffness, which
+resizing keeps).  This package's choices."""
 
 
 @dataclasses.dataclass(frozen=True)

@@ -55,9 +55,9 @@ def write_design_report(design: FrameDesign | DampedDesign, out_dir: str | os.Pa
     :class:`~vdw_frames.design.damped.DampedDesign`) into the folder ``out_dir`` (module docstring: the files);
     returns the path of ``design.md``.
 
-    ``bounds``: for a bare design, the ``[verification]`` bounds the building file gets (a damped design's come
-    from its verification).  ``collapse``: for a bare design, its FEMA P695 assessment (a damped design carries
-    its own).  ``records``: how the verification's records were given (a P695 set name or a folder), for the
+    ``bounds``: for a bare design, ``[verification]`` bounds for the building file, should devices be added to
+    it later (a damped design's come from its verification).  ``collapse``: for a bare design, its FEMA P695
+    assessment (a damped design carries its own).  ``records``: how the verification's records were given (a P695 set name or a folder), for the
     command that repeats it.  ValueError for a design of another type or a folder that cannot be written.
     """
     folder = output_folder(out_dir, "design report folder")
@@ -202,8 +202,9 @@ def _markdown(design: Any, frame: FrameDesign, building: ShearBuilding,  # noqa:
         lines += [f"**Verdict: {verdict}** after {len(design.rounds)} verification round(s)"
                   + (f": {design.failure}" if design.failure else "."), ""]
     else:
-        lines += ["The frame designed by the equivalent lateral force procedure alone (no damping devices, no "
-                  "response-history verification: run `vdw-frames verify` on the building file for it).", ""]
+        lines += ["The frame designed by the equivalent lateral force procedure alone: no damping devices and no "
+                  "response-history verification (`vdw-frames verify` is for structures with devices; "
+                  "`vdw-frames simulate` and `collapse` read the building file).", ""]
     rerun = f" --records {records}" if records else ""
     files = ["`building.toml` (the designed building: `vdw-frames simulate`, `verify` and `collapse` read it)",
              "`elf.csv`"]
@@ -213,8 +214,6 @@ def _markdown(design: Any, frame: FrameDesign, building: ShearBuilding,  # noqa:
     if damped:
         lines += [f"The final verification is repeated, independently, by `vdw-frames verify building.toml{rerun}` "
                   "(the site and the bounds are in the file).", ""]
-    elif bounds is not None:
-        lines += ["`vdw-frames verify building.toml` verifies it (the site and the bounds are in the file).", ""]
     lines += ["## Figures", ""]
     for name, caption in figures.items():
         lines += [f"![{caption}]({name})", ""]
