@@ -57,8 +57,9 @@ def write_design_report(design: FrameDesign | DampedDesign, out_dir: str | os.Pa
 
     ``bounds``: for a bare design, ``[verification]`` bounds for the building file, should devices be added to
     it later (a damped design's come from its verification).  ``collapse``: for a bare design, its FEMA P695
-    assessment (a damped design carries its own).  ``records``: how the verification's records were given (a P695 set name or a folder), for the
-    command that repeats it.  ValueError for a design of another type or a folder that cannot be written.
+    assessment (a damped design carries its own).  ``records``: how the verification's records were given (a
+    P695 set name or a folder), for the command that repeats it.  ValueError for a design of another type or a
+    folder that cannot be written.
     """
     folder = output_folder(out_dir, "design report folder")
     if not isinstance(design, (FrameDesign, DampedDesign)):
