@@ -32,6 +32,7 @@ import argparse
 import dataclasses
 import sys
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -66,11 +67,18 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--rounds", type=int, default=4, help="most verification rounds (default 4)")
     args = parser.parse_args(argv)
     try:
-        with plain_warnings():
-            return run(args)
+        with plain_warnings(), warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            code = run(args)
     except (ValueError, OSError, ImportError) as error:
         print(f"code_design.py: error: {error}", file=sys.stderr)
         return 2
+    # Many analyses warn alike (walls beyond their identified strains): counted here, the first one shown.
+    if caught:
+        kinds = {str(item.message).split(": ", 1)[-1].split(":")[0] for item in caught}
+        print(f"{len(caught)} warnings from the analyses ({'; '.join(sorted(kinds))}); the first: "
+              f"{str(caught[0].message)[:300]}")
+    return code
 
 
 def floor_acceleration(building, suite, executor) -> float:
@@ -96,10 +104,13 @@ def bare_row(frame, site, records, *, executor, collapse) -> dict:
                       collapse_drift_ratio=0.10)
     drifts = batch.peak_drift_ratio[:, 0, :]  # (records, stories)
     standing = ~batch.collapsed[:, 0]
-    mean = float(drifts[standing].mean(axis=0).max()) if standing.any() else float("nan")
     limit = 2 * 0.020  # Sec. 16.4.1.2: 2 x Table 12.12-1 (Risk Category II)
     fallen = int((~standing).sum())
-    verdict = f"drift {'within' if mean <= limit and fallen <= 1 else 'beyond'} limit ({fallen} collapsed)"
+    # The mean of the standing records; none where most collapsed (it would describe the few that stood).
+    mean = float(drifts[standing].mean(axis=0).max()) if 2 * standing.sum() > standing.size else float("nan")
+    allowed = 1  # Sec. 16.4.1.1: Risk Category II
+    verdict = ("FAIL" if fallen > allowed or not mean <= limit else "pass") + \
+        f" ({fallen} of {standing.size} collapse, {allowed} allowed; not a Ch. 18 verification)"
     return {"label": "bare (Ch. 12)", "V": frame.base_shear, "design": frame.base_shear, "scale": 1.0,
             "strengths": float(np.sum(frame.strengths)), "t1": frame.analytical_period, "mean_drift": mean,
             "peak_drift": float(np.nanmax(drifts)),
@@ -190,7 +201,8 @@ def print_table(columns) -> None:
         ("strength designed for (kN)", [f"{c['design'] / 1e3:.0f} ({c['scale']:.2f} V)" for c in columns]),
         ("sum of story strengths (kN)", [f"{c['strengths'] / 1e3:.0f}" for c in columns]),
         ("T1, bare frame (s)", [f"{c['t1']:.2f}" for c in columns]),
-        ("mean drift ratio at MCE_R (%)", [f"{100 * c['mean_drift']:.2f}" for c in columns]),
+        ("mean drift ratio at MCE_R (%)", [f"{100 * c['mean_drift']:.2f}" if np.isfinite(c["mean_drift"]) else
+                                           "- (most collapse)" for c in columns]),
         ("peak drift ratio at MCE_R (%)", [f"{100 * c['peak_drift']:.2f}" for c in columns]),
         ("mean peak floor acceleration (g)", [f"{c['acceleration']:.2f}" for c in columns]),
         ("devices", [c["devices"][0] for c in columns]),
@@ -213,8 +225,8 @@ def print_table(columns) -> None:
 def print_summary(columns) -> None:
     """What the table shows, in words, from its own numbers."""
     bare, *damped = columns
-    parts = [f"The bare Chapter 12 frame is designed for V = {bare['V'] / 1e3:.0f} kN; its mean MCE_R drift ratio "
-             f"is {100 * bare['mean_drift']:.2f} % against the 4 % limit (2 x Table 12.12-1): {bare['verdict']}."]
+    parts = [f"The bare Chapter 12 frame is designed for V = {bare['V'] / 1e3:.0f} kN (strength = the design story "
+             f"shears, overstrength 1); under its MCE_R suite: {bare['verdict']}."]
     for column in damped:
         parts.append(f"With {column['label'].split(' (')[0]} the frame is designed for {column['scale']:.2f} V "
                      f"(sum of story strengths {column['strengths'] / bare['strengths']:.2f} x the bare frame's), "
