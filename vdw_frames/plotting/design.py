@@ -117,7 +117,7 @@ def plot_drift_spread(result: VerificationResult, path: str | os.PathLike[str], 
     returns the path.
 
     One column per case (nominal, upper and lower bound): each record's largest peak story drift ratio over the
-    stories (%, a dot; an unacceptable response a red cross, drawn at the top of the axes when it exceeds it),
+    stories (%, a dot; an unacceptable response a red cross, at the top of the axes where its drift is not finite),
     the suite statistic of the story that governs (a black bar: the mean, or Sec. 16.4.1.2's statistic with
     unacceptable responses), and the limit (2 x Table 12.12-1 for Risk Category I-II, dashed).
     """
@@ -130,7 +130,7 @@ def plot_drift_spread(result: VerificationResult, path: str | os.PathLike[str], 
     limit = 100.0 * result.drift_limit
     finite = peaks[np.isfinite(peaks)]
     top = 1.15 * max(limit, float(statistic.max()), float(finite.max()) if finite.size else 0.0)
-    figure, axes = plt.subplots(figsize=(1.8 + 1.6 * len(result.cases), 4.8))
+    figure, axes = plt.subplots(figsize=(2.4 + 1.6 * len(result.cases), 5.4))
     spread = np.linspace(-0.18, 0.18, peaks.shape[1]) if peaks.shape[1] > 1 else np.zeros(1)
     for c in range(len(result.cases)):
         bad = np.array([bool(reason) for reason in result.unacceptable[c]])
@@ -150,7 +150,7 @@ def plot_drift_spread(result: VerificationResult, path: str | os.PathLike[str], 
     axes.set_ylim(0.0, top)
     axes.set_ylabel("peak story drift ratio (%)")
     axes.grid(True, axis="y", alpha=0.3)
-    axes.legend(fontsize="small", loc="lower right")
+    axes.legend(fontsize="small", loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)  # below: no point hidden
     verdict = "PASS" if result.passed else "FAIL"
     axes.set_title(title or f"Peak drift ratios per bound, {peaks.shape[1]} records: {verdict}", fontsize="medium")
     return save(figure, path)
