@@ -3,7 +3,7 @@ never another exception, never an object holding NaN or inf, and never slow (a d
 
 Constructors: those of ``vdw_frames.__all__`` and the input dataclasses of the sub-packages (shift laws,
 thermal descriptions, wall limits, memories, discretisations, Prony series, wall banks and states,
-hysteresis states, Newton and strain-compatible settings, fragilities, frame states, sites, bounds,
+hysteresis states, Newton and strain-compatible settings, fragilities, frame states, sites, seismic systems, bounds,
 collapse criteria, search settings, record metadata).  Each example replaces one or two arguments of a
 valid call by a hostile value: NaN, inf, huge, subnormal and negative numbers, huge integers, bools,
 strings, bytes, None, complex numbers, numpy scalars and arrays of any shape, lists of mixed content,
@@ -48,6 +48,7 @@ from vdw_frames import (
     read_two_column,
 )
 from vdw_frames import config as building_files
+from vdw_frames.asce7 import SeismicSystem
 from vdw_frames.assessment import CollapseCriterion, HuntAndFill
 from vdw_frames.element import (
     ISD110_LOSS_PEAK,
@@ -150,6 +151,10 @@ CONSTRUCTORS = {
     "FrameState": (FrameState, frame_state()),
     "Site": (Site, dict(sms=1.5, sm1=0.9, tl=8.0, risk_category="II", ss=1.25, s1=0.6, site_class="C", fa=1.2,
                         fv=1.5)),
+    "SeismicSystem": (SeismicSystem, dict(key="steel-smf", name="Steel special moment frames",
+                                          table_row="Table 12.2-1 row C.1", r=8.0, omega0=3.0, cd=5.5,
+                                          height_limits_ft={"B": None, "C": None, "D": 160.0, "E": 100.0, "F": 0.0},
+                                          ct=0.028, x=0.8, period_row="Table 12.8-2", moment_frame=True)),
     "PropertyBounds": (PropertyBounds, dict(lower=0.8, upper=1.2, source="a test")),
     "CollapseCriterion": (CollapseCriterion, dict(drift_ratio=0.1, non_convergence=True, wall_failure=False)),
     "HuntAndFill": (HuntAndFill, dict(start=0.1, cap=5.0, growth=1.8, tolerance=0.02, fill_ratio=1.1, max_runs=12)),

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from vdw_frames import Bilinear, BoucWen
-from vdw_frames.design import FrameDesign, design_frame
+from vdw_frames.design import FrameDesign, design_frame, elf
 from vdw_frames.verification import Site
 
 G = 9806.65
@@ -260,8 +260,40 @@ def test_bad_input_gets_one_clear_error(kwargs, message):
                      **options)
 
 
+def test_non_finite_weights_and_an_unsettled_period_are_refused(monkeypatch):
+    site = Site(0.9, 0.45, 8.0, "II")
+    with pytest.raises(ValueError, match="weights"):
+        design_frame(site, "steel-smf", [3.0e6, math.nan], [3600.0] * 2)
+    monkeypatch.setattr(elf, "MAX_ITERATIONS", 1)  # one iteration cannot settle T_1 from C_u T_a
+    with pytest.raises(ValueError, match=r"T_1 did not settle in 1 iterations .*give a minimum_stiffness"):
+        design_frame(site, "steel-smf", [3.0e6] * 4, [3600.0] * 4)
+
+
 def test_a_site_outside_the_tabulated_rules_is_refused_before_design():
     # ASCE 7-16 Sec. 11.4.8: Site Class D with S_1 >= 0.2 needs a site-specific analysis; the Site refuses it, so
     # no ELF design is ever made from tabulated coefficients there
     with pytest.raises(ValueError, match=r"Sec\. 11\.4\.8 requires a ground motion hazard analysis"):
         Site.from_mapped(1.0, 0.3, "D", 8.0, "II", damping_system=False)
+
+
+HOSTILE = [math.nan, math.inf, -math.inf, 1e308, -1e308, 5e-324, -0.0, 0.0, 2**63, 10**400, np.float64("nan"),
+           np.array([1.0, 2.0]), np.array([[1.0]]), np.array([]), [], (), {}, [1.0, "x"], [math.nan], "", "1.0",
+           b"1", 1j, True, None, object()]
+VALID = {"site": Site(0.9, 0.45, 8.0, "II"), "system": "steel-smf", "weights": [3.0e6, 2.0e6],
+         "story_heights": [3600.0, 3600.0], "risk_category": "II", "rho": 1.0, "overstrength": 1.2,
+         "hardening": 0.03, "minimum_stiffness": 1.0e3, "story_model": None, "strength_scale": 0.9,
+         "damping_ratio": 0.05, "damping_modes": (1, 2)}
+
+
+@pytest.mark.parametrize("argument", sorted(VALID))
+@pytest.mark.parametrize("value", HOSTILE, ids=repr)
+def test_hostile_values_give_a_design_or_a_value_error(argument, value):
+    arguments = {**VALID, argument: value}
+    try:
+        design = design_frame(arguments.pop("site"), arguments.pop("system"), arguments.pop("weights"),
+                              arguments.pop("story_heights"), **arguments)
+    except ValueError:
+        return
+    for name in ("stiffnesses", "strengths", "design_drifts", "theta", "cvx"):
+        assert np.isfinite(getattr(design, name)).all(), name
+    assert math.isfinite(design.analytical_period) and design.analytical_period > 0

@@ -25,7 +25,8 @@ DOCS = REPO / "docs"
 GUIDE = DOCS / "getting-started.rst"
 # Modules whose name the package gives to one of their functions (vdw_frames.verification.verify is the function).
 SHADOWED_MODULES = {"vdw_frames.verification.verify"}
-SUBPACKAGES = ("element", "motion", "frame", "design", "paper", "interop", "assessment", "verification", "plotting")
+SUBPACKAGES = ("element", "motion", "asce7", "frame", "design", "paper", "interop", "assessment", "verification",
+               "plotting")
 
 
 @pytest.fixture(scope="module")

@@ -4,12 +4,19 @@ Every function cites its table, section or equation of ASCE 7-16.  Units: accele
 heights in mm at the interface (converted to ft where the code's equation is in ft: T_a of Eq. 12.8-7),
 weights and forces in N (any consistent force unit works).
 
-Sources: ASCE/SEI 7-16 "Minimum Design Loads and Associated Criteria for Buildings and Other Structures".
-Eqs. 12.8-2 to 12.8-7, 12.8-11/12, 12.8-15 to 12.8-17, the definition of k (Sec. 12.8.3) and of theta and
-theta_max (Sec. 12.8.7), and the values of Table 12.8-1 were checked against secondary copies of the text
-(design-software manuals, course notes and forum quotes of ASCE 7-10/7-16 found with the project's search
-tool; the wording is unchanged from ASCE 7-10).  Tables 1.5-2, 11.6-1, 11.6-2 and 12.12-1 and Sec. 11.6's
-S_1 >= 0.75 g rule are from the standard as recalled; check them against the standard.
+Sources: ASCE/SEI 7-16 "Minimum Design Loads and Associated Criteria for Buildings and Other Structures".  The
+standard's own text could not be read here; the clauses were checked against secondary copies found with the
+project's search tool: Eqs. 12.8-2 ... 12.8-7 and 12.8-11/12 and k (Sec. 12.8.3) in ideCAD's ASCE 7-16 help
+pages ("12.8 Equivalent Lateral Force Method") and published ASCE 7-16 calculations; Sec. 12.8.6 and 12.12.1 in
+ideCAD's "Determination and Limitation of Story Drifts per ASCE 7-16" and STRUCTURE magazine's "ASCE 7-16
+Provisions for Lateral Drift Determination" (Sec. 12.8.6.2: drift at the computed period, no C_u T_a cap);
+Eqs. 12.8-16/17 (theta, theta_max = 0.5 / (beta C_d) <= 0.25, theta <= 0.10 needs no P-Delta) as quoted from
+ASCE 7-10 (unchanged in 7-16) on eng-tips and by Dlubal; Table 12.8-1's values in the asce7-16 Python package
+and a vendor's tool (rhces.com); Table 12.12-1 "all other structures" (0.020 / 0.015 / 0.010 h_sx) in the ASCE 7-22
+summary of callout.app (the same values as 7-16); Sec. 12.3.4.2 (rho = 1.3 in SDC D-F unless a condition is met)
+quoted in a Santa Ana permit calculation.  Tables 1.5-2, 11.6-1 and 11.6-2 and Sec. 11.6's S_1 >= 0.75 g rule are
+from the standard as recalled (Table 11.6's D rows, S_DS >= 0.50 and S_D1 >= 0.20, agree with the ASCE 7-22
+worked example of steelcalculator.app); check them against the standard.
 """
 
 from __future__ import annotations
@@ -20,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validation import finite_array, finite_scalar, positive, show
-from .systems import SeismicSystem
+from .systems import SeismicSystem, seismic_system
 
 FT = 304.8
 """mm per ft: h_n of Eq. 12.8-7 is in ft."""
@@ -104,11 +111,15 @@ def upper_limit_coefficient(sd1: float) -> float:
     return float(np.interp(sd1, values, coefficients))
 
 
-def approximate_period(height_mm: float, system: SeismicSystem) -> float:
+def approximate_period(height_mm: float, system: SeismicSystem | str) -> float:
     """T_a = C_t h_n^x (s; ASCE 7-16 Eq. 12.8-7, h_n in ft) for a structure ``height_mm`` (mm, > 0) tall, with C_t
-    and x of ``system`` (Table 12.8-2)."""
+    and x of ``system`` (a :class:`SeismicSystem` or its key; Table 12.8-2)."""
+    spec = seismic_system(system)
     height_ft = positive("height (h_n, mm)", height_mm) / FT
-    return float(system.ct * height_ft**system.x)
+    period = float(spec.ct * height_ft**spec.x)
+    if not math.isfinite(period):
+        raise ValueError(f"height h_n = {show(height_mm)} mm gives no finite T_a")
+    return period
 
 
 def seismic_response_coefficient(sds: float, sd1: float, s1: float | None, tl: float, period: float,  # noqa: PLR0917
@@ -133,7 +144,7 @@ def seismic_response_coefficient(sds: float, sd1: float, s1: float | None, tl: f
     if period <= tl:
         cap, cap_equation = sd1 / (period * r / ie), "12.8-3"
     else:
-        cap, cap_equation = sd1 * tl / (period**2 * r / ie), "12.8-4"
+        cap, cap_equation = sd1 * tl / period / period / (r / ie), "12.8-4"  # period**2 would overflow
     if cap < cs:
         cs, equation = cap, cap_equation
     if minimum:
@@ -144,6 +155,9 @@ def seismic_response_coefficient(sds: float, sd1: float, s1: float | None, tl: f
         floor = 0.5 * s1 / (r / ie)
         if floor > cs:
             cs, equation = floor, "12.8-6"
+    if not math.isfinite(cs):
+        raise ValueError(f"C_s is not finite for S_DS = {show(sds)}, S_D1 = {show(sd1)}, T = {show(period)} s, "
+                         f"R = {show(r)}, I_e = {show(ie)}: give values of a building")
     return float(cs), equation
 
 
@@ -172,7 +186,8 @@ def vertical_distribution(weights: ArrayLike, heights_above_base: ArrayLike, k: 
     k = finite_scalar("k", k)
     if not 1.0 <= k <= 2.0:
         raise ValueError(f"k must lie in [1, 2] (ASCE 7-16 Sec. 12.8.3), got {show(k)}")
-    products = w * (h / h.max()) ** k  # scaled by the top height: the ratio is the same, no overflow
+    with np.errstate(over="ignore"):
+        products = w / w.max() * (h / h.max()) ** k  # scaled: the ratios are the same, no overflow
     return products / products.sum()
 
 
@@ -188,9 +203,9 @@ def default_redundancy_factor(sdc: str) -> float:
     return 1.3 if str(sdc).strip().upper() in ("D", "E", "F") else 1.0
 
 
-def design_drift_limit_divisor(system: SeismicSystem, sdc: str, rho: float) -> float:
+def design_drift_limit_divisor(system: SeismicSystem | str, sdc: str, rho: float) -> float:
     """The divisor of Delta_a: rho for moment frames in SDC D-F (ASCE 7-16 Sec. 12.12.1.1), 1 otherwise."""
-    if system.moment_frame and str(sdc).strip().upper() in ("D", "E", "F"):
+    if seismic_system(system).moment_frame and str(sdc).strip().upper() in ("D", "E", "F"):
         return positive("rho", rho)
     return 1.0
 
@@ -219,7 +234,11 @@ def stability_coefficient(gravity_load: ArrayLike, design_drift: ArrayLike, ie: 
                          "the same length")
     if (p < 0).any() or (v <= 0).any() or (h <= 0).any():
         raise ValueError("P_x must be >= 0, V_x and h_sx > 0")
-    return p * drift * positive("ie (I_e)", ie) / (v * h * positive("cd (C_d)", cd))
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        theta = p * drift * positive("ie (I_e)", ie) / (v * h * positive("cd (C_d)", cd))
+    if not np.isfinite(theta).all():
+        raise ValueError("theta is not finite for these P_x, Delta, V_x and h_sx: give values of a building")
+    return theta
 
 
 def theta_max(beta: float, cd: float) -> float:

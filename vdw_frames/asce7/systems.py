@@ -1,12 +1,12 @@
 """Seismic force-resisting systems: ASCE 7-16 Table 12.2-1 (R, Omega_0, C_d, height limits) and Table 12.8-2
 (C_t, x of the approximate period).
 
-Every number carries its table and row.  Values are those of ASCE 7-16 as printed in Table 12.2-1, part C
-("Moment-resisting frame systems"), and Table 12.8-2.  The text of Table 12.2-1 could not be read in full
-from a copy of ASCE 7-16 when this was written: R, Omega_0, C_d and the height limits below are from the
-standard as recalled and agree with the ASCE 7-05/7-10 Table 12.2-1 extracts and design examples seen
-(e.g. R = 8, Omega_0 = 3, C_d = 5.5 for steel special moment frames; C.3 limited to 35 ft in SDC D).
-Check them against the standard before relying on them.
+Every number carries its table and row.  The standard's own Table 12.2-1 could not be read here: R = 8,
+Omega_0 = 3, C_d = 5.5 of steel special moment frames (row C.1) agree with the worked examples read (e.g.
+steelcalculator.app's ASCE 7-22 ELF example); the other rows' coefficients (C.3 steel intermediate, C.4 steel
+ordinary, C.5 reinforced-concrete special moment frames) and all height limits are from the standard as
+recalled (they are unchanged since ASCE 7-05).  Check them against ASCE 7-16 before relying on them.
+Table 12.8-2 (C_t, x) agrees with the secondary copies read (design-software pages, permit calculations).
 
 Footnotes of Table 12.2-1 that raise or relax the height limits (e.g. for one-story buildings or light roofs
 with intermediate and ordinary steel moment frames, Sec. 12.2.5.6, 12.2.5.7) are NOT applied: the limits
@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .._validation import show
+from .._validation import non_negative, positive, show, text
 
 SDC_LETTERS = ("A", "B", "C", "D", "E", "F")
 """Seismic design categories of ASCE 7-16 Sec. 11.6."""
@@ -41,6 +41,7 @@ PERIOD_ROWS = {
     "steel-buckling-restrained-braced-frame": "Table 12.8-2, steel buckling-restrained braced frames",
     "other": "Table 12.8-2, all other structural systems",
 }
+"""The row of ASCE 7-16 Table 12.8-2 each key of :data:`PERIOD_PARAMETERS` comes from."""
 
 
 @dataclass(frozen=True)
@@ -67,6 +68,22 @@ class SeismicSystem:
     x: float
     period_row: str
     moment_frame: bool = True
+
+    def __post_init__(self) -> None:
+        for name in ("key", "name", "table_row", "period_row"):
+            if not text(name, getattr(self, name)).strip():
+                raise ValueError(f"{name} must not be empty")
+        for name, label in (("r", "R"), ("omega0", "Omega_0"), ("cd", "C_d"), ("ct", "C_t"), ("x", "x")):
+            object.__setattr__(self, name, positive(f"{name} ({label})", getattr(self, name)))
+        limits = self.height_limits_ft
+        if not isinstance(limits, dict) or set(limits) != set(SDC_LETTERS[1:]):
+            raise ValueError(f"height_limits_ft must map each of B, C, D, E, F to a height in ft (None = NL, "
+                             f"0.0 = NP), got {show(limits)}")
+        object.__setattr__(self, "height_limits_ft", {
+            sdc: None if limits[sdc] is None else non_negative(f"height_limits_ft[{sdc!r}] (ft)", limits[sdc])
+            for sdc in SDC_LETTERS[1:]})
+        if not isinstance(self.moment_frame, bool):
+            raise ValueError(f"moment_frame must be True or False, got {show(self.moment_frame)}")
 
     def height_limit_ft(self, sdc: str) -> float | None:
         """The height limit (ft) in seismic design category ``sdc``: None = not limited (NL), 0.0 = not

@@ -230,8 +230,12 @@ def first_period(masses: np.ndarray, stiffnesses: np.ndarray) -> float:
     """T_1 (s) of the bare elastic shear building: the smallest eigenvalue of M^-1/2 K M^-1/2 (tridiagonal).
     ``masses`` tonne, ``stiffnesses`` N/mm (story 1 first)."""
     k_next = np.append(stiffnesses[1:], 0.0)
-    diagonal = (stiffnesses + k_next) / masses
-    off = -stiffnesses[1:] / np.sqrt(masses[:-1] * masses[1:])
+    with np.errstate(over="ignore", invalid="ignore"):
+        diagonal = (stiffnesses + k_next) / masses
+        off = -stiffnesses[1:] / np.sqrt(masses[:-1] * masses[1:])
+    if not (np.isfinite(diagonal).all() and np.isfinite(off).all()):
+        raise ValueError(f"the story stiffnesses {show(stiffnesses.tolist())} N/mm over the masses overflow: "
+                         "give stiffnesses and weights of a building")
     if masses.size == 1:
         omega2 = float(diagonal[0])
     else:
@@ -247,14 +251,15 @@ def _story_shears(weights: np.ndarray, heights_above_base: np.ndarray, k: float,
     return cvx, forces, np.cumsum(forces[::-1])[::-1]
 
 
-def _drift_stiffness(shear: float, load: float, height: float, allowable: float, cd: float, ie: float) -> float:
-    """The least stiffness (N/mm) of a story whose design drift with P-Delta (Sec. 12.8.7) meets ``allowable``."""
-    plain = cd * shear / (ie * allowable)
+def _drift_stiffness(shears: np.ndarray, loads: np.ndarray, heights: np.ndarray, allowable: np.ndarray, cd: float,
+                     ie: float) -> np.ndarray:
+    """The least stiffness (N/mm) of each story whose design drift with P-Delta (Sec. 12.8.7) meets ``allowable``:
+    k_1 = C_d V_x / (I_e allowable) where theta = P_x / (k_1 h_sx) <= 0.10, else the smaller of k_1 + P_x / h_sx
+    (amplified drift at the limit) and the stiffness at theta = 0.10 (not amplified)."""
+    plain = cd * shears / (ie * allowable)
     # theta = 0.10 there; 1e-12 stiffer so that rounding cannot put theta a hair above 0.10 (and amplify the drift)
-    threshold = load / (code.THETA_AMPLIFY * height) * (1.0 + 1e-12)
-    if plain >= threshold:
-        return plain
-    return min(plain + load / height, threshold)
+    threshold = loads / (code.THETA_AMPLIFY * heights) * (1.0 + 1e-12)
+    return np.where(plain >= threshold, plain, np.minimum(plain + loads / heights, threshold))
 
 
 def _floors(weights: ArrayLike, story_heights: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -332,8 +337,7 @@ def _stiffness(site: Site, spec: SeismicSystem, ie: float, w: np.ndarray, h: np.
                                                                      drift_period, spec.r, ie, minimum=False)
         drift_k = code.distribution_exponent(drift_period)
         _, _, drift_shears = _story_shears(w, levels, drift_k, cs_drift * float(w.sum()))
-        by_drift = np.array([_drift_stiffness(drift_shears[i], loads[i], h[i], allowable[i], spec.cd, ie)
-                             for i in range(h.size)])
+        by_drift = _drift_stiffness(drift_shears, loads, h, allowable, spec.cd, ie)
         stiffnesses = np.maximum(np.maximum(by_drift, stability), minimum)
         t1 = first_period(masses, stiffnesses)
         if abs(t1 - drift_period) <= PERIOD_TOLERANCE * t1:
@@ -435,7 +439,11 @@ def design_frame(site: Site, system: str | SeismicSystem, weights: ArrayLike, st
     base_shear = cs * weight
     k = code.distribution_exponent(period)
     cvx, forces, shears = _story_shears(w, np.cumsum(h), k, base_shear)
-    strengths = shears * factors * overstrength * strength_scale
+    with np.errstate(over="ignore"):
+        strengths = shears * factors * overstrength * strength_scale
+    if not np.isfinite(strengths).all():
+        raise ValueError(f"the story strengths overflow (overstrength = {show(overstrength)}, story shears up to "
+                         f"{shears.max():.6g} N)")
     models = [make_model(float(value)) for value in strengths]
     for story, model in enumerate(models, start=1):
         if not isinstance(model, STORY_MODELS):
