@@ -7,6 +7,7 @@ N-mm-s-tonne."""
 from __future__ import annotations
 
 import importlib.util
+import itertools
 import math
 
 import numpy as np
@@ -36,7 +37,7 @@ def _table_b(beta: float) -> float:
     """Table 18.7-1 interpolated by hand: the printed rows (percent -> B) and a straight line between them."""
     rows = [(2, 0.8), (5, 1.0), (10, 1.2), (20, 1.5), (30, 1.8), (40, 2.1), (50, 2.4)]
     percent = 100 * beta
-    for (p0, b0), (p1, b1) in zip(rows, rows[1:]):
+    for (p0, b0), (p1, b1) in itertools.pairwise(rows):
         if p0 <= percent <= p1:
             return b0 + (b1 - b0) * (percent - p0) / (p1 - p0)
     raise AssertionError(f"beta {beta} outside the rows typed in")

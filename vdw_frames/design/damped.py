@@ -282,21 +282,21 @@ def mce_drift_amplitudes(frame: ShearBuilding, site: Site, period: float, dampin
 
 
 def _size(frame: ShearBuilding, device: Device, target: float, site: Site, distribution: str
-          ) -> tuple[DeviceSizing, np.ndarray, int, bool]:
-    """(sizing, amplitudes mm, iterations, converged): sizing and the MCE_R amplitude iterated (module docstring)."""
+          ) -> tuple[DeviceSizing, np.ndarray, bool]:
+    """(sizing, amplitudes mm, converged): sizing and the MCE_R amplitude iterated (module docstring)."""
     period = float(modal_analysis(frame, 1).periods[0])
     amplitudes = mce_drift_amplitudes(frame, site, period, target)
-    for iteration in range(1, AMPLITUDE_ITERATIONS + 1):
+    for _ in range(AMPLITUDE_ITERATIONS):
         sizing = size_devices(frame, device, target, distribution=distribution, drift_amplitude=amplitudes)
         updated = mce_drift_amplitudes(frame, site, sizing.period, target)
         change = float(np.max(np.abs(updated - amplitudes) / np.maximum(np.abs(amplitudes), 1e-12)))
         if sizing.drift_amplitudes is None:  # linear devices: sized independently of the amplitude
-            return sizing, updated, iteration, True
+            return sizing, updated, True
         amplitudes = updated
         if change < AMPLITUDE_TOLERANCE:
             sizing = size_devices(frame, device, target, distribution=distribution, drift_amplitude=amplitudes)
-            return sizing, amplitudes, iteration, True
-    return sizing, amplitudes, AMPLITUDE_ITERATIONS, False
+            return sizing, amplitudes, True
+    return sizing, amplitudes, False
 
 
 def _limit_checks(building: ShearBuilding, result: VerificationResult, limits: dict[str, float]
@@ -399,9 +399,64 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
     :class:`DampedDesign`; ValueError for bad input (a target damping <= 0 or >= 1, unknown limits, ...) and
     where the first target is not above the bare frame's damping.
     """
-    timings: dict[str, float] = {}
     target = _target(target_damping)
     limits = _check_limits(device_limits)
+    n_rounds = _check_options(rounds, irregular, distribution, p695, bounds, frame_options)
+    loop = _Loop(site, system, weights, story_heights, device, distribution=distribution, frame_options=frame_options)
+    records = list(records) if records is not None else None
+    current, history, previous = target, [], None
+    change = f"start: target damping {target:.3f}, the Chapter 12 frame"
+    for number in range(1, n_rounds + 1):
+        undamped, sizing, amplitudes, change = loop.devices(current, number, change)
+        devices = dict(sizing.building.devices.items())
+        nonlinear = sizing.drift_amplitudes is not None
+        effective = float(modal_analysis(undamped.building.with_devices(devices), 1,
+                                         drift_amplitude=amplitudes if nonlinear else None).damping_ratios[0])
+        b = damping_coefficient(effective)
+        v = float(undamped.base_shear)
+        v_min, rule = minimum_base_shear(v, b, bool(irregular))
+        frame = loop.frame_design(min(1.0, v_min / v))
+        building = frame.building.with_devices(devices)
+
+        started = time.perf_counter()
+        result = verify(building, site, records, bounds=bounds, executor=executor, progress=progress)
+        seconds = time.perf_counter() - started
+        loop.timings[f"verification round {number}"] = seconds
+        checks = _limit_checks(building, result, limits)
+        failures = _failures(result, checks)
+        cases = [name for name, _ in result.cases]
+        history.append(DesignRound(
+            number=number, change=change, target_damping=current, stiffness_factor=loop.factor,
+            devices=sizing.description, drift_amplitudes=amplitudes, effective_damping=effective, b_v_plus_i=b,
+            v=v, v_min=v_min, v_min_rule=rule, drift_statistic=float(np.max(result.drift_statistic)),
+            drift_limit=float(result.drift_limit),
+            unacceptable={case: sum(1 for reason in result.unacceptable[c] if reason) for c, case in enumerate(cases)},
+            allowed_unacceptable=result.allowed_unacceptable, device_peaks=_peaks(result), limits=checks,
+            passed=not failures, seconds=seconds, failed=tuple(failures)))
+        final = (frame, undamped, building, sizing, effective, b, v_min, rule, amplitudes, result)
+        if not failures:
+            break
+        current, change = loop.next_round(current, number, result, previous, checks, failures)
+        previous = result
+
+    (frame, undamped, building, sizing, effective, b, v_min, rule, amplitudes, result) = final
+    failed = history[-1].failed
+    failure = None if not failed else (f"no design passed in {len(history)} round(s); the last failed: "
+                                       + "; ".join(failed))
+    collapse = None
+    if p695:
+        collapse = _collapse(building, {} if isinstance(p695, (bool, np.bool_)) else dict(p695),
+                             executor, progress, loop.timings)
+    return DampedDesign(
+        frame=frame, undamped=undamped, building=building, sizing=sizing, effective_damping=effective,
+        b_v_plus_i=b, v_min=v_min, v_min_rule=rule, drift_amplitudes=amplitudes, rounds=tuple(history),
+        verification=result, passed=not failed, failure=failure, collapse=collapse, timings=loop.timings,
+        assumptions=tuple(loop.assumptions), device_limits=limits)
+
+
+def _check_options(rounds: object, irregular: object, distribution: object, p695: object, bounds: object,
+                   frame_options: dict[str, Any]) -> int:
+    """The number of rounds, after the other options of :func:`design_damped` are checked."""
     n_rounds = whole_number("rounds", rounds, 1)
     if n_rounds > MAX_ROUNDS:
         raise ValueError(f"rounds must be a whole number in 1 ... {MAX_ROUNDS}, got {rounds!r}")
@@ -417,121 +472,91 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
     if bounds is None:
         raise ValueError("bounds are required: ASCE 7-16 Sec. 18.2.4.5 asks for upper- and lower-bound device "
                          "properties; give bounds=(lambda_min, lambda_max)")
-    records = list(records) if records is not None else None
-    minimum = frame_options.pop("minimum_stiffness", 0.0)
+    return n_rounds
 
-    def frame_design(scale: float, factor: float, base: FrameDesign | None) -> FrameDesign:
+
+class _Loop:
+    """The state of :func:`design_damped` between rounds: the frame's stiffness factor, the times, the
+    assumptions."""
+
+    def __init__(self, site: Site, system: Any, weights: ArrayLike, story_heights: ArrayLike, device: Device, *,
+                 distribution: str, frame_options: dict[str, Any]) -> None:
+        self.site, self.system, self.weights, self.story_heights = site, system, weights, story_heights
+        self.device, self.distribution = device, distribution
+        self.options = dict(frame_options)
+        self.minimum = self.options.pop("minimum_stiffness", 0.0)
+        self.timings: dict[str, float] = {}
+        self.factor = 1.0
+        self.assumptions = [
+            "B_V+I from the complex-mode damping ratio of mode 1 with the devices at the MCE_R amplitude estimate "
+            "(inherent damping included, the frame's hysteretic damping not); ASCE 7-16 Sec. 18.7 computes beta_V1 "
+            "from the devices' energy at the design displacement (as recalled): at MCE_R a nonlinear FVD's ratio "
+            "is smaller, so B smaller and V_min larger (conservative).",
+            "Table 18.7-1's cells and Sec. 18.2.1.1's Eq. 18.2-1 and exception are as recalled, not read from the "
+            "standard (vdw_frames.asce7.damping says what was read).",
+            "The MCE_R story drift amplitudes are a one-mode estimate: Gamma_1 |phi_i - phi_i-1| S_aM(T_1) / "
+            "B(target) (T_1 / 2 pi)^2 with the bare frame's undamped mode and the damped T_1.",
+            f"Devices distributed by the '{distribution}' rule of size_devices over every story.",
+            f"Iteration (this package's rule): a failed round adds {TARGET_STEP:g} to the target damping, and "
+            f"multiplies every story's stiffness by {STIFFNESS_STEP:g} when a device limit failed, the enlargement "
+            f"cut the drift statistic over its limit by less than {STALL_FRACTION:.0%}, or the next target is out "
+            "of reach.",
+        ]
+        self.base = self.frame_design(1.0)
+
+    def frame_design(self, scale: float) -> FrameDesign:
+        """design_frame at ``strength_scale`` ``scale``, every story at least ``factor`` x the first design's."""
         started = time.perf_counter()
-        floor: Any = minimum if base is None or factor == 1.0 else \
-            np.maximum(factor * np.asarray(base.stiffnesses, dtype=float), minimum)
-        design = design_frame(site, system, weights, story_heights, strength_scale=scale, minimum_stiffness=floor,
-                              **frame_options)
-        timings["ELF"] = timings.get("ELF", 0.0) + time.perf_counter() - started
+        floor: Any = self.minimum if self.factor == 1.0 else \
+            np.maximum(self.factor * np.asarray(self.base.stiffnesses, dtype=float), self.minimum)
+        design = design_frame(self.site, self.system, self.weights, self.story_heights, strength_scale=scale,
+                              minimum_stiffness=floor, **self.options)
+        self.timings["ELF"] = self.timings.get("ELF", 0.0) + time.perf_counter() - started
         return design
 
-    assumptions = [
-        "B_V+I from the complex-mode damping ratio of mode 1 with the devices at the MCE_R amplitude estimate "
-        "(inherent damping included, the frame's hysteretic damping not); ASCE 7-16 Sec. 18.7 computes beta_V1 "
-        "from the devices' energy at the design displacement (as recalled): at MCE_R a nonlinear FVD's ratio is "
-        "smaller, so B smaller and V_min larger (conservative).",
-        "Table 18.7-1's cells and Sec. 18.2.1.1's Eq. 18.2-1 and exception are as recalled, not read from the "
-        "standard (vdw_frames.asce7.damping says what was read).",
-        "The MCE_R story drift amplitudes are a one-mode estimate: Gamma_1 |phi_i - phi_i-1| S_aM(T_1) / "
-        "B(target) (T_1 / 2 pi)^2 with the bare frame's undamped mode and the damped T_1.",
-        f"Devices distributed by the '{distribution}' rule of size_devices over every story.",
-        f"Iteration (this package's rule): a failed round adds {TARGET_STEP:g} to the target damping, and "
-        f"multiplies every story's stiffness by {STIFFNESS_STEP:g} when a device limit failed, the enlargement cut "
-        f"the drift statistic over its limit by less than {STALL_FRACTION:.0%}, or the next target is out of reach.",
-    ]
-    base = frame_design(1.0, 1.0, None)
-    factor, current = 1.0, target
-    history: list[DesignRound] = []
-    change = f"start: target damping {target:.3f}, the Chapter 12 frame"
-    final: dict[str, Any] = {}
-    previous: VerificationResult | None = None
-    for number in range(1, n_rounds + 1):
-        # The devices on the (stiffened) Chapter 12 frame; an unreachable target stiffens the frame first.
+    def devices(self, target: float, number: int, change: str) -> tuple[FrameDesign, DeviceSizing, np.ndarray, str]:
+        """(the 1.0 V frame, the sizing, the amplitudes, the change text): devices for ``target`` on the frame; a
+        target out of reach stiffens the frame (at most 3 times) before a ValueError."""
         for _ in range(4):
-            undamped = base if factor == 1.0 else frame_design(1.0, factor, base)
+            undamped = self.base if self.factor == 1.0 else self.frame_design(1.0)
             started = time.perf_counter()
             try:
-                sizing, amplitudes, iterations, converged = _size(undamped.building.without_devices(), device,
-                                                                  current, site, distribution)
+                sizing, amplitudes, converged = _size(undamped.building.without_devices(), self.device, target,
+                                                      self.site, self.distribution)
             except ValueError as error:
-                timings["sizing"] = timings.get("sizing", 0.0) + time.perf_counter() - started
                 if not _out_of_reach(error):
                     raise
-                factor *= STIFFNESS_STEP
-                change += f"; target {current:.3f} out of reach ({error}), so frame stiffness x{factor:g}"
+                self.factor *= STIFFNESS_STEP
+                change += f"; target {target:.3f} out of reach ({error}), so frame stiffness x{self.factor:g}"
                 continue
-            timings["sizing"] = timings.get("sizing", 0.0) + time.perf_counter() - started
-            break
-        else:
-            raise ValueError(f"target damping {current:.3f} stays out of reach with the frame stiffened x{factor:g}: "
-                             f"{change}")
-        if not converged:
-            assumptions.append(f"round {number}: the sizing-amplitude iteration stopped at its bound "
-                               f"({AMPLITUDE_ITERATIONS}) before the amplitudes settled to {AMPLITUDE_TOLERANCE:g}")
-        devices = {story: group for story, group in sizing.building.devices.items()}
-        damped_bare = undamped.building.with_devices(devices)
-        nonlinear = sizing.drift_amplitudes is not None
-        effective = float(modal_analysis(damped_bare, 1, drift_amplitude=amplitudes if nonlinear else None)
-                          .damping_ratios[0])
-        b = damping_coefficient(effective)
-        v = float(undamped.base_shear)
-        v_min, rule = minimum_base_shear(v, b, bool(irregular))
-        frame = frame_design(min(1.0, v_min / v), factor, base)
-        building = frame.building.with_devices(devices)
+            finally:
+                self.timings["sizing"] = self.timings.get("sizing", 0.0) + time.perf_counter() - started
+            if not converged:
+                self.assumptions.append(
+                    f"round {number}: the sizing-amplitude iteration stopped at its bound ({AMPLITUDE_ITERATIONS}) "
+                    f"before the amplitudes settled to {AMPLITUDE_TOLERANCE:g}")
+            return undamped, sizing, amplitudes, change
+        raise ValueError(f"target damping {target:.3f} stays out of reach with the frame stiffened x{self.factor:g}: "
+                         f"{change}")
 
-        started = time.perf_counter()
-        result = verify(building, site, records, bounds=bounds, executor=executor, progress=progress)
-        seconds = time.perf_counter() - started
-        timings[f"verification round {number}"] = seconds
-        checks = _limit_checks(building, result, limits)
-        failures = _failures(result, checks)
-        passed = not failures
-        cases = [name for name, _ in result.cases]
-        history.append(DesignRound(
-            number=number, change=change, target_damping=current, stiffness_factor=factor,
-            devices=sizing.description, drift_amplitudes=amplitudes, effective_damping=effective, b_v_plus_i=b,
-            v=v, v_min=v_min, v_min_rule=rule, drift_statistic=float(np.max(result.drift_statistic)),
-            drift_limit=float(result.drift_limit),
-            unacceptable={case: sum(1 for reason in result.unacceptable[c] if reason) for c, case in enumerate(cases)},
-            allowed_unacceptable=result.allowed_unacceptable, device_peaks=_peaks(result), limits=checks,
-            passed=passed, seconds=seconds, failed=tuple(failures)))
-        final = dict(frame=frame, undamped=undamped, building=building, sizing=sizing, effective=effective, b=b,
-                     v_min=v_min, rule=rule, amplitudes=amplitudes, result=result, failures=failures)
-        if passed:
-            break
+    def next_round(self, target: float, number: int, result: VerificationResult,
+                   previous: VerificationResult | None, checks: tuple[LimitCheck, ...],
+                   failures: list[str]) -> tuple[float, str]:
+        """(the next target, the change text) after round ``number`` failed (module docstring, step 6)."""
         limit_failed = any(not check.passed for check in checks)
-        ratio = _governing_ratio(result)
-        stalled = len(history) > 1 and ratio > (1.0 - STALL_FRACTION) * _governing_ratio(previous)
-        previous = result
-        why = "; ".join(failures)
-        if current + TARGET_STEP < 1.0:
-            current += TARGET_STEP
-            change = f"target damping +{TARGET_STEP:g} to {current:.3f} (devices enlarged)"
+        stalled = previous is not None and \
+            _governing_ratio(result) > (1.0 - STALL_FRACTION) * _governing_ratio(previous)
+        if target + TARGET_STEP < 1.0:
+            target += TARGET_STEP
+            change = f"target damping +{TARGET_STEP:g} to {target:.3f} (devices enlarged)"
         else:
             change = "target damping kept (no larger ratio below 1)"
         if limit_failed or stalled:
-            factor *= STIFFNESS_STEP
+            self.factor *= STIFFNESS_STEP
             reason = "a device limit failed" if limit_failed else \
                 f"the last enlargement cut the drift ratio to limit by less than {STALL_FRACTION:.0%}"
-            change += f", frame stiffness x{STIFFNESS_STEP:g} (to x{factor:g}: {reason})"
-        change += f", because round {number} failed: {why}"
-
-    passed = not final["failures"]
-    failure = None if passed else (f"no design passed in {len(history)} round(s); the last failed: "
-                                   + "; ".join(final["failures"]))
-    collapse = None
-    if p695:
-        collapse = _collapse(final["building"], {} if isinstance(p695, (bool, np.bool_)) else dict(p695),
-                             executor, progress, timings)
-    return DampedDesign(
-        frame=final["frame"], undamped=final["undamped"], building=final["building"], sizing=final["sizing"],
-        effective_damping=final["effective"], b_v_plus_i=final["b"], v_min=final["v_min"], v_min_rule=final["rule"],
-        drift_amplitudes=final["amplitudes"], rounds=tuple(history), verification=final["result"], passed=passed,
-        failure=failure, collapse=collapse, timings=timings, assumptions=tuple(assumptions), device_limits=limits)
+            change += f", frame stiffness x{STIFFNESS_STEP:g} (to x{self.factor:g}: {reason})"
+        return target, change + f", because round {number} failed: " + "; ".join(failures)
 
 
 def _collapse(building: ShearBuilding, options: dict[str, Any], executor: concurrent.futures.Executor | None,
