@@ -828,6 +828,10 @@ def _design_building(args: argparse.Namespace) -> int:
     # The frame first: every bad value of the input (system, risk category, heights, lengths) fails here, before
     # any folder is made, record read or analysis run.
     frame = design_frame(given.site, system, given.weights, given.story_heights, **given.frame_options)
+    if device != "none" and bounds is None:
+        raise ValueError("give --bounds LAMBDA_MIN LAMBDA_MAX (or bounds in the input's [design] table): the devices' "
+                         "property modification factors of ASCE 7-16 Sec. 18.2.4.5, e.g. 0.8 1.2")
+    records = _verify_records(records_name) if device != "none" else None
     out = _output_folder(args.out)
     print(given.site.describe())
     print(f"{frame.system.name} ({frame.system.table_row}), SDC {frame.sdc}, T_a = {frame.ta:.3f} s, "
@@ -857,12 +861,9 @@ def _design_building(args: argparse.Namespace) -> int:
         return 0
     from .design.damped import design_damped
 
-    if bounds is None:
-        raise ValueError("give --bounds LAMBDA_MIN LAMBDA_MAX (or bounds in the input's [design] table): the devices' "
-                         "property modification factors of ASCE 7-16 Sec. 18.2.4.5, e.g. 0.8 1.2")
+    assert bounds is not None  # checked above, before any analysis
     prototype = given.prototype if given.prototype is not None else building_from_dict(
         {"masses": [1.0], "stiffnesses": [1.0], "devices": [DEFAULT_PROTOTYPES[device]]}).device_list[0][1]
-    records = _verify_records(records_name)
     options = dict(given.frame_options)
     if given.distribution is not None:
         options["distribution"] = given.distribution

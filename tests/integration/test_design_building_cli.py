@@ -21,7 +21,7 @@ from vdw_frames.motion import G, write_at2
 INPUT = """
 [site]                  # examples/verify.py's site: S_MS = 0.9 g, S_M1 = 0.45 g
 ss = 0.75
-s1 = 0.3
+s1 = {s1}
 site_class = "C"
 tl = 8.0
 risk_category = "{risk}"
@@ -47,9 +47,9 @@ stiffness = 1.0e6
 """
 
 
-def write_input(folder, name="site.toml", risk="II", top="3500.0", extra=""):
+def write_input(folder, name="site.toml", risk="II", top="3500.0", extra="", s1="0.3"):
     path = folder / name
-    path.write_text(INPUT.format(risk=risk, top=top, extra=extra))
+    path.write_text(INPUT.format(risk=risk, top=top, extra=extra, s1=s1))
     return path
 
 
@@ -142,6 +142,9 @@ def test_a_device_limit_below_any_reachable_demand_is_the_reason_and_exits_1(fol
     (["--target-damping", "-0.2", "--device", "fvd"], {}, "--target-damping must be a damping ratio in (0, 1)"),
     (["--device", "walls"], {}, "[design.prototype] is of type 'fluid_viscous', not 'wall'"),
     ([], {"top": "3500.0, 3500.0"}, "weights and story heights of different lengths"),
+    # a site outside the spectrum's rules: S_1 >= 0.6 g needs a site-specific hazard analysis (Sec. 11.4.8)
+    ([], {"s1": "0.6"}, "Sec. 11.4.8 requires a ground motion hazard analysis"),
+    (["--bounds", "1.2", "0.8"], {}, "lambda"),
 ])
 def test_bad_input_is_one_error_line_and_exit_2(folder, tmp_path, capsys, arguments, input_options, words):
     site = write_input(tmp_path, **input_options)
