@@ -132,7 +132,7 @@ def device_rows(building: ShearBuilding, verification: VerificationResult | None
     slip force N and stiffness N/mm; magnification) and, with ``verification``, its largest demands over the
     suite and the bounds: deformation along the device (mm), velocity (mm/s), force (N), and for walls the
     shear strain (-) and temperature rise (K)."""
-    walls = {index: demand for index, demand in enumerate(verification.walls)} if verification else {}
+    walls = {demand.wall: demand for demand in verification.walls} if verification else {}
     others = {demand.device: demand for demand in verification.devices} if verification else {}
     rows = []
     wall_index = other_index = 0
