@@ -75,9 +75,9 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     # Many analyses warn alike (walls beyond their identified strains): counted here, the first one shown.
     if caught:
-        kinds = {str(item.message).split(": ", 1)[-1].split(":")[0] for item in caught}
-        print(f"{len(caught)} warnings from the analyses ({'; '.join(sorted(kinds))}); the first: "
-              f"{str(caught[0].message)[:300]}")
+        first = str(caught[0].message)
+        print(f"{len(caught)} warnings from the analyses (each design's report states its walls' strains); the "
+              f"first: {first[:240]}{' ...' if len(first) > 240 else ''}")
     return code
 
 
@@ -234,8 +234,12 @@ def print_summary(columns) -> None:
                      f"acceleration {column['acceleration']:.2f} g (bare: {bare['acceleration']:.2f} g); "
                      f"verification {column['verdict']}.")
     if any(c["collapse"] is not None for c in columns):
-        parts.append("The ACMR rows are FEMA P695 collapse assessments of these three designs (far-field set, "
-                     "SDC Dmax, T = C_u T_a); one archetype is not a P695 system qualification.")
+        margins = "; ".join(f"{c['label'].split(' (')[0]} {acmr_text(c['collapse'])[0]}"
+                            + ("" if c["collapse"][0] is c["collapse"][1] else
+                               f", {acmr_text(c['collapse'])[1]} if a failed device is not counted")
+                            for c in columns if c["collapse"] is not None)
+        parts.append(f"FEMA P695 (far-field set, SDC Dmax, T = C_u T_a) gives ACMR: {margins}; one archetype is "
+                     "not a P695 system qualification.")
     parts.append("Chapter 18 lets the damped frames carry less strength (V_min >= 0.75 V); whether that is a gain "
                  "depends on the rows below it: the drifts, accelerations and collapse margins at the same site.")
     print(" ".join(parts))

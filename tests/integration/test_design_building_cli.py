@@ -118,6 +118,17 @@ def test_the_damped_design_s_verification_is_repeated_by_verify_on_the_saved_fil
     assert (again / "suite.csv").read_text() == (out / "verification_suite.csv").read_text()
     text = (out / "design.md").read_text()
     assert "**Verdict: PASS**" in text and "Device schedule" in text and "### Rounds" in text
+    # The schedule's demands are the verification's largest over the bounds, device by device.
+    with (out / "devices.csv").open() as handle:
+        schedule = list(csv.DictReader(handle))
+    with (again / "devices.csv").open() as handle:
+        per_case = list(csv.DictReader(handle))
+    for index, row in enumerate(schedule, start=1):
+        cases = [case for case in per_case if int(case["device"]) == index]
+        assert len(cases) == 3
+        assert float(row["deformation_mm"]) == max(float(case["deformation_mm"]) for case in cases)
+        assert float(row["force_n"]) == max(float(case["force_N"]) for case in cases)
+        assert float(row["c"]) == building.device_list[index - 1][1].C
 
 
 @pytest.mark.slow
