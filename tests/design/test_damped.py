@@ -135,3 +135,21 @@ def test_bad_device_limits_are_refused(limits, match):
 def test_bad_options_are_refused(options, match):
     with pytest.raises(ValueError, match=match):
         design_damped(SITE, "steel-smf", WEIGHTS, HEIGHTS, FVD, 0.2, bounds=(0.8, 1.2), **options)
+
+
+@pytest.mark.slow
+def test_a_target_out_of_reach_is_sized_for_ninety_percent_of_the_largest_added_damping():
+    """A wall's added damping has a maximum (damping_curve finds it on its own sizer): a target beyond it sizes the
+    walls for bare + 0.9 x (largest - bare), which the sized building's complex modes then have (to 1e-6)."""
+    from vdw_frames.design import damping_curve
+    from vdw_frames.design.damped import REACH_FRACTION, _size_once
+
+    frame = vdw.ShearBuilding([300.0, 300.0], [4.0e4, 3.0e4], story_heights=[3500.0, 3500.0])
+    wall = vdw.paper.fitted(300, area=1.0e5, thickness=10.0)
+    curve = damping_curve(frame, wall, distribution="stiffness", factors=[1.0])
+    sizing, used, largest = _size_once(frame, wall, 0.95, "stiffness", np.full(2, 10.0))
+    assert REACH_FRACTION == 0.9
+    assert largest == pytest.approx(curve.best_damping_ratio, rel=1e-9)
+    expected = curve.bare_damping_ratio + 0.9 * (curve.best_damping_ratio - curve.bare_damping_ratio)
+    assert used == pytest.approx(expected, rel=1e-9)
+    assert vdw.modal_analysis(sizing.building, 1).damping_ratios[0] == pytest.approx(expected, abs=1e-6)

@@ -32,7 +32,9 @@
 4. **The reduced frame**: :func:`design_frame` again with ``strength_scale = V_min / V`` (strengths scaled; the
    stiffness that the drift limit requires is the one design_frame states), the sized devices put on it.
 5. **The verification**: :func:`~vdw_frames.verification.verify` (Chapters 16 and 18: the scaled suite, nominal,
-   upper and lower bound), and the **device limits**: ``device_limits`` (below) and the walls' own
+   upper and lower bound) from the candidate records long enough for the round's period range (records
+   shorter than 5 x T_upper, which :func:`~vdw_frames.verification.scaled_suite` refuses, are left out of the
+   selection and the assumptions say how many), and the **device limits**: ``device_limits`` (below) and the walls' own
    :class:`~vdw_frames.element.limits.WallLimits` strain, each against the verification's largest demand over
    the suite and the bounds (:attr:`VerificationResult.walls`, :attr:`VerificationResult.devices`).
 6. **The iteration** (at most ``rounds`` verifications): when the verification or a device limit fails,
@@ -41,8 +43,9 @@
    * the frame is stiffened too, by :data:`STIFFNESS_STEP` (every story's stiffness at least that times the
      round's, through design_frame's ``minimum_stiffness``), when devices alone cannot pass: a device limit
      failed, the last enlargement cut the largest drift statistic over its limit by less than
-     :data:`STALL_FRACTION`, or the next target is out of reach (the walls' damping has a maximum:
-     :func:`size_devices` says so; the target is then kept).
+     :data:`STALL_FRACTION`, or the target is out of reach.  A wall's added damping has a maximum
+     (:func:`size_devices` finds it): a target beyond it is kept as the goal, and the round's devices are sized
+     for the bare ratio + :data:`REACH_FRACTION` of the largest added damping (stated in the round).
 
    Every :class:`DesignRound` records what changed, why, and the verification's numbers.  When no round
    passes, :attr:`DampedDesign.failure` names each failed criterion or limit and by how much (demand / limit).
@@ -77,12 +80,13 @@ from .._validation import finite_scalar, positive, show, whole_number
 from ..asce7.damping import damping_coefficient, minimum_base_shear
 from ..element.device import Device
 from ..frame.building import ShearBuilding, is_wall, story_matrix
-from ..frame.modal import modal_analysis
+from ..frame.modal import linearisation_notes, modal_analysis, nonlinear_devices
 from ..motion.record import GroundMotion
 from ..verification.spectrum import Site
+from ..verification.suite import MIN_CYCLES, period_range
 from ..verification.verify import PropertyBounds, VerificationResult, verify
 from .elf import FrameDesign, design_frame
-from .sizing import DISTRIBUTIONS, DeviceSizing, size_devices
+from .sizing import DISTRIBUTIONS, DeviceSizing, _Sizer, _solve, size_devices
 
 TARGET_STEP = 0.05
 """Added to the target damping ratio when a round fails (this package's rule)."""
@@ -93,6 +97,9 @@ MAX_ROUNDS = 10
 STALL_FRACTION = 0.10
 """Devices alone are taken not to pass when an enlargement cut the largest drift statistic over its limit by less
 than this fraction (this package's rule): the frame is stiffened too."""
+REACH_FRACTION = 0.90
+"""Where the target damping is out of reach, the devices are sized for the bare ratio + this fraction of the largest
+achievable added damping (this package's rule; at the maximum itself the devices' size is ill-determined)."""
 AMPLITUDE_TOLERANCE = 0.01
 """Sizing and the MCE_R amplitude estimate are iterated until the amplitudes change by less than this (relative)."""
 AMPLITUDE_ITERATIONS = 20
@@ -242,7 +249,7 @@ class DampedDesign:
                              f"{'pass' if assessment.passes_acmr20 else 'FAIL'}{note}")
             lines += ["", "One archetype is not a FEMA P695 system qualification: P695 asks for performance groups "
                       "of archetypes; this is the assessment of this one design.", ""]
-        lines += ["### Times", ""] + [f"- {part}: {seconds:.1f} s" for part, seconds in self.timings.items()]
+        lines += ["### Times", ""] + [f"- {part}: {seconds:.3g} s" for part, seconds in self.timings.items()]
         lines += ["", "### Assumptions", ""] + [f"- {text}" for text in self.assumptions]
         return "\n".join(lines) + "\n"
 
@@ -270,7 +277,7 @@ def _target(value: object) -> float:
 def mce_drift_amplitudes(frame: ShearBuilding, site: Site, period: float, damping: float) -> np.ndarray:
     """Story drift amplitudes (mm) of mode 1 at MCE_R, the estimate of the module docstring: the bare ``frame``'s
     undamped first mode (shape and Gamma_1), the site's MCE_R S_a at ``period`` (s) divided by B at ``damping``
-    (-, Table 18.7-1), times (T / 2 pi)^2."""
+    (-, Table 18.7-1), times (T / 2 pi)^2; floored at 1e-6 mm."""
     mass = np.asarray(frame.mass_matrix)
     stiffness = np.asarray(frame.stiffness_matrix) + story_matrix(np.asarray(frame.geometric_stiffness))
     _, shapes = eigh(stiffness, mass)
@@ -278,25 +285,61 @@ def mce_drift_amplitudes(frame: ShearBuilding, site: Site, period: float, dampin
     gamma = float(shape @ mass @ np.ones(frame.stories) / (shape @ mass @ shape))
     spectral = float(np.asarray(site.spectral_acceleration(period))) / damping_coefficient(damping)
     displacement = spectral * (period / (2.0 * np.pi)) ** 2
-    return np.abs(gamma * np.diff(shape, prepend=0.0)) * displacement
+    # Floored at 1 nm: a story that does not drift in the mode still needs an amplitude > 0 to linearise at.
+    return np.maximum(np.abs(gamma * np.diff(shape, prepend=0.0)) * displacement, 1e-6)
 
 
-def _size(frame: ShearBuilding, device: Device, target: float, site: Site, distribution: str
-          ) -> tuple[DeviceSizing, np.ndarray, bool]:
-    """(sizing, amplitudes mm, converged): sizing and the MCE_R amplitude iterated (module docstring)."""
+@dataclass(frozen=True)
+class _Sized:
+    """What :func:`_size` found: the sizing, the amplitudes (mm), whether they settled, the damping ratio the devices
+    were sized for (-) and, where the target was out of reach, the largest achievable ratio (-; else None)."""
+
+    sizing: DeviceSizing
+    amplitudes: np.ndarray
+    converged: bool
+    target: float
+    largest: float | None
+
+
+def _size_once(frame: ShearBuilding, device: Device, target: float, distribution: str,
+               amplitudes: np.ndarray) -> tuple[DeviceSizing, float, float | None]:
+    """(sizing, the ratio sized for, the largest achievable ratio or None): ``target``, or where it is out of reach
+    :data:`REACH_FRACTION` of the largest added damping (:func:`size_devices` finds the largest)."""
+    try:
+        return size_devices(frame, device, target, distribution=distribution, drift_amplitude=amplitudes), target, None
+    except ValueError as error:
+        if not _out_of_reach(error):
+            raise
+    sizer = _Sizer(frame, device, 1, distribution, None, walls_only=False, amplitudes=amplitudes)
+    bare = float(-sizer.bare.real / abs(sizer.bare))
+    largest = sizer.best()[1]
+    reachable = bare + REACH_FRACTION * (largest - bare)
+    # As size_devices does it, on the same sizer: its complex poles are cached, the search for the maximum not redone.
+    factor = _solve(sizer, reachable)
+    sized = sizer.building_for(factor)
+    nonlinear = bool(nonlinear_devices(sized))
+    result = modal_analysis(sized, 1, drift_amplitude=amplitudes if nonlinear else None)
+    sizing = DeviceSizing(sized, device, factor, sizer.weights, 1, reachable, float(result.damping_ratios[0]),
+                          float(result.periods[0]), bare, amplitudes if nonlinear else None,
+                          linearisation_notes(sized, amplitudes), sizer.describe(factor))
+    return sizing, reachable, largest
+
+
+def _size(frame: ShearBuilding, device: Device, target: float, site: Site, distribution: str) -> _Sized:
+    """Sizing and the MCE_R amplitude iterated (module docstring); a target out of reach is capped."""
     period = float(modal_analysis(frame, 1).periods[0])
     amplitudes = mce_drift_amplitudes(frame, site, period, target)
     for _ in range(AMPLITUDE_ITERATIONS):
-        sizing = size_devices(frame, device, target, distribution=distribution, drift_amplitude=amplitudes)
-        updated = mce_drift_amplitudes(frame, site, sizing.period, target)
+        sizing, used, largest = _size_once(frame, device, target, distribution, amplitudes)
+        updated = mce_drift_amplitudes(frame, site, sizing.period, used)
         change = float(np.max(np.abs(updated - amplitudes) / np.maximum(np.abs(amplitudes), 1e-12)))
         if sizing.drift_amplitudes is None:  # linear devices: sized independently of the amplitude
-            return sizing, updated, True
+            return _Sized(sizing, updated, True, used, largest)
         amplitudes = updated
         if change < AMPLITUDE_TOLERANCE:
-            sizing = size_devices(frame, device, target, distribution=distribution, drift_amplitude=amplitudes)
-            return sizing, amplitudes, True
-    return sizing, amplitudes, False
+            sizing, used, largest = _size_once(frame, device, target, distribution, amplitudes)
+            return _Sized(sizing, amplitudes, True, used, largest)
+    return _Sized(sizing, amplitudes, False, used, largest)
 
 
 def _limit_checks(building: ShearBuilding, result: VerificationResult, limits: dict[str, float]
@@ -407,7 +450,11 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
     current, history, previous = target, [], None
     change = f"start: target damping {target:.3f}, the Chapter 12 frame"
     for number in range(1, n_rounds + 1):
-        undamped, sizing, amplitudes, change = loop.devices(current, number, change)
+        undamped, sized = loop.devices(current, number)
+        sizing, amplitudes = sized.sizing, sized.amplitudes
+        if sized.largest is not None:
+            change += (f"; target {current:.3f} out of reach (at most {sized.largest:.4f}): devices sized for "
+                       f"{sized.target:.4f}")
         devices = dict(sizing.building.devices.items())
         nonlinear = sizing.drift_amplitudes is not None
         effective = float(modal_analysis(undamped.building.with_devices(devices), 1,
@@ -419,14 +466,15 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
         building = frame.building.with_devices(devices)
 
         started = time.perf_counter()
-        result = verify(building, site, records, bounds=bounds, executor=executor, progress=progress)
+        candidates = loop.candidates(building, records, number)
+        result = verify(building, site, candidates, bounds=bounds, executor=executor, progress=progress)
         seconds = time.perf_counter() - started
         loop.timings[f"verification round {number}"] = seconds
         checks = _limit_checks(building, result, limits)
         failures = _failures(result, checks)
         cases = [name for name, _ in result.cases]
         history.append(DesignRound(
-            number=number, change=change, target_damping=current, stiffness_factor=loop.factor,
+            number=number, change=change, target_damping=sized.target, stiffness_factor=loop.factor,
             devices=sizing.description, drift_amplitudes=amplitudes, effective_damping=effective, b_v_plus_i=b,
             v=v, v_min=v_min, v_min_rule=rule, drift_statistic=float(np.max(result.drift_statistic)),
             drift_limit=float(result.drift_limit),
@@ -436,7 +484,7 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
         final = (frame, undamped, building, sizing, effective, b, v_min, rule, amplitudes, result)
         if not failures:
             break
-        current, change = loop.next_round(current, number, result, previous, checks, failures)
+        current, change = loop.next_round(current, sized, number, result, previous, checks=checks, failures=failures)
         previous = result
 
     (frame, undamped, building, sizing, effective, b, v_min, rule, amplitudes, result) = final
@@ -487,6 +535,7 @@ class _Loop:
         self.minimum = self.options.pop("minimum_stiffness", 0.0)
         self.timings: dict[str, float] = {}
         self.factor = 1.0
+        self._p695_records: list[GroundMotion] | None = None
         self.assumptions = [
             "B_V+I from the complex-mode damping ratio of mode 1 with the devices at the MCE_R amplitude estimate "
             "(inherent damping included, the frame's hysteretic damping not); ASCE 7-16 Sec. 18.7 computes beta_V1 "
@@ -499,10 +548,29 @@ class _Loop:
             f"Devices distributed by the '{distribution}' rule of size_devices over every story.",
             f"Iteration (this package's rule): a failed round adds {TARGET_STEP:g} to the target damping, and "
             f"multiplies every story's stiffness by {STIFFNESS_STEP:g} when a device limit failed, the enlargement "
-            f"cut the drift statistic over its limit by less than {STALL_FRACTION:.0%}, or the next target is out "
-            "of reach.",
+            f"cut the drift statistic over its limit by less than {STALL_FRACTION:.0%}, or the target is out of "
+            f"reach (the devices then sized for the bare ratio + {REACH_FRACTION:.0%} of the largest added damping).",
         ]
         self.base = self.frame_design(1.0)
+
+    def candidates(self, building: ShearBuilding, records: list[GroundMotion] | None,
+                   number: int) -> list[GroundMotion]:
+        """The records long enough for ``building``'s period range (Sec. 16.2 as :func:`scaled_suite` checks it:
+        at least :data:`MIN_CYCLES` x T_upper); ``records`` None: the FEMA P695 far-field set, loaded once.  The
+        records left out are stated in the assumptions."""
+        if records is None:
+            if self._p695_records is None:
+                from ..motion.p695 import fema_p695_records
+
+                self._p695_records = list(fema_p695_records("far-field"))
+            records = self._p695_records
+        shortest = MIN_CYCLES * period_range(building).upper
+        kept = [motion for motion in records if motion.duration >= shortest]
+        if len(kept) < len(records):
+            self.assumptions.append(
+                f"round {number}: {len(records) - len(kept)} of the {len(records)} candidate records left out of the "
+                f"suite's selection: shorter than {MIN_CYCLES:g} x T_upper = {shortest:.3g} s (scaled_suite's rule)")
+        return kept
 
     def frame_design(self, scale: float) -> FrameDesign:
         """design_frame at ``strength_scale`` ``scale``, every story at least ``factor`` x the first design's."""
@@ -514,46 +582,39 @@ class _Loop:
         self.timings["ELF"] = self.timings.get("ELF", 0.0) + time.perf_counter() - started
         return design
 
-    def devices(self, target: float, number: int, change: str) -> tuple[FrameDesign, DeviceSizing, np.ndarray, str]:
-        """(the 1.0 V frame, the sizing, the amplitudes, the change text): devices for ``target`` on the frame; a
-        target out of reach stiffens the frame (at most 3 times) before a ValueError."""
-        for _ in range(4):
-            undamped = self.base if self.factor == 1.0 else self.frame_design(1.0)
-            started = time.perf_counter()
-            try:
-                sizing, amplitudes, converged = _size(undamped.building.without_devices(), self.device, target,
-                                                      self.site, self.distribution)
-            except ValueError as error:
-                if not _out_of_reach(error):
-                    raise
-                self.factor *= STIFFNESS_STEP
-                change += f"; target {target:.3f} out of reach ({error}), so frame stiffness x{self.factor:g}"
-                continue
-            finally:
-                self.timings["sizing"] = self.timings.get("sizing", 0.0) + time.perf_counter() - started
-            if not converged:
-                self.assumptions.append(
-                    f"round {number}: the sizing-amplitude iteration stopped at its bound ({AMPLITUDE_ITERATIONS}) "
-                    f"before the amplitudes settled to {AMPLITUDE_TOLERANCE:g}")
-            return undamped, sizing, amplitudes, change
-        raise ValueError(f"target damping {target:.3f} stays out of reach with the frame stiffened x{self.factor:g}: "
-                         f"{change}")
+    def devices(self, target: float, number: int) -> tuple[FrameDesign, _Sized]:
+        """(the 1.0 V frame, the sizing) for ``target`` on the frame at the current stiffness factor."""
+        undamped = self.base if self.factor == 1.0 else self.frame_design(1.0)
+        started = time.perf_counter()
+        try:
+            sized = _size(undamped.building.without_devices(), self.device, target, self.site, self.distribution)
+        finally:
+            self.timings["sizing"] = self.timings.get("sizing", 0.0) + time.perf_counter() - started
+        if not sized.converged:
+            self.assumptions.append(
+                f"round {number}: the sizing-amplitude iteration stopped at its bound ({AMPLITUDE_ITERATIONS}) "
+                f"before the amplitudes settled to {AMPLITUDE_TOLERANCE:g}")
+        return undamped, sized
 
-    def next_round(self, target: float, number: int, result: VerificationResult,
-                   previous: VerificationResult | None, checks: tuple[LimitCheck, ...],
+    def next_round(self, target: float, sized: _Sized, number: int, result: VerificationResult,
+                   previous: VerificationResult | None, *, checks: tuple[LimitCheck, ...],
                    failures: list[str]) -> tuple[float, str]:
         """(the next target, the change text) after round ``number`` failed (module docstring, step 6)."""
         limit_failed = any(not check.passed for check in checks)
         stalled = previous is not None and \
             _governing_ratio(result) > (1.0 - STALL_FRACTION) * _governing_ratio(previous)
-        if target + TARGET_STEP < 1.0:
+        if sized.largest is not None:
+            change = (f"target damping {target:.3f} kept (out of reach: at most {sized.largest:.4f} on this frame, "
+                      f"devices sized for {sized.target:.4f})")
+        elif target + TARGET_STEP < 1.0:
             target += TARGET_STEP
             change = f"target damping +{TARGET_STEP:g} to {target:.3f} (devices enlarged)"
         else:
             change = "target damping kept (no larger ratio below 1)"
-        if limit_failed or stalled:
+        if limit_failed or stalled or sized.largest is not None:
             self.factor *= STIFFNESS_STEP
-            reason = "a device limit failed" if limit_failed else \
+            reason = "a device limit failed" if limit_failed else "the target is out of reach" \
+                if sized.largest is not None else \
                 f"the last enlargement cut the drift ratio to limit by less than {STALL_FRACTION:.0%}"
             change += f", frame stiffness x{STIFFNESS_STEP:g} (to x{self.factor:g}: {reason})"
         return target, change + f", because round {number} failed: " + "; ".join(failures)
