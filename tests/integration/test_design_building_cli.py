@@ -13,9 +13,11 @@ import numpy as np
 import pytest
 from verification_cases import synthetic_records
 
+from vdw_frames import ShearBuilding
 from vdw_frames.cli import main
 from vdw_frames.config import load_building, load_design_input, load_verification
 from vdw_frames.design import design_frame
+from vdw_frames.design.report import write_design_report
 from vdw_frames.motion import G, write_at2
 
 INPUT = """
@@ -164,3 +166,9 @@ def test_bad_input_is_one_error_line_and_exit_2(folder, tmp_path, capsys, argume
     assert code == 2 and len(error) == 1 and error[0].startswith("vdw-frames: error:"), error
     assert words in error[0]
     assert not (tmp_path / "out" / "design.md").exists()
+
+
+def test_the_report_refuses_what_is_not_a_design_and_makes_no_folder(tmp_path):
+    with pytest.raises(ValueError, match="design must be a FrameDesign or a DampedDesign, got ShearBuilding"):
+        write_design_report(ShearBuilding([1.0], [1.0]), tmp_path / "report")
+    assert not (tmp_path / "report").exists()

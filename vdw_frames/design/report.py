@@ -61,9 +61,9 @@ def write_design_report(design: FrameDesign | DampedDesign, out_dir: str | os.Pa
     P695 set name or a folder), for the command that repeats it.  ValueError for a design of another type or a
     folder that cannot be written.
     """
-    folder = output_folder(out_dir, "design report folder")
     if not isinstance(design, (FrameDesign, DampedDesign)):
         raise ValueError(f"design must be a FrameDesign or a DampedDesign, got {type(design).__name__}")
+    folder = output_folder(out_dir, "design report folder")
     damped = isinstance(design, DampedDesign)
     frame = design.frame if isinstance(design, DampedDesign) else design
     verification = design.verification if isinstance(design, DampedDesign) else None
