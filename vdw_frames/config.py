@@ -1003,6 +1003,9 @@ def _design_floors(floors: dict[str, Any]) -> tuple[tuple[float, ...], tuple[flo
                          f"{'weights' if 'weights' in values else 'masses'} and {len(heights)} story heights")
     options: dict[str, Any] = {key: floors[key] for key in ("damping_ratio", "damping_modes") if key in floors}
     if "damping_modes" in options:
+        if not isinstance(options["damping_modes"], list):
+            raise ValueError(f"building damping_modes must be a list of two mode numbers, got "
+                             f"{show(options['damping_modes'])}")
         options["damping_modes"] = tuple(options["damping_modes"])
     return weights, heights, options
 
