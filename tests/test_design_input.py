@@ -75,6 +75,6 @@ def test_a_wall_prototype_and_a_named_record_set(tmp_path):
 ])
 def test_a_malformed_input_is_one_value_error_naming_the_file(tmp_path, change, words):
     path = write(tmp_path, {**BASE, **change})
-    with pytest.raises(ValueError, match="input.json") as raised:
+    with pytest.raises(ValueError, match=r"input\.json") as raised:
         load_design_input(path)
     assert words in str(raised.value)
