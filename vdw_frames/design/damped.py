@@ -332,14 +332,13 @@ def _size(frame: ShearBuilding, device: Device, target: float, site: Site, distr
     for _ in range(AMPLITUDE_ITERATIONS):
         sizing, used, largest = _size_once(frame, device, target, distribution, amplitudes)
         updated = mce_drift_amplitudes(frame, site, sizing.period, used)
-        change = float(np.max(np.abs(updated - amplitudes) / np.maximum(np.abs(amplitudes), 1e-12)))
         if sizing.drift_amplitudes is None:  # linear devices: sized independently of the amplitude
             return _Sized(sizing, updated, True, used, largest)
-        amplitudes = updated
-        if change < AMPLITUDE_TOLERANCE:
-            sizing, used, largest = _size_once(frame, device, target, distribution, amplitudes)
+        change = float(np.max(np.abs(updated - amplitudes) / amplitudes))
+        if change < AMPLITUDE_TOLERANCE:  # the amplitudes sized at reproduce themselves: settled
             return _Sized(sizing, amplitudes, True, used, largest)
-    return _Sized(sizing, amplitudes, False, used, largest)
+        sized_at, amplitudes = amplitudes, updated
+    return _Sized(sizing, sized_at, False, used, largest)
 
 
 def _limit_checks(building: ShearBuilding, result: VerificationResult, limits: dict[str, float]
