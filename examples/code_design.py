@@ -42,7 +42,7 @@ from vdw_frames.assessment import collapse_assessment
 from vdw_frames.cli import plain_warnings
 from vdw_frames.config import load_design_input
 from vdw_frames.design import design_damped, design_frame
-from vdw_frames.design.report import write_design_report
+from vdw_frames.design_report import write_design_report
 from vdw_frames.element.limits import WallLimits
 from vdw_frames.frame import run_batch, worker_pool
 from vdw_frames.motion import G, fema_p695_records

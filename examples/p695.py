@@ -31,8 +31,9 @@ import sys
 import time
 from pathlib import Path
 
-from vdw_frames.assessment import CollapseCriterion, collapse_assessment, write_collapse_report
+from vdw_frames.assessment import CollapseCriterion, collapse_assessment
 from vdw_frames.cli import plain_warnings
+from vdw_frames.collapse_report import write_collapse_report
 from vdw_frames.config import load_building
 from vdw_frames.frame import worker_pool
 from vdw_frames.motion import G, fema_p695_records

@@ -17,7 +17,7 @@ import pytest
 from builders import VALUES_G, peer_at2, write_file
 
 from vdw_frames import GroundMotion, _files, read_at2, read_two_column
-from vdw_frames.assessment import report
+from vdw_frames import collapse_report as report
 from vdw_frames.config import load_building
 from vdw_frames.motion import write_at2
 from vdw_frames.plotting import plot_loops

@@ -537,7 +537,8 @@ def _design_sizing(args: argparse.Namespace, building: ShearBuilding, out: Path)
 
 def _collapse(args: argparse.Namespace) -> int:
     """The ``collapse`` command: FEMA P695 collapse assessment of a building file on a P695 record set."""
-    from .assessment import CollapseCriterion, HuntAndFill, collapse_assessment, write_collapse_report
+    from .assessment import CollapseCriterion, HuntAndFill, collapse_assessment
+    from .collapse_report import write_collapse_report
     from .config import load_analysis
     from .motion import G
 
@@ -804,7 +805,7 @@ def _design_building(args: argparse.Namespace) -> int:
 
     from .config import DEFAULT_PROTOTYPES, DEVICE_TYPES, building_from_dict, load_design_input
     from .design.elf import design_frame
-    from .design.report import write_design_report
+    from .design_report import write_design_report
     from .verification import PropertyBounds
 
     given = load_design_input(args.site)

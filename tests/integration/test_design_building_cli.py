@@ -17,7 +17,7 @@ from vdw_frames import ShearBuilding
 from vdw_frames.cli import main
 from vdw_frames.config import load_building, load_design_input, load_verification
 from vdw_frames.design import design_frame
-from vdw_frames.design.report import write_design_report
+from vdw_frames.design_report import write_design_report
 from vdw_frames.motion import G, write_at2
 
 INPUT = """

@@ -47,8 +47,6 @@ def test_the_profiles_draw_the_design_s_shears_strengths_drifts_and_limits(tmp_p
     delta, limit = drift.get_lines()
     np.testing.assert_array_equal(delta.get_xdata(), design.design_drifts)
     np.testing.assert_array_equal(limit.get_xdata(), design.allowable_drifts)
-    with pytest.raises(ValueError, match="design must be a FrameDesign"):
-        plot_design_profiles(design.building, tmp_path / "x.png")
 
 
 def test_the_drift_spread_draws_each_record_s_largest_story_per_bound(tmp_path, captured):

@@ -106,6 +106,11 @@ class SizingCurve:
     best_damping_ratio: float
     best_period: float
 
+    @property
+    def stories_text(self) -> str:
+        """The walled stories in words ("stories 1-10", "story 3")."""
+        return story_text(self.stories)
+
 
 def _check_wall(wall: object) -> None:
     if not isinstance(wall, WALL_TYPES):

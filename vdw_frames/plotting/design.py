@@ -6,13 +6,16 @@ from __future__ import annotations
 import os
 from collections.abc import Mapping
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..design.elf import FrameDesign
-from ..design.sizing import SizingCurve, story_text
-from ..verification.verify import VerificationResult
 from ._figure import figure_path, pyplot, save
+
+if TYPE_CHECKING:  # types only: the figures sit below the design and verification that draw them in their reports
+    from ..design.elf import FrameDesign
+    from ..design.sizing import SizingCurve
+    from ..verification.verify import VerificationResult
 
 
 def plot_damping_curve(curve: SizingCurve, path: str | os.PathLike[str], target: float | None = None,
@@ -29,8 +32,6 @@ def plot_damping_curve(curve: SizingCurve, path: str | os.PathLike[str], target:
     otherwise than the curve's lie off it), or (damping ratio, period, area factor) as a point on the
     curves where they lie on them.
     """
-    if not isinstance(curve, SizingCurve):
-        raise ValueError(f"curve must be a SizingCurve (from damping_curve), got {type(curve).__name__}")
     path = figure_path(path, "design_damping.png")
     plt = pyplot()
     scale = 1.0 if curve.wall is None else curve.wall.area / 1e6  # size-axis units per area factor
@@ -61,10 +62,10 @@ def plot_damping_curve(curve: SizingCurve, path: str | os.PathLike[str], target:
     top.set_ylabel(f"mode {curve.mode} damping ratio (%)")
     bottom.set_ylabel(f"mode {curve.mode} period (s)")
     if curve.wall is None:
-        bottom.set_xlabel(f"area factor on its own walls (1 = as they are; {story_text(curve.stories)})")
+        bottom.set_xlabel(f"area factor on its own walls (1 = as they are; {curve.stories_text})")
     else:
         per = "per story" if curve.distribution == "uniform" else "largest story"
-        bottom.set_xlabel(f"wall shear area, m$^2$ ({per}; {curve.distribution} over {story_text(curve.stories)})")
+        bottom.set_xlabel(f"wall shear area, m$^2$ ({per}; {curve.distribution} over {curve.stories_text})")
     for axes in (top, bottom):
         axes.grid(True, which="both", alpha=0.3)
         axes.legend(fontsize="small")
@@ -82,8 +83,6 @@ def plot_design_profiles(design: FrameDesign, path: str | os.PathLike[str], titl
     factor x overstrength x strength_scale).  Right: the design story drift delta_x (Eq. 12.8-15 with the
     P-Delta factor, mm) against its limit Delta_a / rho (Table 12.12-1, Sec. 12.12.1.1), dashed.
     """
-    if not isinstance(design, FrameDesign):
-        raise ValueError(f"design must be a FrameDesign (from design_frame), got {type(design).__name__}")
     path = figure_path(path, "design_profiles.png")
     plt = pyplot()
     stories = np.arange(1, design.strengths.size + 1)
@@ -121,8 +120,6 @@ def plot_drift_spread(result: VerificationResult, path: str | os.PathLike[str], 
     the suite statistic of the story that governs (a black bar: the mean, or Sec. 16.4.1.2's statistic with
     unacceptable responses), and the limit (2 x Table 12.12-1 for Risk Category I-II, dashed).
     """
-    if not isinstance(result, VerificationResult):
-        raise ValueError(f"result must be a VerificationResult (from verify), got {type(result).__name__}")
     path = figure_path(path, "drift_spread.png")
     plt = pyplot()
     peaks = 100.0 * np.max(result.peak_drift_ratio, axis=2)  # (cases, records)

@@ -17,9 +17,9 @@
 Every file is written atomically (:mod:`vdw_frames._files`); files of other names in the folder are left alone.
 Units: N, mm, s, tonne (kN in the figures).
 
-This module is the output end of :mod:`vdw_frames.design`, beside :mod:`vdw_frames.config` and the command
-line: it imports the building-file writer (config) and the figures (plotting) inside its function, and nothing
-in the package below those imports it.
+This module sits above :mod:`vdw_frames.design`, :mod:`vdw_frames.config` and :mod:`vdw_frames.plotting`, beside
+the command line that calls it: the design note needs the building-file writer and the figures, which themselves
+read the design's records.
 """
 
 from __future__ import annotations
@@ -32,14 +32,18 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._files import output_folder, write_text
-from ..frame.building import ShearBuilding, is_wall
-from .damped import DampedDesign
-from .elf import FrameDesign
+from ._files import output_folder, write_text
+from .config import save_building
+from .design.damped import DampedDesign
+from .design.elf import FrameDesign
+from .frame.building import ShearBuilding, is_wall
+from .plotting.design import plot_design_profiles, plot_drift_spread
+from .plotting.verification import plot_story_drifts
+from .verification import report as verification_report
 
 if TYPE_CHECKING:
-    from ..assessment.collapse import CollapseAssessment
-    from ..verification.verify import PropertyBounds, VerificationResult
+    from .assessment.collapse import CollapseAssessment
+    from .verification.verify import PropertyBounds, VerificationResult
 
 BUILDING_FILE = "building.toml"
 """The designed building's file name in the report folder."""
@@ -70,15 +74,12 @@ def write_design_report(design: FrameDesign | DampedDesign, out_dir: str | os.Pa
     building = design.building
     if verification is not None:
         bounds = verification.bounds
-    from ..config import save_building
-    from ..plotting.design import plot_design_profiles, plot_drift_spread
-    from ..plotting.verification import plot_story_drifts
 
     heading = title or (f"Design of a {frame.building.stories}-story frame ({frame.system.name.lower()}) "
                         + ("with damping devices by ASCE 7-16 Chapters 12 and 18" if damped else
                            "by ASCE 7-16 Chapter 12"))
     save_building(building, folder / BUILDING_FILE, site=frame.site, bounds=bounds,
-                  comment=f"{heading}\nWritten by vdw_frames.design.report (vdw-frames design-building); units N, "
+                  comment=f"{heading}\nWritten by vdw_frames.design_report (vdw-frames design-building); units N, "
                           "mm, s, tonne.\nFormat: vdw_frames.config.")
     frame.save(folder / "elf.csv")
     schedule = device_rows(building, verification)
@@ -88,8 +89,6 @@ def write_design_report(design: FrameDesign | DampedDesign, out_dir: str | os.Pa
     plot_design_profiles(frame, folder / "design_profiles.png")
     if isinstance(design, DampedDesign) and verification is not None:
         write_text(folder / "rounds.csv", _csv(round_rows(design)), "rounds table")
-        from ..verification import report as verification_report
-
         tables = {"verification_suite.csv": verification_report.suite_csv(verification),
                   "verification_drifts.csv": verification_report.drifts_csv(verification)}
         if verification.walls:

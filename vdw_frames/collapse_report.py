@@ -3,6 +3,10 @@ CSV files per record and per analysis, and three figures.
 
 Every file is written to a temporary name in the output folder and renamed when complete, so an
 interrupted run never leaves a half-written report.  Tables show intensities in g, lengths in mm.
+
+It sits above :mod:`vdw_frames.assessment` and :mod:`vdw_frames.plotting` (0.3.0; it was
+``vdw_frames.assessment.report``, a name that still works with a DeprecationWarning until 0.4.0): the figures
+draw the assessments, and the design loop (:mod:`vdw_frames.design`) runs assessments below both.
 """
 
 from __future__ import annotations
@@ -17,11 +21,11 @@ from typing import TypeVar
 
 import numpy as np
 
-from .._files import write_text
-from ..motion.p695 import RecordMetadata
-from ..motion.record import G
-from ..plotting.collapse import plot_collapse_fragility, plot_collapse_ida, plot_pushover
-from .collapse import CollapseAssessment
+from ._files import write_text
+from .assessment.collapse import CollapseAssessment
+from .motion.p695 import RecordMetadata
+from .motion.record import G
+from .plotting.collapse import plot_collapse_fragility, plot_collapse_ida, plot_pushover
 
 
 def _slug(label: str) -> str:
