@@ -310,3 +310,16 @@ def test_hostile_values_give_a_design_or_a_value_error(argument, value):
     for name in ("stiffnesses", "strengths", "design_drifts", "theta", "cvx"):
         assert np.isfinite(getattr(design, name)).all(), name
     assert math.isfinite(design.analytical_period) and design.analytical_period > 0
+
+
+def test_strengths_without_rho_say_so():
+    # ASCE 7-16 Sec. 12.4.2.1: E_h = rho Q_E.  The strengths are V_x (Q_E) alone: with rho = 1.3 (SDC D) that must
+    # be stated; with rho = 1.0 there is nothing to state.
+    site = Site.from_mapped(0.75, 0.3, "C", 8.0, "II")
+    weights, heights = [600.0 * G] * 3, [3500.0] * 3
+    stated = design_frame(site, "steel-smf", weights, heights)
+    assert stated.rho == 1.3
+    assert np.allclose(stated.strengths, stated.story_shears * stated.p_delta_factors, rtol=1e-12)
+    assert any("12.4.2.1" in text for text in stated.assumptions)
+    assert not any("12.4.2.1" in text for text in design_frame(site, "steel-smf", weights, heights,
+                                                               rho=1.0).assumptions)

@@ -489,6 +489,8 @@ def _assumptions(spec: SeismicSystem, site: Site, category: str, sdc: str, rho: 
            "not divided by rho (Sec. 12.12.1.1 applies to moment frames in SDC D-F only)."),
         ("rho = 1.3 (ASCE 7-16 Sec. 12.3.4.2; the conditions for 1.0 are not checked: give rho=1.0 where they are "
          "met)." if default_rho and rho == 1.3 else f"rho = {rho:g} (Sec. 12.3.4)."),
+        *([f"Story strengths are V_x (Q_E) without rho: ASCE 7-16 Sec. 12.4.2.1 takes E_h = rho Q_E = {rho:g} Q_E "
+           "for member design; give overstrength to include it."] if rho != 1.0 else []),
         f"Drift is checked with the unreduced Chapter 12 forces; strength_scale = {strength_scale:g} scales "
         "strength only.",
         "The structure is taken as regular (no irregularity of Tables 12.3-1/12.3-2 is checked), with no "
