@@ -153,3 +153,33 @@ def test_a_target_out_of_reach_is_sized_for_ninety_percent_of_the_largest_added_
     expected = curve.bare_damping_ratio + 0.9 * (curve.best_damping_ratio - curve.bare_damping_ratio)
     assert used == pytest.approx(expected, rel=1e-9)
     assert vdw.modal_analysis(sizing.building, 1).damping_ratios[0] == pytest.approx(expected, abs=1e-6)
+
+
+def test_a_walls_own_temperature_and_stress_limits_are_checked_with_their_margin():
+    """Issue 31: the device limit checks include a wall's temperature limit (WallLimits.temperature, degC) and
+    its bond stress (WallLimits.stress, MPa), not only its strain.  By hand: a wall at rest at 25 degC heated by
+    15 K reaches 40 degC against its 35 degC limit, an allowed rise of 10 K: ratio 15 / 10 = 1.5; its peak force
+    3.0e5 N over its 1.5e5 mm^2 is 2.0 MPa against a 2.5 MPa bond: ratio 0.8."""
+    import dataclasses
+    from types import SimpleNamespace
+
+    from vdw_frames.design.damped import _failures, _limit_checks
+    from vdw_frames.element.limits import WallLimits
+    from vdw_frames.element.thermal import ISD110_LOSS_PEAK, ThermalProperties
+    from vdw_frames.verification import WallDemand
+
+    wall = dataclasses.replace(vdw.paper.fitted(450, area=1.5e5, thickness=9.0),
+                               thermal=ThermalProperties(ISD110_LOSS_PEAK, 1.7, temperature=25.0),
+                               limits=WallLimits(stress=2.5, temperature=35.0, source="test"))
+    building = vdw.ShearBuilding([500.0], [2.0e4], story_heights=[4000.0], devices={1: [wall]})
+    demand = WallDemand(story=1, wall=0, deformation=9.0, strain=1.0, velocity=50.0, force=3.0e5, cycle_energy=1.0,
+                        cumulative_energy=2.0, temperature_rise=15.0, governing="nominal, r1")
+    result = SimpleNamespace(walls=[demand], devices=[], criteria=[])
+    checks = {c.limit: c for c in _limit_checks(building, result, {})}
+    assert set(checks) == {"temperature_rise (WallLimits)", "stress (WallLimits)"}
+    heat = checks["temperature_rise (WallLimits)"]
+    assert (heat.demand, heat.value, heat.ratio, heat.passed) == (15.0, 10.0, 1.5, False)
+    bond = checks["stress (WallLimits)"]
+    assert bond.ratio == pytest.approx(0.8, rel=1e-12) and bond.passed
+    failures = _failures(result, tuple(checks.values()))
+    assert failures == ["temperature_rise (WallLimits) of wall 1 (story 1): demand 15 vs limit 10 K (ratio 1.500)"]

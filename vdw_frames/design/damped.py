@@ -35,8 +35,9 @@
    upper and lower bound) from the candidate records long enough for the round's period range (records
    shorter than 5 x T_upper, which :func:`~vdw_frames.verification.scaled_suite` refuses, are left out of the
    selection and the assumptions say how many), and the **device limits**: ``device_limits`` (below) and the walls' own
-   :class:`~vdw_frames.element.limits.WallLimits` strain, each against the verification's largest demand over
-   the suite and the bounds (:attr:`VerificationResult.walls`, :attr:`VerificationResult.devices`).
+   :class:`~vdw_frames.element.limits.WallLimits` (strain, stress, temperature), each against the
+   verification's largest demand over the suite and the bounds (:attr:`VerificationResult.walls`,
+   :attr:`VerificationResult.devices`).
 6. **The iteration** (at most ``rounds`` verifications): when the verification or a device limit fails,
 
    * the devices are enlarged: the next round's target damping is the last one + :data:`TARGET_STEP`;
@@ -55,6 +56,9 @@
    as collapse: ``CollapseCriterion(wall_failure=True)``) and without (the same walls without limits, which
    never fail).  FVDs and friction dampers have no failure model here: for them one assessment serves both and
    the report says so.  One archetype is not a P695 system qualification (the report says so).
+
+The walls' own :class:`~vdw_frames.element.limits.WallLimits` are checked too: strain, bond stress (peak force /
+area, MPa) and temperature (the peak rise against the limit less the wall's temperature at rest, K).
 
 ``device_limits``: a dict of limits, any of ``"stroke"`` (mm: every device's largest deformation along itself;
 a wall's is strain x thickness), ``"velocity"`` (mm/s: every device's largest velocity), ``"strain"`` (-: walls,
@@ -124,14 +128,15 @@ class LimitCheck:
 
     @property
     def ratio(self) -> float:
-        return self.demand / self.value
+        # inf where nothing is allowed (a wall at rest at or above its temperature limit)
+        return self.demand / self.value if self.value > 0.0 else float("inf")
 
     @property
     def passed(self) -> bool:
-        return self.ratio <= 1.0
+        return self.demand <= self.value
 
     def text(self) -> str:
-        unit = DEVICE_LIMITS.get(self.limit.split(" ")[0], "-")
+        unit = {**DEVICE_LIMITS, "stress": "MPa"}.get(self.limit.split(" ")[0], "-")
         unit = "" if unit == "-" else f" {unit}"
         return (f"{self.limit} of {self.where}: demand {self.demand:.4g} vs limit {self.value:.4g}{unit} "
                 f"(ratio {self.ratio:.3f})")
@@ -352,6 +357,13 @@ def _limit_checks(building: ShearBuilding, result: VerificationResult, limits: d
         own = getattr(wall, "limits", None)
         if own is not None and own.strain is not None:
             checks.append(LimitCheck("strain (WallLimits)", where, demand.strain, own.strain))
+        if own is not None and own.stress is not None:
+            checks.append(LimitCheck("stress (WallLimits)", where, demand.force / wall.area, own.stress))
+        if own is not None and own.temperature is not None and demand.temperature_rise is not None \
+                and wall.thermal is not None:
+            # the rise (K) against the rise the limit allows from the wall's temperature at rest
+            checks.append(LimitCheck("temperature_rise (WallLimits)", where, demand.temperature_rise,
+                                     own.temperature - wall.thermal.temperature))
         if "strain" in limits:
             checks.append(LimitCheck("strain", where, demand.strain, limits["strain"]))
         if "stroke" in limits:
