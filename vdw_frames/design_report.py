@@ -211,9 +211,14 @@ def _markdown(design: Any, frame: FrameDesign, building: ShearBuilding,  # noqa:
     files += ["`devices.csv`"] if building.devices else []
     files += ["`rounds.csv`", "`verification_*.csv` (the final verification's tables)"] if damped else []
     lines += ["Files: " + ", ".join(files) + ", the figures below.", ""]
-    if damped:
+    left_out = design.rounds[-1].left_out if damped else ()
+    if damped and not left_out:
         lines += [f"The final verification is repeated, independently, by `vdw-frames verify building.toml{rerun}` "
                   "(the site and the bounds are in the file).", ""]
+    elif damped:
+        lines += [f"The final verification left out {len(left_out)} candidate record(s) too short for its period "
+                  f"range ({', '.join(left_out)}); `vdw-frames verify building.toml{rerun}` refuses them: it repeats "
+                  "the verification with a set of records without them (the site and the bounds are in the file).", ""]
     lines += ["## Figures", ""]
     for name, caption in figures.items():
         lines += [f"![{caption}]({name})", ""]

@@ -172,3 +172,26 @@ def test_the_report_refuses_what_is_not_a_design_and_makes_no_folder(tmp_path):
     with pytest.raises(ValueError, match="design must be a FrameDesign or a DampedDesign, got ShearBuilding"):
         write_design_report(ShearBuilding([1.0], [1.0]), tmp_path / "report")
     assert not (tmp_path / "report").exists()
+
+
+@pytest.mark.slow
+def test_records_left_out_of_the_design_are_named_and_the_repeat_is_not_claimed(tmp_path, capsys):
+    # A record too short for the building's period range is left out of the design's selection; `vdw-frames verify`
+    # with the same set refuses it (scaled_suite's rule), so design.md must not claim that command repeats the
+    # verification, and must name what was left out.
+    records = tmp_path / "records"
+    records.mkdir()
+    for motion in [*synthetic_records(12, 20.0), *synthetic_records(1, 3.0)]:
+        name = motion.name.replace(" ", "_") + ("_short" if motion.duration < 10.0 else "")
+        write_at2(motion, records / f"{name}.AT2")
+    site = write_input(tmp_path)
+    out = tmp_path / "fvd"
+    assert main(["design-building", str(site), "--out", str(out)]) == 0, capsys.readouterr().out
+    capsys.readouterr()
+    code = main(["verify", str(out / "building.toml"), "--records", str(records), "--out", str(tmp_path / "again")])
+    error = capsys.readouterr().err
+    assert code == 2 and "too short" in error  # the same set cannot repeat it
+    text = (out / "design.md").read_text()
+    assert "is repeated, independently, by `vdw-frames verify" not in text
+    assert "The final verification left out 1 candidate record(s) too short" in text
+    assert "refuses them" in text

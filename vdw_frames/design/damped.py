@@ -154,7 +154,8 @@ class DesignRound:
     (count per case name), ``allowed_unacceptable``; ``device_peaks``: the largest demands (name -> value: walls'
     strain -, deformation mm, velocity mm/s, temperature rise K; other devices' deformation mm, velocity mm/s,
     force N); ``limits``: each :class:`LimitCheck`; ``passed``; ``seconds`` (the verification's time);
-    ``failed``: each failed criterion or limit with by how much (empty when the round passed)."""
+    ``failed``: each failed criterion or limit with by how much (empty when the round passed); ``left_out``: the
+    names of the candidate records too short for the round's period range (left out of its selection)."""
 
     number: int
     change: str
@@ -176,6 +177,7 @@ class DesignRound:
     passed: bool
     seconds: float
     failed: tuple[str, ...] = ()
+    left_out: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -493,7 +495,7 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
             drift_limit=float(result.drift_limit),
             unacceptable={case: sum(1 for reason in result.unacceptable[c] if reason) for c, case in enumerate(cases)},
             allowed_unacceptable=result.allowed_unacceptable, device_peaks=_peaks(result), limits=checks,
-            passed=not failures, seconds=seconds, failed=tuple(failures)))
+            passed=not failures, seconds=seconds, failed=tuple(failures), left_out=loop.left_out.get(number, ())))
         final = (frame, undamped, building, sizing, effective, b, v_min, rule, amplitudes, result)
         if not failures:
             break
@@ -549,6 +551,7 @@ class _Loop:
         self.timings: dict[str, float] = {}
         self.factor = 1.0
         self._p695_records: list[GroundMotion] | None = None
+        self.left_out: dict[int, tuple[str, ...]] = {}
         self.assumptions = [
             "B_V+I from the complex-mode damping ratio of mode 1 with the devices at the MCE_R amplitude estimate "
             "(inherent damping included, the frame's hysteretic damping not); ASCE 7-16 Sec. 18.7 computes beta_V1 "
@@ -580,9 +583,12 @@ class _Loop:
         shortest = MIN_CYCLES * period_range(building).upper
         kept = [motion for motion in records if motion.duration >= shortest]
         if len(kept) < len(records):
+            self.left_out[number] = tuple(motion.name or f"record {i + 1}" for i, motion in enumerate(records)
+                                          if motion.duration < shortest)
             self.assumptions.append(
                 f"round {number}: {len(records) - len(kept)} of the {len(records)} candidate records left out of the "
-                f"suite's selection: shorter than {MIN_CYCLES:g} x T_upper = {shortest:.3g} s (scaled_suite's rule)")
+                f"suite's selection: shorter than {MIN_CYCLES:g} x T_upper = {shortest:.3g} s (scaled_suite's rule): "
+                + ", ".join(self.left_out[number]))
         return kept
 
     def frame_design(self, scale: float) -> FrameDesign:
