@@ -832,6 +832,12 @@ def _design_building(args: argparse.Namespace) -> int:
     if device != "none" and bounds is None:
         raise ValueError("give --bounds LAMBDA_MIN LAMBDA_MAX (or bounds in the input's [design] table): the devices' "
                          "property modification factors of ASCE 7-16 Sec. 18.2.4.5, e.g. 0.8 1.2")
+    if device != "none":
+        from ._validation import whole_number
+        from .design.damped import MAX_ROUNDS
+
+        if whole_number("rounds", rounds, 1) > MAX_ROUNDS:  # checked before the output folder is made
+            raise ValueError(f"rounds must be a whole number in 1 ... {MAX_ROUNDS}, got {rounds!r}")
     records = _verify_records(records_name) if device != "none" else None
     out = _output_folder(args.out)
     print(given.site.describe())

@@ -158,6 +158,8 @@ def test_a_device_limit_below_any_reachable_demand_is_the_reason_and_exits_1(fol
     # a site outside the spectrum's rules: S_1 >= 0.6 g needs a site-specific hazard analysis (Sec. 11.4.8)
     ([], {"s1": "0.6"}, "Sec. 11.4.8 requires a ground motion hazard analysis"),
     (["--bounds", "1.2", "0.8"], {}, "lambda"),
+    (["--rounds", "0"], {}, "rounds"),
+    (["--rounds", "11"], {}, "rounds"),
 ])
 def test_bad_input_is_one_error_line_and_exit_2(folder, tmp_path, capsys, arguments, input_options, words):
     site = write_input(tmp_path, **input_options)
@@ -165,7 +167,7 @@ def test_bad_input_is_one_error_line_and_exit_2(folder, tmp_path, capsys, argume
     error = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(error) == 1 and error[0].startswith("vdw-frames: error:"), error
     assert words in error[0]
-    assert not (tmp_path / "out" / "design.md").exists()
+    assert not (tmp_path / "out").exists()  # checked before the output folder is made
 
 
 def test_the_report_refuses_what_is_not_a_design_and_makes_no_folder(tmp_path):
