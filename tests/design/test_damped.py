@@ -174,7 +174,7 @@ def test_a_walls_own_temperature_and_stress_limits_are_checked_with_their_margin
     building = vdw.ShearBuilding([500.0], [2.0e4], story_heights=[4000.0], devices={1: [wall]})
     demand = WallDemand(story=1, wall=0, deformation=9.0, strain=1.0, velocity=50.0, force=3.0e5, cycle_energy=1.0,
                         cumulative_energy=2.0, temperature_rise=15.0, governing="nominal, r1")
-    result = SimpleNamespace(walls=[demand], devices=[], criteria=[])
+    result = SimpleNamespace(walls=[demand], devices=[], criteria=[], bounds=vdw.verification.PropertyBounds(0.8, 1.2))
     checks = {c.limit: c for c in _limit_checks(building, result, {})}
     assert set(checks) == {"temperature_rise (WallLimits)", "stress (WallLimits)"}
     heat = checks["temperature_rise (WallLimits)"]
@@ -183,3 +183,12 @@ def test_a_walls_own_temperature_and_stress_limits_are_checked_with_their_margin
     assert bond.ratio == pytest.approx(0.8, rel=1e-12) and bond.passed
     failures = _failures(result, tuple(checks.values()))
     assert failures == ["temperature_rise (WallLimits) of wall 1 (story 1): demand 15 vs limit 10 K (ratio 1.500)"]
+
+    # With an ambient range the warmest start is its hot end: 30 degC allows 5 K, so 15 K is 3 times that.
+    result.bounds = vdw.verification.PropertyBounds(0.8, 1.2, ambient=(0.0, 30.0))
+    heat = next(c for c in _limit_checks(building, result, {}) if c.limit.startswith("temperature"))
+    assert (heat.value, heat.ratio) == (5.0, 3.0)
+    # A wall that starts at or above its limit is refused before any analysis.
+    with pytest.raises(ValueError, match="temperature limit 35 degC is not above the temperature it starts at, 40"):
+        design_damped(SITE, "steel-smf", WEIGHTS, HEIGHTS, wall, 0.2,
+                      bounds=vdw.verification.PropertyBounds(0.8, 1.2, ambient=(0.0, 40.0)))

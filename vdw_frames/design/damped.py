@@ -363,9 +363,9 @@ def _limit_checks(building: ShearBuilding, result: VerificationResult, limits: d
             checks.append(LimitCheck("stress (WallLimits)", where, demand.force / wall.area, own.stress))
         if own is not None and own.temperature is not None and demand.temperature_rise is not None \
                 and wall.thermal is not None:
-            # the rise (K) against the rise the limit allows from the wall's temperature at rest
+            # the rise (K) against the rise the limit allows from the warmest temperature the wall starts at
             checks.append(LimitCheck("temperature_rise (WallLimits)", where, demand.temperature_rise,
-                                     own.temperature - wall.thermal.temperature))
+                                     own.temperature - _warmest_start(wall, getattr(result, "bounds", None))))
         if "strain" in limits:
             checks.append(LimitCheck("strain", where, demand.strain, limits["strain"]))
         if "stroke" in limits:
@@ -381,6 +381,24 @@ def _limit_checks(building: ShearBuilding, result: VerificationResult, limits: d
         if "velocity" in limits:
             checks.append(LimitCheck("velocity", where, max(other.velocity.values()), limits["velocity"]))
     return tuple(checks)
+
+
+def _warmest_start(wall: Any, bounds: PropertyBounds | None) -> float:
+    """The warmest temperature (degC) a wall starts an analysis at: its own, or the hot end of the bounds' ambient
+    range (:class:`~vdw_frames.verification.PropertyBounds`)."""
+    own = float(wall.thermal.temperature)
+    return own if bounds is None or bounds.ambient is None else max(own, float(bounds.ambient[1]))
+
+
+def _check_wall_temperature(device: Any, bounds: Any) -> None:
+    """ValueError where a wall prototype starts at or above its own temperature limit (no rise is allowed)."""
+    limits = getattr(device, "limits", None) if is_wall(device) else None
+    if limits is None or limits.temperature is None or getattr(device, "thermal", None) is None:
+        return
+    start = _warmest_start(device, bounds if isinstance(bounds, PropertyBounds) else None)
+    if limits.temperature <= start:
+        raise ValueError(f"the wall's temperature limit {limits.temperature:g} degC is not above the temperature it "
+                         f"starts at, {start:g} degC: it would fail at once")
 
 
 def _peaks(result: VerificationResult) -> dict[str, float]:
@@ -460,6 +478,7 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
     target = _target(target_damping)
     limits = _check_limits(device_limits)
     n_rounds = _check_options(rounds, irregular, distribution, p695, bounds, frame_options)
+    _check_wall_temperature(device, bounds)
     loop = _Loop(site, system, weights, story_heights, device, distribution=distribution, frame_options=frame_options)
     records = list(records) if records is not None else None
     current, history, previous = target, [], None
