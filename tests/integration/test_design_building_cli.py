@@ -197,3 +197,18 @@ def test_records_left_out_of_the_design_are_named_and_the_repeat_is_not_claimed(
     assert "is repeated, independently, by `vdw-frames verify" not in text
     assert "The final verification left out 1 candidate record(s) too short" in text
     assert "refuses them" in text
+
+
+def test_a_bare_design_s_p695_result_states_the_spectrum_it_is_measured_against(tmp_path):
+    # The ACMR is S_CT / S_MT: its value depends on the P695 seismic design category whose MCE S_MT it divides by
+    # (collapse_assessment's default is SDC Dmax, not the design's site), so the report must say which.
+    from types import SimpleNamespace
+
+    given = load_design_input(write_input(tmp_path))
+    frame = design_frame(given.site, "steel-smf", given.weights, given.story_heights, overstrength=3.0)
+    collapse = SimpleNamespace(acmr=1.8, acmr20=1.56, acmr10=1.96, passes_acmr20=True, passes_acmr10=False,
+                               sdc="Dmax", smt=1.2 * G, period=0.9)
+    write_design_report(frame, tmp_path / "out", collapse=collapse)
+    text = (tmp_path / "out" / "design.md").read_text()
+    assert "ACMR 1.800 vs ACMR20% 1.560" in text
+    assert "SDC Dmax" in text and "S_MT = 1.2 g at T = 0.9 s" in text

@@ -86,7 +86,7 @@ from ..asce7.damping import damping_coefficient, minimum_base_shear
 from ..element.device import Device
 from ..frame.building import ShearBuilding, is_wall, story_matrix
 from ..frame.modal import linearisation_notes, modal_analysis, nonlinear_devices
-from ..motion.record import GroundMotion
+from ..motion.record import G, GroundMotion
 from ..verification.spectrum import Site
 from ..verification.suite import MIN_CYCLES, period_range
 from ..verification.verify import PropertyBounds, VerificationResult, verify
@@ -255,7 +255,7 @@ class DampedDesign:
                 seen.add(id(assessment))
                 note = " (the same assessment: the devices have no failure model)" if same else ""
                 lines.append(f"- {key}: ACMR {assessment.acmr:.3f} vs ACMR20% {assessment.acmr20:.3f}: "
-                             f"{'pass' if assessment.passes_acmr20 else 'FAIL'}{note}")
+                             f"{'pass' if assessment.passes_acmr20 else 'FAIL'}{note}; {p695_basis(assessment)}")
             lines += ["", "One archetype is not a FEMA P695 system qualification: P695 asks for performance groups "
                       "of archetypes; this is the assessment of this one design.", ""]
         lines += ["### Times", ""] + [f"- {part}: {seconds:.3g} s" for part, seconds in self.timings.items()]
@@ -264,6 +264,14 @@ class DampedDesign:
 
 
 # ------------------------------------------------------------------------------------------------ helpers
+def p695_basis(assessment: Any) -> str:
+    """What a FEMA P695 ACMR is measured against, in words: the SDC of P695 Table 5-1 whose MCE S_MT (g) at the
+    period T (s) divides the collapse intensity (collapse_assessment's ``sdc``: Dmax unless given, not the design's
+    site)."""
+    return (f"SDC {assessment.sdc}, S_MT = {assessment.smt / G:.3g} g at T = {assessment.period:.3g} s "
+            "(FEMA P695 Table 5-1's MCE of that SDC, not the design site's)")
+
+
 def _check_limits(device_limits: Mapping[str, float] | None) -> dict[str, float]:
     if device_limits is None:
         return {}
