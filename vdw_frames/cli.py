@@ -833,11 +833,12 @@ def _design_building(args: argparse.Namespace) -> int:
         raise ValueError("give --bounds LAMBDA_MIN LAMBDA_MAX (or bounds in the input's [design] table): the devices' "
                          "property modification factors of ASCE 7-16 Sec. 18.2.4.5, e.g. 0.8 1.2")
     if device != "none":
-        from ._validation import whole_number
-        from .design.damped import MAX_ROUNDS
+        from .design.damped import _check_limits, _check_options
 
-        if whole_number("rounds", rounds, 1) > MAX_ROUNDS:  # checked before the output folder is made
-            raise ValueError(f"rounds must be a whole number in 1 ... {MAX_ROUNDS}, got {rounds!r}")
+        # design_damped's own checks, before the output folder is made
+        _check_options(rounds, given.irregular, given.distribution or "stiffness", bool(p695), bounds,
+                       dict(given.frame_options))
+        _check_limits(given.device_limits or None)
     records = _verify_records(records_name) if device != "none" else None
     out = _output_folder(args.out)
     print(given.site.describe())

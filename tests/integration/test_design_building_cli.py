@@ -160,6 +160,8 @@ def test_a_device_limit_below_any_reachable_demand_is_the_reason_and_exits_1(fol
     (["--bounds", "1.2", "0.8"], {}, "lambda"),
     (["--rounds", "0"], {}, "rounds"),
     (["--rounds", "11"], {}, "rounds"),
+    ([], {"extra": 'distribution = "foo"'}, "distribution"),
+    ([], {"extra": "\n[design.device_limits]\nstroke = -1.0"}, "device_limits['stroke'] must be > 0"),
 ])
 def test_bad_input_is_one_error_line_and_exit_2(folder, tmp_path, capsys, arguments, input_options, words):
     site = write_input(tmp_path, **input_options)
