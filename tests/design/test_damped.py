@@ -192,3 +192,19 @@ def test_a_walls_own_temperature_and_stress_limits_are_checked_with_their_margin
     with pytest.raises(ValueError, match="temperature limit 35 degC is not above the temperature it starts at, 40"):
         design_damped(SITE, "steel-smf", WEIGHTS, HEIGHTS, wall, 0.2,
                       bounds=vdw.verification.PropertyBounds(0.8, 1.2, ambient=(0.0, 40.0)))
+
+
+@pytest.mark.slow
+@pytest.mark.records
+def test_a_v_min_above_v_is_not_capped_silently():
+    """Below 5 % effective damping Table 18.7-1 gives B_V+I < 1 and Sec. 18.2.1.1's V / B_V+I exceeds V; the frame
+    is designed for V (strength_scale <= 1), which the design must state.  By hand: 2 % inherent damping and a
+    linear FVD sized for 4 %: B = 0.8 + 0.2 x (4 - 2) / 3 = 0.9333, V_min = V / B = 1.0714 V."""
+    _needs_records()
+    design = design_damped(SITE, "steel-smf", WEIGHTS, HEIGHTS, FVD, 0.04, bounds=(0.8, 1.2), rounds=1,
+                           progress=False, damping_ratio=0.02, **OPTIONS)
+    assert design.b_v_plus_i == pytest.approx(0.8 + 0.2 * (100 * design.effective_damping - 2) / 3, rel=1e-9)
+    assert design.b_v_plus_i < 1.0
+    assert design.v_min == pytest.approx(design.undamped.base_shear / design.b_v_plus_i, rel=1e-12)
+    assert design.frame.strength_scale == 1.0
+    assert any("V_min" in text and "designed for V" in text for text in design.assumptions)

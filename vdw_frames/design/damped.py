@@ -504,6 +504,10 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
         b = damping_coefficient(effective)
         v = float(undamped.base_shear)
         v_min, rule = minimum_base_shear(v, b, bool(irregular))
+        if v_min > v:  # B_V+I < 1 (below 5 % damping): design_frame's strength_scale stops at 1
+            loop.assumptions.append(
+                f"round {number}: V_min = V / B_V+I = {v_min / v:.4f} V exceeds V (B_V+I = {b:.4f} < 1 at "
+                f"{effective:.4f} damping); the frame is designed for V, not V_min")
         frame = loop.frame_design(min(1.0, v_min / v))
         building = frame.building.with_devices(devices)
 
