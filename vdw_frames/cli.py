@@ -808,7 +808,8 @@ def _design_building(args: argparse.Namespace) -> int:
     from .design_report import write_design_report
     from .verification import PropertyBounds
 
-    given = load_design_input(args.site)
+    # the flag, where given, says whether the design has devices (Sec. 11.4.8's rule for the site); else the input
+    given = load_design_input(args.site, None if args.device is None else args.device != "none")
     system = args.system or given.system or "steel-smf"
     # The device: the flag's, else the input's device, else its prototype's type, else none (the bare frame).
     inferred = next((name for name, kind in DEVICE_TYPES.items()

@@ -214,3 +214,17 @@ def test_a_bare_design_s_p695_result_states_the_spectrum_it_is_measured_against(
     text = (tmp_path / "out" / "design.md").read_text()
     assert "ACMR 1.800 vs ACMR20% 1.560" in text
     assert "SDC Dmax" in text and "S_MT = 1.2 g at T = 0.9 s" in text
+
+
+def test_a_bare_design_on_a_site_with_s1_at_least_0_6g_is_not_refused(tmp_path, capsys):
+    # ASCE 7-16 Sec. 11.4.8 asks for a ground motion hazard analysis on sites with S_1 >= 0.6 g for seismically
+    # isolated structures and structures with damping systems only: a bare frame on Site Class C with S_1 = 0.75 g
+    # uses the tabulated coefficients (F_v = 1.4) and lands in SDC E (Sec. 11.6), where Eq. 12.8-6 applies.
+    site = write_input(tmp_path, s1="0.75")
+    code = main(["design-building", str(site), "--device", "none", "--out", str(tmp_path / "out")])
+    captured = capsys.readouterr()
+    assert code == 0, captured.err
+    assert "SDC E" in captured.out
+    # with the devices the same site is refused (the damped case of Sec. 11.4.8)
+    code = main(["design-building", str(site), "--out", str(tmp_path / "damped")])
+    assert code == 2 and "Sec. 11.4.8" in capsys.readouterr().err
