@@ -808,7 +808,8 @@ def _design_building(args: argparse.Namespace) -> int:
     from .design_report import write_design_report
     from .verification import PropertyBounds
 
-    given = load_design_input(args.site)
+    # the flag, where given, says whether the design has devices (Sec. 11.4.8's rule for the site); else the input
+    given = load_design_input(args.site, None if args.device is None else args.device != "none")
     system = args.system or given.system or "steel-smf"
     # The device: the flag's, else the input's device, else its prototype's type, else none (the bare frame).
     inferred = next((name for name, kind in DEVICE_TYPES.items()
@@ -832,6 +833,13 @@ def _design_building(args: argparse.Namespace) -> int:
     if device != "none" and bounds is None:
         raise ValueError("give --bounds LAMBDA_MIN LAMBDA_MAX (or bounds in the input's [design] table): the devices' "
                          "property modification factors of ASCE 7-16 Sec. 18.2.4.5, e.g. 0.8 1.2")
+    if device != "none":
+        from .design.damped import _check_limits, _check_options
+
+        # design_damped's own checks, before the output folder is made
+        _check_options(rounds, given.irregular, given.distribution or "stiffness", bool(p695), bounds,
+                       dict(given.frame_options))
+        _check_limits(given.device_limits or None)
     records = _verify_records(records_name) if device != "none" else None
     out = _output_folder(args.out)
     print(given.site.describe())

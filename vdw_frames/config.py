@@ -897,7 +897,7 @@ class DesignInput:
     device_limits: dict[str, float] = dataclasses.field(default_factory=dict)
 
 
-def load_design_input(path: str | os.PathLike[str]) -> DesignInput:
+def load_design_input(path: str | os.PathLike[str], damping_system: bool | None = None) -> DesignInput:
     """The design input of ``vdw-frames design-building`` from a ``.toml`` or ``.json`` file::
 
         [site]                      # as a building file's (site_from_values): sms, sm1 or ss, s1, site_class;
@@ -936,24 +936,29 @@ def load_design_input(path: str | os.PathLike[str]) -> DesignInput:
         [design.device_limits]      # optional: stroke (mm), velocity (mm/s), strain (-), temperature_rise (K)
         stroke = 60.0
 
+    ``damping_system``: whether the design has devices, for the site's ASCE 7-16 Sec. 11.4.8 rule (a ground motion
+    hazard analysis for structures with damping systems on sites with S_1 >= 0.6 g); None: as the input says (its
+    ``device`` other than none; without one, a ``[design.prototype]``: the command line's choice).
     A relative ``records`` folder is read from the input file's folder.  ValueError naming the file and the key
     for anything malformed: unknown keys, weights and story heights of different lengths, both or neither of
     weights and masses, a prototype of another type than ``device``, an unknown device.
     """
     file, data = _read_data(path)
     try:
-        return _design_input(data, Path(file).parent)
+        return _design_input(data, Path(file).parent, damping_system)
     except ValueError as error:
         raise ValueError(f"{file}: {error}") from None
 
 
-def _design_input(data: object, folder: Path) -> DesignInput:
+def _design_input(data: object, folder: Path, damping_system: bool | None = None) -> DesignInput:
     table = _table("design input", data, _DESIGN_INPUT_KEYS)
     if "site" not in table or "building" not in table:
         raise ValueError("a design input needs a [site] and a [building] table")
-    site = site_from_values(_table("site", table["site"], set(SITE_KEYS)))
-    weights, heights, options = _design_floors(_table("building", table["building"], _DESIGN_BUILDING_KEYS))
     design = _table("design", table.get("design", {}), _DESIGN_KEYS)
+    if damping_system is None:
+        damping_system = design["device"] != "none" if "device" in design else "prototype" in design
+    site = site_from_values(_table("site", table["site"], set(SITE_KEYS)), damping_system=bool(damping_system))
+    weights, heights, options = _design_floors(_table("building", table["building"], _DESIGN_BUILDING_KEYS))
     options.update({key: design[key] for key in ("overstrength", "hardening", "rho", "minimum_stiffness")
                     if key in design})
     device = design.get("device")

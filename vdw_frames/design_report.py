@@ -34,7 +34,7 @@ import numpy as np
 
 from ._files import output_folder, write_text
 from .config import save_building
-from .design.damped import DampedDesign
+from .design.damped import DampedDesign, p695_basis
 from .design.elf import FrameDesign
 from .frame.building import ShearBuilding, is_wall
 from .plotting.design import plot_design_profiles, plot_drift_spread
@@ -211,9 +211,14 @@ def _markdown(design: Any, frame: FrameDesign, building: ShearBuilding,  # noqa:
     files += ["`devices.csv`"] if building.devices else []
     files += ["`rounds.csv`", "`verification_*.csv` (the final verification's tables)"] if damped else []
     lines += ["Files: " + ", ".join(files) + ", the figures below.", ""]
-    if damped:
+    left_out = design.rounds[-1].left_out if damped else ()
+    if damped and not left_out:
         lines += [f"The final verification is repeated, independently, by `vdw-frames verify building.toml{rerun}` "
                   "(the site and the bounds are in the file).", ""]
+    elif damped:
+        lines += [f"The final verification left out {len(left_out)} candidate record(s) too short for its period "
+                  f"range ({', '.join(left_out)}); `vdw-frames verify building.toml{rerun}` refuses them: it repeats "
+                  "the verification with a set of records without them (the site and the bounds are in the file).", ""]
     lines += ["## Figures", ""]
     for name, caption in figures.items():
         lines += [f"![{caption}]({name})", ""]
@@ -237,5 +242,6 @@ def _markdown(design: Any, frame: FrameDesign, building: ShearBuilding,  # noqa:
         lines += ["## FEMA P695", "",
                   f"- ACMR {collapse.acmr:.3f} vs ACMR20% {collapse.acmr20:.3f}: "
                   f"{'pass' if collapse.passes_acmr20 else 'FAIL'} (ACMR10% {collapse.acmr10:.3f}: "
-                  f"{'pass' if collapse.passes_acmr10 else 'FAIL'}; FEMA P695 Sec. 7.5)", "", P695_STATEMENT, ""]
+                  f"{'pass' if collapse.passes_acmr10 else 'FAIL'}; FEMA P695 Sec. 7.5); {p695_basis(collapse)}", "",
+                  P695_STATEMENT, ""]
     return "\n".join(lines).rstrip("\n") + "\n"

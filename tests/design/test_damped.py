@@ -153,3 +153,58 @@ def test_a_target_out_of_reach_is_sized_for_ninety_percent_of_the_largest_added_
     expected = curve.bare_damping_ratio + 0.9 * (curve.best_damping_ratio - curve.bare_damping_ratio)
     assert used == pytest.approx(expected, rel=1e-9)
     assert vdw.modal_analysis(sizing.building, 1).damping_ratios[0] == pytest.approx(expected, abs=1e-6)
+
+
+def test_a_walls_own_temperature_and_stress_limits_are_checked_with_their_margin():
+    """Issue 31: the device limit checks include a wall's temperature limit (WallLimits.temperature, degC) and
+    its bond stress (WallLimits.stress, MPa), not only its strain.  By hand: a wall at rest at 25 degC heated by
+    15 K reaches 40 degC against its 35 degC limit, an allowed rise of 10 K: ratio 15 / 10 = 1.5; its peak force
+    3.0e5 N over its 1.5e5 mm^2 is 2.0 MPa against a 2.5 MPa bond: ratio 0.8."""
+    import dataclasses
+    from types import SimpleNamespace
+
+    from vdw_frames.design.damped import _failures, _limit_checks
+    from vdw_frames.element.limits import WallLimits
+    from vdw_frames.element.thermal import ISD110_LOSS_PEAK, ThermalProperties
+    from vdw_frames.verification import WallDemand
+
+    wall = dataclasses.replace(vdw.paper.fitted(450, area=1.5e5, thickness=9.0),
+                               thermal=ThermalProperties(ISD110_LOSS_PEAK, 1.7, temperature=25.0),
+                               limits=WallLimits(stress=2.5, temperature=35.0, source="test"))
+    building = vdw.ShearBuilding([500.0], [2.0e4], story_heights=[4000.0], devices={1: [wall]})
+    demand = WallDemand(story=1, wall=0, deformation=9.0, strain=1.0, velocity=50.0, force=3.0e5, cycle_energy=1.0,
+                        cumulative_energy=2.0, temperature_rise=15.0, governing="nominal, r1")
+    result = SimpleNamespace(walls=[demand], devices=[], criteria=[], bounds=vdw.verification.PropertyBounds(0.8, 1.2))
+    checks = {c.limit: c for c in _limit_checks(building, result, {})}
+    assert set(checks) == {"temperature_rise (WallLimits)", "stress (WallLimits)"}
+    heat = checks["temperature_rise (WallLimits)"]
+    assert (heat.demand, heat.value, heat.ratio, heat.passed) == (15.0, 10.0, 1.5, False)
+    bond = checks["stress (WallLimits)"]
+    assert bond.ratio == pytest.approx(0.8, rel=1e-12) and bond.passed
+    failures = _failures(result, tuple(checks.values()))
+    assert failures == ["temperature_rise (WallLimits) of wall 1 (story 1): demand 15 vs limit 10 K (ratio 1.500)"]
+
+    # With an ambient range the warmest start is its hot end: 30 degC allows 5 K, so 15 K is 3 times that.
+    result.bounds = vdw.verification.PropertyBounds(0.8, 1.2, ambient=(0.0, 30.0))
+    heat = next(c for c in _limit_checks(building, result, {}) if c.limit.startswith("temperature"))
+    assert (heat.value, heat.ratio) == (5.0, 3.0)
+    # A wall that starts at or above its limit is refused before any analysis.
+    with pytest.raises(ValueError, match="temperature limit 35 degC is not above the temperature it starts at, 40"):
+        design_damped(SITE, "steel-smf", WEIGHTS, HEIGHTS, wall, 0.2,
+                      bounds=vdw.verification.PropertyBounds(0.8, 1.2, ambient=(0.0, 40.0)))
+
+
+@pytest.mark.slow
+@pytest.mark.records
+def test_a_v_min_above_v_is_not_capped_silently():
+    """Below 5 % effective damping Table 18.7-1 gives B_V+I < 1 and Sec. 18.2.1.1's V / B_V+I exceeds V; the frame
+    is designed for V (strength_scale <= 1), which the design must state.  By hand: 2 % inherent damping and a
+    linear FVD sized for 4 %: B = 0.8 + 0.2 x (4 - 2) / 3 = 0.9333, V_min = V / B = 1.0714 V."""
+    _needs_records()
+    design = design_damped(SITE, "steel-smf", WEIGHTS, HEIGHTS, FVD, 0.04, bounds=(0.8, 1.2), rounds=1,
+                           progress=False, damping_ratio=0.02, **OPTIONS)
+    assert design.b_v_plus_i == pytest.approx(0.8 + 0.2 * (100 * design.effective_damping - 2) / 3, rel=1e-9)
+    assert design.b_v_plus_i < 1.0
+    assert design.v_min == pytest.approx(design.undamped.base_shear / design.b_v_plus_i, rel=1e-12)
+    assert design.frame.strength_scale == 1.0
+    assert any("V_min" in text and "designed for V" in text for text in design.assumptions)

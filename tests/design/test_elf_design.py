@@ -177,7 +177,20 @@ def test_ten_story_steel_smf_at_the_example_site_in_sdc_d():
     check_by_hand(design, site, "steel-smf", weights, heights, risk="II", importance=1.0, sdc="D", cu=1.4,
                   rho=1.0, divisor=1.0, drift_ratio=0.02, overstrength=2.0, scale=0.8)
     assert design.cs_equation == "12.8-5"  # 0.044 S_DS I_e = 0.0264 > S_D1 / (C_u T_a R)
-    assert any("Table 12.6-1" in text for text in design.assumptions)  # T >= 3.5 T_S: stated
+    # T >= 3.5 T_S, but h_n = 116 ft <= 160 ft: ASCE 7-16 Table 12.6-1 permits ELF for a regular structure of this
+    # height at any period, so no statement that it does not
+    assert design.period >= 3.5 * site.ts and design.height / FT <= 160.0
+    assert not any("Table 12.6-1" in text for text in design.assumptions)
+
+
+def test_elf_beyond_its_table_12_6_1_scope_is_stated_only_above_160_ft():
+    # ASCE 7-16 Table 12.6-1, SDC D-F: ELF is permitted for regular structures not exceeding 160 ft at any period,
+    # and above 160 ft only with T < 3.5 T_S.  15 stories of 3.5 m: h_n = 52.5 m = 172 ft, T = C_u T_a = 2.17 s
+    # >= 3.5 T_S = 1.75 s.
+    site = Site.from_mapped(0.75, 0.3, "C", 8.0, "II")
+    tall = design_frame(site, "steel-smf", [600.0 * G] * 15, [3500.0] * 15)
+    assert tall.height / FT > 160.0 and tall.period >= 3.5 * site.ts
+    assert any("Table 12.6-1" in text for text in tall.assumptions)
 
 
 @pytest.mark.parametrize(("system", "stories", "governing"), [
@@ -297,3 +310,16 @@ def test_hostile_values_give_a_design_or_a_value_error(argument, value):
     for name in ("stiffnesses", "strengths", "design_drifts", "theta", "cvx"):
         assert np.isfinite(getattr(design, name)).all(), name
     assert math.isfinite(design.analytical_period) and design.analytical_period > 0
+
+
+def test_strengths_without_rho_say_so():
+    # ASCE 7-16 Sec. 12.4.2.1: E_h = rho Q_E.  The strengths are V_x (Q_E) alone: with rho = 1.3 (SDC D) that must
+    # be stated; with rho = 1.0 there is nothing to state.
+    site = Site.from_mapped(0.75, 0.3, "C", 8.0, "II")
+    weights, heights = [600.0 * G] * 3, [3500.0] * 3
+    stated = design_frame(site, "steel-smf", weights, heights)
+    assert stated.rho == 1.3
+    assert np.allclose(stated.strengths, stated.story_shears * stated.p_delta_factors, rtol=1e-12)
+    assert any("12.4.2.1" in text for text in stated.assumptions)
+    assert not any("12.4.2.1" in text for text in design_frame(site, "steel-smf", weights, heights,
+                                                               rho=1.0).assumptions)

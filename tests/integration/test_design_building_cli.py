@@ -158,6 +158,10 @@ def test_a_device_limit_below_any_reachable_demand_is_the_reason_and_exits_1(fol
     # a site outside the spectrum's rules: S_1 >= 0.6 g needs a site-specific hazard analysis (Sec. 11.4.8)
     ([], {"s1": "0.6"}, "Sec. 11.4.8 requires a ground motion hazard analysis"),
     (["--bounds", "1.2", "0.8"], {}, "lambda"),
+    (["--rounds", "0"], {}, "rounds"),
+    (["--rounds", "11"], {}, "rounds"),
+    ([], {"extra": 'distribution = "foo"'}, "distribution"),
+    ([], {"extra": "\n[design.device_limits]\nstroke = -1.0"}, "device_limits['stroke'] must be > 0"),
 ])
 def test_bad_input_is_one_error_line_and_exit_2(folder, tmp_path, capsys, arguments, input_options, words):
     site = write_input(tmp_path, **input_options)
@@ -165,10 +169,62 @@ def test_bad_input_is_one_error_line_and_exit_2(folder, tmp_path, capsys, argume
     error = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(error) == 1 and error[0].startswith("vdw-frames: error:"), error
     assert words in error[0]
-    assert not (tmp_path / "out" / "design.md").exists()
+    assert not (tmp_path / "out").exists()  # checked before the output folder is made
 
 
 def test_the_report_refuses_what_is_not_a_design_and_makes_no_folder(tmp_path):
     with pytest.raises(ValueError, match="design must be a FrameDesign or a DampedDesign, got ShearBuilding"):
         write_design_report(ShearBuilding([1.0], [1.0]), tmp_path / "report")
     assert not (tmp_path / "report").exists()
+
+
+@pytest.mark.slow
+def test_records_left_out_of_the_design_are_named_and_the_repeat_is_not_claimed(tmp_path, capsys):
+    # A record too short for the building's period range is left out of the design's selection; `vdw-frames verify`
+    # with the same set refuses it (scaled_suite's rule), so design.md must not claim that command repeats the
+    # verification, and must name what was left out.
+    records = tmp_path / "records"
+    records.mkdir()
+    for motion in [*synthetic_records(12, 20.0), *synthetic_records(1, 3.0)]:
+        name = motion.name.replace(" ", "_") + ("_short" if motion.duration < 10.0 else "")
+        write_at2(motion, records / f"{name}.AT2")
+    site = write_input(tmp_path)
+    out = tmp_path / "fvd"
+    assert main(["design-building", str(site), "--out", str(out)]) == 0, capsys.readouterr().out
+    capsys.readouterr()
+    code = main(["verify", str(out / "building.toml"), "--records", str(records), "--out", str(tmp_path / "again")])
+    error = capsys.readouterr().err
+    assert code == 2 and "too short" in error  # the same set cannot repeat it
+    text = (out / "design.md").read_text()
+    assert "is repeated, independently, by `vdw-frames verify" not in text
+    assert "The final verification left out 1 candidate record(s) too short" in text
+    assert "refuses them" in text
+
+
+def test_a_bare_design_s_p695_result_states_the_spectrum_it_is_measured_against(tmp_path):
+    # The ACMR is S_CT / S_MT: its value depends on the P695 seismic design category whose MCE S_MT it divides by
+    # (collapse_assessment's default is SDC Dmax, not the design's site), so the report must say which.
+    from types import SimpleNamespace
+
+    given = load_design_input(write_input(tmp_path))
+    frame = design_frame(given.site, "steel-smf", given.weights, given.story_heights, overstrength=3.0)
+    collapse = SimpleNamespace(acmr=1.8, acmr20=1.56, acmr10=1.96, passes_acmr20=True, passes_acmr10=False,
+                               sdc="Dmax", smt=1.2 * G, period=0.9)
+    write_design_report(frame, tmp_path / "out", collapse=collapse)
+    text = (tmp_path / "out" / "design.md").read_text()
+    assert "ACMR 1.800 vs ACMR20% 1.560" in text
+    assert "SDC Dmax" in text and "S_MT = 1.2 g at T = 0.9 s" in text
+
+
+def test_a_bare_design_on_a_site_with_s1_at_least_0_6g_is_not_refused(tmp_path, capsys):
+    # ASCE 7-16 Sec. 11.4.8 asks for a ground motion hazard analysis on sites with S_1 >= 0.6 g for seismically
+    # isolated structures and structures with damping systems only: a bare frame on Site Class C with S_1 = 0.75 g
+    # uses the tabulated coefficients (F_v = 1.4) and lands in SDC E (Sec. 11.6), where Eq. 12.8-6 applies.
+    site = write_input(tmp_path, s1="0.75")
+    code = main(["design-building", str(site), "--device", "none", "--out", str(tmp_path / "out")])
+    captured = capsys.readouterr()
+    assert code == 0, captured.err
+    assert "SDC E" in captured.out
+    # with the devices the same site is refused (the damped case of Sec. 11.4.8)
+    code = main(["design-building", str(site), "--out", str(tmp_path / "damped")])
+    assert code == 2 and "Sec. 11.4.8" in capsys.readouterr().err

@@ -74,3 +74,15 @@ def test_the_drift_spread_draws_each_record_s_largest_story_per_bound(tmp_path, 
             and line.get_linestyle() == "-"]
     np.testing.assert_allclose([bar.get_ydata()[0] for bar in bars], 100 * peaks.mean(axis=1).max(axis=1), rtol=1e-15)
     assert any(line.get_linestyle() == "--" and line.get_ydata()[0] == 4.0 for line in axes.get_lines())
+
+
+def test_the_drift_limit_label_says_rho_only_where_it_divides(tmp_path, captured):
+    # ASCE 7-16 Sec. 12.12.1.1 divides Delta_a by rho for moment frames in SDC D-F only: in SDC C (S_DS = 0.4 g,
+    # S_D1 = 0.15 g) a stated rho = 1.3 leaves the limit 0.020 h_sx, and the legend must not call it Delta_a / rho.
+    site = Site(0.6, 0.225, 8.0, "II")
+    design = design_frame(site, "steel-smf", [600.0 * G] * 2, [3500.0, 3500.0], rho=1.3)
+    assert design.sdc == "C"
+    np.testing.assert_allclose(design.allowable_drifts, 0.020 * 3500.0, rtol=1e-15)
+    plot_design_profiles(design, tmp_path / "profiles")
+    label = captured[0].axes[1].get_lines()[1].get_label()
+    assert "/ rho" not in label and "Delta_a" in label

@@ -35,8 +35,9 @@
    upper and lower bound) from the candidate records long enough for the round's period range (records
    shorter than 5 x T_upper, which :func:`~vdw_frames.verification.scaled_suite` refuses, are left out of the
    selection and the assumptions say how many), and the **device limits**: ``device_limits`` (below) and the walls' own
-   :class:`~vdw_frames.element.limits.WallLimits` strain, each against the verification's largest demand over
-   the suite and the bounds (:attr:`VerificationResult.walls`, :attr:`VerificationResult.devices`).
+   :class:`~vdw_frames.element.limits.WallLimits` (strain, stress, temperature), each against the
+   verification's largest demand over the suite and the bounds (:attr:`VerificationResult.walls`,
+   :attr:`VerificationResult.devices`).
 6. **The iteration** (at most ``rounds`` verifications): when the verification or a device limit fails,
 
    * the devices are enlarged: the next round's target damping is the last one + :data:`TARGET_STEP`;
@@ -55,6 +56,9 @@
    as collapse: ``CollapseCriterion(wall_failure=True)``) and without (the same walls without limits, which
    never fail).  FVDs and friction dampers have no failure model here: for them one assessment serves both and
    the report says so.  One archetype is not a P695 system qualification (the report says so).
+
+The walls' own :class:`~vdw_frames.element.limits.WallLimits` are checked too: strain, bond stress (peak force /
+area, MPa) and temperature (the peak rise against the limit less the wall's temperature at rest, K).
 
 ``device_limits``: a dict of limits, any of ``"stroke"`` (mm: every device's largest deformation along itself;
 a wall's is strain x thickness), ``"velocity"`` (mm/s: every device's largest velocity), ``"strain"`` (-: walls,
@@ -82,7 +86,7 @@ from ..asce7.damping import damping_coefficient, minimum_base_shear
 from ..element.device import Device
 from ..frame.building import ShearBuilding, is_wall, story_matrix
 from ..frame.modal import linearisation_notes, modal_analysis, nonlinear_devices
-from ..motion.record import GroundMotion
+from ..motion.record import G, GroundMotion
 from ..verification.spectrum import Site
 from ..verification.suite import MIN_CYCLES, period_range
 from ..verification.verify import PropertyBounds, VerificationResult, verify
@@ -124,14 +128,15 @@ class LimitCheck:
 
     @property
     def ratio(self) -> float:
-        return self.demand / self.value
+        # inf where nothing is allowed (a wall at rest at or above its temperature limit)
+        return self.demand / self.value if self.value > 0.0 else float("inf")
 
     @property
     def passed(self) -> bool:
-        return self.ratio <= 1.0
+        return self.demand <= self.value
 
     def text(self) -> str:
-        unit = DEVICE_LIMITS.get(self.limit.split(" ")[0], "-")
+        unit = {**DEVICE_LIMITS, "stress": "MPa"}.get(self.limit.split(" ")[0], "-")
         unit = "" if unit == "-" else f" {unit}"
         return (f"{self.limit} of {self.where}: demand {self.demand:.4g} vs limit {self.value:.4g}{unit} "
                 f"(ratio {self.ratio:.3f})")
@@ -149,7 +154,8 @@ class DesignRound:
     (count per case name), ``allowed_unacceptable``; ``device_peaks``: the largest demands (name -> value: walls'
     strain -, deformation mm, velocity mm/s, temperature rise K; other devices' deformation mm, velocity mm/s,
     force N); ``limits``: each :class:`LimitCheck`; ``passed``; ``seconds`` (the verification's time);
-    ``failed``: each failed criterion or limit with by how much (empty when the round passed)."""
+    ``failed``: each failed criterion or limit with by how much (empty when the round passed); ``left_out``: the
+    names of the candidate records too short for the round's period range (left out of its selection)."""
 
     number: int
     change: str
@@ -171,6 +177,7 @@ class DesignRound:
     passed: bool
     seconds: float
     failed: tuple[str, ...] = ()
+    left_out: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -248,7 +255,7 @@ class DampedDesign:
                 seen.add(id(assessment))
                 note = " (the same assessment: the devices have no failure model)" if same else ""
                 lines.append(f"- {key}: ACMR {assessment.acmr:.3f} vs ACMR20% {assessment.acmr20:.3f}: "
-                             f"{'pass' if assessment.passes_acmr20 else 'FAIL'}{note}")
+                             f"{'pass' if assessment.passes_acmr20 else 'FAIL'}{note}; {p695_basis(assessment)}")
             lines += ["", "One archetype is not a FEMA P695 system qualification: P695 asks for performance groups "
                       "of archetypes; this is the assessment of this one design.", ""]
         lines += ["### Times", ""] + [f"- {part}: {seconds:.3g} s" for part, seconds in self.timings.items()]
@@ -257,6 +264,14 @@ class DampedDesign:
 
 
 # ------------------------------------------------------------------------------------------------ helpers
+def p695_basis(assessment: Any) -> str:
+    """What a FEMA P695 ACMR is measured against, in words: the SDC of P695 Table 5-1 whose MCE S_MT (g) at the
+    period T (s) divides the collapse intensity (collapse_assessment's ``sdc``: Dmax unless given, not the design's
+    site)."""
+    return (f"SDC {assessment.sdc}, S_MT = {assessment.smt / G:.3g} g at T = {assessment.period:.3g} s "
+            "(FEMA P695 Table 5-1's MCE of that SDC, not the design site's)")
+
+
 def _check_limits(device_limits: Mapping[str, float] | None) -> dict[str, float]:
     if device_limits is None:
         return {}
@@ -352,6 +367,13 @@ def _limit_checks(building: ShearBuilding, result: VerificationResult, limits: d
         own = getattr(wall, "limits", None)
         if own is not None and own.strain is not None:
             checks.append(LimitCheck("strain (WallLimits)", where, demand.strain, own.strain))
+        if own is not None and own.stress is not None:
+            checks.append(LimitCheck("stress (WallLimits)", where, demand.force / wall.area, own.stress))
+        if own is not None and own.temperature is not None and demand.temperature_rise is not None \
+                and wall.thermal is not None:
+            # the rise (K) against the rise the limit allows from the warmest temperature the wall starts at
+            checks.append(LimitCheck("temperature_rise (WallLimits)", where, demand.temperature_rise,
+                                     own.temperature - _warmest_start(wall, getattr(result, "bounds", None))))
         if "strain" in limits:
             checks.append(LimitCheck("strain", where, demand.strain, limits["strain"]))
         if "stroke" in limits:
@@ -367,6 +389,24 @@ def _limit_checks(building: ShearBuilding, result: VerificationResult, limits: d
         if "velocity" in limits:
             checks.append(LimitCheck("velocity", where, max(other.velocity.values()), limits["velocity"]))
     return tuple(checks)
+
+
+def _warmest_start(wall: Any, bounds: PropertyBounds | None) -> float:
+    """The warmest temperature (degC) a wall starts an analysis at: its own, or the hot end of the bounds' ambient
+    range (:class:`~vdw_frames.verification.PropertyBounds`)."""
+    own = float(wall.thermal.temperature)
+    return own if bounds is None or bounds.ambient is None else max(own, float(bounds.ambient[1]))
+
+
+def _check_wall_temperature(device: Any, bounds: Any) -> None:
+    """ValueError where a wall prototype starts at or above its own temperature limit (no rise is allowed)."""
+    limits = getattr(device, "limits", None) if is_wall(device) else None
+    if limits is None or limits.temperature is None or getattr(device, "thermal", None) is None:
+        return
+    start = _warmest_start(device, bounds if isinstance(bounds, PropertyBounds) else None)
+    if limits.temperature <= start:
+        raise ValueError(f"the wall's temperature limit {limits.temperature:g} degC is not above the temperature it "
+                         f"starts at, {start:g} degC: it would fail at once")
 
 
 def _peaks(result: VerificationResult) -> dict[str, float]:
@@ -446,6 +486,7 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
     target = _target(target_damping)
     limits = _check_limits(device_limits)
     n_rounds = _check_options(rounds, irregular, distribution, p695, bounds, frame_options)
+    _check_wall_temperature(device, bounds)
     loop = _Loop(site, system, weights, story_heights, device, distribution=distribution, frame_options=frame_options)
     records = list(records) if records is not None else None
     current, history, previous = target, [], None
@@ -463,6 +504,10 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
         b = damping_coefficient(effective)
         v = float(undamped.base_shear)
         v_min, rule = minimum_base_shear(v, b, bool(irregular))
+        if v_min > v:  # B_V+I < 1 (below 5 % damping): design_frame's strength_scale stops at 1
+            loop.assumptions.append(
+                f"round {number}: V_min = V / B_V+I = {v_min / v:.4f} V exceeds V (B_V+I = {b:.4f} < 1 at "
+                f"{effective:.4f} damping); the frame is designed for V, not V_min")
         frame = loop.frame_design(min(1.0, v_min / v))
         building = frame.building.with_devices(devices)
 
@@ -481,7 +526,7 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
             drift_limit=float(result.drift_limit),
             unacceptable={case: sum(1 for reason in result.unacceptable[c] if reason) for c, case in enumerate(cases)},
             allowed_unacceptable=result.allowed_unacceptable, device_peaks=_peaks(result), limits=checks,
-            passed=not failures, seconds=seconds, failed=tuple(failures)))
+            passed=not failures, seconds=seconds, failed=tuple(failures), left_out=loop.left_out.get(number, ())))
         final = (frame, undamped, building, sizing, effective, b, v_min, rule, amplitudes, result)
         if not failures:
             break
@@ -537,6 +582,7 @@ class _Loop:
         self.timings: dict[str, float] = {}
         self.factor = 1.0
         self._p695_records: list[GroundMotion] | None = None
+        self.left_out: dict[int, tuple[str, ...]] = {}
         self.assumptions = [
             "B_V+I from the complex-mode damping ratio of mode 1 with the devices at the MCE_R amplitude estimate "
             "(inherent damping included, the frame's hysteretic damping not); ASCE 7-16 Sec. 18.7 computes beta_V1 "
@@ -568,9 +614,12 @@ class _Loop:
         shortest = MIN_CYCLES * period_range(building).upper
         kept = [motion for motion in records if motion.duration >= shortest]
         if len(kept) < len(records):
+            self.left_out[number] = tuple(motion.name or f"record {i + 1}" for i, motion in enumerate(records)
+                                          if motion.duration < shortest)
             self.assumptions.append(
                 f"round {number}: {len(records) - len(kept)} of the {len(records)} candidate records left out of the "
-                f"suite's selection: shorter than {MIN_CYCLES:g} x T_upper = {shortest:.3g} s (scaled_suite's rule)")
+                f"suite's selection: shorter than {MIN_CYCLES:g} x T_upper = {shortest:.3g} s (scaled_suite's rule): "
+                + ", ".join(self.left_out[number]))
         return kept
 
     def frame_design(self, scale: float) -> FrameDesign:

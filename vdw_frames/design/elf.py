@@ -64,7 +64,12 @@ BETA = 1.0
 """beta of ASCE 7-16 Eq. 12.8-17 (shear demand / shear capacity): 1.0, which Sec. 12.8.7 permits."""
 
 ELF_PERIOD_LIMIT = 3.5
-"""ASCE 7-16 Table 12.6-1: in SDC D-F the ELF procedure is permitted for regular structures with T < 3.5 T_S."""
+"""ASCE 7-16 Table 12.6-1: in SDC D-F the ELF procedure is permitted for regular structures above
+:data:`ELF_HEIGHT_LIMIT` with T < 3.5 T_S."""
+
+ELF_HEIGHT_LIMIT = 160.0 * code.FT
+"""ASCE 7-16 Table 12.6-1 (mm): in SDC D-F the ELF procedure is permitted for regular structures not exceeding
+160 ft (48.8 m) in structural height at any period (ideCAD's copy of the table)."""
 
 
 @dataclass(frozen=True)
@@ -452,7 +457,8 @@ def design_frame(site: Site, system: str | SeismicSystem, weights: ArrayLike, st
     modes = None if h.size == 1 and tuple(damping_modes) == (1, 2) else damping_modes  # one story: its only mode
     building = ShearBuilding(w / G, stiffnesses, damping_ratio=damping_ratio, damping_modes=modes,
                              story_heights=h, hysteresis=models, gravity_loads=loads)
-    assumptions = _assumptions(spec, site, category, sdc, rho_value, rho is None, divisor, strength_scale, period)
+    assumptions = _assumptions(spec, site, category, sdc, rho_value, rho is None, divisor, strength_scale, period,
+                               height)
     return FrameDesign(
         building=building, site=site, system=spec, risk_category=category, importance=ie, sdc=sdc, rho=rho_value,
         height=height, ta=ta, cu=cu, analytical_period=t1, period=period, drift_period=found.drift_period, cs=cs,
@@ -465,7 +471,7 @@ def design_frame(site: Site, system: str | SeismicSystem, weights: ArrayLike, st
 
 
 def _assumptions(spec: SeismicSystem, site: Site, category: str, sdc: str, rho: float, default_rho: bool,  # noqa: PLR0917
-                 divisor: float, strength_scale: float, period: float) -> tuple[str, ...]:
+                 divisor: float, strength_scale: float, period: float, height: float) -> tuple[str, ...]:
     """Every assumption of the design, in words."""
     assumptions = [
         f"System coefficients R = {spec.r:g}, Omega_0 = {spec.omega0:g}, C_d = {spec.cd:g} and height limits from "
@@ -483,6 +489,8 @@ def _assumptions(spec: SeismicSystem, site: Site, category: str, sdc: str, rho: 
            "not divided by rho (Sec. 12.12.1.1 applies to moment frames in SDC D-F only)."),
         ("rho = 1.3 (ASCE 7-16 Sec. 12.3.4.2; the conditions for 1.0 are not checked: give rho=1.0 where they are "
          "met)." if default_rho and rho == 1.3 else f"rho = {rho:g} (Sec. 12.3.4)."),
+        *([f"Story strengths are V_x (Q_E) without rho: ASCE 7-16 Sec. 12.4.2.1 takes E_h = rho Q_E = {rho:g} Q_E "
+           "for member design; give overstrength to include it."] if rho != 1.0 else []),
         f"Drift is checked with the unreduced Chapter 12 forces; strength_scale = {strength_scale:g} scales "
         "strength only.",
         "The structure is taken as regular (no irregularity of Tables 12.3-1/12.3-2 is checked), with no "
@@ -491,8 +499,9 @@ def _assumptions(spec: SeismicSystem, site: Site, category: str, sdc: str, rho: 
     if site.s1 is None:
         assumptions.append("S_1 is not known (site given by S_MS, S_M1): Eq. 12.8-6 and the S_1 >= 0.75 g rule of "
                            "Sec. 11.6 are not applied.")
-    if sdc in ("D", "E", "F") and period >= ELF_PERIOD_LIMIT * site.ts:
-        assumptions.append(f"T = {period:.3f} s >= 3.5 T_S = {ELF_PERIOD_LIMIT * site.ts:.3f} s in SDC {sdc}: "
+    if sdc in ("D", "E", "F") and height > ELF_HEIGHT_LIMIT and period >= ELF_PERIOD_LIMIT * site.ts:
+        assumptions.append(f"h_n > 160 ft and T = {period:.3f} s >= 3.5 T_S = {ELF_PERIOD_LIMIT * site.ts:.3f} s "
+                           f"in SDC {sdc}: "
                            "ASCE 7-16 Table 12.6-1 does not permit the ELF procedure here (modal response spectrum "
                            "analysis, Sec. 12.9, or response history analysis is required); the ELF forces are used "
                            "as a preliminary design, to be verified by response history analysis.")

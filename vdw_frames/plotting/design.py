@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..asce7.elf import design_drift_limit_divisor
 from ._figure import figure_path, pyplot, save
 
 if TYPE_CHECKING:  # types only: the figures sit below the design and verification that draw them in their reports
@@ -99,7 +100,9 @@ def plot_design_profiles(design: FrameDesign, path: str | os.PathLike[str], titl
     shear.set_xlim(left=0.0)
     shear.legend(fontsize="small", loc="best")
     drift.plot(design.design_drifts, stories, "C0-o", ms=4, lw=1.8, label="delta_x = C_d delta_xe / I_e (P-Delta)")
-    drift.plot(design.allowable_drifts, stories, "C3--", lw=1.4, label=f"limit Delta_a / rho (rho = {design.rho:g})")
+    divided = design_drift_limit_divisor(design.system, design.sdc, design.rho) != 1.0  # Sec. 12.12.1.1
+    drift.plot(design.allowable_drifts, stories, "C3--", lw=1.4,
+               label=f"limit Delta_a / rho (rho = {design.rho:g})" if divided else "limit Delta_a (Table 12.12-1)")
     drift.set_xlabel("design story drift (mm)")
     drift.set_xlim(left=0.0)
     drift.legend(fontsize="small", loc="best")

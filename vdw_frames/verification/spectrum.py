@@ -271,10 +271,10 @@ SITE_KEYS = ("sms", "sm1", "tl", "ss", "s1", "site_class", "risk_category")
 """The keys :func:`site_from_values` reads (the ``[site]`` table of a building file)."""
 
 
-def site_from_values(values: dict) -> Site:
+def site_from_values(values: dict, damping_system: bool = True) -> Site:
     """A :class:`Site` from a dict with some of :data:`SITE_KEYS`: either ``sms`` and ``sm1`` or ``ss``, ``s1``
     and ``site_class``, and ``tl``; ``risk_category`` defaults to "II".  ValueError naming what is missing,
-    unknown or contradictory."""
+    unknown or contradictory.  ``damping_system``: as :meth:`Site.from_mapped` (Sec. 11.4.8's S_1 >= 0.6 rule)."""
     if not isinstance(values, dict):
         raise ValueError(f"the site must be a table of {', '.join(SITE_KEYS)}, got {show(values)}")
     unknown = sorted(set(values) - set(SITE_KEYS))
@@ -297,4 +297,5 @@ def site_from_values(values: dict) -> Site:
     if mapped != {"ss", "s1", "site_class"}:
         missing = sorted({"ss", "s1", "site_class"} - mapped) if mapped else ["sms", "sm1"]
         raise ValueError(f"the site needs sms and sm1 (g), or ss, s1 and site_class; missing {missing}")
-    return Site.from_mapped(values["ss"], values["s1"], values["site_class"], values["tl"], category)
+    return Site.from_mapped(values["ss"], values["s1"], values["site_class"], values["tl"], category,
+                            damping_system=damping_system)
