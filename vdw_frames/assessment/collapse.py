@@ -602,7 +602,7 @@ def _run_searches(building: ShearBuilding, motions: Sequence[GroundMotion], unit
     by_dt: dict[float, list[int]] = {}
     for k in sorted(range(len(motions)), key=lambda k: -motions[k].acceleration.size):  # longest first
         by_dt.setdefault(motions[k].dt, []).append(k)
-    size = max(1, min(RECORDS_PER_TASK, math.ceil(len(motions) / (2 * (os.cpu_count() or 1)))))
+    size = max(1, min(RECORDS_PER_TASK, math.ceil(len(motions) / (4 * (os.cpu_count() or 1)))))
     chunks = [group[i:i + size] for group in by_dt.values() for i in range(0, len(group), size)]
     tasks = {c: RecordsSearch(building, tuple(motions[k] for k in chunk), unit, criterion, settings, options)
              for c, chunk in enumerate(chunks)}

@@ -22,7 +22,14 @@ Design (issue 32):
 * **Lanes in turn.**  The lanes run one after the other inside the call, each to its own end: a lane's state
   then stays in the cache over its whole record.  A lane that collapses or fails stops; the others go on
   (their results are independent of it).  Records of different lengths are padded to the longest (a lane
-  stops at its own end); records of different dt are refused.
+  stops at its own end); records of different dt are refused.  The lanes do not step in lockstep, and no
+  arithmetic is vectorised across them: each lane's Newton iterations (their number, the stories' branches)
+  depend on its own state, and the step was kept the single analysis's so that the results are too.
+* **The workspace.**  One per thread (thread executors run batches side by side), kept after a batch and
+  reused by the next when it fits (:func:`_fits`: the same building, dt and settings, no more lanes, and walls
+  whose memory is the same), its arrays copied back to rest in place: no allocation per analysis (the results'
+  peaks are small copies; histories are asked for by name and copied out of the workspace, so no kept array
+  holds the batch's memory).
 * **What to record.**  ``record``: "peaks" (the default) keeps two rows of histories a lane (a ring: the
   state a step needs) and the peaks the batch callers need (:class:`LanePeaks`); a list of history names
   (those of :class:`~vdw_frames.frame.integrator.Histories`) keeps every row of those, copied out per lane.
