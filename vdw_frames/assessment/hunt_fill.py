@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Callable, Generator, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -144,25 +144,14 @@ class SearchResult:
 
 def hunt_and_fill(run: Callable[[float], Run], settings: HuntAndFill, label: str = "the record") -> SearchResult:
     """Search the collapse intensity with ``run(intensity) -> Run`` (module docstring); ``settings`` with
-    ``start`` and ``cap`` set.  ValueError when the record collapses even at start / growth^12.  The search
-    is :func:`searching`, driven one run at a time."""
-    steps = searching(settings, label)
-    try:
-        intensity = next(steps)
-        while True:
-            intensity = steps.send(run(intensity))
-    except StopIteration as done:
-        return done.value
-
-
-def searching(settings: HuntAndFill, label: str = "the record") -> Generator[float, Run, SearchResult]:
-    """The hunt-and-fill of one record as a generator: it yields each intensity to run, is sent that run's
-    :class:`Run`, and returns the :class:`SearchResult` (module docstring).  Many records' searches advance
-    side by side in rounds this way, one run of each a round (the assessment's lanes,
-    :mod:`vdw_frames.frame.lanes`); :func:`hunt_and_fill` drives one."""
+    ``start`` and ``cap`` set.  ValueError when the record collapses even at start / growth^12."""
     if settings.start is None or settings.cap is None:
         raise ValueError("hunt_and_fill needs settings with start and cap")
     runs: list[Run] = []
+
+    def analyse(intensity: float) -> bool:
+        runs.append(run(intensity))
+        return runs[-1].collapsed
 
     def bracket() -> tuple[float, float]:
         """(highest standing intensity below the lowest collapse, lowest collapse).  Called only once the
@@ -172,12 +161,10 @@ def searching(settings: HuntAndFill, label: str = "the record") -> Generator[flo
 
     growth = settings.growth
     intensity = settings.start
-    runs.append((yield intensity))
-    if runs[-1].collapsed:  # hunt down
+    if analyse(intensity):  # hunt down
         for _ in range(MAX_HALVINGS):
             intensity /= growth
-            runs.append((yield intensity))
-            if not runs[-1].collapsed:
+            if not analyse(intensity):
                 break
         else:
             raise ValueError(f"{label} collapses even at {intensity:.6g} (start / {growth:g}^{MAX_HALVINGS}): the "
@@ -185,15 +172,14 @@ def searching(settings: HuntAndFill, label: str = "the record") -> Generator[flo
     else:  # hunt up
         while intensity < settings.cap:
             intensity = min(intensity * growth, settings.cap)
-            runs.append((yield intensity))
-            if runs[-1].collapsed:
+            if analyse(intensity):
                 break
         else:
             return SearchResult(tuple(runs), intensity, None, _widest_gap(runs, intensity))
     while True:
         standing, collapsing = bracket()
         if collapsing / standing > 1.0 + settings.tolerance:  # bisect
-            runs.append((yield math.sqrt(standing * collapsing)))
+            analyse(math.sqrt(standing * collapsing))
             continue
         if len(runs) >= settings.max_runs:
             break
@@ -202,7 +188,7 @@ def searching(settings: HuntAndFill, label: str = "the record") -> Generator[flo
         if not ratios or max(ratios) <= settings.fill_ratio:
             break
         k = int(np.argmax(ratios))  # fill the widest gap
-        runs.append((yield math.sqrt(below[k] * below[k + 1])))
+        analyse(math.sqrt(below[k] * below[k + 1]))
     standing, collapsing = bracket()
     return SearchResult(tuple(runs), standing, collapsing, _widest_gap(runs, standing))
 
