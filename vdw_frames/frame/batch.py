@@ -29,9 +29,9 @@ from numpy.typing import ArrayLike
 
 from .._files import write_text
 from .._parallel import Collected, check_executor, executor_for, fan_out, reissue
-from .._validation import finite_array, show
+from .._validation import finite_array, non_negative, show
 from .._warnings import keyword_only_since_0_3
-from ..element.bank import group_walls, wall_order
+from ..element.bank import group_walls, memory_strategy, wall_order
 from ..element.damper import DEFAULT_MEMORY
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation
@@ -358,14 +358,26 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
 def _fan_out_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], factors: np.ndarray, *,
                    memory: str | FastMemory, method: str | Discretisation, options: tuple[tuple[str, Any], ...],
                    executor: concurrent.futures.Executor | None, progress: bool) -> dict[tuple[int, int], Collected]:
-    """Every (motion, scale) analysis as lanes: :class:`LaneTask` s of records of one dt, at most
+    """Every (motion, scale) analysis as lanes: :class:`LaneTask` s of records of one dt and wall memory, at most
     :data:`LANES_PER_TASK` each, fanned out by :func:`~vdw_frames._parallel.fan_out`; returns each analysis's
     peaks and warnings keyed (motion, scale), as the tasks of one analysis give them."""
     pairs = [(m, s) for m in range(len(motions)) for s in range(factors.shape[1])]
     size = max(1, min(LANES_PER_TASK, math.ceil(len(pairs) / (4 * (os.cpu_count() or 1)))))
-    by_dt: dict[float, list[tuple[int, int]]] = {}
+    # One task's records share dt and, with walls on the fast memory, the side of FastMemory.exact_below their
+    # steps fall on (simulate's choice of the exact or the fast memory), so that every lane equals simulate.
+    strategy = memory_strategy(memory) if building.wall_list else None
+    free_vibration = non_negative("free_vibration", dict(options).get("free_vibration", 0.0))
+
+    def exact(m: int) -> bool:
+        if strategy is None:
+            return False
+        # size + ceil(x) <= exact_below iff size + x <= exact_below, x as simulate rounds its rest (inf: not exact)
+        rest = free_vibration / motions[m].dt - 1e-9 if free_vibration > 0.0 else 0.0
+        return motions[m].acceleration.size + rest <= strategy.exact_below
+
+    by_dt: dict[tuple[float, bool], list[tuple[int, int]]] = {}
     for m, s in pairs:
-        by_dt.setdefault(motions[m].dt, []).append((m, s))
+        by_dt.setdefault((motions[m].dt, exact(m)), []).append((m, s))
     chunks = [group[i:i + size] for group in by_dt.values() for i in range(0, len(group), size)]
     tasks = {c: LaneTask(building, tuple(motions[m] for m, _ in chunk), tuple(float(factors[m, s]) for m, s in chunk),
                          tuple(f"{_label(motions, m)} x {factors[m, s]:g}" for m, s in chunk), memory, method, options)
