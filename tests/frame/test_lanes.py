@@ -8,6 +8,7 @@ np.array_equal / ==.  (The one documented exception, walls on a record within th
 with a longer one, is avoided here: every wall record is longer than FastMemory.exact_below = 2048 steps.)"""
 
 import dataclasses
+import pickle
 
 import numpy as np
 import pytest
@@ -161,6 +162,25 @@ def test_the_workspace_is_reused_and_reset_between_batches(record):
                 assert np.array_equal(value_a, value_b, equal_nan=True), field.name
             elif field.name != "histories":
                 assert value_a == value_b, field.name
+
+
+def test_a_copy_of_the_building_takes_the_workspace_over_and_another_building_does_not(record):
+    """A process pool's worker unpickles the building anew for every task: such a copy (an equal pickle) reuses
+    the workspace; a different building gets its own.  Reference: simulate, to the bit."""
+    building = example_ten_story()
+    copy = pickle.loads(pickle.dumps(building))
+    lane, = run_lanes(copy, [record], [1.5], record=list(HISTORIES))
+    space = lanes_module._cache.workspace
+    batches = space.batches
+    again = pickle.loads(pickle.dumps(building))
+    second, = run_lanes(again, [record], [1.5], record=list(HISTORIES))
+    assert lanes_module._cache.workspace is space and space.batches == batches + 1
+    for found in (lane, second):
+        assert_lane_is_simulate(found, quiet_simulate(copy, record.scaled(1.5)))
+    other = building.without_devices()
+    bare, = run_lanes(other, [record], record=list(HISTORIES))
+    assert lanes_module._cache.workspace is not space
+    assert_lane_is_simulate(bare, quiet_simulate(other, record))
 
 
 def test_bad_batches_are_refused_and_a_non_finite_lane_fails_alone(record):

@@ -26,7 +26,8 @@ Design (issue 32):
   arithmetic is vectorised across them: each lane's Newton iterations (their number, the stories' branches)
   depend on its own state, and the step was kept the single analysis's so that the results are too.
 * **The workspace.**  One per thread (thread executors run batches side by side), kept after a batch and
-  reused by the next when it fits (:func:`_fits`: the same building, dt and settings, no more lanes, and walls
+  reused by the next when it fits (:func:`_fits`: the same building -- or a copy, an equal pickle: a worker
+  unpickles the building for every task --, dt and settings, no more lanes, and walls
   whose memory is the same), its arrays copied back to rest in place: no allocation per analysis (the results'
   peaks are small copies; histories are asked for by name and copied out of the workspace, so no kept array
   holds the batch's memory).
@@ -39,7 +40,9 @@ Units: N, mm, s, tonne; ground acceleration mm/s^2.
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import pickle
 import threading
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -312,6 +315,7 @@ class LaneWorkspace:
         self.ground = np.zeros((lanes, layout.memory_steps))
         self.lengths = np.zeros(lanes, dtype=np.int64)
         self.batches = 0
+        self.fingerprint = b""  # the building's pickle when the workspace was made (set by :func:`workspace`)
 
     def reset(self) -> None:
         """Every lane back at rest (the arrays of the first batch, rewritten in place)."""
@@ -341,12 +345,28 @@ def _fits(held: _Layout, wanted: _Layout) -> bool:
         held.memory_steps <= strategy.max_steps)
 
 
+def _fingerprint(building: ShearBuilding) -> bytes:
+    """The building's pickle: equal for a building and its copies (a worker unpickles the same building for each
+    of its tasks), whose workspaces would be equal too."""
+    return pickle.dumps(building, protocol=pickle.HIGHEST_PROTOCOL)
+
+
 def workspace(layout: _Layout) -> LaneWorkspace:
     """This thread's workspace for ``layout``: the last one when it fits (:func:`_fits`: its idle lanes stay
-    idle), else a new one (which replaces it)."""
+    idle), else a new one (which replaces it).  A copy of the workspace's building (an equal pickle, taken at
+    the same point of :func:`run_lanes`: a process pool's worker unpickles the building anew for every task)
+    takes the workspace over, as the building itself would."""
     held = getattr(_cache, "workspace", None)
+    fingerprint = None
+    if held is not None and held.layout.building_id != layout.building_id:
+        fingerprint = _fingerprint(layout.building)
+        if fingerprint == held.fingerprint:
+            held.layout = dataclasses.replace(held.layout, building=layout.building, building_id=layout.building_id)
     if held is None or not _fits(held.layout, layout):
+        fingerprint = _fingerprint(layout.building) if fingerprint is None else fingerprint
+        _cache.workspace = None  # the old arrays freed before the new ones are allocated
         held = LaneWorkspace(layout)
+        held.fingerprint = fingerprint
         _cache.workspace = held
     return held
 
