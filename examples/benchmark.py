@@ -48,6 +48,12 @@ repeats for runs under a second; numba compilation is excluded except in (d)):
     package solves in closed form, and at alpha = 0.4 (C for the same force at 100 mm/s), solved by
     iteration (a power an iterate).
 
+(i) lanes (issue 32, ``vdw_frames.frame.lanes.run_lanes``): the example frame of examples/ten_story.toml, bare
+    (yielding, P-Delta) and with its walls (amplitude-following, heating, limits), on the shipped record at 44
+    scales (0.2 ... 1.0) as one batch of 44 lanes: the time per analysis step amortised over the batch
+    (targets <= 0.2 us bare, <= 0.6 us with walls) beside one ``simulate`` call's, and the page faults
+    per analysis of a second batch (``resource.getrusage``; target <= 10).  The load is printed beside each.
+
 ``--part X`` (repeatable) runs only the named parts (``--part h``: (h) alone).
 ``--quick``: 2 000 and 20 000 steps only (no 200 000-step runs), single repeats; (e) on 4 000 steps.  Without the
 ../shared/ground_motions folder (a fresh clone) a synthetic 80 s record at 0.004 s stands in for
@@ -629,13 +635,48 @@ def part_p695():
               f"{seconds[label] - result.search_seconds:.1f} s")
 
 
+def part_lanes(repeats):
+    """(i): lanes against single analyses (module docstring)."""
+    import resource
+
+    from vdw_frames.config import load_building
+    from vdw_frames.frame.lanes import run_lanes
+
+    record = read_at2(ROOT / "vdw_frames" / "motion" / "data" / "synthetic_kt_035g.AT2")
+    walled = load_building(ROOT / "examples" / "ten_story.toml")
+    scales = np.linspace(0.2, 1.0, 44)
+    print(f"\n(i) lanes: the example frame on the shipped record ({record.acceleration.size} points) x 44 scales "
+          "(0.2 ... 1.0), one batch of 44 lanes, against one simulate() call per analysis")
+    for label, building, target in (("bare frame", walled.without_devices(), 0.2),
+                                    ("walls (amplitude, heat, limits)", walled, 0.6)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            run_lanes(building, [record] * 44, scales)  # compile (or load) and size the workspace
+            single, result = timed(lambda building=building: simulate(building, record.scaled(0.6)), repeats)
+            load_single = os.getloadavg()[0]
+            batch, lanes = timed(lambda building=building: run_lanes(building, [record] * 44, scales), repeats)
+            load_batch = os.getloadavg()[0]
+            before = resource.getrusage(resource.RUSAGE_SELF)
+            run_lanes(building, [record] * 44, scales)
+            after = resource.getrusage(resource.RUSAGE_SELF)
+        steps = sum(lane.steps - 1 for lane in lanes)
+        per_step, single_step = 1e6 * batch / steps, 1e6 * single / (result.time.size - 1)
+        faults = (after.ru_minflt - before.ru_minflt + after.ru_majflt - before.ru_majflt) / 44
+        print(f"    {label}: {per_step:.3f} us a step amortised over 44 lanes (load {load_batch:.2f}; target <= "
+              f"{target:g}: {'meets' if per_step <= target else 'misses'}); one simulate(): {single_step:.3f} us a "
+              f"step (load {load_single:.2f}); ratio {single_step / per_step:.2f}; "
+              f"{sum(lane.collapsed for lane in lanes)} of 44 collapsed")
+        print(f"        page faults per analysis of a later batch: {faults:.1f} (target <= 10: "
+              f"{'meets' if faults <= 10 else 'misses'})")
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="2 000 and 20 000 steps only, single repeats")
-    parser.add_argument("--part", action="append", choices=list("abcdefgh"),
+    parser.add_argument("--part", action="append", choices=list("abcdefghi"),
                         help="run only this part (repeatable; default: every part)")
     args = parser.parse_args(argv)
-    parts = set(args.part or "abcdefgh")
+    parts = set(args.part or "abcdefghi")
     repeats = 1 if args.quick else 5
 
     motion, source = load_record()
@@ -670,6 +711,8 @@ def main(argv=None) -> int:
         part_p695()
     if "h" in parts:
         part_fvd(motion, source, args.quick, repeats)
+    if "i" in parts:
+        part_lanes(repeats)
     return 0
 
 

@@ -17,7 +17,7 @@ from builders import (
 )
 from shared_data import shared_record
 
-from vdw_frames import FDMKDamper, G, ShearBuilding, read_at2, simulate
+from vdw_frames import FDMKDamper, G, GroundMotion, ShearBuilding, read_at2, simulate
 from vdw_frames.frame.batch import run_batch, scale_factors_to_pga, scale_factors_to_spectral_acceleration
 
 
@@ -41,6 +41,24 @@ def test_batch_peaks_equal_simulate():
             np.testing.assert_array_equal(result.peak_story_wall_force[m, s], single.peak_story_wall_force)
             assert result.peak_base_shear[m, s, 0] == single.peak_base_shear
             assert result.pga[m, s] == pytest.approx(scale * motion.pga)
+
+
+def test_batch_peaks_equal_simulate_when_short_and_long_records_share_a_task(monkeypatch):
+    """Walls remember the exact history for records of at most FastMemory.exact_below (2048) steps and a fast
+    approximation beyond: a task of lanes mixing both sides would give the short record the fast memory.
+    Reference: simulate of each analysis, to the bit."""
+    t = np.arange(0.0, 30.0, 0.01)
+    wave = 0.3 * G * np.sin(2.0 * np.pi * t) * np.minimum(t / 2.0, 1.0)
+    records = [GroundMotion(wave[:2000], 0.01, "short"), GroundMotion(wave, 0.01, "long")]
+    scales = [0.5, 0.8, 1.0, 1.2, 1.5]
+    monkeypatch.setattr("vdw_frames.frame.batch.os.cpu_count", lambda: 1)  # tasks of 3 analyses: both records in one
+    with concurrent.futures.ThreadPoolExecutor(1) as pool:
+        result = run_batch(building(), records, scales, executor=pool, progress=False)
+    for m, motion in enumerate(records):
+        for s, scale in enumerate(scales):
+            single = simulate(building(), motion.scaled(scale))
+            np.testing.assert_array_equal(result.peak_drift[m, s], single.peak_drift)
+            np.testing.assert_array_equal(result.peak_story_wall_force[m, s], single.peak_story_wall_force)
 
 
 def test_default_process_pool_and_per_motion_scales(tmp_path):

