@@ -50,6 +50,7 @@ def simulated_search(building, motion, unit, criterion, settings):
     return hunt_and_fill(analyse, settings, label)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("wall_limit, criterion", [
     (None, CollapseCriterion(drift_ratio=0.10)),
     (2.0, CollapseCriterion(drift_ratio=0.10, wall_failure=True)),

@@ -70,6 +70,7 @@ def record():
     return read_at2(REPO / "vdw_frames" / "motion" / "data" / "synthetic_kt_035g.AT2")
 
 
+@pytest.mark.slow  # compiles the lanes for its kind of building (tens of seconds a worker, cold)
 def test_yielding_frame_with_p_delta_lanes_of_different_lengths_and_collapse_equal_simulate(record):
     """The example frame without its walls (Bilinear stories, P-Delta): an elastic-range lane, a yielding one,
     two that collapse at different times, and a shorter record: histories and peaks, to the bit."""
@@ -88,6 +89,7 @@ def test_yielding_frame_with_p_delta_lanes_of_different_lengths_and_collapse_equ
     assert len({lane.steps for lane in lanes}) >= 4
 
 
+@pytest.mark.slow  # compiles the lanes for its kind of building (tens of seconds a worker, cold)
 def test_walls_that_heat_follow_their_amplitude_and_fail_equal_simulate(record):
     """The example frame with its walls (strain-dependent, amplitude-following, heating, with limits); in one
     variant the limit is lowered so that walls fail: every lane's histories, temperatures, amplitudes and the
@@ -109,6 +111,7 @@ def test_walls_that_heat_follow_their_amplitude_and_fail_equal_simulate(record):
     assert failures > 0  # the failing variant's walls failed
 
 
+@pytest.mark.slow  # compiles the lanes for its kind of building (tens of seconds a worker, cold)
 def test_fluid_viscous_and_friction_dampers_equal_simulate(record):
     """Walls, a linear and a nonlinear FVD and friction dampers (builders.mixed_devices_building), and the
     yielding example frame with an FVD and a friction damper, on records of different lengths."""
@@ -126,6 +129,7 @@ def test_fluid_viscous_and_friction_dampers_equal_simulate(record):
         assert (lane.peak_device_force > 0).all()
 
 
+@pytest.mark.slow  # compiles the lanes for its kind of building (tens of seconds a worker, cold)
 def test_a_lane_collapsing_early_and_one_never_yielding_equal_each_run_alone():
     """Masking: a lane that collapses within a few steps stops, the other runs to its end: each equals the
     same lane run alone and simulate."""
@@ -144,6 +148,7 @@ def test_a_lane_collapsing_early_and_one_never_yielding_equal_each_run_alone():
         assert_lane_is_simulate(single, result)
 
 
+@pytest.mark.slow  # compiles the lanes for its kind of building (tens of seconds a worker, cold)
 def test_the_workspace_is_reused_and_reset_between_batches(record):
     """A second batch of the same layout reuses the workspace (no new arrays) and starts from rest: its lanes
     equal those of the first batch of the same records."""
@@ -164,6 +169,7 @@ def test_the_workspace_is_reused_and_reset_between_batches(record):
                 assert value_a == value_b, field.name
 
 
+@pytest.mark.slow  # compiles the lanes for its kind of building (tens of seconds a worker, cold)
 def test_a_copy_of_the_building_takes_the_workspace_over_and_another_building_does_not(record):
     """A process pool's worker unpickles the building anew for every task: such a copy (an equal pickle) reuses
     the workspace; a different building gets its own.  Reference: simulate, to the bit."""
