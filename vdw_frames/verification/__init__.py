@@ -14,7 +14,8 @@ secondary sources (transcriptions, implementers' code, the committee chair's sli
 Units: spectral accelerations in g where the standard tabulates them (else mm/s^2), periods s, N, mm, s.
 """
 
-from .spectrum import RISK_CATEGORIES, SITE_CLASSES, Site, mce_spectrum, site_coefficients, site_from_values
+from ..asce7.elf import RISK_CATEGORIES
+from .spectrum import SITE_CLASSES, Site, mce_spectrum, site_coefficients, site_from_values
 from .suite import PeriodRange, ScaledSuite, period_range, scaled_suite
 from .verify import (
     Criterion,

@@ -36,13 +36,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validation import finite_array, non_negative, positive, show
+from ..asce7.elf import risk_category
 from ..motion.record import G
 
 SITE_CLASSES = ("A", "B", "C", "D", "E", "F")
 """Site classes of ASCE 7-16 Sec. 11.4.3 (Chapter 20)."""
-
-RISK_CATEGORIES = ("I", "II", "III", "IV")
-"""Risk categories of ASCE 7-16 Table 1.5-1."""
 
 SS_COLUMNS = (0.25, 0.50, 0.75, 1.00, 1.25, 1.50)
 """S_S (g) of the columns of ASCE 7-16 Table 11.4-1 (the first is "<= 0.25", the last ">= 1.5")."""
@@ -75,16 +73,6 @@ def site_class(value: object) -> str:
     if isinstance(value, str) and value.strip().upper() in SITE_CLASSES:
         return value.strip().upper()
     raise ValueError(f"site_class must be one of {', '.join(SITE_CLASSES)} (ASCE 7-16 Sec. 11.4.3), got {show(value)}")
-
-
-def risk_category(value: object) -> str:
-    """``value`` as one of :data:`RISK_CATEGORIES` (case-insensitive; 1-4 accepted); ValueError otherwise."""
-    if isinstance(value, (int, np.integer)) and not isinstance(value, bool) and 1 <= int(value) <= 4:
-        return RISK_CATEGORIES[int(value) - 1]
-    if isinstance(value, str) and value.strip().upper() in RISK_CATEGORIES:
-        return value.strip().upper()
-    raise ValueError(f"risk_category must be one of {', '.join(RISK_CATEGORIES)} (ASCE 7-16 Table 1.5-1), "
-                     f"got {show(value)}")
 
 
 def _interpolate(table: dict, columns: tuple, value: float, cls: str, name: str, table_name: str) -> float:
