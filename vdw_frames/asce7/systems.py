@@ -18,6 +18,7 @@ Height limits (ft) by seismic design category: ``None`` = NL (not limited), ``0.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 from .._validation import non_negative, positive, show, text
 
@@ -109,6 +110,12 @@ def _limits(b: float | None, c: float | None, d: float | None, e: float | None,
     return {"B": b, "C": c, "D": d, "E": e, "F": f}
 
 
+def _period_of(kind: str) -> dict[str, Any]:
+    """C_t, x and their row of Table 12.8-2 for the structure type ``kind`` (a key of PERIOD_PARAMETERS)."""
+    ct, x = PERIOD_PARAMETERS[kind]
+    return {"ct": ct, "x": x, "period_row": PERIOD_ROWS[kind]}
+
+
 NL = None  # not limited
 NP = 0.0  # not permitted
 
@@ -116,25 +123,21 @@ SYSTEMS: dict[str, SeismicSystem] = {
     "steel-smf": SeismicSystem(
         "steel-smf", "Steel special moment frames", "Table 12.2-1 row C.1", r=8.0, omega0=3.0, cd=5.5,
         height_limits_ft=_limits(NL, NL, NL, NL, NL),
-        ct=PERIOD_PARAMETERS["steel-moment-frame"][0], x=PERIOD_PARAMETERS["steel-moment-frame"][1],
-        period_row=PERIOD_ROWS["steel-moment-frame"]),
+        **_period_of("steel-moment-frame")),
     "steel-imf": SeismicSystem(
         "steel-imf", "Steel intermediate moment frames", "Table 12.2-1 row C.3", r=4.5, omega0=3.0, cd=4.0,
         # D: 35 ft, E and F: NP (the footnotes that permit taller or lighter buildings are not applied)
         height_limits_ft=_limits(NL, NL, 35.0, NP, NP),
-        ct=PERIOD_PARAMETERS["steel-moment-frame"][0], x=PERIOD_PARAMETERS["steel-moment-frame"][1],
-        period_row=PERIOD_ROWS["steel-moment-frame"]),
+        **_period_of("steel-moment-frame")),
     "steel-omf": SeismicSystem(
         "steel-omf", "Steel ordinary moment frames", "Table 12.2-1 row C.4", r=3.5, omega0=3.0, cd=3.0,
         # D, E, F: NP (the footnotes that permit light one-story buildings are not applied)
         height_limits_ft=_limits(NL, NL, NP, NP, NP),
-        ct=PERIOD_PARAMETERS["steel-moment-frame"][0], x=PERIOD_PARAMETERS["steel-moment-frame"][1],
-        period_row=PERIOD_ROWS["steel-moment-frame"]),
+        **_period_of("steel-moment-frame")),
     "rc-smf": SeismicSystem(
         "rc-smf", "Special reinforced concrete moment frames", "Table 12.2-1 row C.5", r=8.0, omega0=3.0,
         cd=5.5, height_limits_ft=_limits(NL, NL, NL, NL, NL),
-        ct=PERIOD_PARAMETERS["concrete-moment-frame"][0], x=PERIOD_PARAMETERS["concrete-moment-frame"][1],
-        period_row=PERIOD_ROWS["concrete-moment-frame"]),
+        **_period_of("concrete-moment-frame")),
 }
 """The seismic force-resisting systems the design knows (ASCE 7-16 Table 12.2-1 part C, Table 12.8-2)."""
 
