@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 import pytest
+from elf_by_hand import hand_cs
 
 from vdw_frames import asce7
 from vdw_frames.asce7 import (
@@ -80,20 +81,6 @@ def test_stability_coefficients_of_a_published_forum_example():
     theta = stability_coefficient([140746e3, 257772e3], [6.653, 6.659], 1.0, [3758e3, 4579e3], [3200.0, 3200.0], 5.5)
     np.testing.assert_allclose(np.round(theta, 4), [0.0142, 0.0213], rtol=0, atol=1e-12)
     assert round(theta_max(1.0, 5.5), 3) == 0.091
-
-
-def hand_cs(spectrum, period, r, ie, *, minimum=True):
-    """ASCE 7-16 Eqs. 12.8-2 ... 12.8-6, written out again."""
-    sds, sd1, s1, tl = spectrum  # g, g, g or None, s
-    value, equation = sds * ie / r, "12.8-2"
-    bound = sd1 * ie / (period * r) if period <= tl else sd1 * tl * ie / (period**2 * r)
-    if bound < value:
-        value, equation = bound, ("12.8-3" if period <= tl else "12.8-4")
-    if minimum and max(0.044 * sds * ie, 0.01) > value:
-        value, equation = max(0.044 * sds * ie, 0.01), "12.8-5"
-    if s1 is not None and s1 >= 0.6 and 0.5 * s1 * ie / r > value:
-        value, equation = 0.5 * s1 * ie / r, "12.8-6"
-    return value, equation
 
 
 @pytest.mark.parametrize(("spectrum", "period", "r", "ie", "expected"), [

@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 import pytest
+from elf_by_hand import hand_cs
 
 from vdw_frames import Bilinear, BoucWen
 from vdw_frames.design import FrameDesign, design_frame, elf
@@ -24,19 +25,6 @@ FT = 304.8
 SYSTEM_VALUES = {"steel-smf": (8.0, 3.0, 5.5, 0.028, 0.8), "steel-imf": (4.5, 3.0, 4.0, 0.028, 0.8),
                  "steel-omf": (3.5, 3.0, 3.0, 0.028, 0.8), "rc-smf": (8.0, 3.0, 5.5, 0.016, 0.9)}
 TOL = 1e-9
-
-
-def hand_cs(spectrum, period, r, ie, *, minimum=True):
-    sds, sd1, s1, tl = spectrum  # g, g, g or None, s
-    value, equation = sds * ie / r, "12.8-2"
-    bound = sd1 * ie / (period * r) if period <= tl else sd1 * tl * ie / (period**2 * r)
-    if bound < value:
-        value, equation = bound, ("12.8-3" if period <= tl else "12.8-4")
-    if minimum and max(0.044 * sds * ie, 0.01) > value:
-        value, equation = max(0.044 * sds * ie, 0.01), "12.8-5"
-    if s1 is not None and s1 >= 0.6 and 0.5 * s1 * ie / r > value:
-        value, equation = 0.5 * s1 * ie / r, "12.8-6"
-    return value, equation
 
 
 def hand_k(period):
