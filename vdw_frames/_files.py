@@ -16,10 +16,12 @@ of the same target.  Every failure is one ``ValueError`` naming the path.
 
 from __future__ import annotations
 
+import csv
+import io
 import os
 import secrets
 import stat
-from collections.abc import Callable
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
 from ._validation import show
@@ -118,6 +120,17 @@ def write_text(path: str | os.PathLike[str], text: str, what: str = "file") -> P
     path = file_path(path, what)
     replace_file(path, text.encode("utf-8"))
     return path
+
+
+def write_csv(path: str | os.PathLike[str], rows: Sequence[Mapping[str, object]], what: str = "CSV file") -> Path:
+    """Write ``rows`` (one mapping a row; the first row's keys are the header) as CSV to ``path`` atomically
+    (:func:`write_text`); an empty file for no rows; returns the path."""
+    handle = io.StringIO()
+    if rows:
+        writer = csv.DictWriter(handle, fieldnames=list(rows[0]), lineterminator="\n")
+        writer.writeheader()
+        writer.writerows(rows)
+    return write_text(path, handle.getvalue(), what)
 
 
 def replace_file(path: Path, data: bytes) -> None:

@@ -24,15 +24,13 @@ read the design's records.
 
 from __future__ import annotations
 
-import csv
-import io
 import os
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ._files import output_folder, write_text
+from ._files import output_folder, write_csv, write_text
 from .config import save_building
 from .design.damped import DampedDesign, p695_basis
 from .design.elf import FrameDesign
@@ -84,11 +82,11 @@ def write_design_report(design: FrameDesign | DampedDesign, out_dir: str | os.Pa
     frame.save(folder / "elf.csv")
     schedule = device_rows(building, verification)
     if schedule:  # a bare frame has none
-        write_text(folder / "devices.csv", _csv(schedule), "device schedule")
+        write_csv(folder / "devices.csv", schedule, "device schedule")
     figures = {"design_profiles.png": "Story shears and strengths; design drifts against Delta_a / rho"}
     plot_design_profiles(frame, folder / "design_profiles.png")
     if isinstance(design, DampedDesign) and verification is not None:
-        write_text(folder / "rounds.csv", _csv(round_rows(design)), "rounds table")
+        write_csv(folder / "rounds.csv", round_rows(design), "rounds table")
         tables = {"verification_suite.csv": verification_report.suite_csv(verification),
                   "verification_drifts.csv": verification_report.drifts_csv(verification)}
         if verification.walls:
@@ -103,15 +101,6 @@ def write_design_report(design: FrameDesign | DampedDesign, out_dir: str | os.Pa
         figures["story_drifts.png"] = "Peak story drift ratios per record and story, per bound"
     text = _markdown(design, frame, building, verification, heading, figures, bounds, collapse, records)
     return write_text(folder / "design.md", text, "design note")
-
-
-def _csv(rows: list[dict[str, Any]]) -> str:
-    handle = io.StringIO()
-    if rows:
-        writer = csv.DictWriter(handle, fieldnames=list(rows[0]), lineterminator="\n")
-        writer.writeheader()
-        writer.writerows(rows)
-    return handle.getvalue()
 
 
 def _size(device: object) -> dict[str, float | None]:

@@ -44,7 +44,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import eigh_tridiagonal
 
-from .._files import write_text
+from .._files import write_csv
 from .._validation import finite_array, finite_scalar, positive, show
 from ..asce7 import elf as code
 from ..asce7.systems import SeismicSystem, seismic_system
@@ -208,17 +208,9 @@ class FrameDesign:
         return "\n".join(lines) + "\n"
 
     def save(self, path: Any) -> Any:
-        """Write :meth:`rows` as CSV to ``path`` (atomically, :func:`vdw_frames._files.write_text`); returns the
+        """Write :meth:`rows` as CSV to ``path`` (atomically, :func:`vdw_frames._files.write_csv`); returns the
         path."""
-        import csv
-        import io
-
-        rows = self.rows()
-        handle = io.StringIO()
-        writer = csv.DictWriter(handle, fieldnames=list(rows[0]), lineterminator="\n")
-        writer.writeheader()
-        writer.writerows(rows)
-        return write_text(path, handle.getvalue(), "ELF table")
+        return write_csv(path, self.rows(), "ELF table")
 
 
 def _story_model(story_model: object, hardening: float) -> Callable[[float], Bilinear | BoucWen]:
