@@ -49,8 +49,6 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
-from numba import types
-from numba.extending import overload
 
 from .._jit import njit
 from .._validation import positive, whole_number
@@ -136,7 +134,7 @@ class DeviceArrays(NamedTuple):
     group_story: np.ndarray  # (G,) int64, 0-based
     group_magnification: np.ndarray  # (G,) -: wall deformation / story drift
     bank: BankArrays
-    others: DeviceStates | None  # None without any (the step loop then compiles without them)
+    others: DeviceStates  # empty (total 0) without any: skipped at run time, one compiled step for every building
 
 
 class Histories(NamedTuple):
@@ -213,97 +211,64 @@ def scratch(stories: int, groups: int) -> Scratch:
 
 
 # ---------------------------------------------------------------------------------------------- compiled
-# The devices beyond the walls, specialised by type when compiled: a building without any passes None
-# (DeviceArrays.others), and these compile to nothing, so its step loop is the code it ran before they existed.
-def _add_device_forces(devices, dt, work):  # pragma: no cover - compiled only (the overload below)
+# The devices beyond the walls: a building without any has an empty DeviceStates (total 0), skipped at run
+# time, so that every building compiles the same step (one specialisation, not one with and one without).
+@njit(cache=True, inline="always")
+def _add_device_forces(devices, dt, work):
     """Every device's trial at ``work.drift``; their forces into ``work.story_total``."""
+    if devices.total == 0:
+        return
+    devices_trial(devices, work.drift, dt, work.device_force, work.device_tangent)
+    for s in range(work.drift.shape[0]):
+        work.story_total[s] += work.device_force[s]
 
 
-def _add_device_tangents(devices, work):  # pragma: no cover - compiled only
+@njit(cache=True, inline="always")
+def _add_device_tangents(devices, work):
     """Their tangents into ``work.stiffness_diagonal``."""
+    if devices.total == 0:
+        return
+    for s in range(work.stiffness_diagonal.shape[0]):
+        work.stiffness_diagonal[s] += work.device_tangent[s]
 
 
-def _with_device_tangent(devices, work, s, tangent):  # pragma: no cover - compiled only
+@njit(cache=True, inline="always")
+def _with_device_tangent(devices, work, s, tangent):
     """``tangent`` of story ``s`` with its devices' tangent."""
+    if devices.total == 0:
+        return tangent
+    return tangent + work.device_tangent[s]
 
 
-def _commit_devices(row, devices, out):  # pragma: no cover - compiled only
-    """Accept their last trials and record them in row ``row`` of the histories."""
-
-
-def _replay_devices(devices, drift, dt, work):  # pragma: no cover - compiled only
-    """Commit them at the story drifts ``drift`` (replay); their story forces added to ``work.story_total``."""
-
-
-def _record_devices(row, devices, out):  # pragma: no cover - compiled only
+@njit(cache=True, inline="always")
+def _record_devices(row, devices, out):
     """Row ``row`` of their histories from their committed states."""
+    if devices.total == 0:
+        return
+    record_devices(devices.viscous.kinematics, row, out.device_force, out.device_deformation,
+                   out.device_velocity, out.device_heat, out.device_stored)
+    record_devices(devices.friction.kinematics, row, out.device_force, out.device_deformation,
+                   out.device_velocity, out.device_heat, out.device_stored)
 
 
-@overload(_add_device_forces, inline="always")
-def _add_device_forces_typed(devices, dt, work):
-    if isinstance(devices, types.NoneType):
-        return lambda devices, dt, work: None
-
-    def add(devices, dt, work):
-        devices_trial(devices, work.drift, dt, work.device_force, work.device_tangent)
-        for s in range(work.drift.shape[0]):
-            work.story_total[s] += work.device_force[s]
-    return add
+@njit(cache=True, inline="always")
+def _commit_devices(row, devices, out):
+    """Accept their last trials and record them in row ``row`` of the histories."""
+    if devices.total == 0:
+        return
+    devices_commit(devices)
+    _record_devices(row, devices, out)
 
 
-@overload(_add_device_tangents, inline="always")
-def _add_device_tangents_typed(devices, work):
-    if isinstance(devices, types.NoneType):
-        return lambda devices, work: None
-
-    def add(devices, work):
-        for s in range(work.stiffness_diagonal.shape[0]):
-            work.stiffness_diagonal[s] += work.device_tangent[s]
-    return add
-
-
-@overload(_with_device_tangent, inline="always")
-def _with_device_tangent_typed(devices, work, s, tangent):
-    if isinstance(devices, types.NoneType):
-        return lambda devices, work, s, tangent: tangent
-    return lambda devices, work, s, tangent: tangent + work.device_tangent[s]
-
-
-@overload(_record_devices, inline="always")
-def _record_devices_typed(row, devices, out):
-    if isinstance(devices, types.NoneType):
-        return lambda row, devices, out: None
-
-    def record(row, devices, out):
-        record_devices(devices.viscous.kinematics, row, out.device_force, out.device_deformation,
-                       out.device_velocity, out.device_heat, out.device_stored)
-        record_devices(devices.friction.kinematics, row, out.device_force, out.device_deformation,
-                       out.device_velocity, out.device_heat, out.device_stored)
-    return record
-
-
-@overload(_commit_devices, inline="always")
-def _commit_devices_typed(row, devices, out):
-    if isinstance(devices, types.NoneType):
-        return lambda row, devices, out: None
-
-    def commit(row, devices, out):
-        devices_commit(devices)
-        _record_devices(row, devices, out)
-    return commit
-
-
-@overload(_replay_devices, inline="always")
-def _replay_devices_typed(devices, drift, dt, work):
-    if isinstance(devices, types.NoneType):
-        return lambda devices, drift, dt, work: None
-
-    def replay_devices(devices, drift, dt, work):
-        devices_trial(devices, drift, dt, work.device_force, work.device_tangent)
-        devices_commit(devices)
-        for s in range(drift.shape[0]):
-            work.story_total[s] += work.device_force[s]
-    return replay_devices
+@njit(cache=True, inline="always")
+def _replay_devices(devices, drift, dt, work):
+    """Commit them at the story drifts ``drift`` (replay); their story forces added to ``work.story_total``."""
+    if devices.total == 0:
+        return
+    devices_trial(devices, drift, dt, work.device_force, work.device_tangent)
+    devices_commit(devices)
+    for s in range(drift.shape[0]):
+        work.story_total[s] += work.device_force[s]
 
 
 @njit(cache=True, inline="always")

@@ -57,7 +57,6 @@ from .._jit import njit
 from .._validation import check_memory, non_negative, show
 from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy
-from ..element.devices import device_states
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation, get_method
 from ..motion.record import G, GroundMotion
@@ -68,7 +67,6 @@ from .integrator import (
     FAILED,
     FINISHED,
     DeviceArrays,
-    FrameArrays,
     Histories,
     NewtonRaphson,
     advance,
@@ -76,7 +74,14 @@ from .integrator import (
     scratch,
 )
 from .results import ENERGY_BALANCE_TOLERANCE
-from .time_history import _check_model, _histories, _warn_strain_range, _warn_temperature_range
+from .time_history import (
+    _check_model,
+    _histories,
+    _warn_strain_range,
+    _warn_temperature_range,
+    devices_of,
+    frame_arrays,
+)
 
 if TYPE_CHECKING:
     from ..element.wall import Wall
@@ -293,18 +298,10 @@ class LaneWorkspace:
         if amplitudes:
             out.group_amplitude[0] = bank.state("amplitude")
         stories = story_arrays(building.story_models, building.stiffnesses)
-        devices = DeviceArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64),
-                               np.array([combined.wall.magnification for _, combined in groups], dtype=float),
-                               bank.arrays, device_states(others, layout.dt) if others else None)
+        devices = devices_of(groups, bank, others, layout.dt)
         self.template = LaneArrays(stories, devices, out, scratch(floors, len(groups)))
         self.arrays = LaneArrays(*(_stack(part, layout.lanes) for part in self.template))
-        heights = np.asarray(building.story_heights) if building.story_heights is not None else np.ones(floors)
-        self.frame = FrameArrays(
-            masses=np.asarray(building.masses, dtype=float), damping=np.ascontiguousarray(building.damping_matrix),
-            story_damping_row=building.story_damping_row,
-            geometric=np.asarray(building.geometric_stiffness, dtype=float), heights=heights,
-            tridiagonal=building.damping_model == "rayleigh", linear=building.is_linear and building.devices_linear,
-            collapse_ratio=layout.collapse_ratio)
+        self.frame = frame_arrays(building, layout.collapse_ratio)
         lanes, others_count = layout.lanes, len(others)
         self.peaks = LanePeaks(np.zeros((lanes, floors)), np.zeros((lanes, floors)), np.zeros(lanes),
                                np.zeros((lanes, floors)), np.zeros((lanes, floors)), np.zeros((lanes, len(groups))),

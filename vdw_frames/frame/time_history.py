@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -42,6 +42,7 @@ from .integrator import (
 from .results import FrameState, SimulationResult, energy_history
 
 if TYPE_CHECKING:
+    from ..element.device import Device
     from ..element.strain_dependent import StrainDependentDamper
     from ..element.wall import Wall
 
@@ -122,20 +123,12 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     # there); the heat itself is recorded only when some followed group has none (limits only).
     heat_rows = heated if np.any((energy_followed > 0.0) & (bank.state("capacity") <= 0.0)) else 0
     amplitudes = rows if bank.state("amplitude_nodes").any() else 0
-    heights = np.asarray(building.story_heights) if building.story_heights is not None else np.ones(floors)
     collapse_ratio = collapse_drift_ratio if (collapse_drift_ratio and building.story_heights) else 0.0
-    frame = FrameArrays(
-        masses=np.asarray(building.masses), damping=np.ascontiguousarray(building.damping_matrix),
-        story_damping_row=building.story_damping_row,
-        geometric=np.asarray(building.geometric_stiffness, dtype=float), heights=heights,
-        tridiagonal=building.damping_model == "rayleigh", linear=building.is_linear and building.devices_linear,
-        collapse_ratio=collapse_ratio)
+    frame = frame_arrays(building, collapse_ratio)
     out = _histories(rows, floors, len(groups), len(others), heated=heated, heat_rows=heat_rows,
                      amplitudes=amplitudes)
     stories = story_arrays(building.story_models, building.stiffnesses)
-    device_arrays = DeviceArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64),
-                                 np.array([combined.wall.magnification for _, combined in groups], dtype=float),
-                                 bank.arrays, device_states(others, dt) if others else None)
+    device_arrays = devices_of(groups, bank, others, dt)
     work = scratch(floors, len(groups))
     if initial_state is None:
         out.acceleration[0] = -ground[0]
@@ -203,6 +196,27 @@ def _device_energies(out: Histories, keep: slice, *, walls: bool) -> tuple | Non
     if out.device_heat.shape[1] == 0:
         return None
     return out.device_heat[keep].sum(axis=1), out.device_stored[keep].sum(axis=1), walls
+
+
+def frame_arrays(building: ShearBuilding, collapse_ratio: float) -> FrameArrays:
+    """The building as the integrator sees it: fresh writable float64 copies (one array type for every
+    building, so the step compiles once), stopping at a drift ratio of ``collapse_ratio`` (-, 0: never)."""
+    heights = building.story_heights if building.story_heights is not None else np.ones(building.stories)
+    return FrameArrays(
+        masses=np.array(building.masses, dtype=float), damping=np.array(building.damping_matrix, dtype=float),
+        story_damping_row=np.array(building.story_damping_row, dtype=float),
+        geometric=np.array(building.geometric_stiffness, dtype=float), heights=np.array(heights, dtype=float),
+        tridiagonal=building.damping_model == "rayleigh", linear=building.is_linear and building.devices_linear,
+        collapse_ratio=float(collapse_ratio))
+
+
+def devices_of(groups: Sequence[tuple[int, Any]], bank: WallBank, others: Sequence[tuple[int, Device]],
+               dt: float) -> DeviceArrays:
+    """The devices as the integrator sees them: the wall groups ((story 1-based, combined wall)) of ``bank``
+    and the other devices ((story 1-based, device); none: an empty state), at rest on a step of ``dt`` s."""
+    return DeviceArrays(np.array([story - 1 for story, _ in groups], dtype=np.int64),
+                        np.array([combined.wall.magnification for _, combined in groups], dtype=float),
+                        bank.arrays, device_states(others, dt))
 
 
 def _histories(rows: int, floors: int, groups: int, devices: int, *, heated: int, heat_rows: int,
