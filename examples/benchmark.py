@@ -52,7 +52,9 @@ repeats for runs under a second; numba compilation is excluded except in (d)):
     (yielding, P-Delta) and with its walls (amplitude-following, heating, limits), on the shipped record at 44
     scales (0.2 ... 1.0) as one batch of 44 lanes: the time per analysis step amortised over the batch
     (targets <= 0.2 us bare, <= 0.6 us with walls) beside one ``simulate`` call's, and the page faults
-    per analysis of a second batch (``resource.getrusage``; target <= 10).  The load is printed beside each.
+    per analysis of a second batch (``resource.getrusage``; target <= 10).  Then part (c)'s inelastic frame with
+    fractional walls on its record x 4 as 44 lanes, per analysis, against one OpenSeesPy analysis of it with
+    classical r = 1 walls (as in (c)): target at most 1/100.  The load is printed beside each.
 
 ``--part X`` (repeatable) runs only the named parts (``--part h``: (h) alone).
 ``--quick``: 2 000 and 20 000 steps only (no 200 000-step runs), single repeats; (e) on 4 000 steps.  Without the
@@ -254,6 +256,14 @@ def opensees_time(building, acceleration, dt, repeats, **options):
     return (seconds, opensees_frame.drifts(displacement)), None
 
 
+def classical_walls(frame: ShearBuilding) -> ShearBuilding:
+    """``frame`` with every wall made classical (r = 1): the walls OpenSees can run (Parallel(Elastic, Maxwell))."""
+    return ShearBuilding(frame.masses, frame.stiffnesses, frame.damping_ratio, frame.damping_modes,
+                         {story: [dataclasses.replace(wall, r=1.0) for wall in walls]
+                          for story, walls in frame.walls.items()},
+                         frame.story_heights, frame.hysteresis, frame.gravity_loads)
+
+
 def part_c(building, motion, source, fast, timings, *, quick, repeats):
     steps = motion.acceleration.size
     memory = FAST if fast else "exact"
@@ -263,10 +273,7 @@ def part_c(building, motion, source, fast, timings, *, quick, repeats):
     print(f"\n(c) inelastic 10-story frame (Bilinear stories, P-Delta), 2 walls a story, {source} x 4: {steps} steps, "
           f"dt = {motion.dt:g} s, PGA = {strong.pga / G:.3f} g")
     vdw_time, result = timed(lambda: simulate(frame, strong, memory=memory), 3)
-    classical = ShearBuilding(frame.masses, frame.stiffnesses, frame.damping_ratio, frame.damping_modes,
-                              {story: [dataclasses.replace(w, r=1.0) for w in walls]
-                               for story, walls in frame.walls.items()}, frame.story_heights,
-                              frame.hysteresis, frame.gravity_loads)
+    classical = classical_walls(frame)
     opensees, problem = opensees_time(classical, strong.acceleration, strong.dt, 3, tolerance=1e-10,
                                       max_iterations=20, parallel_walls=True)
     print(f"    peak story ductility {result.peak_ductility.max():.2f}, {result.newton_iterations / steps:.2f} Newton "
@@ -635,7 +642,7 @@ def part_p695():
               f"{seconds[label] - result.search_seconds:.1f} s")
 
 
-def part_lanes(repeats):
+def part_lanes(benchmark_frame, motion, source, repeats):
     """(i): lanes against single analyses (module docstring)."""
     import resource
 
@@ -668,6 +675,29 @@ def part_lanes(repeats):
               f"{sum(lane.collapsed for lane in lanes)} of 44 collapsed")
         print(f"        page faults per analysis of a later batch: {faults:.1f} (target <= 10: "
               f"{'meets' if faults <= 10 else 'misses'})")
+    # Against OpenSeesPy, per analysis: part (c)'s inelastic frame with fractional walls on its record x 4, as
+    # 44 lanes of one batch, against one OpenSees analysis of the same frame with classical r = 1 walls.
+    frame, strong = inelastic(benchmark_frame), motion.scaled(4.0)
+    memory = FAST if fast_memory_available(benchmark_frame) else "exact"
+    opensees, problem = opensees_time(classical_walls(frame), strong.acceleration, strong.dt, 3, tolerance=1e-10,
+                                      max_iterations=20, parallel_walls=True)
+    if opensees is None:
+        print(f"    against OpenSees: skipped ({problem})")
+        return
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        run_lanes(frame, [motion] * 2, [4.0] * 2, memory=memory)  # compile (or load) before timing
+        single, _ = timed(lambda: simulate(frame, strong, memory=memory), repeats)
+        batch, lanes = timed(lambda: run_lanes(frame, [motion] * 44, [4.0] * 44, memory=memory), repeats)
+    load = os.getloadavg()[0]
+    per_analysis = batch / 44
+    print(f"    against OpenSeesPy, part (c)'s frame and record ({source} x 4, {motion.acceleration.size} points, "
+          f"memory '{memory if isinstance(memory, str) else 'fast'}'), per analysis: 44 lanes {per_analysis:.3f} s, "
+          f"one simulate() {single:.3f} s, OpenSees (classical r = 1) {opensees[0]:.3f} s (load {load:.2f})")
+    ratio = per_analysis / opensees[0]
+    print(f"        lanes / OpenSees = 1/{1 / ratio:.0f} (target <= 1/100: {'meets' if ratio <= 0.01 else 'misses'}); "
+          f"one simulate() / OpenSees = 1/{opensees[0] / single:.0f}; {sum(lane.collapsed for lane in lanes)} of 44 "
+          "collapsed")
 
 
 def main(argv=None) -> int:
@@ -712,7 +742,7 @@ def main(argv=None) -> int:
     if "h" in parts:
         part_fvd(motion, source, args.quick, repeats)
     if "i" in parts:
-        part_lanes(repeats)
+        part_lanes(building, motion, source, repeats)
     return 0
 
 
