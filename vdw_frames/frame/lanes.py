@@ -34,6 +34,9 @@ Design (issue 32):
 * **What to record.**  ``record``: "peaks" (the default) keeps two rows of histories a lane (a ring: the
   state a step needs) and the peaks the batch callers need (:class:`LanePeaks`); a list of history names
   (those of :class:`~vdw_frames.frame.integrator.Histories`) keeps every row of those, copied out per lane.
+  ``wall_demands=True`` (verify's) also follows each wall's test demands step by step (:func:`_note_walls`:
+  the operations :func:`vdw_frames.verification.verify.wall_peaks` applies to the full histories, in their
+  order, so to the bit); :func:`lane_batches` cuts many analyses into batches whose lanes equal simulate.
 
 Units: N, mm, s, tonne; ground acceleration mm/s^2.
 """
