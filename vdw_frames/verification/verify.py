@@ -529,7 +529,9 @@ def device_peaks(result: SimulationResult) -> dict[str, np.ndarray]:
 
 
 def _summary(result: SimulationResult, valid_drift_ratio: float | None) -> dict[str, Any]:
-    """What verify keeps of one analysis: outcome, peak drift ratios, reasons it is unacceptable, wall peaks."""
+    """What verify keeps of one analysis, from its full histories: outcome, peak drift ratios, reasons it is
+    unacceptable, wall and device peaks (the definition; verify takes the same from its lanes:
+    :func:`_lane_summary`)."""
     peak_drift = result.peak_drift_ratio
     assert peak_drift is not None  # verify refuses buildings without story heights
     return {"collapsed": bool(result.collapsed), "converged": bool(result.converged),
@@ -546,9 +548,10 @@ def _lane_summary(building: ShearBuilding, lane: LaneResult, valid_drift_ratio: 
     failed = lane.group_failure_step[group] >= 0
     modes = lane.group_failure_mode
     rise = lane.peak_temperature_rise
+    assert modes is not None  # run_lanes gives every lane's
     reasons = _reasons(building, collapsed=lane.collapsed, collapse_time=lane.collapse_time, converged=lane.converged,
                        peak_drift_ratio=lane.peak_drift_ratio, failed=failed,
-                       failure_mode=[FAILURE_MODES[int(modes[g])] if modes is not None else "" for g in group],
+                       failure_mode=[FAILURE_MODES[int(modes[g])] for g in group],
                        peak_strain=lane.peak_group_strain[group], valid_drift_ratio=valid_drift_ratio)
     walls = len(building.wall_list)
     return {"collapsed": lane.collapsed, "converged": lane.converged,
