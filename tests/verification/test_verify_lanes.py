@@ -144,3 +144,24 @@ def test_a_lane_s_summary_equals_simulate_s_when_it_fails_to_converge_collapses_
             outcomes.add(summary["reasons"])
     assert {(False, True, False), (False, True, True), (True, True, True), (False, False, False)} <= outcomes
     assert "non-convergence" in outcomes
+
+
+@pytest.mark.slow  # compiles the lanes for the frame's devices (tens of seconds, cold); then well under 1 s
+def test_an_analysis_that_overflows_fails_with_simulate_s_message_the_others_of_its_batch_run():
+    """A record of 1e160 mm/s^2 overflows the energies: verify's batch raises simulate's own ValueError, named by
+    the analysis's label as verify named it (fan_out prefixes "verify: "); alone, the record beside it runs."""
+    t = np.arange(300) * 0.01
+    huge = GroundMotion(1e160 * np.sin(2 * np.pi * t), 0.01, "huge")
+    calm = GroundMotion(300.0 * np.sin(2 * np.pi * t), 0.01, "calm")
+    building = four_story()
+    with pytest.raises(ValueError) as expected, _warnings.collect():  # its warnings before the error: not ours
+        simulate(building, huge)
+    batch = verify_module._Batch(building, (calm, huge), (1.0, 1.0), ("calm (nominal)", "huge (nominal)"), 0.1, None)
+    with pytest.raises(ValueError) as raised:
+        batch.run()
+    assert str(raised.value) == f"the analysis of huge (nominal) failed: {expected.value}"
+    assert "energy histories overflowed" in str(expected.value)
+    (summary, caught), = verify_module._Batch(building, (calm,), (1.0,), ("calm (nominal)",), 0.1, None).run()
+    with _warnings.collect() as issued:
+        assert_equal(summary, verify_module._summary(simulate(building, calm), None))
+    assert caught == tuple(issued)
