@@ -27,8 +27,9 @@ def test_batches_split_by_dt_by_the_exact_memory_s_length_and_by_key_and_keep_th
     assert lane_batches(walled, motions, analyses, free_vibration=1.0) == [["a", "e"], ["b", "d"], ["f"], ["c"]]
     assert lane_batches(bare, motions, analyses, apart=[0, 1, 0, 1, 0, 1]) == [["a", "e"], ["b", "d"], ["f"], ["c"]]
     assert lane_batches(bare, motions, analyses, workers=0) == lane_batches(bare, motions, analyses)
+    assert lane_batches(walled, motions, analyses, workers=None) == [["a", "d", "e"], ["b", "f"], ["c"]]  # no pool
     assert lane_batches(bare, [record(500)] * 6, analyses, workers=2) == [[a] for a in analyses]  # ceil(6 / 8)
-    many = lane_batches(bare, [record(500)] * 200, list(range(200)), workers=1)
+    many = lane_batches(bare, [record(500)] * 200, list(range(200)), workers=None)
     assert [len(batch) for batch in many] == [LANES_PER_TASK] * 4 + [200 - 4 * LANES_PER_TASK]
     with pytest.raises(ValueError, match="one record"):
         lane_batches(bare, motions, analyses[:3])

@@ -140,7 +140,7 @@ def _suite_amplitudes(building: ShearBuilding, motions: Sequence[GroundMotion], 
         return np.array([_peak_amplitudes(building, motion, walls, options) for motion in motions])
     lanes: dict[int, Any] = {}
     for batch in lane_batches(building, motions, range(len(motions)), memory=options.get("memory", DEFAULT_MEMORY),
-                              free_vibration=options.get("free_vibration", 0.0)):
+                              free_vibration=options.get("free_vibration", 0.0), workers=None):
         lanes.update(zip(batch, run_lanes(building, [motions[i] for i in batch], **options), strict=True))
     group = group_walls(building.wall_list)[1][list(walls)]  # type: ignore[arg-type]  # fixed-order walls
     peaks = []

@@ -513,21 +513,23 @@ record set; with fewer tasks than about four a worker, a batch is cut finer so t
 
 
 def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analyses: Sequence[Any], *,
-                 memory: str | FastMemory = DEFAULT_MEMORY, free_vibration: float = 0.0, workers: int = 1,
+                 memory: str | FastMemory = DEFAULT_MEMORY, free_vibration: float = 0.0, workers: int | None = 1,
                  apart: Sequence[Any] | None = None) -> list[list[Any]]:
     """``analyses`` (any keys; ``motions[i]`` the record of ``analyses[i]``) cut into batches that may run as the
     lanes of one :func:`run_lanes` call with every lane equal to simulate's analysis: one dt (exactly) a batch
     and, with walls, one side of the exact memory's length (``FastMemory.exact_below`` steps: simulate takes the
     exact memory below it, the fast one above; ``free_vibration`` s of rest counted as simulate rounds them),
     at most :data:`LANES_PER_TASK` analyses each, and at most about a quarter of a worker's share (``workers``
-    processes or threads: finer tasks balance the pool).  Analyses whose ``apart`` (one hashable key an analysis,
+    processes or threads: finer tasks balance the pool; None: no pool, the batches as large as they may be).
+    Analyses whose ``apart`` (one hashable key an analysis,
     e.g. the building's variant; ``building`` then stands for all: walls or none) differ never share a batch.
     In the order of ``analyses`` within each batch."""
     apart = [None] * len(analyses) if apart is None else list(apart)
     if not len(motions) == len(apart) == len(analyses):
         raise ValueError(f"lane_batches needs one record (and one key apart, if any) an analysis, got {len(motions)} "
                          f"records and {len(apart)} keys for {len(analyses)} analyses")
-    size = max(1, min(LANES_PER_TASK, math.ceil(len(analyses) / (4 * max(1, workers)))))
+    share = len(analyses) if workers is None else math.ceil(len(analyses) / (4 * max(1, workers)))
+    size = max(1, min(LANES_PER_TASK, share))
     strategy = memory_strategy(memory) if building.wall_list else None
     free_vibration = non_negative("free_vibration", free_vibration)
 
