@@ -521,9 +521,8 @@ def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analy
     exact memory below it, the fast one above; ``free_vibration`` s of rest counted as simulate rounds them),
     at most :data:`LANES_PER_TASK` analyses each, and at most about a quarter of a worker's share (``workers``
     processes or threads: finer tasks balance the pool; None: no pool, the batches as large as they may be).
-    Analyses whose ``apart`` (one hashable key an analysis,
-    e.g. the building's variant; ``building`` then stands for all: walls or none) differ never share a batch.
-    In the order of ``analyses`` within each batch."""
+    Analyses whose ``apart`` (one hashable key an analysis, e.g. the building's variant; ``building`` then stands
+    for all: walls or none) differ never share a batch.  In the order of ``analyses`` within each batch."""
     apart = [None] * len(analyses) if apart is None else list(apart)
     if not len(motions) == len(apart) == len(analyses):
         raise ValueError(f"lane_batches needs one record (and one key apart, if any) an analysis, got {len(motions)} "
