@@ -167,6 +167,11 @@ def test_the_progress_bar_is_drawn_only_on_a_terminal(monkeypatch):
     monkeypatch.setattr(sys, "stderr", Terminal())
     _parallel.fan_out(len, {1: "a"}, Serial(), where=str, progress=False)
     assert sys.stderr.getvalue() == ""
+    # Tasks of several analyses each (verify's batches of lanes): the bar counts what each stands for, 1 + 2 + 3.
+    monkeypatch.setattr(sys, "stderr", Terminal())
+    _parallel.fan_out(len, {k: "ab" * k for k in range(1, 4)}, Serial(), where=str, progress=True,
+                      sizes={1: 1, 2: 2, 3: 3})
+    assert "6/6" in sys.stderr.getvalue() and "3/3" not in sys.stderr.getvalue()
 
 
 def test_executors_are_checked_and_a_dask_client_is_used_through_its_executor():

@@ -122,7 +122,8 @@ def terminate(pool: concurrent.futures.ProcessPoolExecutor) -> None:
 # ---------------------------------------------------------------------------------------------- the fan-out
 def fan_out(function: Callable[[T], R], tasks: Mapping[K, T], executor: concurrent.futures.Executor, *,
             where: Callable[[K], str], progress: bool = False, unit: str = "analyses",
-            tally: Callable[[R], int] | None = None, tally_unit: str = "analyses") -> dict[K, Collected[R]]:
+            tally: Callable[[R], int] | None = None, tally_unit: str = "analyses",
+            sizes: Mapping[K, int] | None = None) -> dict[K, Collected[R]]:
     """Run ``function(task)`` for every task of ``tasks`` on ``executor``, submitted in the mapping's order;
     returns {key: :class:`Collected`} (the result and the task's package warnings).
 
@@ -131,14 +132,16 @@ def fan_out(function: Callable[[T], R], tasks: Mapping[K, T], executor: concurre
     becomes ``ValueError(f"{where(key)}: {error}")``, any other error gets ``where(key)`` as a note
     (Python >= 3.11).  KeyboardInterrupt cancels the same way and is re-raised.  ``progress``: a tqdm bar
     of tasks (``unit``) on standard error, drawn only when it is a terminal; ``tally`` adds a running count
-    of ``tally(result)`` (``tally_unit``).
+    of ``tally(result)`` (``tally_unit``); ``sizes``: what each task counts for on the bar (a task of many
+    analyses, counted in analyses), 1 each by default.
     """
     results: dict[K, Collected[R]] = {}
     futures: dict[concurrent.futures.Future[Collected[R]], K] = {}
     try:
         for key, task in tasks.items():
             futures[executor.submit(_collecting, function, task)] = key
-        with _progress_bar(progress, len(futures), unit) as bar:
+        total = len(futures) if sizes is None else sum(sizes[key] for key in tasks)
+        with _progress_bar(progress, total, unit) as bar:
             tallied = 0
             for future in concurrent.futures.as_completed(futures):
                 key = futures[future]
@@ -155,7 +158,7 @@ def fan_out(function: Callable[[T], R], tasks: Mapping[K, T], executor: concurre
                     if tally is not None:
                         tallied += tally(results[key].value)
                         bar.set_postfix_str(f"{tallied} {tally_unit}", refresh=False)
-                    bar.update(1)
+                    bar.update(1 if sizes is None else sizes[key])
     except BaseException:
         for future in futures:
             future.cancel()

@@ -54,3 +54,26 @@ def test_size_layers_needs_amplitude_following_walls_and_a_suite():
         size_layers(walled, [])
     with pytest.raises(ValueError, match=r"tolerance must be below 0\.5"):
         size_layers(walled, SUITE, tolerance=0.7)
+
+
+@pytest.mark.slow  # compiles the lanes for amplitude-following walls on a yielding frame (tens of seconds, cold)
+def test_the_suite_on_lanes_sizes_the_layers_as_simulate_one_record_at_a_time_does():
+    """size_layers runs each pass's suite as lanes; given simulate's own ``dt`` option (which lanes do not take)
+    it runs one simulate a record, as before 0.3.0.  Reference: that path.  Tolerance: none -- a lane is the
+    single analysis's step in the same order (tests/frame/test_lanes.py), so every pass's amplitudes, hence the
+    thicknesses, are equal to the bit, and so are the warnings."""
+    family = vdw.paper.strain_dependent(area=0.3e6, thickness=10.0)
+    building = three_story({1: [family], 2: [family.resized(0.25e6)]})
+    suite = [SUITE[0], vdw.GroundMotion(SUITE[1].acceleration[:601], 0.01, "shorter"), SUITE[2]]
+    runs = []
+    for options in ({}, {"dt": 0.01}):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            sizing = size_layers(building, suite, tolerance=0.01, **options)
+        runs.append((sizing, [(w.category, str(w.message)) for w in caught]))
+    (lanes, lanes_warned), (one_by_one, warned) = runs
+    assert lanes.iterations == one_by_one.iterations > 1
+    for name in ("lowest", "highest", "strain_range"):
+        assert np.array_equal(getattr(lanes, name), getattr(one_by_one, name)), name
+    assert lanes.building.wall_list == one_by_one.building.wall_list and lanes.converged == one_by_one.converged
+    assert lanes_warned == warned

@@ -28,11 +28,17 @@ from typing import Any
 
 import numpy as np
 
+from .. import _warnings
 from .._validation import positive, whole_number
+from ..element.bank import DEFAULT_MEMORY, group_walls
 from ..element.strain_dependent import StrainDependentDamper
 from ..frame.building import ShearBuilding
+from ..frame.lanes import lane_batches, run_lanes
 from ..frame.simulation import simulate
 from ..motion.record import GroundMotion
+
+_LANE_OPTIONS = {"method", "memory", "collapse_drift_ratio", "free_vibration", "newton"}
+"""The options of :func:`~vdw_frames.simulate` that :func:`~vdw_frames.frame.lanes.run_lanes` takes too."""
 
 
 @dataclass(frozen=True)
@@ -75,6 +81,9 @@ def size_layers(building: ShearBuilding, motions: Sequence[GroundMotion], tolera
     passes at most (each runs the suite once).  ``simulate_options`` go to every
     :func:`~vdw_frames.simulate` (e.g. ``free_vibration``).  Walls of fixed parameters are left as they
     are.  Returns a :class:`LayerSizing` (not converged after ``max_iterations``: ``converged`` False).
+    Each pass runs the suite as lanes (:func:`~vdw_frames.frame.lanes.run_lanes`: the same analyses as
+    simulate's, to the bit, a few compiled calls a pass), unless ``simulate_options`` hold one that lanes do
+    not take (``dt``, ``strain_compatible``, ``initial_state``): then one simulate a record.
     """
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
@@ -95,7 +104,7 @@ def size_layers(building: ShearBuilding, motions: Sequence[GroundMotion], tolera
     current = building
     for iteration in range(1, max_iterations + 1):
         current = _relayered(building, walls, scale)
-        peaks = np.array([_peak_amplitudes(current, motion, walls, simulate_options) for motion in motions])
+        peaks = _suite_amplitudes(current, motions, walls, simulate_options)
         lowest, highest = peaks.min(axis=0), peaks.max(axis=0)
         if not np.all(lowest > 0.0):
             raise ValueError("a wall followed no amplitude under some motion of the suite (the motion is zero at "
@@ -119,6 +128,32 @@ def _relayered(building: ShearBuilding, walls: tuple[int, ...], scale: np.ndarra
         else:
             by_story.setdefault(story, []).append(wall)
     return building.with_walls({story: tuple(group) for story, group in by_story.items()})
+
+
+def _suite_amplitudes(building: ShearBuilding, motions: Sequence[GroundMotion], walls: tuple[int, ...],
+                      options: dict[str, Any]) -> np.ndarray:
+    """The peak amplitude (-) each wall of ``walls`` (indices in ``building.wall_list``) followed under each
+    record, (records, walls): the records as lanes in batches of one dt and memory
+    (:func:`~vdw_frames.frame.lanes.lane_batches`), each lane's warnings issued as its simulate would have, in
+    the records' order; an analysis that cannot run raises simulate's ValueError."""
+    if set(options) - _LANE_OPTIONS:
+        return np.array([_peak_amplitudes(building, motion, walls, options) for motion in motions])
+    lanes: dict[int, Any] = {}
+    for batch in lane_batches(building, motions, range(len(motions)), memory=options.get("memory", DEFAULT_MEMORY),
+                              free_vibration=options.get("free_vibration", 0.0), workers=None):
+        lanes.update(zip(batch, run_lanes(building, [motions[i] for i in batch], **options), strict=True))
+    group = group_walls(building.wall_list)[1][list(walls)]  # type: ignore[arg-type]  # fixed-order walls
+    peaks = []
+    for i in range(len(motions)):
+        lane = lanes[i]
+        for caught in lane.warnings:
+            _warnings.warn(caught.message, caught.category, stacklevel=4)
+        if lane.error is not None:
+            raise ValueError(lane.error)
+        if lane.peak_group_amplitude is None:  # pragma: no cover - the walls follow their amplitude (checked above)
+            raise ValueError("the analysis followed no wall amplitude")
+        peaks.append(lane.peak_group_amplitude[group])
+    return np.array(peaks)
 
 
 def _peak_amplitudes(building: ShearBuilding, motion: GroundMotion, walls: tuple[int, ...],

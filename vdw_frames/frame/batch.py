@@ -1,9 +1,9 @@
 """Batch analyses (incremental dynamic analysis, parameter studies) on any concurrent.futures executor.
 
 The (motion, scale) analyses run as lanes (:mod:`vdw_frames.frame.lanes`): a picklable :class:`LaneTask` holds
-up to :data:`LANES_PER_TASK` of them on records of one dt -- the building, the records and the factors -- and
-runs them in one compiled call in whichever process the executor chooses, on that worker's reused workspace,
-returning only the peak responses (each equal to :func:`vdw_frames.simulate`'s to the bit) and the warnings
+up to :data:`~vdw_frames.frame.lanes.LANES_PER_TASK` of them on records of one dt -- the building, the records and the
+factors -- and runs them in one compiled call in whichever process the executor chooses, on that worker's reused
+workspace, returning only the peak responses (each equal to :func:`vdw_frames.simulate`'s to the bit) and the warnings
 simulate would have issued.  Strain-compatible batches run one :func:`~vdw_frames.simulate` a task
 (:class:`BatchTask`).  The default executor is a process pool over all cores whose workers never outlive the call; a
 Dask cluster works through a ``distributed.Client`` (install the ``dask`` extra).  The fan-out, its
@@ -16,7 +16,6 @@ import concurrent.futures
 import csv
 import dataclasses
 import io
-import math
 import os
 from collections.abc import Callable, Iterable, Sequence
 from contextlib import AbstractContextManager
@@ -29,15 +28,15 @@ from numpy.typing import ArrayLike
 
 from .._files import write_text
 from .._parallel import Collected, check_executor, executor_for, fan_out, reissue
-from .._validation import finite_array, non_negative, show
+from .._validation import finite_array, show
 from .._warnings import keyword_only_since_0_3
-from ..element.bank import group_walls, memory_strategy, wall_order
+from ..element.bank import group_walls, wall_order
 from ..element.damper import DEFAULT_MEMORY
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation
 from ..motion.record import GroundMotion, target_acceleration
 from .building import ShearBuilding, is_wall
-from .lanes import LaneResult, run_lanes
+from .lanes import LaneResult, lane_batches, run_lanes
 from .results import SimulationResult
 from .simulation import simulate
 from .strain_compatible import StrainCompatibleOptions, strain_compatible_options
@@ -100,11 +99,6 @@ def _story_temperature_rise(result: SimulationResult) -> np.ndarray | None:
 def _run(task: BatchTask) -> dict[str, Any]:
     # A module-level function: executors pickle it by name.
     return task.run()
-
-
-LANES_PER_TASK = 44
-"""At most this many analyses of one :class:`LaneTask` (one compiled call of the lanes engine): a FEMA P695
-record set; with fewer tasks than about four a worker, a batch is cut finer so that every worker has some."""
 
 
 @dataclass(frozen=True)
@@ -359,26 +353,12 @@ def _fan_out_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], fac
                    memory: str | FastMemory, method: str | Discretisation, options: tuple[tuple[str, Any], ...],
                    executor: concurrent.futures.Executor | None, progress: bool) -> dict[tuple[int, int], Collected]:
     """Every (motion, scale) analysis as lanes: :class:`LaneTask` s of records of one dt and wall memory, at most
-    :data:`LANES_PER_TASK` each, fanned out by :func:`~vdw_frames._parallel.fan_out`; returns each analysis's
-    peaks and warnings keyed (motion, scale), as the tasks of one analysis give them."""
+    :data:`~vdw_frames.frame.lanes.LANES_PER_TASK` each (:func:`~vdw_frames.frame.lanes.lane_batches`), fanned out
+    by :func:`~vdw_frames._parallel.fan_out`; returns each analysis's peaks and warnings keyed (motion, scale), as
+    the tasks of one analysis give them."""
     pairs = [(m, s) for m in range(len(motions)) for s in range(factors.shape[1])]
-    size = max(1, min(LANES_PER_TASK, math.ceil(len(pairs) / (4 * (os.cpu_count() or 1)))))
-    # One task's records share dt and, with walls on the fast memory, the side of FastMemory.exact_below their
-    # steps fall on (simulate's choice of the exact or the fast memory), so that every lane equals simulate.
-    strategy = memory_strategy(memory) if building.wall_list else None
-    free_vibration = non_negative("free_vibration", dict(options).get("free_vibration", 0.0))
-
-    def exact(m: int) -> bool:
-        if strategy is None:
-            return False
-        # size + ceil(x) <= exact_below iff size + x <= exact_below, x as simulate rounds its rest (inf: not exact)
-        rest = free_vibration / motions[m].dt - 1e-9 if free_vibration > 0.0 else 0.0
-        return motions[m].acceleration.size + rest <= strategy.exact_below
-
-    by_dt: dict[tuple[float, bool], list[tuple[int, int]]] = {}
-    for m, s in pairs:
-        by_dt.setdefault((motions[m].dt, exact(m)), []).append((m, s))
-    chunks = [group[i:i + size] for group in by_dt.values() for i in range(0, len(group), size)]
+    chunks = lane_batches(building, [motions[m] for m, _ in pairs], pairs, memory=memory,
+                          free_vibration=dict(options).get("free_vibration", 0.0), workers=os.cpu_count() or 1)
     tasks = {c: LaneTask(building, tuple(motions[m] for m, _ in chunk), tuple(float(factors[m, s]) for m, s in chunk),
                          tuple(f"{_label(motions, m)} x {factors[m, s]:g}" for m, s in chunk), memory, method, options)
              for c, chunk in enumerate(chunks)}

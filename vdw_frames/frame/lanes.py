@@ -34,6 +34,9 @@ Design (issue 32):
 * **What to record.**  ``record``: "peaks" (the default) keeps two rows of histories a lane (a ring: the
   state a step needs) and the peaks the batch callers need (:class:`LanePeaks`); a list of history names
   (those of :class:`~vdw_frames.frame.integrator.Histories`) keeps every row of those, copied out per lane.
+  ``wall_demands=True`` (verify's) also follows each wall's test demands step by step (:func:`_note_walls`:
+  the operations :func:`vdw_frames.verification.verify.wall_peaks` applies to the full histories, in their
+  order, so to the bit); :func:`lane_batches` cuts many analyses into batches whose lanes equal simulate.
 
 Units: N, mm, s, tonne; ground acceleration mm/s^2.
 """
@@ -127,6 +130,24 @@ class LanePeaks(NamedTuple):
     peak_device_deformation: np.ndarray  # (L, D) mm
     peak_device_velocity: np.ndarray  # (L, D) mm/s
     outcome: np.ndarray  # (L, 4) int64: status, failed or collapsed story, Newton corrections, rows filled
+    # Each wall's test demands (run_lanes(wall_demands=True); else W = 0 and none is followed), per wall of
+    # building.wall_list, up to the row its group failed at (verification.verify.wall_peaks' definitions):
+    wall_group: np.ndarray  # (W,) int64: the wall's group (constant)
+    wall_thickness: np.ndarray  # (W,) mm (constant): deformation = strain x thickness
+    wall_share: np.ndarray  # (W,) - (constant): force = the group's force x the wall's share of its area
+    peak_wall_strain: np.ndarray  # (L, W) -, max |strain|
+    peak_wall_deformation: np.ndarray  # (L, W) mm, max |deformation|
+    peak_wall_velocity: np.ndarray  # (L, W) mm/s, max |numpy.gradient of the deformation|
+    peak_wall_force: np.ndarray  # (L, W) N, max |force|
+    wall_cycle_energy: np.ndarray  # (L, W) N*mm, the largest work between upward zero crossings (2 or more)
+    wall_work: np.ndarray  # (L, W) N*mm, the trapezoidal work f d(deformation) so far
+    # (L, W, 5): the deformation of the row before the last (mm) and of the last (mm), the force of the last (N),
+    # the work at the last upward zero crossing (N*mm), the crossings so far (0, 1, or 2 for two or more)
+    wall_trace: np.ndarray
+
+
+WALL_CONSTANTS = ("wall_group", "wall_thickness", "wall_share")
+"""The fields of :class:`LanePeaks` that describe the walls and stay through every batch (the others are reset)."""
 
 
 # -------------------------------------------------------------------------------------------------- compiled
@@ -188,6 +209,66 @@ def _note_peaks(lane, row, ground, out, peaks):
         peaks.peak_device_velocity[lane, d] = max(peaks.peak_device_velocity[lane, d], abs(out.device_velocity[row, d]))
 
 
+@njit(cache=True, inline="always")
+def _note_walls(lane, k, row, dt, out, walls, peaks):
+    """Lane ``lane``'s wall demands with row ``row`` of its histories, row ``k`` from rest (dt s), as
+    :func:`vdw_frames.verification.verify.wall_peaks` takes them from the whole histories, in the same
+    operations: each wall's deformation strain x thickness and force its group's x its share; its rows up to
+    the one its group failed at (``walls``: the lane's bank, whose failure step is set at the failing commit);
+    the trapezoidal work 0.5 (f_k + f_k-1) (d_k - d_k-1) summed in order (``numpy.cumsum``), its cycles between
+    upward zero crossings (d_k-1 < 0 <= d_k); the velocity of row k - 1 by ``numpy.gradient``'s differences
+    (central, one-sided at row 0; that of the last row: :func:`_finish_walls`)."""
+    states = walls.bank.states.walls
+    trace = peaks.wall_trace
+    for w in range(peaks.wall_group.shape[0]):
+        group = peaks.wall_group[w]
+        failed_at = states[group].limits.failure_step  # -1: standing
+        strain = out.group_strain[row, group]
+        deformation = strain * peaks.wall_thickness[w]
+        force = out.group_force[row, group] * peaks.wall_share[w]
+        if k > 0 and (failed_at < 0.0 or k - 1 <= failed_at):
+            if k == 1:
+                velocity = (deformation - trace[lane, w, 1]) / dt
+            else:
+                velocity = (deformation - trace[lane, w, 0]) / (2.0 * dt)
+            peaks.peak_wall_velocity[lane, w] = max(peaks.peak_wall_velocity[lane, w], abs(velocity))
+        if failed_at < 0.0 or k <= failed_at:
+            peaks.peak_wall_strain[lane, w] = max(peaks.peak_wall_strain[lane, w], abs(strain))
+            peaks.peak_wall_deformation[lane, w] = max(peaks.peak_wall_deformation[lane, w], abs(deformation))
+            peaks.peak_wall_force[lane, w] = max(peaks.peak_wall_force[lane, w], abs(force))
+            if k > 0:
+                previous = trace[lane, w, 1]
+                work = peaks.wall_work[lane, w] + 0.5 * (force + trace[lane, w, 2]) * (deformation - previous)
+                peaks.wall_work[lane, w] = work
+                if previous < 0.0 and deformation >= 0.0:
+                    if trace[lane, w, 4] > 0.0:
+                        cycle = work - trace[lane, w, 3]
+                        if trace[lane, w, 4] < 2.0 or cycle > peaks.wall_cycle_energy[lane, w]:
+                            peaks.wall_cycle_energy[lane, w] = cycle
+                        trace[lane, w, 4] = 2.0
+                    else:
+                        trace[lane, w, 4] = 1.0
+                    trace[lane, w, 3] = work
+        trace[lane, w, 0] = trace[lane, w, 1] if k > 0 else deformation
+        trace[lane, w, 1] = deformation
+        trace[lane, w, 2] = force
+
+
+@njit(cache=True, inline="always")
+def _finish_walls(lane, rows, dt, walls, peaks):
+    """The velocity of the last of lane ``lane``'s ``rows`` rows (``numpy.gradient``'s one-sided difference at
+    the end; none for a single row), for the walls standing then."""
+    if rows < 2:
+        return
+    states = walls.bank.states.walls
+    trace = peaks.wall_trace
+    for w in range(peaks.wall_group.shape[0]):
+        failed_at = states[peaks.wall_group[w]].limits.failure_step
+        if failed_at < 0.0 or rows - 1 <= failed_at:
+            velocity = (trace[lane, w, 1] - trace[lane, w, 0]) / dt
+            peaks.peak_wall_velocity[lane, w] = max(peaks.peak_wall_velocity[lane, w], abs(velocity))
+
+
 @njit(cache=True, allocates=False)
 def integrate_lanes(excitation, frame, lanes, newton, peaks):
     """Every lane's analysis from rest, in place: lane under ``excitation`` (:class:`LaneExcitation`: ground
@@ -213,6 +294,7 @@ def _run_lane(lane, excitation, frame, stories, walls, out, work, newton, peaks)
     rows = out.displacement.shape[0]
     prepare(dt, 0, frame, stories, out, work)
     _note_peaks(lane, 0, ground[lane, 0], out, peaks)
+    _note_walls(lane, 0, 0, dt, out, walls, peaks)
     total = 0
     status, story, filled = FINISHED, 0, steps
     for step in range(steps - 1):
@@ -224,11 +306,13 @@ def _run_lane(lane, excitation, frame, stories, walls, out, work, newton, peaks)
             filled = step + 1
             break
         _note_peaks(lane, next_row, ground[lane, step + 1], out, peaks)
+        _note_walls(lane, step + 1, next_row, dt, out, walls, peaks)
         if status == COLLAPSED:
             filled = step + 2
             break
     if status not in (FAILED, COLLAPSED):
         status, story = FINISHED, 0
+    _finish_walls(lane, filled, dt, walls, peaks)
     outcome = peaks.outcome
     outcome[lane, 0], outcome[lane, 1], outcome[lane, 2], outcome[lane, 3] = status, story, total, filled
 
@@ -265,6 +349,7 @@ class _Layout:
     method: Discretisation
     memory: str | FastMemory
     collapse_ratio: float
+    wall_demands: bool = False  # each wall's test demands followed (LanePeaks)
 
 
 class LaneWorkspace:
@@ -303,12 +388,24 @@ class LaneWorkspace:
         self.arrays = LaneArrays(*(_stack(part, layout.lanes) for part in self.template))
         self.frame = frame_arrays(building, layout.collapse_ratio)
         lanes, others_count = layout.lanes, len(others)
+        demands = len(walls) if layout.wall_demands else 0  # walls whose test demands are followed
+        followed = walls if demands else []
         self.peaks = LanePeaks(np.zeros((lanes, floors)), np.zeros((lanes, floors)), np.zeros(lanes),
                                np.zeros((lanes, floors)), np.zeros((lanes, floors)), np.zeros((lanes, len(groups))),
                                np.zeros((lanes, len(groups))), np.zeros(lanes), np.zeros(lanes),
                                np.zeros(lanes, dtype=np.int64),
                                np.zeros((lanes, others_count)), np.zeros((lanes, others_count)),
-                               np.zeros((lanes, others_count)), np.zeros((lanes, 4), dtype=np.int64))
+                               np.zeros((lanes, others_count)), np.zeros((lanes, 4), dtype=np.int64),
+                               wall_group=np.asarray(self.group_of_wall, dtype=np.int64)[:demands],
+                               wall_thickness=np.array([wall.thickness for _, wall in followed], dtype=float),
+                               # each wall's share of its group's area, as time_history (SimulationResult.wall_share)
+                               wall_share=np.array([wall.area / groups[group][1].area for (_, wall), group
+                                                    in zip(walls, self.group_of_wall, strict=True)][:demands],
+                                                   dtype=float),
+                               **{name: np.zeros((lanes, demands)) for name in (
+                                   "peak_wall_strain", "peak_wall_deformation", "peak_wall_velocity",
+                                   "peak_wall_force", "wall_cycle_energy", "wall_work")},
+                               wall_trace=np.zeros((lanes, demands, 5)))
         self.ground = np.zeros((lanes, layout.memory_steps))
         self.lengths = np.zeros(lanes, dtype=np.int64)
         self.batches = 0
@@ -317,8 +414,9 @@ class LaneWorkspace:
     def reset(self) -> None:
         """Every lane back at rest (the arrays of the first batch, rewritten in place)."""
         _reset(self.arrays, self.template)
-        for peak in self.peaks:
-            peak.fill(0)
+        for name, peak in zip(LanePeaks._fields, self.peaks, strict=True):
+            if name not in WALL_CONSTANTS:
+                peak.fill(0)
         at_rest = self.template.out.group_temperature
         self.peaks.peak_group_temperature[:] = at_rest[0] if at_rest.shape[0] else np.nan
 
@@ -330,8 +428,9 @@ def _fits(held: _Layout, wanted: _Layout) -> bool:
     """Whether a workspace laid out as ``held`` serves a batch laid out as ``wanted``: the same building, step,
     settings and rows, at least as many lanes and steps, and walls whose memory is the same for both lengths
     (none, or the fast memory for both: built for at least ``FastMemory.max_steps`` steps whatever the record)."""
-    if (held.building_id, held.dt, held.method, held.memory, held.collapse_ratio, held.rows) != (
-            wanted.building_id, wanted.dt, wanted.method, wanted.memory, wanted.collapse_ratio, wanted.rows):
+    if (held.building_id, held.dt, held.method, held.memory, held.collapse_ratio, held.rows, held.wall_demands) != (
+            wanted.building_id, wanted.dt, wanted.method, wanted.memory, wanted.collapse_ratio, wanted.rows,
+            wanted.wall_demands):
         return False
     if held.lanes < wanted.lanes or held.memory_steps < wanted.memory_steps:
         return False
@@ -396,6 +495,51 @@ class LaneResult:
     error: str | None = None  # why the lane did not run (its input held a non-finite value)
     # The warnings simulate would have issued for this analysis (not issued: the caller says which lane gave them)
     warnings: tuple[_warnings.CollectedWarning, ...] = ()
+    peak_group_amplitude: np.ndarray | None = None  # (G,) -, the largest amplitude followed; None: none followed
+    group_failure_mode: np.ndarray | None = None  # (G,) int64, kernel.FAILURE_MODES index (0: it stood)
+    # run_lanes(wall_demands=True): per wall of building.wall_list, name -> (W,): "deformation" (mm), "strain" (-),
+    # "velocity" (mm/s), "force" (N), "cycle_energy" and "cumulative_energy" (N*mm), each up to the wall's failure,
+    # as vdw_frames.verification.verify.wall_peaks defines them; None otherwise
+    wall_demands: dict[str, np.ndarray] | None = None
+
+
+LANES_PER_TASK = 44
+"""At most this many analyses of one task of a fanned-out batch (one compiled call of the lanes engine): a FEMA P695
+record set; with fewer tasks than about four a worker, a batch is cut finer so that every worker has some
+(:func:`lane_batches`)."""
+
+
+def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analyses: Sequence[Any], *,
+                 memory: str | FastMemory = DEFAULT_MEMORY, free_vibration: float = 0.0, workers: int | None = 1,
+                 apart: Sequence[Any] | None = None) -> list[list[Any]]:
+    """``analyses`` (any keys; ``motions[i]`` the record of ``analyses[i]``) cut into batches that may run as the
+    lanes of one :func:`run_lanes` call with every lane equal to simulate's analysis: one dt (exactly) a batch
+    and, with walls, one side of the exact memory's length (``FastMemory.exact_below`` steps: simulate takes the
+    exact memory below it, the fast one above; ``free_vibration`` s of rest counted as simulate rounds them),
+    at most :data:`LANES_PER_TASK` analyses each, and at most about a quarter of a worker's share (``workers``
+    processes or threads: finer tasks balance the pool; None: no pool, the batches as large as they may be).
+    Analyses whose ``apart`` (one hashable key an analysis, e.g. the building's variant; ``building`` then stands
+    for all: walls or none) differ never share a batch.  In the order of ``analyses`` within each batch."""
+    apart = [None] * len(analyses) if apart is None else list(apart)
+    if not len(motions) == len(apart) == len(analyses):
+        raise ValueError(f"lane_batches needs one record (and one key apart, if any) an analysis, got {len(motions)} "
+                         f"records and {len(apart)} keys for {len(analyses)} analyses")
+    share = len(analyses) if workers is None else math.ceil(len(analyses) / (4 * max(1, workers)))
+    size = max(1, min(LANES_PER_TASK, share))
+    strategy = memory_strategy(memory) if building.wall_list else None
+    free_vibration = non_negative("free_vibration", free_vibration)
+
+    def exact(motion: GroundMotion) -> bool:
+        if strategy is None:
+            return False
+        # size + ceil(x) <= exact_below iff size + x <= exact_below, x as simulate rounds its rest (inf: not exact)
+        rest = free_vibration / motion.dt - 1e-9 if free_vibration > 0.0 else 0.0
+        return motion.acceleration.size + rest <= strategy.exact_below
+
+    by_key: dict[tuple[Any, float, bool], list[Any]] = {}
+    for motion, analysis, key in zip(motions, analyses, apart, strict=True):
+        by_key.setdefault((key, motion.dt, exact(motion)), []).append(analysis)
+    return [group[i:i + size] for group in by_key.values() for i in range(0, len(group), size)]
 
 
 def _record_names(record: str | Sequence[str]) -> tuple[str, ...]:
@@ -416,7 +560,7 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
               record: str | Sequence[str] = PEAKS_ONLY,
               method: str | Discretisation = DEFAULT_METHOD, memory: str | FastMemory = DEFAULT_MEMORY,
               collapse_drift_ratio: float | None = 0.10, free_vibration: float = 0.0,
-              newton: NewtonRaphson | None = None) -> list[LaneResult]:
+              newton: NewtonRaphson | None = None, wall_demands: bool = False) -> list[LaneResult]:
     """Run ``building`` under every record of ``motions`` (mm/s^2), one lane each, in one compiled call
     (:func:`integrate_lanes`) on this thread's reused workspace; returns one :class:`LaneResult` a record,
     equal to :func:`~vdw_frames.frame.simulation.simulate` of that record with the same options (module
@@ -430,7 +574,9 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
     (an overflowing scale, say) is not run: its result has ``error`` set and ``converged`` False, and the
     other lanes run; so does a lane whose response or energies overflow (``error`` says which, as simulate's
     ValueError would).  ``method``, ``memory``, ``collapse_drift_ratio`` (-, None: never), ``free_vibration``
-    (s of rest after each record), ``newton``: as for ``simulate``.
+    (s of rest after each record), ``newton``: as for ``simulate``.  ``wall_demands``: also follow every wall's
+    test demands (:attr:`LaneResult.wall_demands`, those of :func:`vdw_frames.verification.verify.wall_peaks`
+    to the bit), a few operations a wall and step more.
     """
     names = _record_names(record)
     motions = list(motions)
@@ -466,8 +612,10 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
     if not math.isfinite(4.0 / dt**2 * heaviest):  # Newmark's inertia term, as simulate refuses it
         raise ValueError(f"masses up to {heaviest:.6g} t with dt = {dt!r} s overflow Newmark's 4 m / dt^2 (inf)")
     collapse_ratio = float(collapse_drift_ratio) if (collapse_drift_ratio and building.story_heights) else 0.0
+    if not isinstance(wall_demands, bool):
+        raise ValueError(f"wall_demands must be True or False, got {show(wall_demands)}")
     layout = _Layout(building, id(building), float(dt), len(motions), longest if names else 2, longest,
-                     get_method(method), memory, collapse_ratio)
+                     get_method(method), memory, collapse_ratio, wall_demands)
     space = workspace(layout)
     space.reset()
     space.batches += 1
@@ -508,7 +656,8 @@ def _lane_result(space: LaneWorkspace, lane: int, names: tuple[str, ...], error:
     status, _, iterations, filled = (int(x) for x in peaks.outcome[lane])
     heights = building.story_heights
     out = space.arrays.out
-    failure_step = space.arrays.walls.bank.states.walls["limits"]["failure_step"][lane].astype(np.int64)
+    limits = space.arrays.walls.bank.states.walls["limits"]
+    failure_step = limits["failure_step"][lane].astype(np.int64)
     if error is not None:
         status, filled = FAILED, 0
         caught: list[_warnings.CollectedWarning] = []
@@ -531,7 +680,21 @@ def _lane_result(space: LaneWorkspace, lane: int, names: tuple[str, ...], error:
         converged=status != FAILED, collapsed=status == COLLAPSED,
         collapse_time=(filled - 1) * dt if status == COLLAPSED else None, newton_iterations=iterations,
         steps=filled, histories={name: getattr(out, name)[lane, :filled].copy() for name in names}, error=error,
-        warnings=tuple(caught))
+        warnings=tuple(caught),
+        peak_group_amplitude=(peaks.peak_group_amplitude[lane].copy() if space.template.out.group_amplitude.shape[0]
+                              else None),
+        group_failure_mode=limits["failure_mode"][lane].astype(np.int64),
+        wall_demands=_wall_demands(peaks, lane) if space.layout.wall_demands else None)
+
+
+def _wall_demands(peaks: LanePeaks, lane: int) -> dict[str, np.ndarray]:
+    """Lane ``lane``'s wall demands (copies): the peaks of :class:`LanePeaks`, and the largest cycle's work where
+    two upward zero crossings or more were seen, else the whole work (as ``cycle_energies`` takes it)."""
+    work = peaks.wall_work[lane].copy()
+    return {"deformation": peaks.peak_wall_deformation[lane].copy(), "strain": peaks.peak_wall_strain[lane].copy(),
+            "velocity": peaks.peak_wall_velocity[lane].copy(), "force": peaks.peak_wall_force[lane].copy(),
+            "cycle_energy": np.where(peaks.wall_trace[lane, :, 4] >= 2.0, peaks.wall_cycle_energy[lane], work),
+            "cumulative_energy": work}
 
 
 class _LaneBank:
@@ -573,5 +736,5 @@ def _warn_as_simulate(space: LaneWorkspace, lane: int) -> None:
                        "motion to their tolerance; do not trust this result", RuntimeWarning)
 
 
-__all__ = ["HISTORY_NAMES", "PEAKS_ONLY", "LanePeaks", "LaneResult", "LaneWorkspace", "integrate_lanes", "run_lanes",
-           "workspace"]
+__all__ = ["HISTORY_NAMES", "LANES_PER_TASK", "PEAKS_ONLY", "LanePeaks", "LaneResult", "LaneWorkspace",
+           "integrate_lanes", "lane_batches", "run_lanes", "workspace"]

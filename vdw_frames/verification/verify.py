@@ -56,6 +56,7 @@ from __future__ import annotations
 
 import concurrent.futures
 import math
+import os
 import warnings
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
@@ -64,14 +65,16 @@ from typing import Any
 import numpy as np
 
 from .. import _warnings
-from .._parallel import check_executor, executor_for, fan_out, reissue
+from .._parallel import Collected, check_executor, executor_for, fan_out, reissue
 from .._validation import positive, show, text
+from ..element.bank import group_walls
 from ..element.device import Device
+from ..element.kernel import FAILURE_MODES
 from ..element.thermal import service_temperature
 from ..element.viscous import FluidViscousDamper
 from ..frame.building import ShearBuilding, is_wall
+from ..frame.lanes import LaneResult, lane_batches, run_lanes
 from ..frame.results import SimulationResult
-from ..frame.simulation import simulate
 from ..motion.record import GroundMotion
 from . import spectrum
 from .spectrum import Site
@@ -442,22 +445,33 @@ def unacceptable_reasons(result: SimulationResult, valid_drift_ratio: float | No
     """Why one analysis's response is unacceptable in the sense of ASCE 7-16 Sec. 16.4.1.1 (module docstring):
     collapse, non-convergence, a drift ratio (-) beyond ``valid_drift_ratio``, a failed wall, a wall strained
     beyond the upper end of its identified range.  Empty when acceptable."""
-    walls = result.building.wall_list
-    peak_drift = result.peak_drift_ratio
+    return _reasons(result.building, collapsed=bool(result.collapsed), collapse_time=result.collapse_time,
+                    converged=bool(result.converged), peak_drift_ratio=result.peak_drift_ratio,
+                    failed=result.wall_failed, failure_mode=result.wall_failure_mode,
+                    peak_strain=np.abs(result.wall_strain).max(axis=0, initial=0.0),
+                    valid_drift_ratio=valid_drift_ratio)
+
+
+def _reasons(building: ShearBuilding, *, collapsed: bool, collapse_time: float | None, converged: bool,
+             peak_drift_ratio: np.ndarray | None, failed: np.ndarray, failure_mode: Sequence[str],
+             peak_strain: np.ndarray, valid_drift_ratio: float | None) -> list[str]:
+    """:func:`unacceptable_reasons` of an analysis's outcome (collapse time s), peak drift ratios (-), each wall's
+    failure (bool, and its mode) and peak |strain| (-, over the whole analysis), per wall of
+    ``building.wall_list``: from a simulation's histories or a lane's peaks alike."""
+    walls = building.wall_list
+    peak_drift = peak_drift_ratio
     reasons = []
-    if result.collapsed:
-        reasons.append(f"collapse (drift ratio beyond the collapse limit at {result.collapse_time:.3g} s)")
-    if not result.converged:
+    if collapsed:
+        reasons.append(f"collapse (drift ratio beyond the collapse limit at {collapse_time:.3g} s)")
+    if not converged:
         reasons.append("non-convergence")
     if valid_drift_ratio is not None and peak_drift is not None and np.max(peak_drift) > valid_drift_ratio:
         story = int(np.argmax(peak_drift)) + 1
         reasons.append(f"drift ratio {np.max(peak_drift):.4g} in story {story} beyond the model's validity "
                        f"({valid_drift_ratio:g})")
-    failed = result.wall_failed
     if failed.any():
-        reasons.append("wall(s) " + ", ".join(f"{j + 1} ({result.wall_failure_mode[j]})"
+        reasons.append("wall(s) " + ", ".join(f"{j + 1} ({failure_mode[j]})"
                                              for j in np.nonzero(failed)[0].tolist()) + " failed")
-    peak_strain = np.abs(result.wall_strain).max(axis=0, initial=0.0)
     beyond = []
     for j, (_, wall) in enumerate(walls):
         identified = wall.strain_range
@@ -515,7 +529,9 @@ def device_peaks(result: SimulationResult) -> dict[str, np.ndarray]:
 
 
 def _summary(result: SimulationResult, valid_drift_ratio: float | None) -> dict[str, Any]:
-    """What verify keeps of one analysis: outcome, peak drift ratios, reasons it is unacceptable, wall peaks."""
+    """What verify keeps of one analysis, from its full histories: outcome, peak drift ratios, reasons it is
+    unacceptable, wall and device peaks (the definition; verify takes the same from its lanes:
+    :func:`_lane_summary`)."""
     peak_drift = result.peak_drift_ratio
     assert peak_drift is not None  # verify refuses buildings without story heights
     return {"collapsed": bool(result.collapsed), "converged": bool(result.converged),
@@ -524,24 +540,54 @@ def _summary(result: SimulationResult, valid_drift_ratio: float | None) -> dict[
             **{f"device_{name}": value for name, value in device_peaks(result).items()}}
 
 
+def _lane_summary(building: ShearBuilding, lane: LaneResult, valid_drift_ratio: float | None) -> dict[str, Any]:
+    """:func:`_summary` of the analysis from its lane (:func:`~vdw_frames.frame.lanes.run_lanes` with
+    ``wall_demands``): the same values, to the bit (tests/verification/test_verify_lanes.py)."""
+    assert lane.peak_drift_ratio is not None and lane.wall_demands is not None  # story heights; wall demands asked
+    group = group_walls(building.wall_list)[1]  # type: ignore[arg-type]  # fixed walls: verify's buildings
+    failed = lane.group_failure_step[group] >= 0
+    modes = lane.group_failure_mode
+    rise = lane.peak_temperature_rise
+    assert modes is not None  # run_lanes gives every lane's
+    reasons = _reasons(building, collapsed=lane.collapsed, collapse_time=lane.collapse_time, converged=lane.converged,
+                       peak_drift_ratio=lane.peak_drift_ratio, failed=failed,
+                       failure_mode=[FAILURE_MODES[int(modes[g])] for g in group],
+                       peak_strain=lane.peak_group_strain[group], valid_drift_ratio=valid_drift_ratio)
+    walls = len(building.wall_list)
+    return {"collapsed": lane.collapsed, "converged": lane.converged,
+            "peak_drift_ratio": np.asarray(lane.peak_drift_ratio, dtype=float), "reasons": "; ".join(reasons),
+            **{name: lane.wall_demands[name] for name in WALL_PEAKS[:-1]},
+            "temperature_rise": np.full(walls, np.nan) if rise is None else rise[group],
+            **{f"device_{name}": getattr(lane, f"peak_device_{name}") for name in DEVICE_PEAKS}}
+
+
 @dataclass(frozen=True)
-class _Task:
-    """One analysis of the verification: ``building`` (one bound's walls) under ``motion.scaled(factor)``."""
+class _Batch:
+    """Analyses of the verification on one bound's ``building``, each under ``motions[i].scaled(factors[i])``,
+    run as the lanes of one compiled call (:func:`~vdw_frames.frame.lanes.run_lanes`); ``labels`` name them."""
 
     building: ShearBuilding
-    motion: GroundMotion
-    factor: float
+    motions: tuple[GroundMotion, ...]
+    factors: tuple[float, ...]
+    labels: tuple[str, ...]
     collapse_drift_ratio: float
     valid_drift_ratio: float | None
 
-    def run(self) -> dict[str, Any]:
-        result = simulate(self.building, self.motion.scaled(self.factor),
-                          collapse_drift_ratio=self.collapse_drift_ratio)
-        return _summary(result, self.valid_drift_ratio)  # its warnings: collected by _parallel.fan_out
+    def run(self) -> list[tuple[dict[str, Any], tuple[_warnings.CollectedWarning, ...]]]:
+        """Each analysis's :func:`_summary` and the warnings simulate would have issued for it; an analysis that
+        cannot run raises simulate's ValueError, named by its label."""
+        lanes = run_lanes(self.building, self.motions, self.factors, collapse_drift_ratio=self.collapse_drift_ratio,
+                          wall_demands=True)
+        out = []
+        for lane, label in zip(lanes, self.labels, strict=True):
+            if lane.error is not None:
+                raise ValueError(f"the analysis of {label} failed: {lane.error}")
+            out.append((_lane_summary(self.building, lane, self.valid_drift_ratio), lane.warnings))
+        return out
 
 
-def _run(task: _Task) -> dict[str, Any]:
-    return task.run()  # module level: executors pickle it by name
+def _run(batch: _Batch) -> list[tuple[dict[str, Any], tuple[_warnings.CollectedWarning, ...]]]:
+    return batch.run()  # module level: executors pickle it by name
 
 
 # ----------------------------------------------------------------------------------------------- acceptance
@@ -652,10 +698,13 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
     largest drift ratio the story models are valid for (None: not checked).  ``allowable_drift_ratio``: Table
     12.12-1's Delta_a / h_sx if not the "all other structures" row.  ``executor``: any
     ``concurrent.futures.Executor`` (default a process pool over all cores); ``progress``: a progress bar on
-    standard error when it is a terminal.  Every analysis is :func:`vdw_frames.simulate` of the bound's
+    standard error when it is a terminal.  Every analysis is that of :func:`vdw_frames.simulate` of the bound's
     building (:meth:`PropertyBounds.building`: walls at the bound's ambient temperature, if any, times lambda)
-    under the scaled record; the package's warnings of each analysis are re-issued once, naming the case and
-    record.  Returns a :class:`VerificationResult`.
+    under the scaled record, run as a lane (:func:`~vdw_frames.frame.lanes.run_lanes`: each bound's records in a
+    few compiled calls, a task each on ``executor``; every peak, reason and demand equal to the bit to those
+    :func:`wall_peaks`, :func:`device_peaks` and :func:`unacceptable_reasons` take from simulate's result); the
+    package's warnings of each analysis are re-issued once, naming the case and record.  Returns a
+    :class:`VerificationResult`.
     """
     if not isinstance(building, ShearBuilding):
         raise ValueError(f"building must be a ShearBuilding, got {type(building).__name__}")
@@ -694,10 +743,8 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
                        f"{bounds.ambient} degC bounds both K' and K'' at {1.0 / first:.3f} Hz (the lower bound takes "
                        "the end of the smaller K''; the other end has the smaller K'): the lower-bound displacements "
                        "may not be bounded -- verify at both ends", UserWarning, stacklevel=2)
-    tasks = {(c, r): _Task(variant, motion, float(f), collapse, valid)
-             for c, variant in enumerate(variants)
-             for r, (motion, f) in enumerate(zip(suite.motions, suite.factors, strict=True))}
-    summaries = _run_all(tasks, executor, progress, cases, suite.motions)
+    summaries = _run_all(variants, suite, collapse_drift_ratio=collapse, valid_drift_ratio=valid, executor=executor,
+                         progress=progress, cases=cases)
 
     n_cases, n_records = len(cases), len(suite.motions)
     drifts = np.array([[summaries[(c, r)]["peak_drift_ratio"] for r in range(n_records)] for c in range(n_cases)])
@@ -745,15 +792,33 @@ def _wall_demands(building: ShearBuilding, peaks: dict[str, np.ndarray], cases: 
     return tuple(demands)
 
 
-def _run_all(tasks: dict[tuple[int, int], _Task], executor: concurrent.futures.Executor | None, progress: bool,
-             cases: Sequence[tuple[str, float]], motions: Sequence[GroundMotion]) -> dict[tuple[int, int], dict]:
-    """Every analysis on ``executor`` (:func:`vdw_frames._parallel.fan_out`); their warnings re-issued once
-    each, naming the record and the case."""
+def _run_all(variants: Sequence[ShearBuilding], suite: ScaledSuite, *, collapse_drift_ratio: float,
+             valid_drift_ratio: float | None, executor: concurrent.futures.Executor | None, progress: bool,
+             cases: Sequence[tuple[str, float]]) -> dict[tuple[int, int], dict]:
+    """Every analysis (case c's building ``variants[c]`` under record r of the suite, scaled), keyed (c, r): each
+    case's records in batches of lanes (:func:`~vdw_frames.frame.lanes.lane_batches`: one dt, one side of the
+    walls' exact memory, a few a worker), each batch one task of :func:`vdw_frames._parallel.fan_out` (its
+    progress bar counts analyses); their warnings re-issued once each, naming the record and the case."""
+    motions = suite.motions
+
     def label(key: tuple[int, int]) -> str:
         return f"{motions[key[1]].name or key[1]} ({cases[key[0]][0]})"
 
+    keys = [(c, r) for c in range(len(variants)) for r in range(len(motions))]
+    chunks = lane_batches(variants[0], [motions[r] for _, r in keys], keys, workers=os.cpu_count() or 1,
+                          apart=[c for c, _ in keys])  # every variant has the walls of the building
+    tasks = {b: _Batch(variants[chunk[0][0]], tuple(motions[r] for _, r in chunk),
+                       tuple(float(suite.factors[r]) for _, r in chunk), tuple(label(key) for key in chunk),
+                       collapse_drift_ratio, valid_drift_ratio)
+             for b, chunk in enumerate(chunks)}
     with executor_for(executor) as pool:
-        collected = fan_out(_run, tasks, pool, progress=progress, unit="analyses",
-                            where=lambda key: f"verify: the analysis of {label(key)} failed")
+        done = fan_out(_run, tasks, pool, progress=progress, unit="analyses", where=lambda _: "verify",
+                       sizes={b: len(chunk) for b, chunk in enumerate(chunks)})
+    collected: dict[tuple[int, int], Collected] = {}
+    for b, chunk in enumerate(chunks):
+        for key, (summary, caught) in zip(chunk, done[b].value, strict=True):
+            collected[key] = Collected(summary, caught)
+        first = chunk[0]  # a task's warnings outside its lanes: with its first analysis
+        collected[first] = Collected(collected[first].value, collected[first].warnings + done[b].warnings)
     reissue(collected, label, stacklevel=3)
     return {key: each.value for key, each in collected.items()}
