@@ -30,7 +30,7 @@ Energies (N*mm) are accumulated in the same pass with trapezoidal work increment
 average acceleration balances energy to the iteration tolerance.
 
 The compiled functions take their arrays as named tuples (:class:`FrameArrays`, :class:`StoryArrays`,
-:class:`~vdw_frames.element.kernel.BankArrays`, :class:`Excitation`, :class:`Histories`, :class:`Scratch`), whose fields
+:class:`~vdw_frames.element.kernel.BankArrays`, :class:`Histories`, :class:`Scratch`), whose fields
 give every array's shape; nothing here imports the drivers above it
 (:mod:`vdw_frames.frame.time_history`, :mod:`vdw_frames.frame.simulation`).  The step loops allocate
 nothing (their work arrays come from :func:`scratch`): they are compiled without numba's reference
@@ -57,7 +57,7 @@ from ..element.devices import DeviceStates, devices_commit, devices_trial, recor
 from ..element.kernel import BankArrays
 from .hysteresis import story_trial
 
-# Status codes of the compiled integrator (Histories.outcome[0]).
+# Status codes of a step (advance) and of a run (lane_kernel.LanePeaks.outcome[:, 0]).
 RUNNING, FINISHED, COLLAPSED, FAILED = 0, 1, 2, 3
 # Energy columns: input, kinetic, frame strain (recoverable), story work, inherent damping, wall work, P-Delta.
 ENERGIES = 7
@@ -105,15 +105,6 @@ class NewtonSettings(NamedTuple):
     fallback_iterations: int
 
 
-class Excitation(NamedTuple):
-    """The ground motion as the integrator takes it, and its time axis: row i of the histories is at
-    t = (first_step + i) dt."""
-
-    acceleration: np.ndarray  # (N,) mm/s^2, one value a row of the histories
-    dt: float  # s
-    first_step: int  # the steps the walls have committed before row 0 (0 from rest; a restart: replay's k)
-
-
 class FrameArrays(NamedTuple):
     """The building as the integrator sees it (n stories)."""
 
@@ -151,7 +142,6 @@ class Histories(NamedTuple):
     group_strain: np.ndarray  # (N, G) -
     peak_group_strain: np.ndarray  # (G,) -
     energy: np.ndarray  # (N, ENERGIES) N*mm
-    outcome: np.ndarray  # (3,) int64: status, failed or collapsed story, Newton corrections
     # Walls whose heat is followed (thermal description or limits); (0, G) when none is:
     group_temperature: np.ndarray  # (N, G) degC (NaN for a group without a thermal description)
     group_heat: np.ndarray  # (N, G) N*mm dissipated since rest; (0, G) when every followed group has a temperature
@@ -202,7 +192,7 @@ class Scratch(NamedTuple):
 
 
 def scratch(stories: int, groups: int) -> Scratch:
-    """Zeroed work arrays for :func:`integrate` of a building of ``stories`` stories and ``groups`` wall
+    """Zeroed work arrays for :func:`advance` of a building of ``stories`` stories and ``groups`` wall
     groups (the integrator allocates nothing: it is compiled without numba's reference counting)."""
     n = stories
     shapes = {"work": (2, n), "matrix": (n, n), "wall_deformation": (groups,), "wall_force": (groups,),
@@ -551,37 +541,6 @@ def _record_walls(next_row, states, out, work):
             out.group_amplitude[next_row, g] = states.walls[g].tracker.amplitude
 
 
-@njit(cache=True, allocates=False)
-def integrate(excitation, frame, stories, walls, newton, out, work):
-    """Newmark average acceleration with Newton-Raphson, rows 1 .. N-1 from the state in row 0, in place.
-
-    ``excitation`` :class:`Excitation` (the ground acceleration (N,) mm/s^2, dt s, and the number of
-    steps the walls have committed before row 0: 0 from rest); ``frame`` :class:`FrameArrays`;
-    ``stories`` :class:`StoryArrays` (its committed state advances); ``walls`` :class:`DeviceArrays` (its
-    bank's memory and its other devices' states advance); ``newton`` :class:`NewtonSettings`; ``out``
-    :class:`Histories`, whose row 0
-    holds the starting state (rest, or a state the stories and walls were brought to by :func:`replay`);
-    ``work`` :class:`Scratch` of the building (:func:`scratch`).  Returns the number of rows filled;
-    ``out.outcome`` receives (status, failed or collapsed story, Newton corrections).
-    """
-    ground, dt, start = excitation.acceleration, excitation.dt, excitation.first_step
-    steps = out.displacement.shape[0]
-    prepare(dt, 0, frame, stories, out, work)
-    total_iterations = 0
-    for step in range(steps - 1):
-        status, story, iterations = advance(step, step, step + 1, ground[step], ground[step + 1], dt, start, frame,
-                                            stories, walls, newton, out, work)
-        total_iterations += iterations
-        if status == FAILED:
-            out.outcome[0], out.outcome[1], out.outcome[2] = FAILED, story, total_iterations
-            return step + 1
-        if status == COLLAPSED:
-            out.outcome[0], out.outcome[1], out.outcome[2] = COLLAPSED, story, total_iterations
-            return step + 2
-    out.outcome[0], out.outcome[1], out.outcome[2] = FINISHED, 0, total_iterations
-    return steps
-
-
 @njit(cache=True, inline="always")
 def prepare(dt, row, frame, stories, out, work):
     """The run's constants into ``work`` (the dynamic stiffness, the initial tangents) and C v of the state in
@@ -602,7 +561,7 @@ def prepare(dt, row, frame, stories, out, work):
 
 @njit(cache=True, inline="always")
 def advance(step, row, next_row, ground_now, ground_next, dt, start, frame, stories, walls, newton, out, work):
-    """One step of the analysis, the step body of :func:`integrate` and of the lanes
+    """One step of the analysis, the step body of :func:`vdw_frames.frame.lane_kernel.run_lane` (every analysis,
     (:mod:`vdw_frames.frame.lanes`): from the committed state in row ``row`` of ``out`` (step ``step`` of the
     run, ``start`` + ``step`` of the walls' memory) to row ``next_row`` under the ground accelerations
     ``ground_now``, ``ground_next`` (mm/s^2) of both.  :func:`prepare` must have run.  Returns (status,

@@ -2,13 +2,13 @@
 
 IDA, FEMA P695, the ASCE 7 verification and the design loop run the same building under many records or
 intensities.  :func:`run_lanes` runs L of them (one lane a record) in one call of the compiled
-:func:`integrate_lanes`, on a :class:`LaneWorkspace` that is sized once and reused by every later batch that
-fits it (no allocation, hence no page faults, per analysis).
+:func:`~vdw_frames.frame.lane_kernel.integrate_lanes`, on a :class:`LaneWorkspace` that is sized once and
+reused by every later batch that fits it (no allocation, hence no page faults, per analysis).
 
 Design (issue 32):
 
-* **One integrator.**  A lane's step is :func:`vdw_frames.frame.integrator.advance`, the very step body of
-  :func:`~vdw_frames.frame.integrator.integrate` (the single analysis), called with the lane's views: the
+* **One integrator.**  A lane is :func:`vdw_frames.frame.lane_kernel.run_lane`, the very compiled loop of
+  the single analysis (``simulate`` runs it on one lane of full histories), called with the lane's views: the
   same compiled arithmetic in the same order, so every lane's peaks, collapse time and histories equal
   those of :func:`~vdw_frames.frame.simulation.simulate` of its record *to the bit* (``np.array_equal``;
   tests/frame/test_lanes.py).  The one exception: walls on records of different lengths when the shorter
@@ -17,8 +17,8 @@ Design (issue 32):
   one, :mod:`vdw_frames.element.fast_memory`).
 * **State shaped (lanes, ...).**  Every array of the single analysis (the stories' committed state, the
   walls' bank, the other devices' states, the histories, the scratch) is stacked along a first axis of
-  lanes; the compiled loop takes lane l's view of each (:func:`take`), which has the very type of the
-  single analysis's array, so the step compiles once for both.
+  lanes; the compiled loop takes lane l's view of each (:func:`~vdw_frames.frame.lane_kernel.take`), which
+  has the very type of the single analysis's array, so the loop compiles once for both.
 * **Lanes in turn.**  The lanes run one after the other inside the call, each to its own end: a lane's state
   then stays in the cache over its whole record.  A lane that collapses or fails stops; the others go on
   (their results are independent of it).  Records of different lengths are padded to the longest (a lane
@@ -32,11 +32,12 @@ Design (issue 32):
   peaks are small copies; histories are asked for by name and copied out of the workspace, so no kept array
   holds the batch's memory).
 * **What to record.**  ``record``: "peaks" (the default) keeps two rows of histories a lane (a ring: the
-  state a step needs) and the peaks the batch callers need (:class:`LanePeaks`); a list of history names
-  (those of :class:`~vdw_frames.frame.integrator.Histories`) keeps every row of those, copied out per lane.
-  ``wall_demands=True`` (verify's) also follows each wall's test demands step by step (:func:`_note_walls`:
-  the operations :func:`vdw_frames.verification.verify.wall_peaks` applies to the full histories, in their
-  order, so to the bit); :func:`lane_batches` cuts many analyses into batches whose lanes equal simulate.
+  state a step needs) and the peaks the batch callers need (:class:`~vdw_frames.frame.lane_kernel.LanePeaks`);
+  a list of history names (those of :class:`~vdw_frames.frame.integrator.Histories`) keeps every row of those,
+  copied out per lane.  ``wall_demands=True`` (verify's) also follows each wall's test demands step by step
+  (``lane_kernel._note_walls``: the operations :func:`vdw_frames.verification.verify.wall_peaks` applies to the
+  full histories, in their order, so to the bit); :func:`lane_batches` cuts many analyses into batches whose
+  lanes equal simulate.
 
 Units: N, mm, s, tonne; ground acceleration mm/s^2.
 """
@@ -49,14 +50,11 @@ import pickle
 import threading
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, NamedTuple, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
-from numba import types
-from numba.extending import overload
 
 from .. import _warnings
-from .._jit import njit
 from .._validation import check_memory, non_negative, show
 from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy
@@ -65,17 +63,8 @@ from ..element.fractional import DEFAULT_METHOD, Discretisation, get_method
 from ..motion.record import G, GroundMotion
 from .building import ShearBuilding
 from .hysteresis import story_arrays
-from .integrator import (
-    COLLAPSED,
-    FAILED,
-    FINISHED,
-    DeviceArrays,
-    Histories,
-    NewtonRaphson,
-    advance,
-    prepare,
-    scratch,
-)
+from .integrator import COLLAPSED, FAILED, NewtonRaphson, scratch
+from .lane_kernel import WALL_CONSTANTS, LaneArrays, LaneExcitation, LanePeaks, integrate_lanes, lane_peaks
 from .results import ENERGY_BALANCE_TOLERANCE
 from .time_history import (
     _check_model,
@@ -94,227 +83,6 @@ HISTORY_NAMES = ("displacement", "velocity", "acceleration", "drift", "story_she
                  "group_force", "group_strain", "energy", "group_temperature", "group_amplitude", "device_force",
                  "device_deformation", "device_velocity")
 """The histories a batch may keep (``record``), those of :class:`~vdw_frames.frame.integrator.Histories`."""
-
-
-class LaneArrays(NamedTuple):
-    """Every lane's state, each array stacked along a first axis of lanes (L)."""
-
-    stories: Any  # StoryArrays, (L, n, ...)
-    walls: DeviceArrays  # its arrays (L, ...); group_story and magnification too (the same in every lane)
-    out: Histories  # (L, rows, ...): rows = 2 (a ring) for peaks only, else the longest record
-    work: Any  # Scratch, (L, ...)
-
-
-class LaneExcitation(NamedTuple):
-    """Every lane's ground motion, padded with zeros to the longest record (L lanes, N values)."""
-
-    acceleration: np.ndarray  # (L, N) mm/s^2
-    lengths: np.ndarray  # (L,) int64: values of each lane's record (0: the lane is idle)
-    dt: float  # s, the step of every lane
-
-
-class LanePeaks(NamedTuple):
-    """What every lane recorded besides histories (L lanes, n stories, G wall groups, D other devices)."""
-
-    peak_drift: np.ndarray  # (L, n) mm, max |drift|
-    peak_absolute_acceleration: np.ndarray  # (L, n) mm/s^2, max |relative + ground acceleration|
-    peak_base_shear: np.ndarray  # (L,) N
-    peak_story_wall_force: np.ndarray  # (L, n) N
-    residual_drift: np.ndarray  # (L, n) mm, the drift of the last row filled
-    peak_group_temperature: np.ndarray  # (L, G) degC (NaN without a thermal description or unfollowed)
-    peak_group_amplitude: np.ndarray  # (L, G) -, the largest strain amplitude followed (0 where none is)
-    peak_input: np.ndarray  # (L,) N*mm, max |input energy|
-    peak_balance_error: np.ndarray  # (L,) N*mm, max |energy balance error| (EnergyHistory.balance_error)
-    overflow: np.ndarray  # (L,) int64: 1 a displacement, 2 an energy not finite (simulate refuses either)
-    peak_device_force: np.ndarray  # (L, D) N, max |force| along each other device
-    peak_device_deformation: np.ndarray  # (L, D) mm
-    peak_device_velocity: np.ndarray  # (L, D) mm/s
-    outcome: np.ndarray  # (L, 4) int64: status, failed or collapsed story, Newton corrections, rows filled
-    # Each wall's test demands (run_lanes(wall_demands=True); else W = 0 and none is followed), per wall of
-    # building.wall_list, up to the row its group failed at (verification.verify.wall_peaks' definitions):
-    wall_group: np.ndarray  # (W,) int64: the wall's group (constant)
-    wall_thickness: np.ndarray  # (W,) mm (constant): deformation = strain x thickness
-    wall_share: np.ndarray  # (W,) - (constant): force = the group's force x the wall's share of its area
-    peak_wall_strain: np.ndarray  # (L, W) -, max |strain|
-    peak_wall_deformation: np.ndarray  # (L, W) mm, max |deformation|
-    peak_wall_velocity: np.ndarray  # (L, W) mm/s, max |numpy.gradient of the deformation|
-    peak_wall_force: np.ndarray  # (L, W) N, max |force|
-    wall_cycle_energy: np.ndarray  # (L, W) N*mm, the largest work between upward zero crossings (2 or more)
-    wall_work: np.ndarray  # (L, W) N*mm, the trapezoidal work f d(deformation) so far
-    # (L, W, 5): the deformation of the row before the last (mm) and of the last (mm), the force of the last (N),
-    # the work at the last upward zero crossing (N*mm), the crossings so far (0, 1, or 2 for two or more)
-    wall_trace: np.ndarray
-
-
-WALL_CONSTANTS = ("wall_group", "wall_thickness", "wall_share")
-"""The fields of :class:`LanePeaks` that describe the walls and stay through every batch (the others are reset)."""
-
-
-# -------------------------------------------------------------------------------------------------- compiled
-def take(tree, lane):  # pragma: no cover - compiled only (the overload below)
-    """Lane ``lane``'s view of the named tuple ``tree``: each array indexed on its first axis, named tuples
-    field by field, anything else (flags, counts, None) as it is."""
-
-
-@overload(take)  # not inline="always": numba 0.6x's IR inlining of it lost writes through the views it made
-def _take_typed(tree, lane):
-    if isinstance(tree, types.BaseNamedTuple):
-        named: Any = tree  # numba's type of the argument (its fields' types, its class)
-        # Arrays indexed here, not through take: a function compiled without numba's runtime may return no
-        # array it was not given (a named tuple of views is fine).
-        fields = ", ".join(f"tree[{i}][lane]" if isinstance(kind, types.Array) else f"take(tree[{i}], lane)"
-                           for i, kind in enumerate(named.types))
-        scope: dict[str, Any] = {"build": named.instance_class, "take": take}
-        exec(f"def view(tree, lane):\n    return build({fields})\n", scope)
-        return scope["view"]
-    return lambda tree, lane: tree
-
-
-@njit(cache=True, inline="always")
-def _note_peaks(lane, row, ground, out, peaks):
-    """Lane ``lane``'s peaks with row ``row`` of its histories (ground acceleration ``ground``, mm/s^2)."""
-    n = out.displacement.shape[1]
-    for s in range(n):
-        peaks.peak_drift[lane, s] = max(peaks.peak_drift[lane, s], abs(out.drift[row, s]))
-        peaks.peak_absolute_acceleration[lane, s] = max(peaks.peak_absolute_acceleration[lane, s],
-                                                     abs(out.acceleration[row, s] + ground))
-        peaks.peak_story_wall_force[lane, s] = max(peaks.peak_story_wall_force[lane, s],
-                                                   abs(out.story_wall_force[row, s]))
-        peaks.residual_drift[lane, s] = out.drift[row, s]
-    peaks.peak_base_shear[lane] = max(peaks.peak_base_shear[lane], abs(out.base_shear[row]))
-    if out.group_temperature.shape[0] > 0:
-        for g in range(out.group_temperature.shape[1]):
-            value = out.group_temperature[row, g]
-            if not peaks.peak_group_temperature[lane, g] >= value:  # NaN (not followed) stays NaN
-                peaks.peak_group_temperature[lane, g] = value
-    if out.group_amplitude.shape[0] > 0:
-        for g in range(out.group_amplitude.shape[1]):
-            peaks.peak_group_amplitude[lane, g] = max(peaks.peak_group_amplitude[lane, g], out.group_amplitude[row, g])
-    for s in range(n):
-        if not math.isfinite(out.displacement[row, s]):
-            peaks.overflow[lane] |= 1
-    energy = out.energy
-    for column in range(energy.shape[1]):
-        if not math.isfinite(energy[row, column]):
-            peaks.overflow[lane] |= 2
-    # EnergyHistory.balance_error, term by term in its order (hysteretic = strain work - frame strain first)
-    error = energy[row, 0] - (energy[row, 1] + energy[row, 2] + (energy[row, 3] - energy[row, 2]) + energy[row, 4]
-                              + energy[row, 5] + energy[row, 6])
-    peaks.peak_input[lane] = max(peaks.peak_input[lane], abs(energy[row, 0]))
-    peaks.peak_balance_error[lane] = max(peaks.peak_balance_error[lane], abs(error))
-    for d in range(out.device_force.shape[1]):
-        peaks.peak_device_force[lane, d] = max(peaks.peak_device_force[lane, d], abs(out.device_force[row, d]))
-        peaks.peak_device_deformation[lane, d] = max(peaks.peak_device_deformation[lane, d],
-                                                  abs(out.device_deformation[row, d]))
-        peaks.peak_device_velocity[lane, d] = max(peaks.peak_device_velocity[lane, d], abs(out.device_velocity[row, d]))
-
-
-@njit(cache=True, inline="always")
-def _note_walls(lane, k, row, dt, out, walls, peaks):
-    """Lane ``lane``'s wall demands with row ``row`` of its histories, row ``k`` from rest (dt s), as
-    :func:`vdw_frames.verification.verify.wall_peaks` takes them from the whole histories, in the same
-    operations: each wall's deformation strain x thickness and force its group's x its share; its rows up to
-    the one its group failed at (``walls``: the lane's bank, whose failure step is set at the failing commit);
-    the trapezoidal work 0.5 (f_k + f_k-1) (d_k - d_k-1) summed in order (``numpy.cumsum``), its cycles between
-    upward zero crossings (d_k-1 < 0 <= d_k); the velocity of row k - 1 by ``numpy.gradient``'s differences
-    (central, one-sided at row 0; that of the last row: :func:`_finish_walls`)."""
-    states = walls.bank.states.walls
-    trace = peaks.wall_trace
-    for w in range(peaks.wall_group.shape[0]):
-        group = peaks.wall_group[w]
-        failed_at = states[group].limits.failure_step  # -1: standing
-        strain = out.group_strain[row, group]
-        deformation = strain * peaks.wall_thickness[w]
-        force = out.group_force[row, group] * peaks.wall_share[w]
-        if k > 0 and (failed_at < 0.0 or k - 1 <= failed_at):
-            if k == 1:
-                velocity = (deformation - trace[lane, w, 1]) / dt
-            else:
-                velocity = (deformation - trace[lane, w, 0]) / (2.0 * dt)
-            peaks.peak_wall_velocity[lane, w] = max(peaks.peak_wall_velocity[lane, w], abs(velocity))
-        if failed_at < 0.0 or k <= failed_at:
-            peaks.peak_wall_strain[lane, w] = max(peaks.peak_wall_strain[lane, w], abs(strain))
-            peaks.peak_wall_deformation[lane, w] = max(peaks.peak_wall_deformation[lane, w], abs(deformation))
-            peaks.peak_wall_force[lane, w] = max(peaks.peak_wall_force[lane, w], abs(force))
-            if k > 0:
-                previous = trace[lane, w, 1]
-                work = peaks.wall_work[lane, w] + 0.5 * (force + trace[lane, w, 2]) * (deformation - previous)
-                peaks.wall_work[lane, w] = work
-                if previous < 0.0 and deformation >= 0.0:
-                    if trace[lane, w, 4] > 0.0:
-                        cycle = work - trace[lane, w, 3]
-                        if trace[lane, w, 4] < 2.0 or cycle > peaks.wall_cycle_energy[lane, w]:
-                            peaks.wall_cycle_energy[lane, w] = cycle
-                        trace[lane, w, 4] = 2.0
-                    else:
-                        trace[lane, w, 4] = 1.0
-                    trace[lane, w, 3] = work
-        trace[lane, w, 0] = trace[lane, w, 1] if k > 0 else deformation
-        trace[lane, w, 1] = deformation
-        trace[lane, w, 2] = force
-
-
-@njit(cache=True, inline="always")
-def _finish_walls(lane, rows, dt, walls, peaks):
-    """The velocity of the last of lane ``lane``'s ``rows`` rows (``numpy.gradient``'s one-sided difference at
-    the end; none for a single row), for the walls standing then."""
-    if rows < 2:
-        return
-    states = walls.bank.states.walls
-    trace = peaks.wall_trace
-    for w in range(peaks.wall_group.shape[0]):
-        failed_at = states[peaks.wall_group[w]].limits.failure_step
-        if failed_at < 0.0 or rows - 1 <= failed_at:
-            velocity = (trace[lane, w, 1] - trace[lane, w, 0]) / dt
-            peaks.peak_wall_velocity[lane, w] = max(peaks.peak_wall_velocity[lane, w], abs(velocity))
-
-
-@njit(cache=True, allocates=False)
-def integrate_lanes(excitation, frame, lanes, newton, peaks):
-    """Every lane's analysis from rest, in place: lane under ``excitation`` (:class:`LaneExcitation`: ground
-    acceleration ``acceleration[lane, :lengths[lane]]`` mm/s^2, a lane of length 0 idle; the step dt s), of the
-    building ``frame`` (:class:`FrameArrays`, the same for every lane), with the states ``lanes``
-    (:class:`LaneArrays` at rest, row 0 of the histories holding the state at rest) and the settings
-    ``newton``; ``peaks`` (:class:`LanePeaks`, zeroed, the temperatures at rest) receive each lane's peaks and
-    outcome.  Each lane is :func:`_run_lane` on the lane's views (:func:`take`)."""
-    for lane in range(excitation.acceleration.shape[0]):
-        if excitation.lengths[lane] > 0:
-            _run_lane(lane, excitation, frame, take(lanes.stories, lane), take(lanes.walls, lane),
-                      take(lanes.out, lane), take(lanes.work, lane), newton, peaks)
-
-
-@njit(cache=True, allocates=False)
-def _run_lane(lane, excitation, frame, stories, walls, out, work, newton, peaks):
-    """Lane ``lane``'s analysis on its views: :func:`~vdw_frames.frame.integrator.advance` step after step, as
-    :func:`~vdw_frames.frame.integrator.integrate` runs it, its rows in a ring when ``out`` holds fewer rows
-    than the record.  (A function of its own, called once a lane: numba's inlining of the step into the loop
-    that takes the views lost the writes of :func:`prepare`, numba 0.6x.)"""
-    ground, dt = excitation.acceleration, excitation.dt
-    steps = excitation.lengths[lane]
-    rows = out.displacement.shape[0]
-    prepare(dt, 0, frame, stories, out, work)
-    _note_peaks(lane, 0, ground[lane, 0], out, peaks)
-    _note_walls(lane, 0, 0, dt, out, walls, peaks)
-    total = 0
-    status, story, filled = FINISHED, 0, steps
-    for step in range(steps - 1):
-        row, next_row = step % rows, (step + 1) % rows
-        status, story, iterations = advance(step, row, next_row, ground[lane, step], ground[lane, step + 1], dt, 0,
-                                            frame, stories, walls, newton, out, work)
-        total += iterations
-        if status == FAILED:
-            filled = step + 1
-            break
-        _note_peaks(lane, next_row, ground[lane, step + 1], out, peaks)
-        _note_walls(lane, step + 1, next_row, dt, out, walls, peaks)
-        if status == COLLAPSED:
-            filled = step + 2
-            break
-    if status not in (FAILED, COLLAPSED):
-        status, story = FINISHED, 0
-    _finish_walls(lane, filled, dt, walls, peaks)
-    outcome = peaks.outcome
-    outcome[lane, 0], outcome[lane, 1], outcome[lane, 2], outcome[lane, 3] = status, story, total, filled
 
 
 # ------------------------------------------------------------------------------------------------ workspace
@@ -353,9 +121,9 @@ class _Layout:
 
 
 class LaneWorkspace:
-    """The arrays of :func:`integrate_lanes` for ``layout``: allocated once, reset (copied back to rest) by
-    every batch that uses them.  A batch's histories are views of these arrays until the next batch:
-    :func:`run_lanes` copies out what it returns."""
+    """The arrays of :func:`~vdw_frames.frame.lane_kernel.integrate_lanes` for ``layout``: allocated once, reset
+    (copied back to rest) by every batch that uses them.  A batch's histories are views of these arrays until the
+    next batch: :func:`run_lanes` copies out what it returns."""
 
     def __init__(self, layout: _Layout) -> None:
         building = layout.building
@@ -390,22 +158,12 @@ class LaneWorkspace:
         lanes, others_count = layout.lanes, len(others)
         demands = len(walls) if layout.wall_demands else 0  # walls whose test demands are followed
         followed = walls if demands else []
-        self.peaks = LanePeaks(np.zeros((lanes, floors)), np.zeros((lanes, floors)), np.zeros(lanes),
-                               np.zeros((lanes, floors)), np.zeros((lanes, floors)), np.zeros((lanes, len(groups))),
-                               np.zeros((lanes, len(groups))), np.zeros(lanes), np.zeros(lanes),
-                               np.zeros(lanes, dtype=np.int64),
-                               np.zeros((lanes, others_count)), np.zeros((lanes, others_count)),
-                               np.zeros((lanes, others_count)), np.zeros((lanes, 4), dtype=np.int64),
-                               wall_group=np.asarray(self.group_of_wall, dtype=np.int64)[:demands],
-                               wall_thickness=np.array([wall.thickness for _, wall in followed], dtype=float),
-                               # each wall's share of its group's area, as time_history (SimulationResult.wall_share)
-                               wall_share=np.array([wall.area / groups[group][1].area for (_, wall), group
-                                                    in zip(walls, self.group_of_wall, strict=True)][:demands],
-                                                   dtype=float),
-                               **{name: np.zeros((lanes, demands)) for name in (
-                                   "peak_wall_strain", "peak_wall_deformation", "peak_wall_velocity",
-                                   "peak_wall_force", "wall_cycle_energy", "wall_work")},
-                               wall_trace=np.zeros((lanes, demands, 5)))
+        # each followed wall's group, thickness and share of its group's area (as SimulationResult.wall_share)
+        wall_demands = (np.asarray(self.group_of_wall, dtype=np.int64)[:demands],
+                        np.array([wall.thickness for _, wall in followed], dtype=float),
+                        np.array([wall.area / groups[group][1].area for (_, wall), group
+                                  in zip(walls, self.group_of_wall, strict=True)][:demands], dtype=float))
+        self.peaks = lane_peaks(lanes, floors, len(groups), others_count, wall_demands)
         self.ground = np.zeros((lanes, layout.memory_steps))
         self.lengths = np.zeros(lanes, dtype=np.int64)
         self.batches = 0
@@ -562,9 +320,9 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
               collapse_drift_ratio: float | None = 0.10, free_vibration: float = 0.0,
               newton: NewtonRaphson | None = None, wall_demands: bool = False) -> list[LaneResult]:
     """Run ``building`` under every record of ``motions`` (mm/s^2), one lane each, in one compiled call
-    (:func:`integrate_lanes`) on this thread's reused workspace; returns one :class:`LaneResult` a record,
-    equal to :func:`~vdw_frames.frame.simulation.simulate` of that record with the same options (module
-    docstring: to the bit).
+    (:func:`~vdw_frames.frame.lane_kernel.integrate_lanes`) on this thread's reused workspace; returns one
+    :class:`LaneResult` a record, equal to :func:`~vdw_frames.frame.simulation.simulate` of that record with the
+    same options (module docstring: to the bit).
 
     ``record``: "peaks" (peaks, outcome, wall failures only) or a list of history names
     (:data:`HISTORY_NAMES`), kept for every lane (copies).  ``scales`` (-, one a record; default 1): lane l
@@ -637,7 +395,7 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
         space.lengths[lane] = lengths[lane]
     lanes = space.arrays
     lanes.out.acceleration[:, 0, :] = -space.ground[:, :1]
-    integrate_lanes(LaneExcitation(space.ground, space.lengths, float(dt)), space.frame, lanes, newton.arrays(),
+    integrate_lanes(LaneExcitation(space.ground, space.lengths, float(dt), 0), space.frame, lanes, newton.arrays(),
                     space.peaks)
     for lane, motion in enumerate(motions):
         overflow = int(space.peaks.overflow[lane])

@@ -30,15 +30,14 @@ from .integrator import (
     ENERGIES,
     FAILED,
     DeviceArrays,
-    Excitation,
     FrameArrays,
     Histories,
     NewtonRaphson,
     Scratch,
-    integrate,
     replay,
     scratch,
 )
+from .lane_kernel import LaneExcitation, lane_peaks, run_lane
 from .results import FrameState, SimulationResult, energy_history
 
 if TYPE_CHECKING:
@@ -142,9 +141,11 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
         out.wall_parameter_loss[0] = bank.state("parameter_loss").sum()
     if amplitudes:
         out.group_amplitude[0] = bank.state("amplitude")
-    filled = integrate(Excitation(ground, float(dt), int(start)), frame, stories, device_arrays, newton.arrays(), out,
-                       work)
-    status, story_index, iterations = (int(x) for x in out.outcome)
+    outcome = lane_peaks(1, 0, 0, 0)  # a single analysis keeps its histories: of the peaks, only the outcome
+    excitation = LaneExcitation(np.ascontiguousarray(ground[None]), np.array([ground.size], dtype=np.int64),
+                                float(dt), int(start))
+    run_lane(0, excitation, frame, stories, device_arrays, out, work, newton.arrays(), outcome)
+    status, story_index, iterations, filled = (int(x) for x in outcome.outcome[0])
     if status == FAILED:
         _warnings.warn(f"simulate: the step to t = {(start + filled) * dt:.6g} s did not converge "
                        f"(story {story_index + 1} moved most in the last correction), even with a line search "
@@ -229,7 +230,7 @@ def _histories(rows: int, floors: int, groups: int, devices: int, *, heated: int
         story_shear=np.zeros((rows, floors)), story_wall_force=np.zeros((rows, floors)),
         base_shear=np.zeros(rows), group_force=np.zeros((rows, groups)),
         group_strain=np.zeros((rows, groups)), peak_group_strain=np.zeros(groups),
-        energy=np.zeros((rows, ENERGIES)), outcome=np.zeros(3, dtype=np.int64),
+        energy=np.zeros((rows, ENERGIES)),
         group_temperature=np.zeros((heated, groups)), group_heat=np.zeros((heat_rows, groups)),
         wall_heat=np.zeros(heated), wall_stored=np.zeros(heated), wall_parameter_loss=np.zeros(heated),
         group_amplitude=np.zeros((amplitudes, groups)), device_force=np.zeros((rows, devices)),
