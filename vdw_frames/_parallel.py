@@ -32,7 +32,7 @@ import signal
 import sys
 import threading
 import time
-from collections.abc import Callable, Hashable, Iterator, Mapping
+from collections.abc import Callable, Hashable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any, Generic, TypeVar
@@ -164,6 +164,19 @@ def fan_out(function: Callable[[T], R], tasks: Mapping[K, T], executor: concurre
             future.cancel()
         raise
     return results
+
+
+def spread(chunks: Sequence[Sequence[K]], done: Mapping[int, Collected[Any]]) -> dict[K, Collected[Any]]:
+    """One :class:`Collected` an analysis from tasks that each ran several: task ``c`` ran the analyses
+    ``chunks[c]`` (keys) and gave ``done[c]``, a (value, warnings) pair each in that order; the task's own warnings
+    (issued outside its analyses) go with its first analysis."""
+    collected: dict[K, Collected[Any]] = {}
+    for c, chunk in enumerate(chunks):
+        for key, (value, caught) in zip(chunk, done[c].value, strict=True):
+            collected[key] = Collected(value, caught)
+        first = chunk[0]
+        collected[first] = Collected(collected[first].value, collected[first].warnings + done[c].warnings)
+    return collected
 
 
 def reissue(collected: Mapping[K, Collected[Any]], label: Callable[[K], str], stacklevel: int = 1) -> None:

@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._files import write_text
-from .._parallel import Collected, check_executor, executor_for, fan_out, reissue
+from .._parallel import Collected, check_executor, executor_for, fan_out, reissue, spread
 from .._validation import finite_array, show
 from .._warnings import keyword_only_since_0_3
 from ..element.bank import group_walls, wall_order
@@ -365,13 +365,7 @@ def _fan_out_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], fac
     with executor_for(executor) as pool:
         done = fan_out(_run_lanes, tasks, pool, progress=progress, unit="batches of analyses",
                        where=lambda key: "run_batch")
-    collected: dict[tuple[int, int], Collected] = {}
-    for c, chunk in enumerate(chunks):
-        for pair, (peaks, caught) in zip(chunk, done[c].value, strict=True):
-            collected[pair] = Collected(peaks, caught)
-        first = chunk[0]  # a task's warnings outside its lanes: with its first analysis
-        collected[first] = Collected(collected[first].value, collected[first].warnings + done[c].warnings)
-    return collected
+    return spread(chunks, done)
 
 
 def worker_pool() -> AbstractContextManager[concurrent.futures.Executor]:

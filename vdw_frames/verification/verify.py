@@ -65,7 +65,7 @@ from typing import Any
 import numpy as np
 
 from .. import _warnings
-from .._parallel import Collected, check_executor, executor_for, fan_out, reissue
+from .._parallel import check_executor, executor_for, fan_out, reissue, spread
 from .._validation import positive, show, text
 from ..element.bank import group_walls
 from ..element.device import Device
@@ -814,11 +814,6 @@ def _run_all(variants: Sequence[ShearBuilding], suite: ScaledSuite, *, collapse_
     with executor_for(executor) as pool:
         done = fan_out(_run, tasks, pool, progress=progress, unit="analyses", where=lambda _: "verify",
                        sizes={b: len(chunk) for b, chunk in enumerate(chunks)})
-    collected: dict[tuple[int, int], Collected] = {}
-    for b, chunk in enumerate(chunks):
-        for key, (summary, caught) in zip(chunk, done[b].value, strict=True):
-            collected[key] = Collected(summary, caught)
-        first = chunk[0]  # a task's warnings outside its lanes: with its first analysis
-        collected[first] = Collected(collected[first].value, collected[first].warnings + done[b].warnings)
+    collected = spread(chunks, done)
     reissue(collected, label, stacklevel=3)
     return {key: each.value for key, each in collected.items()}
