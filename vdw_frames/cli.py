@@ -17,7 +17,7 @@ import sys
 import traceback
 import warnings
 from collections.abc import Iterator, Sequence
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO, cast
 
@@ -798,6 +798,19 @@ def _period_system(system: Any) -> str:
     return next((key for key, value in PERIOD_PARAMETERS.items() if value == (system.ct, system.x)), "other")
 
 
+@contextmanager
+def _removed_if_refused(folder: Path, made: bool) -> Iterator[None]:
+    """Within: a ValueError (a design refused on its way, one error line) removes ``folder`` when this command
+    ``made`` it and it is still empty, so that a refused command leaves no empty folder behind."""
+    try:
+        yield
+    except ValueError:
+        if made:
+            with suppress(OSError):
+                folder.rmdir()  # only an empty folder
+        raise
+
+
 def _design_building(args: argparse.Namespace) -> int:
     """The ``design-building`` command: a frame by ASCE 7-16 Chapter 12, with devices by Chapter 18 and verified
     (design_damped), or bare (the ELF design alone); the design note by write_design_report."""
@@ -841,62 +854,64 @@ def _design_building(args: argparse.Namespace) -> int:
                        dict(given.frame_options))
         _check_limits(given.device_limits or None)
     records = _verify_records(records_name) if device != "none" else None
+    made = not Path(args.out).exists()
     out = _output_folder(args.out)
-    print(given.site.describe())
-    print(f"{frame.system.name} ({frame.system.table_row}), SDC {frame.sdc}, T_a = {frame.ta:.3f} s, "
-          f"T_1 = {frame.analytical_period:.3f} s, T = {frame.period:.3f} s, C_s = {frame.cs:.4g} "
-          f"(Eq. {frame.cs_equation}), V = {frame.base_shear / 1e3:.1f} kN")
-    period_system = _period_system(frame.system)
-    if device == "none":
-        if given.prototype is not None:
-            print("note: the input's [design.prototype] is not used: the design is bare (--device none)")
-        collapse = None
-        if p695:
-            from .assessment import collapse_assessment
+    with _removed_if_refused(out, made):
+        print(given.site.describe())
+        print(f"{frame.system.name} ({frame.system.table_row}), SDC {frame.sdc}, T_a = {frame.ta:.3f} s, "
+              f"T_1 = {frame.analytical_period:.3f} s, T = {frame.period:.3f} s, C_s = {frame.cs:.4g} "
+              f"(Eq. {frame.cs_equation}), V = {frame.base_shear / 1e3:.1f} kN")
+        period_system = _period_system(frame.system)
+        if device == "none":
+            if given.prototype is not None:
+                print("note: the input's [design.prototype] is not used: the design is bare (--device none)")
+            collapse = None
+            if p695:
+                from .assessment import collapse_assessment
 
-            try:
-                collapse = collapse_assessment(frame.building, "far-field", system=period_system, progress=True)
-            except ImportError as error:  # the optional extra is missing: one error line, exit 2
-                raise ValueError(str(error)) from None
-        path = write_design_report(frame, out, collapse=collapse)
-        print(f"ELF design, no devices (--device walls, fvd or friction for a damped design): "
-              f"{time.perf_counter() - started:.1f} s")
+                try:
+                    collapse = collapse_assessment(frame.building, "far-field", system=period_system, progress=True)
+                except ImportError as error:  # the optional extra is missing: one error line, exit 2
+                    raise ValueError(str(error)) from None
+            path = write_design_report(frame, out, collapse=collapse)
+            print(f"ELF design, no devices (--device walls, fvd or friction for a damped design): "
+                  f"{time.perf_counter() - started:.1f} s")
+            print(f"report: {path}")
+            if collapse is not None:
+                print(f"collapse assessment: {'pass' if collapse.passes_acmr20 else 'FAIL'} (ACMR {collapse.acmr:.3f} "
+                      f"against ACMR20 % {collapse.acmr20:.3f}, FEMA P695 Sec. 7.5; one archetype, not a system "
+                      "qualification)")
+                return 0 if collapse.passes_acmr20 else 1
+            return 0
+        from .design.damped import design_damped
+
+        assert bounds is not None  # checked above, before any analysis
+        prototype = given.prototype if given.prototype is not None else building_from_dict(
+            {"masses": [1.0], "stiffnesses": [1.0], "devices": [DEFAULT_PROTOTYPES[device]]}).device_list[0][1]
+        options = dict(given.frame_options)
+        if given.distribution is not None:
+            options["distribution"] = given.distribution
+        design = design_damped(given.site, system, given.weights, given.story_heights, prototype, target,
+                               bounds=bounds, records=records, irregular=given.irregular, rounds=rounds,
+                               device_limits=given.device_limits or None,
+                               p695={"system": period_system} if p695 else False, progress=True, **options)
+        for item in design.rounds:
+            print(f"round {item.number}: target {item.target_damping:.3f}, beta_V+I {item.effective_damping:.4f}, "
+                  f"B_V+I {item.b_v_plus_i:.3f}, V_min / V {item.v_min / item.v:.3f}, drift {item.drift_statistic:.4f} "
+                  f"/ {item.drift_limit:.4f}: {'PASS' if item.passed else 'FAIL'} ({item.seconds:.1f} s)")
+        path = write_design_report(design, out, records=records_name)
+        for part, seconds in design.timings.items():
+            print(f"time, {part}: {seconds:.1f} s")
         print(f"report: {path}")
-        if collapse is not None:
-            print(f"collapse assessment: {'pass' if collapse.passes_acmr20 else 'FAIL'} (ACMR {collapse.acmr:.3f} "
-                  f"against ACMR20 % {collapse.acmr20:.3f}, FEMA P695 Sec. 7.5; one archetype, not a system "
-                  "qualification)")
-            return 0 if collapse.passes_acmr20 else 1
-        return 0
-    from .design.damped import design_damped
-
-    assert bounds is not None  # checked above, before any analysis
-    prototype = given.prototype if given.prototype is not None else building_from_dict(
-        {"masses": [1.0], "stiffnesses": [1.0], "devices": [DEFAULT_PROTOTYPES[device]]}).device_list[0][1]
-    options = dict(given.frame_options)
-    if given.distribution is not None:
-        options["distribution"] = given.distribution
-    design = design_damped(given.site, system, given.weights, given.story_heights, prototype, target,
-                           bounds=bounds, records=records, irregular=given.irregular, rounds=rounds,
-                           device_limits=given.device_limits or None,
-                           p695={"system": period_system} if p695 else False, progress=True, **options)
-    for item in design.rounds:
-        print(f"round {item.number}: target {item.target_damping:.3f}, beta_V+I {item.effective_damping:.4f}, "
-              f"B_V+I {item.b_v_plus_i:.3f}, V_min / V {item.v_min / item.v:.3f}, drift {item.drift_statistic:.4f} "
-              f"/ {item.drift_limit:.4f}: {'PASS' if item.passed else 'FAIL'} ({item.seconds:.1f} s)")
-    path = write_design_report(design, out, records=records_name)
-    for part, seconds in design.timings.items():
-        print(f"time, {part}: {seconds:.1f} s")
-    print(f"report: {path}")
-    verdict = design.passed
-    if design.collapse is not None:
-        for key, assessment in design.collapse.items():
-            print(f"P695 {key}: ACMR {assessment.acmr:.3f} against ACMR20 % {assessment.acmr20:.3f}: "
-                  f"{'pass' if assessment.passes_acmr20 else 'FAIL'}")
-        print("(one archetype, not a FEMA P695 system qualification)")
-        verdict = verdict and all(a.passes_acmr20 for a in design.collapse.values())
-    print(f"design: {'PASS' if design.passed else 'FAIL'}" + (f": {design.failure}" if design.failure else ""))
-    return 0 if verdict else 1  # a FAIL (verification, device limit, or P695 with --p695) exits 1
+        verdict = design.passed
+        if design.collapse is not None:
+            for key, assessment in design.collapse.items():
+                print(f"P695 {key}: ACMR {assessment.acmr:.3f} against ACMR20 % {assessment.acmr20:.3f}: "
+                      f"{'pass' if assessment.passes_acmr20 else 'FAIL'}")
+            print("(one archetype, not a FEMA P695 system qualification)")
+            verdict = verdict and all(a.passes_acmr20 for a in design.collapse.values())
+        print(f"design: {'PASS' if design.passed else 'FAIL'}" + (f": {design.failure}" if design.failure else ""))
+        return 0 if verdict else 1  # a FAIL (verification, device limit, or P695 with --p695) exits 1
 
 
 def _add_design_building_command(commands: _Commands) -> None:

@@ -228,3 +228,17 @@ def test_a_bare_design_on_a_site_with_s1_at_least_0_6g_is_not_refused(tmp_path, 
     # with the devices the same site is refused (the damped case of Sec. 11.4.8)
     code = main(["design-building", str(site), "--out", str(tmp_path / "damped")])
     assert code == 2 and "Sec. 11.4.8" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("existing", [False, True])
+def test_a_target_below_the_bare_frame_s_damping_leaves_no_folder_behind(folder, tmp_path, capsys, existing):
+    # The refusal comes from the sizing, after the output folder is made: a folder this command made is removed
+    # again (it is empty); one the user had is left as it was.  The bare frame's mode-1 damping is its 5 %.
+    out = tmp_path / "out"
+    if existing:
+        out.mkdir()
+    code = main(["design-building", str(folder / "site.toml"), "--target-damping", "0.02", "--out", str(out)])
+    error = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(error) == 1 and "is not above the bare frame's mode-1 damping ratio" in error[0], error
+    assert out.exists() == existing
+    assert not existing or not any(out.iterdir())
