@@ -174,7 +174,8 @@ class Scratch(NamedTuple):
     wall_history: np.ndarray  # (n,) walls' H_n per story, N
     device_force: np.ndarray  # (n,) the other devices' trial force per story, N
     device_tangent: np.ndarray  # (n,) their tangent per story, N/mm
-    work: np.ndarray  # (2, n) tridiagonal factors
+    work: np.ndarray  # (3, n) tridiagonal factors: pivots, super-diagonal, elimination factors
+    factored: np.ndarray  # (n,) the story tangents work was factored for, N/mm (NaN: none yet)
     matrix: np.ndarray  # (n, n) dense tangent
     wall_deformation: np.ndarray  # (G,) mm
     wall_force: np.ndarray  # (G,) N
@@ -195,9 +196,11 @@ def scratch(stories: int, groups: int) -> Scratch:
     """Zeroed work arrays for :func:`advance` of a building of ``stories`` stories and ``groups`` wall
     groups (the integrator allocates nothing: it is compiled without numba's reference counting)."""
     n = stories
-    shapes = {"work": (2, n), "matrix": (n, n), "wall_deformation": (groups,), "wall_force": (groups,),
+    shapes = {"work": (3, n), "matrix": (n, n), "wall_deformation": (groups,), "wall_force": (groups,),
               "wall_strain": (groups,), "dynamic_band": (2, n)}
-    return Scratch(*(np.zeros(shapes.get(name, (n,))) for name in Scratch._fields))
+    work = Scratch(*(np.zeros(shapes.get(name, (n,))) for name in Scratch._fields))
+    work.factored[:] = np.nan  # nothing factored yet
+    return work
 
 
 # ---------------------------------------------------------------------------------------------- compiled
@@ -357,20 +360,35 @@ def _solve(frame, dt, work):
 
 @njit(cache=True, inline="always")
 def _solve_tridiagonal(work):
-    """:func:`_solve` when C is tridiagonal (Rayleigh damping): the Thomas algorithm on the symmetric band."""
-    k, rhs, out, band = work.stiffness_diagonal, work.residual, work.correction, work.work
+    """:func:`_solve` when C is tridiagonal (Rayleigh damping): the Thomas algorithm on the symmetric band.
+
+    The elimination (pivots, factors) depends only on the story tangents k (the dynamic band is fixed for the
+    run): it is kept in ``work.work`` with the k it was made for (``work.factored``) and reused while k is
+    the same -- a Bilinear frame on its branches, walls' constant K_t --, the same operations on the same
+    values (bit-identical), without the chain of divisions that dominated the solve."""
+    k, rhs, out, band, factored = work.stiffness_diagonal, work.residual, work.correction, work.work, work.factored
     n = rhs.shape[0]
-    # diagonal in band[0], super-diagonal in band[1]; forward elimination (symmetric tridiagonal)
-    diagonal = work.dynamic_band[0, 0] + k[0] + (k[1] if n > 1 else 0.0)
-    band[0, 0] = diagonal
+    same = True
+    for i in range(n):
+        if k[i] != factored[i]:  # (NaN after prepare: never equal)
+            same = False
+            break
+    if not same:
+        # diagonal in band[0], super-diagonal in band[1], elimination factors in band[2] (symmetric tridiagonal)
+        diagonal = work.dynamic_band[0, 0] + k[0] + (k[1] if n > 1 else 0.0)
+        band[0, 0] = diagonal
+        for i in range(1, n):
+            upper = work.dynamic_band[1, i - 1] - k[i]
+            band[1, i - 1] = upper
+            factor = upper / diagonal
+            band[2, i] = factor
+            diagonal = work.dynamic_band[0, i] + k[i] + (k[i + 1] if i + 1 < n else 0.0) - factor * upper
+            band[0, i] = diagonal
+        for i in range(n):
+            factored[i] = k[i]
     out[0] = rhs[0]
     for i in range(1, n):
-        upper = work.dynamic_band[1, i - 1] - k[i]
-        band[1, i - 1] = upper
-        factor = upper / diagonal
-        diagonal = work.dynamic_band[0, i] + k[i] + (k[i + 1] if i + 1 < n else 0.0) - factor * upper
-        band[0, i] = diagonal
-        out[i] = rhs[i] - factor * out[i - 1]
+        out[i] = rhs[i] - band[2, i] * out[i - 1]
     out[n - 1] /= band[0, n - 1]
     for i in range(n - 2, -1, -1):
         out[i] = (out[i] - band[1, i] * out[i + 1]) / band[0, i]
@@ -552,6 +570,7 @@ def prepare(dt, row, frame, stories, out, work):
         work.dynamic_band[0, i] = work.dynamic_mass[i] + v1 * frame.damping[i, i]
         work.dynamic_band[1, i] = v1 * frame.damping[i, i + 1] if i + 1 < n else 0.0
         work.initial_stiffness[i] = stories.parameters[i, 0] + frame.geometric[i]
+    work.factored[0] = np.nan  # the dynamic band may have changed: factor anew
     old_damping_force = work.old_damping_force
     for i in range(n):  # C v of row 0 (loops, not slice operations: those compile numba's shape-error machinery)
         old_damping_force[i] = 0.0
