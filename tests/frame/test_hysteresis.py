@@ -119,6 +119,8 @@ def test_bouc_wen_work_does_not_grow_with_the_increment_over_the_yield_drift():
         import json, time, warnings
         import numpy as np
         from vdw_frames import Bilinear, BoucWen, GroundMotion, ShearBuilding, simulate
+        # compiled (or loaded from the cache) first: the time limit is on the updates, not on numba
+        simulate(ShearBuilding([1.0], [1.0], hysteresis=[BoucWen(1.0)]), GroundMotion(np.zeros(3), 0.01))
         start = time.perf_counter()
         force, tangent = BoucWen(1.0).new_state(1e5).trial(1e4)
         k = [8e5, 6e5, 4e5]
@@ -145,7 +147,7 @@ def test_bouc_wen_work_does_not_grow_with_the_increment_over_the_yield_drift():
     assert bouc_wen == pytest.approx(bilinear, rel=1e-6)
     # A frame running away under P-Delta (collapse detection off): drifts of kilometres, as Bilinear's.
     assert runaway[0] > 1e6 and runaway[0] == pytest.approx(runaway[1], rel=1e-4)
-    assert seconds < 60.0  # measured 0.4 s once compiled
+    assert seconds < 60.0  # measured 0.4 s (compilation excluded)
 
 
 @pytest.mark.parametrize("model", [Bilinear(5000.0, 0.1), BoucWen(5000.0, 0.1, 2.0, 0.6, 0.4)])
