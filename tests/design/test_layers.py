@@ -77,3 +77,19 @@ def test_the_suite_on_lanes_sizes_the_layers_as_simulate_one_record_at_a_time_do
         assert np.array_equal(getattr(lanes, name), getattr(one_by_one, name)), name
     assert lanes.building.wall_list == one_by_one.building.wall_list and lanes.converged == one_by_one.converged
     assert lanes_warned == warned
+
+
+def test_a_bad_collapse_limit_is_refused_as_simulate_refuses_it():
+    """size_layers on lanes passes simulate's options to run_lanes: a collapse limit simulate refuses (0, < 0, NaN)
+    is refused there too, naming it, before any analysis (it was taken as "never collapse" or as a limit every
+    drift exceeds).  Reference: simulate's own refusal."""
+    walled = three_story({1: [vdw.paper.strain_dependent()]})
+    short = [vdw.GroundMotion(motion.acceleration[:200], motion.dt, motion.name) for motion in SUITE]
+    for bad in (0.0, -0.05, float("nan")):
+        with pytest.raises(ValueError, match="collapse_drift_ratio") as expected:
+            vdw.simulate(walled, short[0], collapse_drift_ratio=bad)
+        with pytest.raises(ValueError, match="collapse_drift_ratio") as raised:
+            size_layers(walled, short, collapse_drift_ratio=bad)
+        assert str(raised.value) == str(expected.value)
+        with pytest.raises(ValueError, match="collapse_drift_ratio"):
+            vdw.frame.lanes.run_lanes(walled, short, collapse_drift_ratio=bad)
