@@ -378,7 +378,8 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
     longest = int(lengths.max())
     heaviest = max(building.masses)
     if not math.isfinite(4.0 / dt**2 * heaviest):  # Newmark's inertia term, as simulate refuses it
-        raise ValueError(f"masses up to {heaviest:.6g} t with dt = {dt!r} s overflow Newmark's 4 m / dt^2 (inf)")
+        raise ValueError(f"masses up to {heaviest:.6g} t with dt = {dt!r} s overflow Newmark's 4 m / dt^2 (inf): "
+                         "the masses are too large to integrate")
     collapse_ratio = float(collapse_drift_ratio) if (collapse_drift_ratio and building.story_heights) else 0.0
     if not isinstance(wall_demands, bool):
         raise ValueError(f"wall_demands must be True or False, got {show(wall_demands)}")
