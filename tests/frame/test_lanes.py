@@ -232,3 +232,12 @@ def test_settings_simulate_refuses_are_refused_with_simulate_s_message(record):
         with pytest.raises(ValueError) as raised:
             run_lanes(building, [short], **options)
         assert str(raised.value) == str(expected.value)
+
+
+def test_an_endless_free_vibration_is_refused_with_a_value_error(record):
+    """1e308 s of rest after a record: run_lanes refuses it as too large for memory (a ValueError naming
+    free_vibration, as simulate's), where rounding the rest first raised an OverflowError (inf steps)."""
+    building = example_ten_story().without_devices()
+    for free_vibration in (1e308, 1e9):
+        with pytest.raises(ValueError, match=r"run_lanes \(2 lanes, free_vibration = .* use a shorter free_vibration"):
+            run_lanes(building, [record, record], free_vibration=free_vibration)

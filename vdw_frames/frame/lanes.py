@@ -371,9 +371,11 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
     if factors.shape != (len(motions),) or not np.isfinite(factors).all():
         raise ValueError(f"scales must be {len(motions)} finite factors (one a record), got {show(scales)}")
     free_vibration = non_negative("free_vibration", free_vibration)
-    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0  # as simulate rounds it
+    # checked before the rest is rounded, as simulate checks it: 1e308 s / dt is inf, which ceil refuses
     check_memory(f"run_lanes ({len(motions)} lanes, free_vibration = {show(free_vibration)} s)",
-                 float(len(motions)) * (float(lengths.max()) + rest), 8.0, "use a shorter free_vibration")
+                 float(len(motions)) * (float(lengths.max()) + free_vibration / dt), 8.0,
+                 "use a shorter free_vibration")
+    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0  # as simulate rounds it
     lengths = lengths + rest
     longest = int(lengths.max())
     heaviest = max(building.masses)
