@@ -1,6 +1,7 @@
 """size_layers: the rule it states (the suite's smallest and largest followed amplitudes symmetric about
 the centre of the identified range), checked by running the suite again in the test with simulate."""
 
+import inspect
 import warnings
 
 import numpy as np
@@ -77,3 +78,33 @@ def test_the_suite_on_lanes_sizes_the_layers_as_simulate_one_record_at_a_time_do
         assert np.array_equal(getattr(lanes, name), getattr(one_by_one, name)), name
     assert lanes.building.wall_list == one_by_one.building.wall_list and lanes.converged == one_by_one.converged
     assert lanes_warned == warned
+
+
+def test_a_bad_collapse_limit_is_refused_as_simulate_refuses_it():
+    """size_layers on lanes passes simulate's options to run_lanes: a collapse limit simulate refuses (0, < 0, NaN)
+    is refused there too, naming it, before any analysis (it was taken as "never collapse" or as a limit every
+    drift exceeds).  Reference: simulate's own refusal."""
+    walled = three_story({1: [vdw.paper.strain_dependent()]})
+    short = [vdw.GroundMotion(motion.acceleration[:200], motion.dt, motion.name) for motion in SUITE]
+    for bad in (0.0, -0.05, float("nan")):
+        with pytest.raises(ValueError, match="collapse_drift_ratio") as expected:
+            vdw.simulate(walled, short[0], collapse_drift_ratio=bad)
+        with pytest.raises(ValueError, match="collapse_drift_ratio") as raised:
+            size_layers(walled, short, collapse_drift_ratio=bad)
+        assert str(raised.value) == str(expected.value)
+        with pytest.raises(ValueError, match="collapse_drift_ratio"):
+            vdw.frame.lanes.run_lanes(walled, short, collapse_drift_ratio=bad)
+
+
+def test_the_lanes_warnings_point_at_the_caller_of_size_layers():
+    """The warnings each lane gives (here: amplitudes beyond the identified ones) are issued at the line that called
+    size_layers, as verify re-issues its own (before: one frame further up, ``sys:1`` from a script's top level).
+    Reference: the caller's own file and line."""
+    walled = three_story({1: [vdw.paper.strain_dependent()]})
+    short = [vdw.GroundMotion(motion.acceleration[:300], motion.dt, motion.name) for motion in SUITE]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        line = inspect.currentframe().f_lineno + 1  # type: ignore[union-attr]
+        size_layers(walled, short, max_iterations=1)
+    assert caught and all(w.category is UserWarning for w in caught)
+    assert {(w.filename, w.lineno) for w in caught} == {(__file__, line)}

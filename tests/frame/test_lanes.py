@@ -15,7 +15,7 @@ import pytest
 from builders import example_ten_story, mixed_devices_building, tapered_sine_pair
 from shared_data import REPO
 
-from vdw_frames import FluidViscousDamper, FrictionDamper, GroundMotion, _warnings, read_at2, simulate
+from vdw_frames import FluidViscousDamper, FrictionDamper, GroundMotion, ShearBuilding, _warnings, read_at2, simulate
 from vdw_frames.element.limits import WallLimits
 from vdw_frames.frame import lanes as lanes_module
 from vdw_frames.frame.lanes import run_lanes
@@ -217,3 +217,27 @@ def test_a_record_without_a_step_is_refused(record):
     object.__setattr__(empty, "name", "empty")
     with pytest.raises(ValueError, match=r"'empty' has 1 value.*at least 2"):
         run_lanes(building, [record, empty])
+
+
+def test_settings_simulate_refuses_are_refused_with_simulate_s_message(record):
+    """What simulate refuses before any work, run_lanes refuses with the same text (size_layers passes simulate's
+    options to it): masses whose Newmark term overflows, a collapse limit of 0, < 0 or NaN.  Reference: simulate."""
+    short = GroundMotion(record.acceleration[:50], record.dt, "short")
+    heavy = ShearBuilding([1e305] * 2, [1e5] * 2)
+    calls = [(heavy, {})] + [(example_ten_story().without_devices(), {"collapse_drift_ratio": bad})
+                             for bad in (0.0, -0.1, float("nan"))]
+    for building, options in calls:
+        with pytest.raises(ValueError) as expected:
+            simulate(building, short, **options)
+        with pytest.raises(ValueError) as raised:
+            run_lanes(building, [short], **options)
+        assert str(raised.value) == str(expected.value)
+
+
+def test_an_endless_free_vibration_is_refused_with_a_value_error(record):
+    """1e308 s of rest after a record: run_lanes refuses it as too large for memory (a ValueError naming
+    free_vibration, as simulate's), where rounding the rest first raised an OverflowError (inf steps)."""
+    building = example_ten_story().without_devices()
+    for free_vibration in (1e308, 1e9):
+        with pytest.raises(ValueError, match=r"run_lanes \(2 lanes, free_vibration = .* use a shorter free_vibration"):
+            run_lanes(building, [record, record], free_vibration=free_vibration)

@@ -147,7 +147,7 @@ def _suite_amplitudes(building: ShearBuilding, motions: Sequence[GroundMotion], 
     for i in range(len(motions)):
         lane = lanes[i]
         for caught in lane.warnings:
-            _warnings.warn(caught.message, caught.category, stacklevel=4)
+            _warnings.warn(caught.message, caught.category, stacklevel=3)  # the caller of size_layers
         if lane.error is not None:
             raise ValueError(lane.error)
         if lane.peak_group_amplitude is None:  # pragma: no cover - the walls follow their amplitude (checked above)

@@ -55,7 +55,7 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 
 from .. import _warnings
-from .._validation import check_memory, non_negative, show
+from .._validation import check_memory, non_negative, positive, show
 from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy
 from ..element.fast_memory import FastMemory
@@ -314,6 +314,18 @@ def _record_names(record: str | Sequence[str]) -> tuple[str, ...]:
     return names
 
 
+def _checked_settings(newton: NewtonRaphson | None, collapse_drift_ratio: float | None
+                      ) -> tuple[NewtonRaphson, float | None]:
+    """``newton`` (None: the defaults) and ``collapse_drift_ratio`` (-, None: never) checked as simulate checks
+    them: 0, a negative or a NaN limit is refused, not taken as "never"."""
+    newton = NewtonRaphson() if newton is None else newton
+    if not isinstance(newton, NewtonRaphson):
+        raise ValueError(f"newton must be a NewtonRaphson, got {type(newton).__name__}")
+    if collapse_drift_ratio is not None:
+        collapse_drift_ratio = positive("collapse_drift_ratio", collapse_drift_ratio)
+    return newton, collapse_drift_ratio
+
+
 def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: Sequence[float] | None = None, *,
               record: str | Sequence[str] = PEAKS_ONLY,
               method: str | Discretisation = DEFAULT_METHOD, memory: str | FastMemory = DEFAULT_MEMORY,
@@ -354,21 +366,22 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
         short = motions[int(np.argmin(lengths))]
         raise ValueError(f"record {short.name or int(np.argmin(lengths))!r} has {int(lengths.min())} value(s): "
                          "a record needs at least 2 (one step)")
-    newton = NewtonRaphson() if newton is None else newton
-    if not isinstance(newton, NewtonRaphson):
-        raise ValueError(f"newton must be a NewtonRaphson, got {type(newton).__name__}")
+    newton, collapse_drift_ratio = _checked_settings(newton, collapse_drift_ratio)
     factors = np.ones(len(motions)) if scales is None else np.asarray(scales, dtype=float)
     if factors.shape != (len(motions),) or not np.isfinite(factors).all():
         raise ValueError(f"scales must be {len(motions)} finite factors (one a record), got {show(scales)}")
     free_vibration = non_negative("free_vibration", free_vibration)
-    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0  # as simulate rounds it
+    # checked before the rest is rounded, as simulate checks it: 1e308 s / dt is inf, which ceil refuses
     check_memory(f"run_lanes ({len(motions)} lanes, free_vibration = {show(free_vibration)} s)",
-                 float(len(motions)) * (float(lengths.max()) + rest), 8.0, "use a shorter free_vibration")
+                 float(len(motions)) * (float(lengths.max()) + free_vibration / dt), 8.0,
+                 "use a shorter free_vibration")
+    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0  # as simulate rounds it
     lengths = lengths + rest
     longest = int(lengths.max())
     heaviest = max(building.masses)
     if not math.isfinite(4.0 / dt**2 * heaviest):  # Newmark's inertia term, as simulate refuses it
-        raise ValueError(f"masses up to {heaviest:.6g} t with dt = {dt!r} s overflow Newmark's 4 m / dt^2 (inf)")
+        raise ValueError(f"masses up to {heaviest:.6g} t with dt = {dt!r} s overflow Newmark's 4 m / dt^2 (inf): "
+                         "the masses are too large to integrate")
     collapse_ratio = float(collapse_drift_ratio) if (collapse_drift_ratio and building.story_heights) else 0.0
     if not isinstance(wall_demands, bool):
         raise ValueError(f"wall_demands must be True or False, got {show(wall_demands)}")

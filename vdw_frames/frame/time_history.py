@@ -200,11 +200,15 @@ def _device_energies(out: Histories, keep: slice, *, walls: bool) -> tuple | Non
 
 
 def frame_arrays(building: ShearBuilding, collapse_ratio: float) -> FrameArrays:
-    """The building as the integrator sees it: fresh writable float64 copies (one array type for every
-    building, so the step compiles once), stopping at a drift ratio of ``collapse_ratio`` (-, 0: never)."""
+    """The building as the integrator sees it: fresh writable float64 copies, but for the n x n damping matrix, a
+    read-only view of the building's (not a second n^2 floats; read-only whatever the building's flags), so that
+    every building gives one array type and the step compiles once; stopping at a drift ratio of
+    ``collapse_ratio`` (-, 0: never)."""
     heights = building.story_heights if building.story_heights is not None else np.ones(building.stories)
+    damping = np.ascontiguousarray(building.damping_matrix, dtype=float).view()
+    damping.flags.writeable = False
     return FrameArrays(
-        masses=np.array(building.masses, dtype=float), damping=np.array(building.damping_matrix, dtype=float),
+        masses=np.array(building.masses, dtype=float), damping=damping,
         story_damping_row=np.array(building.story_damping_row, dtype=float),
         geometric=np.array(building.geometric_stiffness, dtype=float), heights=np.array(heights, dtype=float),
         tridiagonal=building.damping_model == "rayleigh", linear=building.is_linear and building.devices_linear,
