@@ -241,3 +241,14 @@ def test_an_endless_free_vibration_is_refused_with_a_value_error(record):
     for free_vibration in (1e308, 1e9):
         with pytest.raises(ValueError, match=r"run_lanes \(2 lanes, free_vibration = .* use a shorter free_vibration"):
             run_lanes(building, [record, record], free_vibration=free_vibration)
+
+
+def test_histories_beyond_the_memory_limit_are_refused_before_any_work():
+    """1000 lanes of a 200 000-step record: their ground accelerations (1.6 GB) fit the 2 GiB limit, every row
+    of the drift history of a 10-story frame besides them does not (8 (1 + 14 n + 12) bytes a lane and step,
+    simulate's count of a row: 245 GB): refused with a ValueError naming the batch, before the workspace."""
+    building = example_ten_story().without_devices()
+    long = GroundMotion(np.zeros(200_000), 0.01, "long rest")
+    with pytest.raises(ValueError, match=r"run_lanes \(1000 lanes of up to 200000 steps, 10 floors, 0 walls, "
+                                         r"histories drift\).*keep fewer histories"):
+        run_lanes(building, [long] * 1000, record=["drift"])
