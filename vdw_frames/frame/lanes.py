@@ -378,10 +378,13 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
     rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0  # as simulate rounds it
     lengths = lengths + rest
     longest = int(lengths.max())
-    # Per lane and step: its ground acceleration, its walls' exact memory (as simulate counts it) and, for the
-    # histories asked for by name, every row of them (simulate's count of a row); checked before the workspace.
+    # Per lane and step: its ground acceleration, its walls' exact memory (as simulate counts it) where the walls
+    # keep one (the exact strategy, or a record within the fast one's exact length) and, for the histories asked
+    # for by name, every row of them (simulate's count of a row); checked before the workspace is made.
     walls, others = len(building.wall_list), len(building.other_device_list)
-    row_bytes = 8.0 * (1 + 6 * walls + (14 * building.stories + 5 * others + 12 if names else 0))
+    strategy = memory_strategy(memory)
+    exact = strategy is None or longest <= strategy.exact_below
+    row_bytes = 8.0 * (1 + (6 * walls if exact else 0) + (14 * building.stories + 5 * others + 12 if names else 0))
     check_memory(f"run_lanes ({len(motions)} lanes of up to {longest} steps, {building.stories} floors, {walls} walls"
                  f"{', histories ' + ', '.join(names) if names else ''})", float(len(motions)) * longest, row_bytes,
                  "split the batch" + (" or keep fewer histories (record='peaks')" if names else ""))
