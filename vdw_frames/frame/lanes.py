@@ -55,7 +55,7 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 
 from .. import _warnings
-from .._validation import check_memory, non_negative, positive, show
+from .._validation import check_memory, non_negative, show
 from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy
 from ..element.fast_memory import FastMemory
@@ -71,8 +71,12 @@ from .time_history import (
     _histories,
     _warn_strain_range,
     _warn_temperature_range,
+    check_masses,
+    checked_settings,
     devices_of,
     frame_arrays,
+    rest_steps,
+    row_bytes,
 )
 
 if TYPE_CHECKING:
@@ -314,18 +318,6 @@ def _record_names(record: str | Sequence[str]) -> tuple[str, ...]:
     return names
 
 
-def _checked_settings(newton: NewtonRaphson | None, collapse_drift_ratio: float | None
-                      ) -> tuple[NewtonRaphson, float | None]:
-    """``newton`` (None: the defaults) and ``collapse_drift_ratio`` (-, None: never) checked as simulate checks
-    them: 0, a negative or a NaN limit is refused, not taken as "never"."""
-    newton = NewtonRaphson() if newton is None else newton
-    if not isinstance(newton, NewtonRaphson):
-        raise ValueError(f"newton must be a NewtonRaphson, got {type(newton).__name__}")
-    if collapse_drift_ratio is not None:
-        collapse_drift_ratio = positive("collapse_drift_ratio", collapse_drift_ratio)
-    return newton, collapse_drift_ratio
-
-
 def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: Sequence[float] | None = None, *,
               record: str | Sequence[str] = PEAKS_ONLY,
               method: str | Discretisation = DEFAULT_METHOD, memory: str | FastMemory = DEFAULT_MEMORY,
@@ -366,7 +358,7 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
         short = motions[int(np.argmin(lengths))]
         raise ValueError(f"record {short.name or int(np.argmin(lengths))!r} has {int(lengths.min())} value(s): "
                          "a record needs at least 2 (one step)")
-    newton, collapse_drift_ratio = _checked_settings(newton, collapse_drift_ratio)
+    newton, collapse_drift_ratio = checked_settings(newton, collapse_drift_ratio)
     factors = np.ones(len(motions)) if scales is None else np.asarray(scales, dtype=float)
     if factors.shape != (len(motions),) or not np.isfinite(factors).all():
         raise ValueError(f"scales must be {len(motions)} finite factors (one a record), got {show(scales)}")
@@ -375,7 +367,7 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
     check_memory(f"run_lanes ({len(motions)} lanes, free_vibration = {show(free_vibration)} s)",
                  float(len(motions)) * (float(lengths.max()) + free_vibration / dt), 8.0,
                  "use a shorter free_vibration")
-    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0  # as simulate rounds it
+    rest = rest_steps(free_vibration, dt)
     lengths = lengths + rest
     longest = int(lengths.max())
     # Per lane and step: its ground acceleration, its walls' exact memory (as simulate counts it) where the walls
@@ -384,14 +376,11 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
     walls, others = len(building.wall_list), len(building.other_device_list)
     strategy = memory_strategy(memory)
     exact = strategy is None or longest <= strategy.exact_below
-    row_bytes = 8.0 * (1 + (6 * walls if exact else 0) + (14 * building.stories + 5 * others + 12 if names else 0))
+    lane_bytes = 8 + row_bytes(building.stories, walls, others, wall_memory=exact, histories=bool(names))
     check_memory(f"run_lanes ({len(motions)} lanes of up to {longest} steps, {building.stories} floors, {walls} walls"
-                 f"{', histories ' + ', '.join(names) if names else ''})", float(len(motions)) * longest, row_bytes,
+                 f"{', histories ' + ', '.join(names) if names else ''})", float(len(motions)) * longest, lane_bytes,
                  "split the batch" + (" or keep fewer histories (record='peaks')" if names else ""))
-    heaviest = max(building.masses)
-    if not math.isfinite(4.0 / dt**2 * heaviest):  # Newmark's inertia term, as simulate refuses it
-        raise ValueError(f"masses up to {heaviest:.6g} t with dt = {dt!r} s overflow Newmark's 4 m / dt^2 (inf): "
-                         "the masses are too large to integrate")
+    check_masses(building, dt)
     collapse_ratio = float(collapse_drift_ratio) if (collapse_drift_ratio and building.story_heights) else 0.0
     if not isinstance(wall_demands, bool):
         raise ValueError(f"wall_demands must be True or False, got {show(wall_demands)}")

@@ -80,30 +80,23 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     _check_model(building, ground_motion)
     method = get_method(method)
     memory_strategy(memory)
-    newton = NewtonRaphson() if newton is None else newton
-    if not isinstance(newton, NewtonRaphson):
-        raise ValueError(f"newton must be a NewtonRaphson, got {type(newton).__name__}")
-    if collapse_drift_ratio is not None:
-        collapse_drift_ratio = positive("collapse_drift_ratio", collapse_drift_ratio)
+    newton, collapse_drift_ratio = checked_settings(newton, collapse_drift_ratio)
     free_vibration = non_negative("free_vibration", free_vibration)
     dt = time_step(ground_motion.dt if dt is None else dt)
     substeps = ground_motion.substeps(dt)  # the one check of the step against the record
     dt = ground_motion.dt / substeps
-    heaviest = max(building.masses)
-    if not math.isfinite(4.0 / dt**2 * heaviest):  # Newmark's inertia term of the effective stiffness
-        raise ValueError(f"masses up to {heaviest:.6g} t with dt = {dt!r} s overflow Newmark's 4 m / dt^2 (inf): "
-                         "the masses are too large to integrate")
+    check_masses(building, dt)
     floors, walls = building.stories, cast("list[tuple[int, Wall]]", building.wall_list)  # fixed walls only
     # Response and result histories (about 14 per floor), each wall's force, strain and exact memory,
     # energies: float64 a step.
     others = building.other_device_list
-    step_bytes = 8 * (14 * floors + 6 * len(walls) + 5 * len(others) + 12)
+    step_bytes = row_bytes(floors, len(walls), len(others))
     record_steps = (ground_motion.acceleration.size - 1) * substeps + 1
     if free_vibration > 0.0:  # named first: its steps may not even be a number (1e308 s / dt = inf)
         check_memory(f"simulate with free_vibration = {show(free_vibration)} s (dt = {dt!r} s, {floors} floors, "
                      f"{len(walls)} walls)", record_steps + free_vibration / dt, step_bytes,
                      "use a shorter free_vibration")
-    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0
+    rest = rest_steps(free_vibration, dt)
     steps = record_steps + rest
     start = 0 if initial_state is None else _check_state(initial_state, dt, steps, floors)
     check_memory(f"simulate (dt = {dt!r} s, {floors} floors, {len(walls)} walls)", steps, step_bytes,
@@ -197,6 +190,37 @@ def _device_energies(out: Histories, keep: slice, *, walls: bool) -> tuple | Non
     if out.device_heat.shape[1] == 0:
         return None
     return out.device_heat[keep].sum(axis=1), out.device_stored[keep].sum(axis=1), walls
+
+
+def checked_settings(newton: NewtonRaphson | None, collapse_drift_ratio: float | None
+                     ) -> tuple[NewtonRaphson, float | None]:
+    """``newton`` (None: the defaults) and ``collapse_drift_ratio`` (-, None: never) as every analysis checks them:
+    0, a negative or a NaN limit is refused, not taken as "never"."""
+    newton = NewtonRaphson() if newton is None else newton
+    if not isinstance(newton, NewtonRaphson):
+        raise ValueError(f"newton must be a NewtonRaphson, got {type(newton).__name__}")
+    if collapse_drift_ratio is not None:
+        collapse_drift_ratio = positive("collapse_drift_ratio", collapse_drift_ratio)
+    return newton, collapse_drift_ratio
+
+
+def check_masses(building: ShearBuilding, dt: float) -> None:
+    """ValueError when Newmark's inertia term of the effective stiffness, 4 m / dt^2 (m tonne, dt s), overflows."""
+    heaviest = max(building.masses)
+    if not math.isfinite(4.0 / dt**2 * heaviest):
+        raise ValueError(f"masses up to {heaviest:.6g} t with dt = {dt!r} s overflow Newmark's 4 m / dt^2 (inf): "
+                         "the masses are too large to integrate")
+
+
+def rest_steps(free_vibration: float, dt: float) -> int:
+    """The steps of ``free_vibration`` s of rest at ``dt`` s, rounded up (a hair below a whole step: that step)."""
+    return math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0
+
+
+def row_bytes(floors: int, walls: int, devices: int, *, wall_memory: bool = True, histories: bool = True) -> int:
+    """Bytes an analysis keeps a step (float64): each wall's force, strain and exact memory (``wall_memory``) and
+    every history row (``histories``: about 14 a floor, 5 a device, the energies)."""
+    return 8 * ((6 * walls if wall_memory else 0) + (14 * floors + 5 * devices + 12 if histories else 0))
 
 
 def frame_arrays(building: ShearBuilding, collapse_ratio: float) -> FrameArrays:
