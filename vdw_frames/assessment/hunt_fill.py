@@ -19,6 +19,9 @@ that still collapses there is an error: the model fails at almost no shaking), e
 ceil(log2(ln(growth) / ln(1 + tolerance))) runs, fill runs only while fewer than ``max_runs`` were made.
 A transition inside a gap narrower than ``fill_ratio``, or left unfilled when the budget ran out, is
 not seen: :attr:`SearchResult.resolution` reports the widest gap left.
+The search is written once, as the generator :func:`search_steps` (it yields each intensity and is sent its
+run), so that many records' searches can advance together, one lane of the lanes engine a record
+(:class:`~vdw_frames.assessment.collapse.SearchGroup`); :func:`hunt_and_fill` drives it with ``run``.
 Units: whatever ``run`` takes (the assessment uses spectral accelerations in mm/s^2).
 """
 
@@ -26,8 +29,9 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Generator, Sequence
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -144,14 +148,33 @@ class SearchResult:
 
 def hunt_and_fill(run: Callable[[float], Run], settings: HuntAndFill, label: str = "the record") -> SearchResult:
     """Search the collapse intensity with ``run(intensity) -> Run`` (module docstring); ``settings`` with
-    ``start`` and ``cap`` set.  ValueError when the record collapses even at start / growth^12."""
+    ``start`` and ``cap`` set.  ValueError when the record collapses even at start / growth^12.  Drives
+    :func:`search_steps`, the search itself (an error of ``run`` passes through)."""
+    steps = search_steps(settings, label)
+    intensity = next(steps)
+    while True:
+        try:
+            intensity = steps.send(run(intensity))
+        except StopIteration as done:
+            return cast(SearchResult, done.value)
+
+
+def search_steps(settings: HuntAndFill, label: str = "the record") -> Generator[float, Run, SearchResult]:
+    """The search of :func:`hunt_and_fill` as a generator, so that a driver can advance many records' searches
+    together (:class:`vdw_frames.assessment.collapse.SearchGroup`: one lane a record, in rounds): it yields the
+    next intensity to run (the unit of ``settings``: mm/s^2 in the assessment), is sent that run's :class:`Run`,
+    and returns the :class:`SearchResult` (``StopIteration.value``).  The intensities, their order and the result
+    are those of :func:`hunt_and_fill` for the same runs (it drives this generator).  ValueError at once for
+    settings without ``start`` and ``cap``, and from ``send`` when the record collapses even at start /
+    growth^12 (``label`` names it)."""
     if settings.start is None or settings.cap is None:
         raise ValueError("hunt_and_fill needs settings with start and cap")
-    runs: list[Run] = []
+    return _search(settings, settings.start, settings.cap, label)
 
-    def analyse(intensity: float) -> bool:
-        runs.append(run(intensity))
-        return runs[-1].collapsed
+
+def _search(settings: HuntAndFill, start: float, cap: float, label: str) -> Generator[float, Run, SearchResult]:
+    """The search (module docstring) from ``start`` to ``cap``: yields intensities, is sent their runs."""
+    runs: list[Run] = []
 
     def bracket() -> tuple[float, float]:
         """(highest standing intensity below the lowest collapse, lowest collapse).  Called only once the
@@ -160,26 +183,29 @@ def hunt_and_fill(run: Callable[[float], Run], settings: HuntAndFill, label: str
         return max(r.intensity for r in runs if not r.collapsed and r.intensity < lowest), lowest
 
     growth = settings.growth
-    intensity = settings.start
-    if analyse(intensity):  # hunt down
+    intensity = start
+    runs.append((yield intensity))
+    if runs[-1].collapsed:  # hunt down
         for _ in range(MAX_HALVINGS):
             intensity /= growth
-            if not analyse(intensity):
+            runs.append((yield intensity))
+            if not runs[-1].collapsed:
                 break
         else:
             raise ValueError(f"{label} collapses even at {intensity:.6g} (start / {growth:g}^{MAX_HALVINGS}): the "
                              "model fails under almost no shaking")
     else:  # hunt up
-        while intensity < settings.cap:
-            intensity = min(intensity * growth, settings.cap)
-            if analyse(intensity):
+        while intensity < cap:
+            intensity = min(intensity * growth, cap)
+            runs.append((yield intensity))
+            if runs[-1].collapsed:
                 break
         else:
             return SearchResult(tuple(runs), intensity, None, _widest_gap(runs, intensity))
     while True:
         standing, collapsing = bracket()
         if collapsing / standing > 1.0 + settings.tolerance:  # bisect
-            analyse(math.sqrt(standing * collapsing))
+            runs.append((yield math.sqrt(standing * collapsing)))
             continue
         if len(runs) >= settings.max_runs:
             break
@@ -188,7 +214,7 @@ def hunt_and_fill(run: Callable[[float], Run], settings: HuntAndFill, label: str
         if not ratios or max(ratios) <= settings.fill_ratio:
             break
         k = int(np.argmax(ratios))  # fill the widest gap
-        analyse(math.sqrt(below[k] * below[k + 1]))
+        runs.append((yield math.sqrt(below[k] * below[k + 1])))
     standing, collapsing = bracket()
     return SearchResult(tuple(runs), standing, collapsing, _widest_gap(runs, standing))
 
