@@ -137,3 +137,12 @@ def test_a_full_disk_under_the_cache_runs_without_it_with_one_warning(tmp_path):
     assert weights == expected_weights()
     assert stderr.count(CACHE_WARNING) == 1 and "could not be written" in stderr
     assert "No space left on device" in stderr and not list(tmp_path.rglob("*.nbi"))
+
+
+def test_the_package_compiles_without_the_gil():
+    # Threads run the analyses side by side only if the compiled entry points release the GIL (that they do:
+    # tests/frame/test_stop.py, whose failing task runs while another thread's analysis is compiled code).
+    from vdw_frames.frame import lane_kernel
+
+    for function in (lane_kernel.integrate_lanes, lane_kernel.run_lane, _jit.njit(cache=False)(lambda x: x)):
+        assert function.targetoptions["nogil"] is True

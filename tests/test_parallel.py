@@ -1,7 +1,8 @@
 """The fan-out (vdw_frames._parallel): results equal the tasks run one by one, on any executor; warnings
 collected per task and re-issued once; the first failure or an interrupt cancels the rest; the progress bar
-only on a terminal; and no worker of the default process pool outlives its command (SIGTERM, SIGKILL, Ctrl-C),
-checked on real processes through /proc and os.kill(pid, 0)."""
+only on a terminal; the own pools (threads by default, "processes"); and no worker of an own process pool outlives
+its command (SIGTERM, SIGKILL, Ctrl-C), checked on real processes through /proc and os.kill(pid, 0).  That a
+cancelled fan-out stops a thread's running analysis: tests/frame/test_stop.py."""
 
 from __future__ import annotations
 
@@ -49,7 +50,7 @@ class Serial:
 
     def submit(self, function, *args):
         future: concurrent.futures.Future = concurrent.futures.Future()
-        self.ran.append(args[-1])
+        self.ran.append(args[1])  # (function, task, the fan-out's stop flag)
         try:
             future.set_result(function(*args))
         except BaseException as error:
@@ -121,9 +122,9 @@ def fail_soon_or_sleep(n: int) -> int:
     return n
 
 
-def test_a_failure_on_the_default_pool_terminates_the_running_tasks_rather_than_wait_for_them():
+def test_a_failure_on_an_own_process_pool_terminates_the_running_tasks_rather_than_wait_for_them():
     began = time.monotonic()
-    with pytest.raises(ValueError, match=r"^task 1: task 1 is refused$"), _parallel.executor_for(None) as pool:
+    with pytest.raises(ValueError, match=r"^task 1: task 1 is refused$"), _parallel.executor_for("processes") as pool:
         workers = []  # the pool's worker pids, read once fan_out has started them
         threading.Timer(0.2, lambda: workers.extend(pool._processes or ())).start()
         _parallel.fan_out(fail_soon_or_sleep, {n: n for n in range(4)}, pool, where=lambda n: f"task {n}")
@@ -173,9 +174,11 @@ def test_the_progress_bar_is_drawn_only_on_a_terminal(monkeypatch):
 
 
 def test_executors_are_checked_and_a_dask_client_is_used_through_its_executor():
-    with (pytest.raises(ValueError, match=r"executor must be a concurrent\.futures\.Executor \(or None\), got 'x'"),
-          _parallel.executor_for("x")):
-        pass
+    for wrong in ("x", 3):
+        with (pytest.raises(ValueError, match=r"executor must be a concurrent\.futures\.Executor, None, 'threads' or "
+                                              rf"'processes', got {wrong!r}$"),
+              _parallel.executor_for(wrong)):
+            pass
     pool = concurrent.futures.ThreadPoolExecutor(1)
 
     class Client:  # the part of distributed.Client the fan-out uses
@@ -206,7 +209,7 @@ def slow(n):
     return n
 
 if __name__ == "__main__":
-    with _parallel.executor_for(None) as pool:
+    with _parallel.executor_for("processes") as pool:
         _parallel.fan_out(slow, {{n: n for n in range(6)}}, pool, where=str)
 """
 
@@ -278,3 +281,19 @@ def test_no_worker_outlives_its_command(tmp_path, how, death_signal):
         assert "KeyboardInterrupt" in stderr
     # Well under the 120 s the tasks sleep; the watchdog polls every WATCHDOG_INTERVAL s.
     assert gone_within(workers, 2 * _parallel.WATCHDOG_INTERVAL + 3.0) < 2 * _parallel.WATCHDOG_INTERVAL + 3.0
+
+
+def test_the_own_pools_are_threads_by_default_or_processes_over_every_core():
+    threads, processes = concurrent.futures.ThreadPoolExecutor, concurrent.futures.ProcessPoolExecutor
+    for kind, pool_class in ((None, threads), ("threads", threads), ("processes", processes)):
+        with _parallel.executor_for(kind) as pool:
+            assert type(pool) is pool_class
+            assert pool._max_workers == (os.cpu_count() or 1)
+            # each task sees its fan-out's stop flag, unset while nothing failed; outside a fan-out, a flag of its own
+            collected = _parallel.fan_out(flag_value, {0: 0, 1: 1}, pool, where=str)
+            assert [collected[k].value for k in (0, 1)] == [0, 0]
+    assert _parallel.stop_flag()[0] == 0 and _parallel.stop_flag() is not _parallel.stop_flag()
+
+
+def flag_value(_: int) -> int:
+    return int(_parallel.stop_flag()[0])

@@ -141,7 +141,7 @@ def _guard(dispatcher: Any) -> Any:
 
 
 def njit(*args: Any, cache: bool = False, allocates: bool = True, **options: Any) -> Any:
-    """``numba.njit``, used as ``@njit(cache=True)``, with ``error_model="numpy"``; falls back to
+    """``numba.njit``, used as ``@njit(cache=True)``, with ``error_model="numpy"`` and ``nogil=True``; falls back to
     ``cache=False`` (one warning) when numba cannot place a cache for the function.
 
     ``allocates=False`` compiles the function without numba's runtime (NRT): it may then create no array
@@ -156,6 +156,9 @@ def njit(*args: Any, cache: bool = False, allocates: bool = True, **options: Any
     # 20 % off the frame's step.  The compiled code already treats a non-finite value as a failure (the
     # integrator's NaN-aware norms, require_finite on every result), so no exception is lost.
     options.setdefault("error_model", "numpy")
+    # Compiled code touches no Python object: it runs without the GIL, so the analyses of a thread pool (the
+    # default executor, vdw_frames._parallel) run side by side.
+    options.setdefault("nogil", True)
     if not allocates:
         options["_nrt"] = False  # numba's (underscored) target option; tests/test_jit.py checks it still works
 

@@ -8,12 +8,22 @@ The first failing task cancels the rest and raises, its message naming the task 
 :func:`reissue` re-issues the collected warnings in the caller, once per text, in task order.
 
 :func:`executor_for` gives the user's executor (any :class:`concurrent.futures.Executor`, or a Dask
-``distributed.Client``, used through its ``get_executor()``) or, by default, a process pool over all
-cores, shut down after.  No worker of that pool outlives its command:
+``distributed.Client``, used through its ``get_executor()``) or an own pool over all cores, shut down after:
+by default (None, or "threads") a thread pool, "processes" a process pool.  Threads are the default because
+the analyses run in compiled code that releases the GIL (``nogil``, :mod:`vdw_frames._jit`): they run side by
+side in one process, without a worker's start-up (its imports and compiled code loaded again) or a building
+pickled for every task.
+
+A cancelled fan-out (a failing task, Ctrl-C, SIGTERM) sets its **stop flag** (:func:`stop_flag`, one per
+fan-out, seen by its tasks through a context variable), which the compiled time loop reads every step: a
+thread's running analysis ends at its next step and its task raises :class:`Cancelled` (whose result nobody
+reads), so an own thread pool is shut down within a step of every running analysis, not after it.  No worker
+of an own process pool outlives its command:
 
 * on an error, Ctrl-C (KeyboardInterrupt) or SIGTERM in the parent, the pending tasks are cancelled and
   the workers terminated at once (not waited for); KeyboardInterrupt and errors are re-raised, and SIGTERM
-  (when its handler was the default) ends the process by SIGTERM once the workers are gone;
+  (when its handler was the default) ends the process by SIGTERM once the workers are gone (an own thread
+  pool's threads are gone by then too);
 * each worker ignores SIGINT (the parent decides), and dies with its parent even if the parent is killed
   outright (SIGKILL): on Linux through ``prctl(PR_SET_PDEATHSIG, SIGTERM)``, and everywhere through a
   watchdog thread that polls, every ``WATCHDOG_INTERVAL`` s, whether its parent is still the one that
@@ -34,8 +44,11 @@ import threading
 import time
 from collections.abc import Callable, Hashable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import Any, Generic, TypeVar
+
+import numpy as np
 
 from . import _warnings
 from ._validation import show
@@ -47,6 +60,26 @@ R = TypeVar("R")
 WATCHDOG_INTERVAL = 0.5  # s between a worker's checks that its parent lives (when PR_SET_PDEATHSIG is missing)
 _PR_SET_PDEATHSIG = 1  # linux/prctl.h
 _use_death_signal = sys.platform.startswith("linux")  # else (or if prctl fails) the watchdog alone
+POOLS = ("threads", "processes")  # the kinds of own pool (executor_for), threads the default
+_stop: ContextVar[np.ndarray | None] = ContextVar("vdw_frames_stop_flag", default=None)
+
+
+class Cancelled(Exception):
+    """A task's analysis was stopped by its fan-out's stop flag (another task failed, or Ctrl-C or SIGTERM):
+    raised in the task, whose result nobody reads."""
+
+
+def stop_flag() -> np.ndarray:
+    """The (1,) int64 flag of the fan-out this task runs in (nonzero once it is cancelled; the compiled time
+    loop reads it every step), or a flag of its own that nothing sets outside a fan-out."""
+    flag = _stop.get()
+    return np.zeros(1, dtype=np.int64) if flag is None else flag
+
+
+def raise_if_stopped(flag: np.ndarray) -> None:
+    """:class:`Cancelled` if ``flag`` (from :func:`stop_flag`) is set: the analysis it stopped is cut short."""
+    if flag[0] != 0:
+        raise Cancelled("the fan-out was cancelled: this analysis was stopped")
 
 
 @dataclass(frozen=True)
@@ -57,46 +90,74 @@ class Collected(Generic[R]):
     warnings: tuple[_warnings.CollectedWarning, ...]
 
 
-def _collecting(function: Callable[[T], R], task: T) -> Collected[R]:
-    # Module level: executors pickle it by name (``function`` must be module level too).
-    with _warnings.collect() as caught:
-        value = function(task)
+def _collecting(function: Callable[[T], R], task: T, flag: np.ndarray) -> Collected[R]:
+    # Module level: executors pickle it by name (``function`` must be module level too).  ``flag``: the
+    # fan-out's stop flag (a process pool's worker gets a copy, never set: its workers are terminated instead).
+    token = _stop.set(flag)
+    try:
+        with _warnings.collect() as caught:
+            value = function(task)
+    finally:
+        _stop.reset(token)
     return Collected(value, tuple(caught))
 
 
 # ---------------------------------------------------------------------------------------------- executors
 def check_executor(executor: Any) -> None:
-    """Refuse an ``executor`` that is neither None, a concurrent.futures executor (anything with a
-    ``submit``) nor a Dask client, naming it."""
+    """Refuse an ``executor`` that is neither None, "threads", "processes" (an own pool of that kind), a
+    concurrent.futures executor (anything with a ``submit``) nor a Dask client, naming it."""
+    if isinstance(executor, str):
+        if executor not in POOLS:
+            raise ValueError(f"executor must be a concurrent.futures.Executor, None, 'threads' or 'processes', "
+                             f"got {show(executor)}")
+        return
     if executor is not None and not callable(getattr(executor, "submit", None)):
-        raise ValueError(f"executor must be a concurrent.futures.Executor (or None), got {show(executor)}")
+        raise ValueError(f"executor must be a concurrent.futures.Executor, None, 'threads' or 'processes', got "
+                         f"{show(executor)}")
 
 
 @contextmanager
 def executor_for(executor: Any = None) -> Iterator[concurrent.futures.Executor]:
     """``with executor_for(executor) as pool:`` -- the user's ``executor`` (a Dask ``distributed.Client``
-    through its ``get_executor()``), or a new process pool over all cores (:func:`process_pool`), shut down
-    on leaving; on an error, KeyboardInterrupt or SIGTERM inside the block its workers are terminated first
-    (module docstring)."""
+    through its ``get_executor()``), or a new pool over all cores, shut down on leaving: None or "threads" a
+    thread pool (:func:`thread_pool`), "processes" a process pool (:func:`process_pool`).  On an error,
+    KeyboardInterrupt or SIGTERM inside the block, a process pool's workers are terminated first; a thread
+    pool's running analyses have been stopped by their fan-out's flag and are waited for (module docstring)."""
     check_executor(executor)
-    if executor is not None:
+    if executor is not None and not isinstance(executor, str):
         if not isinstance(executor, concurrent.futures.Executor) and callable(getattr(executor, "get_executor", None)):
             executor = executor.get_executor()  # a distributed.Client: its futures are not concurrent.futures'
         yield executor
         return
-    pool = process_pool()
+    processes = executor == "processes"
+    pool = process_pool() if processes else thread_pool()
     try:
         with _sigterm_raises():
             yield pool
     except _Terminated:
-        terminate(pool)
+        _stop_now(pool)
         _die_by_sigterm()
         raise
     except BaseException:
-        terminate(pool)
+        _stop_now(pool)
         raise
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _stop_now(pool: concurrent.futures.Executor) -> None:
+    """A failing block's own pool: a process pool's workers terminated; a thread pool's pending tasks
+    cancelled and its threads joined (their analyses stop at their next step: the fan-out set its flag)."""
+    if isinstance(pool, concurrent.futures.ProcessPoolExecutor):
+        terminate(pool)
+    else:
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
+def thread_pool(max_workers: int | None = None) -> concurrent.futures.ThreadPoolExecutor:
+    """A thread pool (default: one thread per core) for the package's analyses, which release the GIL."""
+    return concurrent.futures.ThreadPoolExecutor(max_workers=max_workers or os.cpu_count() or 1,
+                                                 thread_name_prefix="vdw_frames")
 
 
 def process_pool(max_workers: int | None = None) -> concurrent.futures.ProcessPoolExecutor:
@@ -130,16 +191,18 @@ def fan_out(function: Callable[[T], R], tasks: Mapping[K, T], executor: concurre
     ``function`` must be picklable (module level) for process pools.  The first failing task cancels the
     others (and, through :func:`executor_for`, terminates an own pool's workers) and raises: a ValueError
     becomes ``ValueError(f"{where(key)}: {error}")``, any other error gets ``where(key)`` as a note
-    (Python >= 3.11).  KeyboardInterrupt cancels the same way and is re-raised.  ``progress``: a tqdm bar
+    (Python >= 3.11); the running tasks' analyses are stopped (the fan-out's stop flag, module docstring).
+    KeyboardInterrupt cancels the same way and is re-raised.  ``progress``: a tqdm bar
     of tasks (``unit``) on standard error, drawn only when it is a terminal; ``tally`` adds a running count
     of ``tally(result)`` (``tally_unit``); ``sizes``: what each task counts for on the bar (a task of many
     analyses, counted in analyses), 1 each by default.
     """
     results: dict[K, Collected[R]] = {}
     futures: dict[concurrent.futures.Future[Collected[R]], K] = {}
+    flag = np.zeros(1, dtype=np.int64)  # this fan-out's stop flag (module docstring)
     try:
         for key, task in tasks.items():
-            futures[executor.submit(_collecting, function, task)] = key
+            futures[executor.submit(_collecting, function, task, flag)] = key
         total = len(futures) if sizes is None else sum(sizes[key] for key in tasks)
         with _progress_bar(progress, total, unit) as bar:
             tallied = 0
@@ -160,6 +223,7 @@ def fan_out(function: Callable[[T], R], tasks: Mapping[K, T], executor: concurre
                         bar.set_postfix_str(f"{tallied} {tally_unit}", refresh=False)
                     bar.update(1 if sizes is None else sizes[key])
     except BaseException:
+        flag[0] = 1  # running analyses stop at their next step (a thread's; a process's are terminated)
         for future in futures:
             future.cancel()
         raise

@@ -463,7 +463,7 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
                   target_damping: float, *, bounds: PropertyBounds | tuple[float, float],
                   records: Iterable[GroundMotion] | None = None, irregular: bool = False, rounds: int = 4,
                   device_limits: Mapping[str, float] | None = None, p695: bool | Mapping[str, Any] = False,
-                  executor: concurrent.futures.Executor | None = None, progress: bool = True,
+                  executor: concurrent.futures.Executor | str | None = None, progress: bool = True,
                   distribution: str = "stiffness", **frame_options: Any) -> DampedDesign:
     """Design a frame with damping devices by ASCE 7-16 Chapters 12 and 18 and verify it (module docstring).
 
@@ -670,7 +670,7 @@ class _Loop:
         return target, change + f", because round {number} failed: " + "; ".join(failures)
 
 
-def _collapse(building: ShearBuilding, options: dict[str, Any], executor: concurrent.futures.Executor | None,
+def _collapse(building: ShearBuilding, options: dict[str, Any], executor: concurrent.futures.Executor | str | None,
               progress: bool, timings: dict[str, float]) -> dict[str, Any]:
     """The P695 assessments with and without device failure counted (module docstring)."""
     from ..assessment.collapse import CollapseCriterion, collapse_assessment

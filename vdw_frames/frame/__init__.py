@@ -8,7 +8,7 @@
   :mod:`.time_history` (walls of fixed parameters; the compiled loop in :mod:`.integrator`, the results
   in :mod:`.results`) or :mod:`.strain_compatible` (the equivalent-linear iteration);
 - :mod:`.batch`: :func:`run_batch`, many analyses on any ``concurrent.futures`` executor, and
-  :func:`worker_pool`, the default process pool kept for several calls;
+  :func:`worker_pool`, the default pool (threads) kept for several calls;
 - :mod:`.ida`: :func:`incremental_dynamic_analysis` and its lognormal collapse fragility.
 
 Units: N, mm, s, tonne.

@@ -5,8 +5,9 @@ up to :data:`~vdw_frames.frame.lanes.LANES_PER_TASK` of them on records of one d
 factors -- and runs them in one compiled call in whichever process the executor chooses, on that worker's reused
 workspace, returning only the peak responses (each equal to :func:`vdw_frames.simulate`'s to the bit) and the warnings
 simulate would have issued.  Strain-compatible batches run one :func:`~vdw_frames.simulate` a task
-(:class:`BatchTask`).  The default executor is a process pool over all cores whose workers never outlive the call; a
-Dask cluster works through a ``distributed.Client`` (install the ``dask`` extra).  The fan-out, its
+(:class:`BatchTask`).  The default executor is a thread pool over all cores (the compiled analyses release the GIL);
+``executor="processes"`` gives a process pool whose workers never outlive the call; a Dask cluster works through a
+``distributed.Client`` (install the ``dask`` extra).  The fan-out, its
 cancellation, warnings and progress bar are :mod:`vdw_frames._parallel`'s.
 """
 
@@ -27,7 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._files import write_text
-from .._parallel import Collected, check_executor, executor_for, fan_out, reissue, spread
+from .._parallel import POOLS, Collected, check_executor, executor_for, fan_out, reissue, spread
 from .._validation import finite_array, show
 from .._warnings import keyword_only_since_0_3
 from ..element.bank import group_walls, wall_order
@@ -248,7 +249,7 @@ class BatchResult:
 
 @keyword_only_since_0_3
 def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: ArrayLike,
-              executor: concurrent.futures.Executor | None = None, *, progress: bool = True,
+              executor: concurrent.futures.Executor | str | None = None, *, progress: bool = True,
               memory: str | FastMemory = DEFAULT_MEMORY, method: str | Discretisation = DEFAULT_METHOD,
               strain_compatible: bool | StrainCompatibleOptions = False, property_factors: ArrayLike | None = None,
               ambient_temperatures: ArrayLike | None = None, **simulate_options: Any) -> BatchResult:
@@ -257,9 +258,10 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
     ``motions``: GroundMotion objects (mm/s^2).  ``scales``: factors (dimensionless) applied as
     :meth:`GroundMotion.scaled` does, either one sequence for all motions (shape (scales,)) or one row
     per motion (shape (motions, scales)), e.g. from :func:`scale_factors_to_pga`.  ``executor``: any
-    :class:`concurrent.futures.Executor` or Dask ``distributed.Client`` (default: a process pool over all
-    cores, shut down after; its workers are terminated on an error, Ctrl-C or SIGTERM and die with the
-    process).  ``progress``: a progress bar (tqdm) on standard error, only when it is a terminal.  The peaks equal those
+    :class:`concurrent.futures.Executor` or Dask ``distributed.Client``, or an own pool over all cores, shut down
+    after: None or "threads" (the default) a thread pool, whose running analyses stop within a step on an error,
+    Ctrl-C or SIGTERM; "processes" a process pool, whose workers are terminated then and die with the process.
+    ``progress``: a progress bar (tqdm) on standard error, only when it is a terminal.  The peaks equal those
     of :func:`simulate` for the same run; the package's warnings of every analysis are re-issued here,
     once per message, naming the motion and scale (collected per task, safe with thread executors).
     The first failing analysis cancels the rest and raises, its message naming the motion and scale.
@@ -351,7 +353,8 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
 
 def _fan_out_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], factors: np.ndarray, *,
                    memory: str | FastMemory, method: str | Discretisation, options: tuple[tuple[str, Any], ...],
-                   executor: concurrent.futures.Executor | None, progress: bool) -> dict[tuple[int, int], Collected]:
+                   executor: concurrent.futures.Executor | str | None,
+                   progress: bool) -> dict[tuple[int, int], Collected]:
     """Every (motion, scale) analysis as lanes: :class:`LaneTask` s of records of one dt and wall memory, at most
     :data:`~vdw_frames.frame.lanes.LANES_PER_TASK` each (:func:`~vdw_frames.frame.lanes.lane_batches`), fanned out
     by :func:`~vdw_frames._parallel.fan_out`; returns each analysis's peaks and warnings keyed (motion, scale), as
@@ -368,15 +371,17 @@ def _fan_out_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], fac
     return spread(chunks, done)
 
 
-def worker_pool() -> AbstractContextManager[concurrent.futures.Executor]:
+def worker_pool(kind: str = "threads") -> AbstractContextManager[concurrent.futures.Executor]:
     """``with worker_pool() as pool:`` the default executor of :func:`run_batch`,
     :func:`~vdw_frames.incremental_dynamic_analysis`, :func:`~vdw_frames.verify` and
-    :func:`~vdw_frames.collapse_assessment` -- a process pool over all cores -- kept for several calls
-    (``executor=pool``), with the same care: its workers ignore Ctrl-C and die with this process (even
-    killed by SIGKILL), and an error, Ctrl-C or SIGTERM inside the block terminates them at once
-    (:mod:`vdw_frames._parallel`).  A plain ``ProcessPoolExecutor`` leaves its workers running when its
-    process is killed."""
-    return executor_for(None)
+    :func:`~vdw_frames.collapse_assessment` -- a pool over all cores, ``kind`` "threads" (the default) or
+    "processes" -- kept for several calls (``executor=pool``), with the same care (:mod:`vdw_frames._parallel`):
+    an error, Ctrl-C or SIGTERM inside the block stops a thread pool's analyses within a step, and terminates a
+    process pool's workers at once, which also ignore Ctrl-C and die with this process (even killed by
+    SIGKILL).  A plain ``ProcessPoolExecutor`` leaves its workers running when its process is killed."""
+    if kind not in POOLS:
+        raise ValueError(f"kind must be one of {', '.join(POOLS)}, got {kind!r}")
+    return executor_for(kind)
 
 
 def _label(motions: Sequence[GroundMotion], m: int) -> str:
@@ -384,7 +389,7 @@ def _label(motions: Sequence[GroundMotion], m: int) -> str:
 
 
 def _property_envelope(building: ShearBuilding, property_factors: ArrayLike | None,
-                       ambient_temperatures: ArrayLike | None, executor: concurrent.futures.Executor | None,
+                       ambient_temperatures: ArrayLike | None, executor: concurrent.futures.Executor | str | None,
                        run: Callable[[ShearBuilding, concurrent.futures.Executor], BatchResult]) -> BatchResult:
     """Envelope of ``run(variant, executor)`` over every device variant: each property factor f (``scaled(f)``
     of every device) at each ambient temperature T (``wall.at_ambient(T)`` for walls with a thermal

@@ -124,13 +124,13 @@ class IDAResult:
 
 @keyword_only_since_0_3
 def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[GroundMotion], step: float, cap: float,
-                                 period: float | None = None, executor: concurrent.futures.Executor | None = None,
+                                 period: float | None = None, executor: concurrent.futures.Executor | str | None = None,
                                  *, wall_failure_collapse: bool = False, **options: Any) -> IDAResult:
     """IDA of ``building`` under ``motions`` (GroundMotion, mm/s^2): Sa(``period``, 5 %) from ``step`` in steps
     of ``step`` up to ``cap`` (mm/s^2) or collapse, record by record (module docstring).
 
     ``period`` (s): the intensity measure's period, default the bare elastic frame's T1.  ``executor``:
-    as for :func:`run_batch` (the default process pool serves every level).
+    as for :func:`run_batch` (the default thread pool serves every level).
     ``options`` go to :func:`run_batch` and :func:`simulate` (``collapse_drift_ratio`` (default 0.10, needs
     story heights), ``method``, ``memory``, ``strain_compatible``, ...).  ``wall_failure_collapse``: count
     the failure of any wall as collapse (default False: a failed wall leaves the frame standing).
@@ -161,7 +161,7 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[Grou
     wall_failed: list[list[bool]] = [[] for _ in motions]
     messages: list[str] = []
     standing = list(range(len(motions)))
-    with executor_for(executor) as pool:  # one pool for every level (default: a process pool)
+    with executor_for(executor) as pool:  # one pool for every level (default: threads)
         for index, level in enumerate(levels):
             if not standing:
                 break

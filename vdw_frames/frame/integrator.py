@@ -57,8 +57,8 @@ from ..element.devices import DeviceStates, devices_commit, devices_trial, recor
 from ..element.kernel import BankArrays
 from .hysteresis import story_trial
 
-# Status codes of a step (advance) and of a run (lane_kernel.LanePeaks.outcome[:, 0]).
-RUNNING, FINISHED, COLLAPSED, FAILED = 0, 1, 2, 3
+# Status codes of a step (advance) and of a run (lane_kernel.LanePeaks.outcome[:, 0]; STOPPED: a run cancelled).
+RUNNING, FINISHED, COLLAPSED, FAILED, STOPPED = 0, 1, 2, 3, 4
 # Energy columns: input, kinetic, frame strain (recoverable), story work, inherent damping, wall work, P-Delta.
 ENERGIES = 7
 # Solution strategies tried in turn on a step: Newton, Newton with line search, initial stiffness.

@@ -20,7 +20,7 @@ from numba import types
 from numba.extending import overload
 
 from .._jit import njit
-from .integrator import COLLAPSED, FAILED, FINISHED, DeviceArrays, Histories, advance, prepare
+from .integrator import COLLAPSED, FAILED, FINISHED, STOPPED, DeviceArrays, Histories, advance, prepare
 
 
 class LaneArrays(NamedTuple):
@@ -39,6 +39,7 @@ class LaneExcitation(NamedTuple):
     lengths: np.ndarray  # (L,) int64: values of each lane's record (0: the lane is idle)
     dt: float  # s, the step of every lane
     first_step: int  # steps the walls committed before row 0 (0 from rest; a restart's state, simulate only)
+    stop: np.ndarray  # (1,) int64, read every step: nonzero stops every lane (vdw_frames._parallel.stop_flag)
 
 
 class LanePeaks(NamedTuple):
@@ -242,7 +243,8 @@ def run_lane(lane, excitation, frame, stories, walls, out, work, newton, peaks):
     the lane's (views of a batch's arrays, or a single analysis's); ``newton`` :class:`NewtonSettings`;
     ``peaks`` follow the lane's peaks (:func:`_note_peaks`, :func:`_note_walls`) unless they hold no story (a
     single analysis's, ``lane_peaks(1, 0, 0, 0)``: it keeps its histories instead); ``peaks.outcome[lane]``
-    receives (status, failed or collapsed story, Newton corrections, rows filled).  (Called once a lane, not
+    receives (status, failed or collapsed story, Newton corrections, rows filled); a nonzero ``excitation.stop[0]``
+    (a cancelled fan-out's: another task failed) ends the lane before its next step, STOPPED.  (Called once a lane, not
     inlined: numba's inlining of the step into the loop that takes the views lost the writes of :func:`prepare`,
     numba 0.6x.)"""
     ground, dt, start = excitation.acceleration, excitation.dt, excitation.first_step
@@ -256,6 +258,9 @@ def run_lane(lane, excitation, frame, stories, walls, out, work, newton, peaks):
     total = 0
     status, story, filled = FINISHED, 0, steps
     for step in range(steps - 1):
+        if excitation.stop[0] != 0:
+            status, filled = STOPPED, step + 1
+            break
         row, next_row = step % rows, (step + 1) % rows
         status, story, iterations = advance(step, row, next_row, ground[lane, step], ground[lane, step + 1], dt,
                                             start, frame, stories, walls, newton, out, work)
@@ -269,7 +274,7 @@ def run_lane(lane, excitation, frame, stories, walls, out, work, newton, peaks):
         if status == COLLAPSED:
             filled = step + 2
             break
-    if status not in (FAILED, COLLAPSED):
+    if status not in (FAILED, COLLAPSED, STOPPED):
         status, story = FINISHED, 0
     if note:
         _finish_walls(lane, filled, dt, walls, peaks)

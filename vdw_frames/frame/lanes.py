@@ -55,6 +55,7 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 
 from .. import _warnings
+from .._parallel import raise_if_stopped, stop_flag
 from .._validation import check_memory, non_negative, show
 from ..element import kernel
 from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy
@@ -399,16 +400,18 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
             np.multiply(motion.acceleration, factors[lane], out=ground)
         bad = np.flatnonzero(~np.isfinite(ground))
         if bad.size:
-            errors.append(f"the ground acceleration of {motion.name or f'record {lane}'!r} x {factors[lane]!r} "
-                          f"is {ground[bad[0]]!r} at t = {bad[0] * dt:.6g} s (not finite): this lane was not run")
+            errors.append(f"the ground acceleration of {motion.name or f'record {lane}'!r} x {show(factors[lane])} "
+                          f"is {show(ground[bad[0]])} at t = {bad[0] * dt:.6g} s (not finite): this lane was not run")
             space.lengths[lane] = 0
             continue
         errors.append(None)
         space.lengths[lane] = lengths[lane]
     lanes = space.arrays
     lanes.out.acceleration[:, 0, :] = -space.ground[:, :1]
-    integrate_lanes(LaneExcitation(space.ground, space.lengths, float(dt), 0), space.frame, lanes, newton.arrays(),
-                    space.peaks)
+    stop = stop_flag()
+    integrate_lanes(LaneExcitation(space.ground, space.lengths, float(dt), 0, stop), space.frame, lanes,
+                    newton.arrays(), space.peaks)
+    raise_if_stopped(stop)
     for lane, motion in enumerate(motions):
         overflow = int(space.peaks.overflow[lane])
         if overflow and errors[lane] is None:

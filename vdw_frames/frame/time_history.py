@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 
 from .. import _warnings
+from .._parallel import raise_if_stopped, stop_flag
 from .._validation import check_memory, non_negative, positive, require_finite, show, time_step
 from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strategy, wall_order
 from ..element.devices import device_states
@@ -135,9 +136,11 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     if amplitudes:
         out.group_amplitude[0] = bank.state("amplitude")
     outcome = lane_peaks(1, 0, 0, 0)  # a single analysis keeps its histories: of the peaks, only the outcome
+    stop = stop_flag()
     excitation = LaneExcitation(np.ascontiguousarray(ground[None]), np.array([ground.size], dtype=np.int64),
-                                float(dt), int(start))
+                                float(dt), int(start), stop)
     run_lane(0, excitation, frame, stories, device_arrays, out, work, newton.arrays(), outcome)
+    raise_if_stopped(stop)
     status, story_index, iterations, filled = (int(x) for x in outcome.outcome[0])
     if status == FAILED:
         _warnings.warn(f"simulate: the step to t = {(start + filled) * dt:.6g} s did not converge "

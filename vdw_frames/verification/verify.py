@@ -685,7 +685,7 @@ def prototype_test_specification(walls: Sequence[WallDemand], frequency: float,
 def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] | None = None, *,
            bounds: PropertyBounds | tuple[float, float] | None = None, risk_category: str | None = None,
            count: int = MIN_RECORDS, collapse_drift_ratio: float = 0.10, valid_drift_ratio: float | None = None,
-           allowable_drift_ratio: float | None = None, executor: concurrent.futures.Executor | None = None,
+           allowable_drift_ratio: float | None = None, executor: concurrent.futures.Executor | str | None = None,
            progress: bool = True) -> VerificationResult:
     """Verify ``building`` (with story heights) on ``site`` as ASCE 7-16 Chapters 16 and 18 ask (module
     docstring: each clause, and what was read from secondary sources only).
@@ -697,7 +697,8 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
     ``collapse_drift_ratio`` (-): an analysis stops as collapsed beyond it; ``valid_drift_ratio`` (-): the
     largest drift ratio the story models are valid for (None: not checked).  ``allowable_drift_ratio``: Table
     12.12-1's Delta_a / h_sx if not the "all other structures" row.  ``executor``: any
-    ``concurrent.futures.Executor`` (default a process pool over all cores); ``progress``: a progress bar on
+    ``concurrent.futures.Executor``, or "threads" (the default, None) or "processes" for an own pool over
+    all cores; ``progress``: a progress bar on
     standard error when it is a terminal.  Every analysis is that of :func:`vdw_frames.simulate` of the bound's
     building (:meth:`PropertyBounds.building`: walls at the bound's ambient temperature, if any, times lambda)
     under the scaled record, run as a lane (:func:`~vdw_frames.frame.lanes.run_lanes`: each bound's records in a
@@ -793,7 +794,7 @@ def _wall_demands(building: ShearBuilding, peaks: dict[str, np.ndarray], cases: 
 
 
 def _run_all(variants: Sequence[ShearBuilding], suite: ScaledSuite, *, collapse_drift_ratio: float,
-             valid_drift_ratio: float | None, executor: concurrent.futures.Executor | None, progress: bool,
+             valid_drift_ratio: float | None, executor: concurrent.futures.Executor | str | None, progress: bool,
              cases: Sequence[tuple[str, float]]) -> dict[tuple[int, int], dict]:
     """Every analysis (case c's building ``variants[c]`` under record r of the suite, scaled), keyed (c, r): each
     case's records in batches of lanes (:func:`~vdw_frames.frame.lanes.lane_batches`: one dt, one side of the

@@ -1,0 +1,71 @@
+"""A cancelled fan-out stops its running analyses (vdw_frames._parallel's stop flag, read by the compiled time loop
+every step): on the default thread pool, a task that fails ends the other task's long analysis at its next step
+instead of after it, and an analysis that starts with the flag set makes no step.  Reference: what each analysis
+does uncancelled -- its whole record: every row (the short one), or a time measured in the same run (the long one:
+ten times that of a tenth of it) -- against what it did."""
+
+from __future__ import annotations
+
+import threading
+import time
+
+import numpy as np
+import pytest
+from builders import example_ten_story
+
+from vdw_frames import GroundMotion, _parallel, simulate
+from vdw_frames.frame.lanes import run_lanes
+
+DT = 0.01
+
+
+def sine(steps: int, amplitude: float = 300.0) -> GroundMotion:
+    """A 1 Hz ground acceleration of ``amplitude`` mm/s^2 (the frame stays elastic), ``steps`` values at DT s."""
+    return GroundMotion(amplitude * np.sin(2.0 * np.pi * DT * np.arange(steps)), DT, name="sine")
+
+
+def test_an_analysis_started_under_a_set_flag_makes_no_step_and_raises_cancelled():
+    frame = example_ten_story().without_devices()
+    short = sine(400)
+    assert simulate(frame, short).time.size == 400 and run_lanes(frame, [short])[0].steps == 400  # uncancelled
+    stopped = np.ones(1, dtype=np.int64)
+    for analysis in (lambda _: simulate(frame, short), lambda _: run_lanes(frame, [short, short])):
+        with pytest.raises(_parallel.Cancelled, match="cancelled"):
+            _parallel._collecting(analysis, None, stopped)
+    # outside a fan-out the flag is a fresh one, never set: the same analyses run to the end
+    assert simulate(frame, short).time.size == 400
+
+
+def test_a_failing_task_stops_a_running_analysis_on_the_default_thread_pool():
+    frame = example_ten_story().without_devices()
+    run_lanes(frame, [sine(400)])  # compiled (or loaded) before anything is timed
+    steps = 3_000_000  # 30 000 s of shaking: seconds, uncancelled
+    began = time.perf_counter()
+    run_lanes(frame, [sine(steps // 10)] * 2)
+    uncancelled = 10.0 * (time.perf_counter() - began)  # (the time is linear in the steps)
+    long = sine(steps)
+    started, outcome = threading.Event(), {}
+
+    def task(kind: str) -> str:
+        if kind == "fail":
+            started.wait(60)
+            time.sleep(0.3)  # the analysis is inside its compiled loop
+            raise ValueError("refused")
+        started.set()
+        began = time.perf_counter()
+        try:
+            lanes = run_lanes(frame, [long, long])
+        except _parallel.Cancelled:
+            outcome["analysis"] = "cancelled"
+            outcome["seconds"] = time.perf_counter() - began
+            raise
+        outcome["analysis"] = f"finished {lanes[0].steps} steps"
+        return "done"
+
+    with pytest.raises(ValueError, match=r"^task fail: refused$"), _parallel.executor_for(None) as pool:
+        assert isinstance(pool, __import__("concurrent.futures").futures.ThreadPoolExecutor)
+        _parallel.fan_out(task, {"analysis": "analysis", "fail": "fail"}, pool, where=lambda key: f"task {key}")
+    # the pool was shut down (its threads joined) before the error left the block: the analysis had ended, long
+    # before its record's end (the failure came 0.3 s after it started)
+    assert outcome["analysis"] == "cancelled"
+    assert outcome["seconds"] < 0.5 * uncancelled, (outcome, uncancelled)
