@@ -157,7 +157,7 @@ def run(args) -> int:
     print(site.describe())
     columns = []
     timings = {}
-    with worker_pool() as pool:  # its workers die with this process
+    with worker_pool() as pool:  # one pool (threads) for every call
         started = time.perf_counter()
         frame = design_frame(site, system, given.weights, given.story_heights, **options)
         collapse = None

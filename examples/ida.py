@@ -87,7 +87,7 @@ def run(args) -> int:
     print(f"walls fail at {100 * limits.strain:.0f} % shear strain ({limits.source})")
 
     results = {}
-    with vdw.frame.worker_pool() as pool, warnings.catch_warnings():  # its workers die with this process
+    with vdw.frame.worker_pool() as pool, warnings.catch_warnings():  # one pool (threads) for every call
         # Counted below: a wall beyond the amplitudes its parameters were identified for.
         warnings.simplefilter("ignore", UserWarning)
         for label, building in buildings.items():

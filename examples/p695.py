@@ -62,7 +62,7 @@ def run(args) -> int:
     records = fema_p695_records(args.set)
     print(f"FEMA P695 collapse assessment, {args.set} set ({len(records)} components), SDC {args.sdc}")
     results = {}
-    with worker_pool() as pool:  # its workers die with this process
+    with worker_pool() as pool:  # one pool (threads) for every call
         for label, (building, criterion) in configurations.items():
             started = time.perf_counter()
             result = collapse_assessment(building, records, record_set=args.set, sdc=args.sdc, criterion=criterion,

@@ -475,7 +475,7 @@ def collapse_assessment(building: ShearBuilding, records: str | Iterable[GroundM
                         criterion: CollapseCriterion | None = None, search: HuntAndFill | None = None,
                         record_set: str | None = None, pushover_pattern: str | ArrayLike = "modal",
                         pushover_drift_ratio: float = 0.10, bootstrap_samples: int = BOOTSTRAP_SAMPLES, seed: int = 0,
-                        executor: concurrent.futures.Executor | None = None, progress: bool = True,
+                        executor: concurrent.futures.Executor | str | None = None, progress: bool = True,
                         **simulate_options: Any) -> CollapseAssessment:
     """FEMA P695 collapse assessment of ``building`` (module docstring; units mm/s^2, s).
 
@@ -490,8 +490,8 @@ def collapse_assessment(building: ShearBuilding, records: str | Iterable[GroundM
     ``pushover_pattern`` and
     ``pushover_drift_ratio``: the pushover for mu_T.  ``bootstrap_samples`` (100 ... 100 000) and ``seed``:
     the confidence interval of Ŝ_CT.  ``executor``: any ``concurrent.futures`` executor (a Dask
-    cluster's too: ``distributed.Client(...).get_executor()``); default a process pool over all cores,
-    shut down after.  ``progress``: a progress bar on standard error when it is a terminal.
+    cluster's too: ``distributed.Client(...).get_executor()``), or "threads" (the default, None) or "processes": an
+    own pool over all cores, shut down after.  ``progress``: a progress bar on standard error when it is a terminal.
     ``simulate_options``: ``method``, ``memory``, ``newton`` for every :func:`~vdw_frames.simulate`.
     Strain-dependent walls follow their amplitude in every analysis; the analytical T1 takes them at the
     centre, in logarithm, of their identified range (:meth:`ShearBuilding.walls_at`).  mu_T (eqs. 6-6 to
@@ -614,7 +614,7 @@ def _ductility(capacity: PushoverResult, target_drift_ratio: float) -> tuple[flo
 
 def _run_searches(building: ShearBuilding, motions: Sequence[GroundMotion], unit: float, criterion: CollapseCriterion,
                   settings: HuntAndFill, options: tuple[tuple[str, Any], ...], *,
-                  executor: concurrent.futures.Executor | None,
+                  executor: concurrent.futures.Executor | str | None,
                   progress: bool) -> tuple[list[SearchResult], list[str]]:
     """Hunt-and-fill of every record on ``executor`` (:func:`vdw_frames._parallel.fan_out`); returns (SearchResults
     in record order, their warning texts in record order).  The records go in :class:`SearchGroup` s whose searches
