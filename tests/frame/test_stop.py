@@ -2,16 +2,22 @@
 every step): on the default thread pool, a task that fails ends the other task's long analysis at its next step
 instead of after it, and an analysis that starts with the flag set makes no step.  Reference: what each analysis
 does uncancelled -- its whole record: every row (the short one), or a time measured in the same run (the long one:
-ten times that of a tenth of it) -- against what it did."""
+ten times that of a tenth of it) -- against what it did.  And a command (a subprocess) on the default thread pool
+ends within a step of its analyses on SIGTERM or Ctrl-C, by that signal, as it does on a process pool."""
 
 from __future__ import annotations
 
+import os
+import signal
+import subprocess
+import sys
 import threading
 import time
 
 import numpy as np
 import pytest
 from builders import example_ten_story
+from shared_data import REPO
 
 from vdw_frames import GroundMotion, _parallel, simulate
 from vdw_frames.frame.lanes import run_lanes
@@ -69,3 +75,67 @@ def test_a_failing_task_stops_a_running_analysis_on_the_default_thread_pool():
     # before its record's end (the failure came 0.3 s after it started)
     assert outcome["analysis"] == "cancelled"
     assert outcome["seconds"] < 0.5 * uncancelled, (outcome, uncancelled)
+
+
+# A command whose default thread pool runs two long analyses (a 100-story frame, 2e6 steps each), after timing one
+# of a fiftieth of that record (the reference: the whole takes fifty times as long; the time is linear in the steps).
+COMMAND = """
+import os, sys, time
+os.cpu_count = lambda: 2
+import numpy as np
+from vdw_frames import GroundMotion, ShearBuilding, _parallel
+from vdw_frames.frame.lanes import run_lanes
+
+folder = sys.argv[1]
+frame = ShearBuilding([500.0] * 100, np.linspace(8e5, 4e5, 100), story_heights=[3500.0] * 100)
+record = GroundMotion(300.0 * np.sin(2.0 * np.pi * 0.01 * np.arange(2_000_000)), 0.01, name="sine")
+part = GroundMotion(record.acceleration[:40_000], 0.01)
+run_lanes(frame, [part])  # compiled (or loaded)
+began = time.perf_counter()
+run_lanes(frame, [part])
+with open(os.path.join(folder, "uncancelled"), "w") as handle:
+    handle.write(repr(50.0 * (time.perf_counter() - began)))
+
+
+def analysis(n):
+    open(os.path.join(folder, f"task{n}"), "w").close()
+    return run_lanes(frame, [record])[0].steps
+
+
+if __name__ == "__main__":
+    with _parallel.executor_for(None) as pool:
+        _parallel.fan_out(analysis, {0: 0, 1: 1}, pool, where=str)
+"""
+
+
+@pytest.mark.skipif(not hasattr(signal, "SIGKILL"), reason="POSIX signals")
+@pytest.mark.parametrize("how", ["SIGTERM", "SIGINT"])
+def test_a_signal_ends_a_command_on_the_default_thread_pool_within_a_step_of_its_analyses(tmp_path, how):
+    """SIGTERM or Ctrl-C while both threads of the default pool are inside their analyses: the command ends (by
+    that signal, as with a process pool: tests/test_parallel.py) well before the analyses would have, its pool's
+    threads joined first (a thread left running would keep the process alive until its analysis ended)."""
+    script = tmp_path / "command.py"
+    script.write_text(COMMAND)
+    environment = dict(os.environ, PYTHONPATH=os.pathsep.join([str(REPO), os.environ.get("PYTHONPATH", "")]))
+    command = subprocess.Popen([sys.executable, str(script), str(tmp_path)], env=environment,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 120
+    while len(list(tmp_path.glob("task*"))) < 2:
+        if command.poll() is not None or time.monotonic() > deadline:
+            command.kill()
+            raise AssertionError(f"the analyses did not start: {command.communicate()[1].decode()}")
+        time.sleep(0.05)
+    time.sleep(0.5)  # both inside their compiled loops
+    uncancelled = float((tmp_path / "uncancelled").read_text())
+    signalled = time.monotonic()
+    command.send_signal(getattr(signal, how))
+    try:
+        status = command.wait(max(uncancelled, 60.0))
+    finally:
+        command.kill()
+    ended = time.monotonic() - signalled
+    stderr = command.stderr.read().decode() if command.stderr else ""
+    assert status == -getattr(signal, how), stderr
+    if how == "SIGINT":
+        assert "KeyboardInterrupt" in stderr
+    assert ended < min(0.25 * uncancelled, 5.0), (ended, uncancelled)
