@@ -139,3 +139,25 @@ def test_a_signal_ends_a_command_on_the_default_thread_pool_within_a_step_of_its
     if how == "SIGINT":
         assert "KeyboardInterrupt" in stderr
     assert ended < min(0.25 * uncancelled, 5.0), (ended, uncancelled)
+
+
+def refuse_or_analyse(kind: str) -> int:
+    """A task: "fail" raises at once, "short" runs a 400-step analysis (its rows filled)."""
+    if kind == "fail":
+        raise ValueError("refused")
+    return run_lanes(example_ten_story().without_devices(), [sine(400)])[0].steps
+
+
+def test_a_cancelled_fan_out_leaves_no_flag_set_for_the_next_one_on_a_kept_pool():
+    """A fan-out cancelled by a failing task, then another on the same kept thread pool (whose threads ran the first):
+    the second's analyses run to their record's end (400 rows), as does one outside any fan-out."""
+    from vdw_frames.frame import worker_pool
+
+    with worker_pool() as pool:
+        with pytest.raises(ValueError, match="refused"):
+            _parallel.fan_out(refuse_or_analyse, {0: "short", 1: "fail", 2: "short"}, pool, where=str)
+        again = _parallel.fan_out(refuse_or_analyse, {k: "short" for k in range(4)}, pool, where=str)
+    assert [again[k].value for k in range(4)] == [400] * 4
+    assert refuse_or_analyse("short") == 400 and _parallel.stop_flag()[0] == 0
+    with pytest.raises(ValueError, match=r"kind must be one of threads, processes, got 'x'"):
+        worker_pool("x")
