@@ -382,8 +382,7 @@ class SearchGroup:
     cuts those analyses into batches of one dt and one side of the walls' exact memory
     (:func:`~vdw_frames.frame.lanes.lane_batches`; within the memory limit, as each record alone), runs each batch as
     the lanes of one :func:`~vdw_frames.frame.lanes.run_lanes` call (peaks only, on this thread's reused workspace),
-    and sends each
-    lane's :class:`~vdw_frames.assessment.hunt_fill.Run` back to its record's search.  Every lane equals
+    and sends each lane's :class:`~vdw_frames.assessment.hunt_fill.Run` back to its record's search.  Every lane equals
     :func:`~vdw_frames.simulate` of its record to the bit, so every run and every record's result are those of
     :func:`~vdw_frames.assessment.hunt_fill.hunt_and_fill` driving simulate record by record, in any grouping."""
 
