@@ -33,3 +33,35 @@ def test_batches_split_by_dt_by_the_exact_memory_s_length_and_by_key_and_keep_th
     assert [len(batch) for batch in many] == [LANES_PER_TASK] * 4 + [200 - 4 * LANES_PER_TASK]
     with pytest.raises(ValueError, match="one record"):
         lane_batches(bare, motions, analyses[:3])
+
+
+def test_records_beyond_the_fast_memory_s_horizon_share_a_batch_only_with_their_own_length():
+    """The fast memory's modes are built for the record's steps, at least FastMemory.max_steps, and a batch builds them
+    for its longest record: with max_steps = 3000, records of 2500 and 2900 steps share (both 3000), 4000 and 4000
+    too, but not 2900 and 4000.  Reference: simulate of each record alone, which its batch's lane equals to the bit;
+    the lane of the 2500-step record run beside the 4000-step one did not (its walls took the 4000-step modes)."""
+    from builders import FITTED300
+    from shared_data import REPO
+
+    import vdw_frames as vdw
+    from vdw_frames.element.fast_memory import FastMemory
+    from vdw_frames.frame.lanes import run_lanes
+
+    memory = FastMemory(max_steps=3000)
+    walled = three_story()
+    assert lane_batches(walled, [record(2500), record(4000), record(2900), record(4000)], list("abcd"), memory=memory,
+                        workers=None) == [["a", "c"], ["b", "d"]]
+    assert lane_batches(walled, [record(2500), record(4000)], list("ab"), workers=None) == [["a", "b"]]  # default 2**20
+    kt = vdw.read_at2(REPO / "vdw_frames" / "motion" / "data" / "synthetic_kt_035g.AT2").acceleration
+    samples = 3.0 * np.concatenate([kt, kt])
+    motions = [GroundMotion(samples[:2500], 0.01, "2500"), GroundMotion(samples[:4000], 0.01, "4000")]
+    walled = vdw.ShearBuilding([100.0, 100.0, 80.0], [4.0e4, 3.5e4, 3.0e4], story_heights=[3500.0] * 3,
+                               devices={1: vdw.FDMKDamper(**FITTED300, area=0.05e6, thickness=10.0)})  # r = 0.589
+    alone = [vdw.simulate(walled, motion, memory=memory) for motion in motions]
+    batched = [lane for batch in lane_batches(walled, motions, [0, 1], memory=memory, workers=None)
+               for lane in run_lanes(walled, [motions[k] for k in batch], memory=memory)]
+    for lane, reference in zip(batched, alone, strict=True):
+        assert np.array_equal(lane.peak_drift, reference.peak_drift)
+        assert np.array_equal(lane.residual_drift, reference.residual_drift)
+    together = run_lanes(walled, motions, memory=memory)[0]  # why they must stay apart
+    assert not np.array_equal(together.residual_drift, alone[0].residual_drift)

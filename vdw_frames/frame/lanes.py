@@ -278,8 +278,10 @@ def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analy
     """``analyses`` (any keys; ``motions[i]`` the record of ``analyses[i]``) cut into batches that may run as the
     lanes of one :func:`run_lanes` call with every lane equal to simulate's analysis: one dt (exactly) a batch
     and, with walls, one side of the exact memory's length (``FastMemory.exact_below`` steps: simulate takes the
-    exact memory below it, the fast one above; ``free_vibration`` s of rest counted as simulate rounds them),
-    at most :data:`LANES_PER_TASK` analyses each, and at most about a quarter of a worker's share (``workers``
+    exact memory below it, the fast one above; ``free_vibration`` s of rest counted as simulate rounds them) and,
+    above it, one horizon of the fast memory's modes (built for the record's steps, at least ``FastMemory.max_steps``:
+    a record longer than that shares a batch only with records of its own length), at most :data:`LANES_PER_TASK`
+    analyses each, and at most about a quarter of a worker's share (``workers``
     processes or threads: finer tasks balance the pool; None: no pool, the batches as large as they may be).
     Analyses whose ``apart`` (one hashable key an analysis, e.g. the building's variant; ``building`` then stands
     for all: walls or none) differ never share a batch.  In the order of ``analyses`` within each batch."""
@@ -292,16 +294,22 @@ def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analy
     strategy = memory_strategy(memory) if building.wall_list else None
     free_vibration = non_negative("free_vibration", free_vibration)
 
-    def exact(motion: GroundMotion) -> bool:
+    def horizon(motion: GroundMotion) -> float:
+        """The walls' memory of the record's analysis: -1 exact (or no walls), else the steps the fast memory's modes
+        are built for (FastMemory.arrays: the record's steps, at least max_steps), which a batch builds for its
+        longest record: records beyond max_steps would otherwise take another record's modes."""
         if strategy is None:
-            return False
+            return -1.0
         # size + ceil(x) <= exact_below iff size + x <= exact_below, x as simulate rounds its rest (inf: not exact)
         rest = free_vibration / motion.dt - 1e-9 if free_vibration > 0.0 else 0.0
-        return motion.acceleration.size + rest <= strategy.exact_below
+        if motion.acceleration.size + rest <= strategy.exact_below:
+            return -1.0
+        steps = motion.acceleration.size + (math.ceil(rest) if math.isfinite(rest) else rest)
+        return float(max(steps, strategy.max_steps))
 
-    by_key: dict[tuple[Any, float, bool], list[Any]] = {}
+    by_key: dict[tuple[Any, float, float], list[Any]] = {}
     for motion, analysis, key in zip(motions, analyses, apart, strict=True):
-        by_key.setdefault((key, motion.dt, exact(motion)), []).append(analysis)
+        by_key.setdefault((key, motion.dt, horizon(motion)), []).append(analysis)
     return [group[i:i + size] for group in by_key.values() for i in range(0, len(group), size)]
 
 
