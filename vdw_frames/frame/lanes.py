@@ -11,10 +11,11 @@ Design (issue 32):
   the single analysis (``simulate`` runs it on one lane of full histories), called with the lane's views: the
   same compiled arithmetic in the same order, so every lane's peaks, collapse time and histories equal
   those of :func:`~vdw_frames.frame.simulation.simulate` of its record *to the bit* (``np.array_equal``;
-  tests/frame/test_lanes.py).  The one exception: walls on records of different lengths when the shorter
+  tests/frame/test_lanes.py).  The exceptions: walls on records of different lengths when the shorter
   one is within the exact memory's length (``FastMemory.exact_below``, 2048 steps) and the batch's longest
-  is not: the batch's walls keep the fast memory built for its longest record (within 3e-9 of the exact
-  one, :mod:`vdw_frames.element.fast_memory`).
+  is not, or the longest is beyond ``FastMemory.max_steps``: the batch's walls keep the fast memory built for
+  its longest record (within 3e-9 of the exact one, :mod:`vdw_frames.element.fast_memory`); :func:`lane_batches`
+  keeps such records apart.
 * **State shaped (lanes, ...).**  Every array of the single analysis (the stories' committed state, the
   walls' bank, the other devices' states, the histories, the scratch) is stacked along a first axis of
   lanes; the compiled loop takes lane l's view of each (:func:`~vdw_frames.frame.lane_kernel.take`), which
