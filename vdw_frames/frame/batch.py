@@ -62,8 +62,8 @@ class BatchTask:
         """Peak responses of this analysis (units of :class:`~vdw_frames.frame.simulation.SimulationResult`).
 
         The package's warnings raised by the analysis (e.g. strain outside the identified range) are
-        collected per task by :func:`vdw_frames._parallel.fan_out` and re-issued by :func:`run_batch`,
-        since a worker process cannot warn the caller.
+        collected per task by :func:`vdw_frames._parallel.fan_out` and re-issued by :func:`run_batch`, once per
+        message and naming the analysis (a worker process could not warn the caller; a thread's would not say which).
         """
         result = simulate(self.building, self.motion.scaled(self.scale), method=self.method, memory=self.memory,
                           strain_compatible=self.strain_compatible, **dict(self.options))
@@ -380,7 +380,7 @@ def worker_pool(kind: str = "threads") -> AbstractContextManager[concurrent.futu
     process pool's workers at once, which also ignore Ctrl-C and die with this process (even killed by
     SIGKILL).  A plain ``ProcessPoolExecutor`` leaves its workers running when its process is killed."""
     if kind not in POOLS:
-        raise ValueError(f"kind must be one of {', '.join(POOLS)}, got {kind!r}")
+        raise ValueError(f"kind must be one of {', '.join(POOLS)}, got {show(kind)}")
     return executor_for(kind)
 
 

@@ -55,7 +55,7 @@ from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
-from .. import _warnings
+from .. import _validation, _warnings
 from .._parallel import raise_if_stopped, stop_flag
 from .._validation import check_memory, non_negative, show
 from ..element import kernel
@@ -283,7 +283,9 @@ def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analy
     above it, one horizon of the fast memory's modes (built for the record's steps, at least ``FastMemory.max_steps``:
     a record longer than that shares a batch only with records of its own length), at most :data:`LANES_PER_TASK`
     analyses each, and at most about a quarter of a worker's share (``workers``
-    processes or threads: finer tasks balance the pool; None: no pool, the batches as large as they may be).
+    processes or threads: finer tasks balance the pool; None: no pool, the batches as large as they may be), and
+    within the memory limit of a peaks-only :func:`run_lanes` call (:func:`lane_bytes`), so that a batch runs
+    whenever each of its records alone would.
     Analyses whose ``apart`` (one hashable key an analysis, e.g. the building's variant; ``building`` then stands
     for all: walls or none) differ never share a batch.  In the order of ``analyses`` within each batch."""
     apart = [None] * len(analyses) if apart is None else list(apart)
@@ -295,23 +297,49 @@ def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analy
     strategy = memory_strategy(memory) if building.wall_list else None
     free_vibration = non_negative("free_vibration", free_vibration)
 
-    def horizon(motion: GroundMotion) -> float:
-        """The walls' memory of the record's analysis: -1 exact (or no walls), else the steps the fast memory's modes
-        are built for (FastMemory.arrays: the record's steps, at least max_steps), which a batch builds for its
-        longest record: records beyond max_steps would otherwise take another record's modes."""
-        if strategy is None:
-            return -1.0
-        # size + ceil(x) <= exact_below iff size + x <= exact_below, x as simulate rounds its rest (inf: not exact)
+    def steps_of(motion: GroundMotion) -> float:
+        """The record's steps and its rest, rounded as simulate rounds them (inf for a rest too long to count)."""
         rest = free_vibration / motion.dt - 1e-9 if free_vibration > 0.0 else 0.0
-        if motion.acceleration.size + rest <= strategy.exact_below:
+        return motion.acceleration.size + (math.ceil(rest) if math.isfinite(rest) else rest)
+
+    def horizon(steps: float) -> float:
+        """The walls' memory of an analysis of ``steps`` steps: -1 exact (or no walls), else the steps the fast
+        memory's modes are built for (FastMemory.arrays: the record's steps, at least max_steps), which a batch
+        builds for its longest record: records beyond max_steps would otherwise take another record's modes."""
+        if strategy is None or steps <= strategy.exact_below:
             return -1.0
-        steps = motion.acceleration.size + (math.ceil(rest) if math.isfinite(rest) else rest)
         return float(max(steps, strategy.max_steps))
 
-    by_key: dict[tuple[Any, float, float], list[Any]] = {}
+    by_key: dict[tuple[Any, float, float], list[tuple[Any, float]]] = {}
     for motion, analysis, key in zip(motions, analyses, apart, strict=True):
-        by_key.setdefault((key, motion.dt, horizon(motion)), []).append(analysis)
-    return [group[i:i + size] for group in by_key.values() for i in range(0, len(group), size)]
+        steps = steps_of(motion)
+        by_key.setdefault((key, motion.dt, horizon(steps)), []).append((analysis, steps))
+    batches: list[list[Any]] = []
+    for group in by_key.values():
+        for first in range(0, len(group), size):
+            batch: list[Any] = []
+            longest = 0.0
+            for analysis, steps in group[first:first + size]:
+                longest_then = max(longest, steps)
+                if batch and (len(batch) + 1) * longest_then * lane_bytes(building, longest_then, memory) > \
+                        _validation.MEMORY_LIMIT_BYTES:  # (read now: tests lower it)
+                    batches.append(batch)
+                    batch, longest_then = [], steps
+                batch.append(analysis)
+                longest = longest_then
+            batches.append(batch)
+    return batches
+
+
+def lane_bytes(building: ShearBuilding, steps: float, memory: str | FastMemory, *, histories: bool = False) -> int:
+    """Bytes a lane of a :func:`run_lanes` call whose longest record (rest included) has ``steps`` steps takes a
+    step: its ground acceleration, its walls' exact memory (as simulate counts it) where the walls keep one (the
+    exact strategy, or a record within the fast one's exact length) and, with ``histories`` asked for by name,
+    every row of them (simulate's count of a row)."""
+    strategy = memory_strategy(memory)
+    exact = strategy is None or steps <= strategy.exact_below
+    return 8 + row_bytes(building.stories, len(building.wall_list), len(building.other_device_list),
+                         wall_memory=exact, histories=histories)
 
 
 def _record_names(record: str | Sequence[str]) -> tuple[str, ...]:
@@ -380,15 +408,11 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
     rest = rest_steps(free_vibration, dt)
     lengths = lengths + rest
     longest = int(lengths.max())
-    # Per lane and step: its ground acceleration, its walls' exact memory (as simulate counts it) where the walls
-    # keep one (the exact strategy, or a record within the fast one's exact length) and, for the histories asked
-    # for by name, every row of them (simulate's count of a row); checked before the workspace is made.
-    walls, others = len(building.wall_list), len(building.other_device_list)
-    strategy = memory_strategy(memory)
-    exact = strategy is None or longest <= strategy.exact_below
-    lane_bytes = 8 + row_bytes(building.stories, walls, others, wall_memory=exact, histories=bool(names))
+    # checked before the workspace is made
+    walls = len(building.wall_list)
     check_memory(f"run_lanes ({len(motions)} lanes of up to {longest} steps, {building.stories} floors, {walls} walls"
-                 f"{', histories ' + ', '.join(names) if names else ''})", float(len(motions)) * longest, lane_bytes,
+                 f"{', histories ' + ', '.join(names) if names else ''})", float(len(motions)) * longest,
+                 lane_bytes(building, longest, memory, histories=bool(names)),
                  "split the batch" + (" or keep fewer histories (record='peaks')" if names else ""))
     check_masses(building, dt)
     collapse_ratio = float(collapse_drift_ratio) if (collapse_drift_ratio and building.story_heights) else 0.0
