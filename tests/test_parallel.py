@@ -19,10 +19,9 @@ import warnings
 from pathlib import Path
 
 import pytest
+from commands import start_and_wait
 
 from vdw_frames import _parallel, _warnings
-
-REPOSITORY = Path(__file__).resolve().parents[1]
 
 
 def cube_warning_on_even(n: int) -> int:
@@ -232,15 +231,7 @@ def alive(pid: int) -> bool:
 def start_and_find_workers(tmp_path: Path, death_signal: bool) -> tuple[subprocess.Popen, list[int]]:
     script = tmp_path / "fan_out.py"
     script.write_text(textwrap.dedent(SCRIPT.format(death_signal=death_signal)))
-    environment = dict(os.environ, PYTHONPATH=os.pathsep.join([str(REPOSITORY), os.environ.get("PYTHONPATH", "")]))
-    command = subprocess.Popen([sys.executable, str(script), str(tmp_path)], env=environment,
-                               stderr=subprocess.PIPE, stdout=subprocess.DEVNULL)
-    deadline = time.monotonic() + 60
-    while len(list(tmp_path.glob("worker*"))) < 2:
-        if command.poll() is not None or time.monotonic() > deadline:
-            command.kill()
-            raise AssertionError(f"the workers did not start: {command.communicate()[1].decode()}")
-        time.sleep(0.05)
+    command = start_and_wait(script, tmp_path, "worker*", 2, "the workers")
     time.sleep(0.2)  # both pid files written
     workers = [int(path.read_text()) for path in tmp_path.glob("worker*")]
     assert all(alive(pid) for pid in workers) and command.pid not in workers

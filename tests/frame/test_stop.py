@@ -7,17 +7,14 @@ ends within a step of its analyses on SIGTERM or Ctrl-C, by that signal, as it d
 
 from __future__ import annotations
 
-import os
 import signal
-import subprocess
-import sys
 import threading
 import time
 
 import numpy as np
 import pytest
 from builders import example_ten_story
-from shared_data import REPO
+from commands import start_and_wait
 
 from vdw_frames import GroundMotion, _parallel, simulate
 from vdw_frames.frame.lanes import run_lanes
@@ -116,15 +113,7 @@ def test_a_signal_ends_a_command_on_the_default_thread_pool_within_a_step_of_its
     threads joined first (a thread left running would keep the process alive until its analysis ended)."""
     script = tmp_path / "command.py"
     script.write_text(COMMAND)
-    environment = dict(os.environ, PYTHONPATH=os.pathsep.join([str(REPO), os.environ.get("PYTHONPATH", "")]))
-    command = subprocess.Popen([sys.executable, str(script), str(tmp_path)], env=environment,
-                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    deadline = time.monotonic() + 120
-    while len(list(tmp_path.glob("task*"))) < 2:
-        if command.poll() is not None or time.monotonic() > deadline:
-            command.kill()
-            raise AssertionError(f"the analyses did not start: {command.communicate()[1].decode()}")
-        time.sleep(0.05)
+    command = start_and_wait(script, tmp_path, "task*", 2, "the analyses", seconds=120.0)
     time.sleep(0.5)  # both inside their compiled loops
     uncancelled = float((tmp_path / "uncancelled").read_text())
     signalled = time.monotonic()
