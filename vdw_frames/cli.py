@@ -13,7 +13,9 @@ import argparse
 import dataclasses
 import math
 import os
+import signal
 import sys
+import threading
 import traceback
 import warnings
 from collections.abc import Iterator, Sequence
@@ -1051,18 +1053,46 @@ def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     _refuse_unknown_flags(parser, argv)
     args = parser.parse_args(argv)
-    with plain_warnings():
+    with plain_warnings(), _noting_interrupts() as interrupted:
         try:
-            return args.run(args)
+            status = args.run(args)
+        except KeyboardInterrupt:
+            status = EXIT_INTERRUPTED
         except (ValueError, OSError) as error:
-            print(f"vdw-frames: error: {error}", file=sys.stderr)
-            return 2
-        except KeyboardInterrupt:  # one line, no traceback
+            status = 2
+            if not interrupted:
+                print(f"vdw-frames: error: {error}", file=sys.stderr)
+        except Exception:  # a defect: its traceback, and a code apart from FAIL (1) and bad input (2)
+            status = EXIT_DEFECT
+            if not interrupted:
+                traceback.print_exc()
+        if interrupted or status == EXIT_INTERRUPTED:  # one line, no traceback
             print(f"vdw-frames: interrupted (Ctrl-C); {args.command} stopped", file=sys.stderr)
             return EXIT_INTERRUPTED
-        except Exception:  # a defect: its traceback, and a code apart from FAIL (1) and bad input (2)
-            traceback.print_exc()
-            return EXIT_DEFECT
+        return status
+
+
+@contextmanager
+def _noting_interrupts() -> Iterator[list[bool]]:
+    """Within the block Ctrl-C raises KeyboardInterrupt as always, and is also noted in the list yielded: one
+    raised where Python reports and drops it (inside a weakref callback or a finaliser, as matplotlib's while a
+    figure is drawn) still ends the command as interrupted, not with the verdict it ran on to.  Only in the main
+    thread, and only over Python's own handler (another program's is left alone)."""
+    noted: list[bool] = []
+    previous = signal.getsignal(signal.SIGINT)
+    if threading.current_thread() is not threading.main_thread() or previous is not signal.default_int_handler:
+        yield noted
+        return
+
+    def interrupt(signum: int, frame: Any) -> None:
+        noted.append(True)
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGINT, interrupt)
+    try:
+        yield noted
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 if __name__ == "__main__":

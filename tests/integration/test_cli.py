@@ -256,6 +256,31 @@ def test_ctrl_c_in_a_real_process_is_one_line():
     assert err == "vdw-frames: interrupted (Ctrl-C); simulate stopped\n"
 
 
+def test_a_ctrl_c_that_a_callback_swallowed_still_ends_the_command_as_interrupted():
+    """Ctrl-C whose KeyboardInterrupt was raised inside a callback Python cannot propagate from (a weakref's, as
+    matplotlib's while a report is drawn): Python reports and drops it, and the command ran on to its verdict
+    (exit 1).  The command still ends as interrupted: exit 130, the one line last.  Reference: a command that
+    drops one that way, then returns FAIL."""
+    child = ("import signal, sys, weakref\n"
+             "import vdw_frames.cli as cli\n"
+             "class Thing:\n"
+             "    pass\n"
+             "def dropped(args):\n"
+             "    thing = Thing()\n"
+             "    watch = weakref.ref(thing, lambda _: signal.raise_signal(signal.SIGINT))\n"
+             "    del thing  # the callback runs now; its KeyboardInterrupt is reported and dropped\n"
+             "    print('ran on', watch() is None, flush=True)\n"
+             "    return 1\n"
+             "cli._sine_test = dropped\n"
+             "sys.exit(cli.main(['sine-test']))\n")
+    done = subprocess.run([sys.executable, "-c", child], check=False, capture_output=True, text=True, timeout=60,
+                          env={**os.environ, "PYTHONPATH": str(REPO)})
+    assert done.stdout == "ran on True\n"  # the interrupt was dropped: the command ran on
+    assert "KeyboardInterrupt" in done.stderr  # as Python reported it
+    assert done.returncode == 130, done.stderr
+    assert done.stderr.endswith("vdw-frames: interrupted (Ctrl-C); sine-test stopped\n")
+
+
 def test_cli_refuses_an_empty_out(capsys):
     assert cli.main(["sine-test", "--out", ""]) == 2
     assert capsys.readouterr().err == "vdw-frames: error: --out must name a folder, got ''\n"
