@@ -420,6 +420,8 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
         raise ValueError(f"wall_demands must be True or False, got {show(wall_demands)}")
     layout = _Layout(building, id(building), float(dt), len(motions), longest if names else 2, longest,
                      get_method(method), memory, collapse_ratio, wall_demands)
+    stop = stop_flag()
+    raise_if_stopped(stop)  # before the workspace (and the walls' fast memory) is made, not only within the loop
     space = workspace(layout)
     space.reset()
     space.batches += 1
@@ -441,7 +443,6 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
         space.lengths[lane] = lengths[lane]
     lanes = space.arrays
     lanes.out.acceleration[:, 0, :] = -space.ground[:, :1]
-    stop = stop_flag()
     integrate_lanes(LaneExcitation(space.ground, space.lengths, float(dt), 0, stop), space.frame, lanes,
                     newton.arrays(), space.peaks)
     raise_if_stopped(stop)

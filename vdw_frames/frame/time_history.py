@@ -108,6 +108,8 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     ground = ground[start:]
     rows = steps - start
 
+    stop = stop_flag()
+    raise_if_stopped(stop)  # before the walls' memory is built, not only within the loop
     groups, group_of_wall = group_walls(walls)
     bank = WallBank(tuple(wall for _, wall in groups), dt, steps, method, memory)
     energy_followed = bank.state("energy_followed")  # walls whose heat and stored energy are followed
@@ -136,7 +138,6 @@ def time_history(building: ShearBuilding, ground_motion: GroundMotion, dt: float
     if amplitudes:
         out.group_amplitude[0] = bank.state("amplitude")
     outcome = lane_peaks(1, 0, 0, 0)  # a single analysis keeps its histories: of the peaks, only the outcome
-    stop = stop_flag()
     excitation = LaneExcitation(np.ascontiguousarray(ground[None]), np.array([ground.size], dtype=np.int64),
                                 float(dt), int(start), stop)
     run_lane(0, excitation, frame, stories, device_arrays, out, work, newton.arrays(), outcome)
