@@ -236,8 +236,9 @@ def _simulate_figures(result: SimulationResult, out: Path, title: str) -> None:
 def _steps(motion: GroundMotion, dt: float, free_vibration: float = 0.0) -> int:
     """The steps an analysis of ``motion`` at ``dt`` takes (the record's duration, rest included), with
     ``free_vibration`` s of rest after it (as :func:`~vdw_frames.frame.time_history.time_history` rounds it up)."""
-    rest = math.ceil(free_vibration / dt - 1e-9) if free_vibration > 0.0 else 0
-    return round(motion.duration / dt) + 1 + rest
+    from .frame.time_history import rest_steps
+
+    return round(motion.duration / dt) + 1 + rest_steps(free_vibration, dt)
 
 
 def _outcome(result: SimulationResult) -> str:

@@ -299,8 +299,9 @@ def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analy
 
     def steps_of(motion: GroundMotion) -> float:
         """The record's steps and its rest, rounded as simulate rounds them (inf for a rest too long to count)."""
-        rest = free_vibration / motion.dt - 1e-9 if free_vibration > 0.0 else 0.0
-        return motion.acceleration.size + (math.ceil(rest) if math.isfinite(rest) else rest)
+        if not math.isfinite(free_vibration / motion.dt):
+            return math.inf
+        return motion.acceleration.size + rest_steps(free_vibration, motion.dt)
 
     def horizon(steps: float) -> float:
         """The walls' memory of an analysis of ``steps`` steps: -1 exact (or no walls), else the steps the fast
