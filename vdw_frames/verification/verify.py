@@ -697,12 +697,12 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
     ``collapse_drift_ratio`` (-): an analysis stops as collapsed beyond it; ``valid_drift_ratio`` (-): the
     largest drift ratio the story models are valid for (None: not checked).  ``allowable_drift_ratio``: Table
     12.12-1's Delta_a / h_sx if not the "all other structures" row.  ``executor``: any
-    ``concurrent.futures.Executor``, or "threads" (the default, None) or "processes" for an own pool over
-    all cores; ``progress``: a progress bar on
-    standard error when it is a terminal.  Every analysis is that of :func:`vdw_frames.simulate` of the bound's
-    building (:meth:`PropertyBounds.building`: walls at the bound's ambient temperature, if any, times lambda)
-    under the scaled record, run as a lane (:func:`~vdw_frames.frame.lanes.run_lanes`: each bound's records in a
-    few compiled calls, a task each on ``executor``; every peak, reason and demand equal to the bit to those
+    ``concurrent.futures.Executor``, or "threads" (the default, None) or "processes" for an own pool over all
+    cores; ``progress``: a progress bar on standard error when it is a terminal.  Every analysis is that of
+    :func:`vdw_frames.simulate` of the bound's building (:meth:`PropertyBounds.building`: walls at the bound's
+    ambient temperature, if any, times lambda) under the scaled record, run as a lane
+    (:func:`~vdw_frames.frame.lanes.run_lanes`: each bound's records in a few compiled calls, a task each on
+    ``executor``; every peak, reason and demand equal to the bit to those
     :func:`wall_peaks`, :func:`device_peaks` and :func:`unacceptable_reasons` take from simulate's result); the
     package's warnings of each analysis are re-issued once, naming the case and record.  Returns a
     :class:`VerificationResult`.
