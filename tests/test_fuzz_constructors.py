@@ -277,8 +277,12 @@ def test_a_hysteresis_model_or_shift_law_that_is_not_a_name_is_a_value_error():
 
 
 # ------------------------------------------------------------------------------------------------ readers
+# One folder for the module's generated files, removed when the run ends (a folder per example was left behind).
+_SCRATCH = tempfile.TemporaryDirectory(prefix="vdw_fuzz_")
+
+
 def written(data: bytes | str, name: str) -> Path:
-    path = Path(tempfile.mkdtemp(prefix="vdw_fuzz_")) / name
+    path = Path(tempfile.mkdtemp(dir=_SCRATCH.name)) / name
     path.write_bytes(data.encode("utf-8", "surrogatepass") if isinstance(data, str) else data)
     return path
 

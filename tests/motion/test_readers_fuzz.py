@@ -107,8 +107,12 @@ def at2_files(draw):
     return data, expected, parse(dt_text)
 
 
+# One folder for the module's generated files, removed when the run ends (a folder per example was left behind).
+_SCRATCH = tempfile.TemporaryDirectory(prefix="vdw_fuzz_")
+
+
 def write_bytes(data: bytes, name: str) -> Path:
-    folder = Path(tempfile.mkdtemp(prefix="vdw_fuzz_"))
+    folder = Path(tempfile.mkdtemp(dir=_SCRATCH.name))
     path = folder / name
     path.write_bytes(data)
     return path
