@@ -50,8 +50,9 @@ repeats for runs under a second; numba compilation is excluded except in (d)):
     iteration (a power an iterate).
 
 (i) lanes (issue 32, ``vdw_frames.frame.lanes.run_lanes``): the example frame of examples/ten_story.toml, bare
-    (yielding, P-Delta) and with its walls (amplitude-following, heating, limits), on the shipped record at 44
-    scales (0.2 ... 1.0) as one batch of 44 lanes: the time per analysis step amortised over the batch
+    (yielding, P-Delta), with walls of fixed parameters (each wall's table at its middle node: what the walls'
+    fast memory and FDMK stress cost) and with its walls (amplitude-following, heating, limits), on the shipped
+    record at 44 scales (0.2 ... 1.0) as one batch of 44 lanes: the time per analysis step amortised over the batch
     (targets <= 0.2 us bare, <= 0.6 us with walls) beside one ``simulate`` call's, and the page faults
     per analysis of a second batch (``resource.getrusage``; target <= 10).  Then part (c)'s inelastic frame with
     fractional walls on its record x 4 as 44 lanes, per analysis, against one OpenSeesPy analysis of it with
@@ -654,6 +655,17 @@ def _p695_table(kind, description, results, seconds, *, records, cores, building
               f"{seconds[label] - result.search_seconds:.1f} s")
 
 
+def fixed_parameter_walls(walled: ShearBuilding) -> ShearBuilding:
+    """``walled`` with each amplitude-following wall replaced by a wall of fixed parameters, those of its table's
+    middle node (same r, area and thickness), without heat or limits: what its fast memory and FDMK stress cost."""
+    walls = {}
+    for story, wall in walled.wall_list:
+        middle = wall.amplitude_table()[wall.amplitude_table().shape[0] // 2]
+        walls.setdefault(story, []).append(FDMKDamper(G1=middle[1], G2=middle[2], eta1=middle[3], eta2=middle[4],
+                                                      r=wall.common_order, area=wall.area, thickness=wall.thickness))
+    return walled.with_walls({story: tuple(group) for story, group in walls.items()})
+
+
 def part_lanes(benchmark_frame, motion, source, repeats):
     """(i): lanes against single analyses (module docstring)."""
     import resource
@@ -666,7 +678,12 @@ def part_lanes(benchmark_frame, motion, source, repeats):
     scales = np.linspace(0.2, 1.0, 44)
     print(f"\n(i) lanes: the example frame on the shipped record ({record.acceleration.size} points) x 44 scales "
           "(0.2 ... 1.0), one batch of 44 lanes, against one simulate() call per analysis")
+    amortised = {}
+    # The walls' share in two parts: their fast memory and FDMK stress (walls of fixed parameters), then what
+    # following amplitude, heat and limits adds.
     for label, building, target in (("bare frame", walled.without_devices(), 0.2),
+                                    ("walls of fixed parameters (no amplitude, heat or limits)",
+                                     fixed_parameter_walls(walled), math.inf),
                                     ("walls (amplitude, heat, limits)", walled, 0.6)):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -681,12 +698,17 @@ def part_lanes(benchmark_frame, motion, source, repeats):
         steps = sum(lane.steps - 1 for lane in lanes)
         per_step, single_step = 1e6 * batch / steps, 1e6 * single / (result.time.size - 1)
         faults = (after.ru_minflt - before.ru_minflt + after.ru_majflt - before.ru_majflt) / 44
-        print(f"    {label}: {per_step:.3f} us a step amortised over 44 lanes (load {load_batch:.2f}; target <= "
-              f"{target:g}: {'meets' if per_step <= target else 'misses'}); one simulate(): {single_step:.3f} us a "
-              f"step (load {load_single:.2f}); ratio {single_step / per_step:.2f}; "
-              f"{sum(lane.collapsed for lane in lanes)} of 44 collapsed")
+        bar = f"target <= {target:g}: {'meets' if per_step <= target else 'misses'}; " if target < math.inf else ""
+        amortised[label] = per_step
+        print(f"    {label}: {per_step:.3f} us a step amortised over 44 lanes ({bar}load {load_batch:.2f}); "
+              f"one simulate(): {single_step:.3f} us a step (load {load_single:.2f}); "
+              f"ratio {single_step / per_step:.2f}; {sum(lane.collapsed for lane in lanes)} of 44 collapsed")
         print(f"        page faults per analysis of a later batch: {faults:.1f} (target <= 10: "
               f"{'meets' if faults <= 10 else 'misses'})")
+    frame, plain, walls = amortised.values()
+    print(f"    the walled step's shares: the frame {frame / walls:.0%}, the walls' fast memory and FDMK stress "
+          f"{(plain - frame) / walls:.0%}, following amplitude, heat and limits {(walls - plain) / walls:.0%} "
+          "(differences of the three, same run)")
     # Against OpenSeesPy, per analysis: part (c)'s inelastic frame with fractional walls on its record x 4, as
     # 44 lanes of one batch, against one OpenSees analysis of the same frame with classical r = 1 walls.
     frame, strong = inelastic(benchmark_frame), motion.scaled(4.0)
