@@ -120,14 +120,16 @@ def run(args) -> int:
     strengths = np.array([model.yield_force for model in walled.story_models])
     print(f"frame: T1 = {walled.without_devices().periods[0]:.2f} s (bare, elastic), story strengths "
           f"{strengths[0] / weight:.3f} W at the base to {strengths[-1] / weight:.3f} W at the top "
-          f"(W = {weight / 1e6:.1f} MN), 3 % hardening, P-Delta")
+          f"(W = {weight / 1e6:.1f} MN), 3 % hardening, P-Delta; inherent damping {walled.damping_description}")
     walls = walled.wall_list
     wall = walls[0][1]
-    print(f"walls: {len(walls)} in stories {walls[0][0]}-{walls[-1][0]}, the paper's sets as one family "
-          f"(r = {wall.common_order:.3f}, {100 * wall.strain_range[0]:.0f}-{100 * wall.strain_range[1]:.0f} %); "
+    print(f"walls: {len(walls)} in stories {walls[0][0]}-{walls[-1][0]}, one family this package fitted to the paper's "
+          f"three sets, Tables 1-3 (its common r = {wall.common_order:.3f}, not a value of the paper; "
+          f"{100 * wall.strain_range[0]:.0f}-{100 * wall.strain_range[1]:.0f} %); "
           f"areas {min(w.area for _, w in walls) / 1e6:.2f}-{max(w.area for _, w in walls) / 1e6:.2f} m^2, "
           f"layers {min(w.thickness for _, w in walls):g}-{max(w.thickness for _, w in walls):g} mm")
-    print(f"  heating: from {wall.thermal.temperature:g} degC, rho c = {wall.thermal.heat_capacity:g} J/(cm^3 K), "
+    print(f"  heating: from {wall.thermal.temperature:g} degC, rho c = {wall.thermal.heat_capacity:g} J/(cm^3 K) "
+          "(assumed: the middle of 1.5-2.0 for filled polymers, ten_story.toml), "
           f"shift law {type(wall.thermal.shift).__name__}: {wall.thermal.shift.source}")
     cooling = [w.thermal.cooling_time for _, w in walls]
     print(f"  cooling: each wall with its layers' conduction time h^2 / (pi^2 kappa), kappa = 0.1 mm^2/s (assumed): "
@@ -156,10 +158,10 @@ def print_summary(results: dict[str, vdw.SimulationResult]) -> None:
     """The frame's peaks under each model, and how far they move with the wall model."""
     rows = [
         ("peak drift ratio (%)", lambda r: 100 * r.peak_drift_ratio.max()),
-        ("residual drift ratio (%)", _residual),
+        (f"residual drift ratio, {FREE_VIBRATION:g} s after (%)", _residual),
         ("peak story ductility (-)", lambda r: r.peak_ductility.max()),
         ("peak abs. floor acceleration (g)", lambda r: r.peak_absolute_acceleration.max() / G),
-        ("peak base shear (kN)", lambda r: r.peak_base_shear / 1e3),
+        ("peak base shear, story 1 (kN)", lambda r: r.peak_base_shear / 1e3),
         ("  story-1 frame shear (kN)", lambda r: np.abs(r.story_shear[:, 0]).max() / 1e3),
         ("  story-1 walls (kN)", lambda r: np.abs(r.story_wall_force[:, 0]).max() / 1e3),
         ("peak roof displacement (mm)", lambda r: np.abs(r.displacement[:, -1]).max()),
@@ -172,17 +174,16 @@ def print_summary(results: dict[str, vdw.SimulationResult]) -> None:
     print(f"the wall model moves the peak drift ratio between {min(drifts):.2f} and {max(drifts):.2f} % "
           f"(bare frame {100 * results['bare frame'].peak_drift_ratio.max():.2f} %): the time-domain model is the "
           "package's; the other two fix each wall at one amplitude")
+    print("(peak base shear: through story 1 -- its spring, walls, P-Delta and the inherent damping through it; "
+          "Rayleigh's mass-proportional forces act between the floors and the ground and are not in it)")
+    print("shares of the input energy at the end (walls: the work done on them):")
     for label in labels:
-        energy = results[label].energy
-        if label == "bare frame":
-            continue
-        heat = energy.wall_heat[-1] if energy.wall_heat is not None else energy.wall_work[-1]
-        print(f"  {label}: walls dissipate {100 * heat / energy.input[-1]:.0f} % of the input energy as heat, "
-              # round() to an int: a frame that never yields has a hysteretic energy of a rounding's size,
-              # which .0f would print as "-0".
-              f"story yielding {round(100 * energy.hysteretic[-1] / energy.input[-1])} %")
-    bare = results["bare frame"].energy
-    print(f"  bare frame: story yielding {100 * bare.hysteretic[-1] / bare.input[-1]:.0f} %")
+        shares = results[label].energy.shares()
+        # round() to an int: a frame that never yields has a hysteretic energy of a rounding's size, which .0f
+        # would print as "-0".
+        print(f"  {label}: " + ", ".join(f"{name} {round(100 * shares[name])} %"
+                                         for name in ("walls", "inherent damping", "story yielding")
+                                         if name != "walls" or label != "bare frame"))
     energy = results[MODELS[0]].energy
     if energy.wall_parameter_loss is not None:
         change = -energy.wall_parameter_loss[-1]
@@ -190,7 +191,8 @@ def print_summary(results: dict[str, vdw.SimulationResult]) -> None:
         print(f"  {MODELS[0]}: as the walls' coefficients followed their amplitude and temperature, their stored "
               f"energy {'rose' if change > 0 else 'fell'} by {abs(change) / 1e6:.0f} kN m ({share:.1f} % "
               "of the input) at no work -- a secant amplitude model is not passive where the moduli rise with "
-              "amplitude (the paper's sets stiffen from 225 to 450 %); the energy balance accounts for it")
+              "amplitude (the paper's sets stiffen from 225 to 450 %); the energy balance accounts for it, and the "
+              f"walls' heat, {energy.wall_heat[-1] / 1e6:.0f} kN m, includes it (dT below comes from that heat)")
 
 
 def print_walls(results: dict[str, vdw.SimulationResult]) -> None:
@@ -215,7 +217,9 @@ def print_walls(results: dict[str, vdw.SimulationResult]) -> None:
               f"{100 * fixed.peak_wall_strain[w]:16.0f}")
     print("  (amplitude: the largest half-cycle amplitude the wall followed; below/above: seconds spent below "
           "225 % or above 450 %, where the nearest set's parameters are used -- below, every record's build-up and "
-          "decay; peak strain exceeds the amplitude by any drift offset)")
+          "decay; peak strain exceeds the amplitude by any drift offset; eq.-lin. eff.: 0.65 x the wall's peak strain, "
+          "the effective-strain ratio of equivalent-linear site response (Idriss & Sun 1992), an assumption for walls; "
+          "dT: the peak temperature rise from the walls' heat, each wall cooling with its conduction time)")
 
 
 def print_figures(results: dict[str, vdw.SimulationResult], out: Path) -> None:

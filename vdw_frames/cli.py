@@ -165,6 +165,7 @@ def _simulate(args: argparse.Namespace) -> int:
     others = len(building.other_device_list)
     print(f"{args.building}: {building.stories} stories, T1 = {period:.3f} s (bare frame), "
           f"{len(building.wall_list)} FDMK walls" + (f", {others} other devices" if others else ""))
+    print(f"inherent damping: {building.damping_description}")
     rest = f" and {args.free_vibration:g} s of rest" if args.free_vibration > 0.0 else ""
     print(f"record {motion.name}{scaling}{rest}: PGA = {motion.pga / G:.3f} g, dt = {dt:g} s, {result.time.size} of "
           f"{_steps(motion, dt, args.free_vibration)} steps analysed")
@@ -191,21 +192,29 @@ def _simulate(args: argparse.Namespace) -> int:
 
 
 def _print_energy_shares(result: SimulationResult) -> None:
-    """Peak base shear; the shares of the input energy the walls and the other devices dissipate."""
+    """Peak base shear (what it holds); the shares of the input energy at the end (EnergyHistory.shares); the
+    walls' heat, which is not one of them."""
     energy, building = result.energy, result.building
-    heat = energy.wall_heat if energy.wall_heat is not None else energy.wall_work
-    if energy.wall_heat is None and energy.device_heat is not None and energy.device_stored is not None:
-        heat = heat - energy.device_heat - energy.device_stored  # wall_work is every device's work
-    total = energy.input[-1]
-    if building.wall_list:
-        share = heat[-1] / total if total > 0 else 0.0
-        print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; walls dissipate "
-              f"{100 * share:.0f} % of the input energy as heat")
-    else:
-        print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN; no walls")
-    if energy.device_heat is not None:
-        share = energy.device_heat[-1] / total if total > 0 else 0.0
-        print(f"the other devices dissipate {100 * share:.0f} % of the input energy")
+    print(f"peak base shear {result.peak_base_shear / 1e3:.1f} kN (through story 1: its spring, walls and devices, "
+          "P-Delta and the inherent damping through it; Rayleigh's mass-proportional forces act between the floors "
+          "and the ground and are not in it)")
+    # round(): a term of a rounding's size would print as "-0"; terms under half a percent are left out
+    shown = {name: round(100 * share) for name, share in energy.shares().items()
+             if round(100 * share) != 0 or (name == "walls" and building.wall_list)}
+    if shown:
+        names = {"walls": "walls (work done on them)", "other devices": "other devices (work done on them)"}
+        print("shares of the input energy at the end: "
+              + ", ".join(f"{names.get(name, name)} {percent} %" for name, percent in shown.items())
+              + " (terms under 0.5 % left out)")
+    if energy.wall_heat is not None and building.wall_list:
+        heat, change = energy.wall_heat[-1], -(energy.wall_parameter_loss[-1] if energy.wall_parameter_loss
+                                               is not None else 0.0)
+        text = f"the walls' heat since rest: {heat / 1e6:.1f} kN m"
+        if change > 0.0:
+            text += (f", more than the work done on them: their stored energy rose by {change / 1e6:.1f} kN m at no "
+                     "work as their coefficients followed amplitude and temperature (a secant amplitude model is not "
+                     "passive where the moduli rise with amplitude)")
+        print(text)
 
 
 def _simulate_figures(result: SimulationResult, out: Path, title: str) -> None:
@@ -350,7 +359,10 @@ def _print_wall_assumptions(building: ShearBuilding) -> None:
     for _, wall in building.wall_list:
         thermal, limits = wall.thermal, wall.limits
         if thermal is not None:
-            lines[f"walls heat from {thermal.temperature:g} degC, rho c = {thermal.heat_capacity:g} J/(cm^3 K), "
+            cooling = ("adiabatic (no cooling)" if math.isinf(thermal.cooling_time)
+                       else f"cooling with a time constant of {thermal.cooling_time:g} s")
+            lines[f"walls heat from {thermal.temperature:g} degC, {cooling}, rho c = {thermal.heat_capacity:g} "
+                  "J/(cm^3 K) (the building file's value, taken as given), "
                   f"shift law {type(thermal.shift).__name__}: {thermal.shift.source or 'no source given'}"] = None
         if limits is not None:
             bounds = [f"{name} {value:g}{unit}" for name, value, unit in

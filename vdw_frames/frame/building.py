@@ -364,6 +364,17 @@ class ShearBuilding:
             return self.damping_matrix
         return _read_only(self.rayleigh_coefficients[1] * self.stiffness_matrix)
 
+    @property
+    def damping_description(self) -> str:
+        """The inherent damping in words, e.g. "5 % Rayleigh on modes 1 and 2, with the initial story stiffness
+        (walls and P-Delta excluded)": an assumption of every analysis, for outputs to state."""
+        percent = f"{100 * self.damping_ratio:g} %"
+        if self.damping_model == "modal":
+            return f"{percent} in every mode of the bare elastic frame (modal)"
+        first, second = self.damping_modes
+        modes = f"mode {first}" if first == second else f"modes {first} and {second}"
+        return f"{percent} Rayleigh on {modes}, with the initial story stiffness (walls and P-Delta excluded)"
+
     @cached_property
     def story_damping_row(self) -> np.ndarray:
         """1^T C_s, N*s/mm per mm/s of each floor's velocity: the damping force through story 1

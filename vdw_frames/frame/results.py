@@ -94,6 +94,29 @@ class EnergyHistory:
         return self.input - (self.kinetic + self.frame_strain + self.hysteretic + self.inherent_damping
                              + self.wall_work + self.p_delta)
 
+    def shares(self) -> dict[str, float]:
+        """The terms of :attr:`balance_error`'s balance at the last step, each over the input energy (-): "walls"
+        (the work done on the walls: the heat they dissipated plus what they store, gain or lose; the work of
+        every device without fluid viscous or friction dampers), "other devices" (the work done on those),
+        "inherent damping", "story yielding" (``hysteretic``), "frame strain and motion" (``frame_strain`` +
+        ``kinetic``, still in the frame), "gravity (P-Delta)" (``p_delta``, <= 0).  Together they are 1 up to
+        the balance error.  Empty when the input energy is not positive (nothing to take a share of).
+
+        The walls' heat is not one of them: where their coefficients follow amplitude or temperature, their
+        stored energy changes at no work (``wall_parameter_loss``), so their heat can exceed the work done on
+        them."""
+        total = float(self.input[-1])
+        if not total > 0.0:
+            return {}
+        devices = 0.0
+        if self.device_heat is not None and self.device_stored is not None:
+            devices = float(self.device_heat[-1] + self.device_stored[-1])
+        terms = {"walls": float(self.wall_work[-1]) - devices, "other devices": devices,
+                 "inherent damping": float(self.inherent_damping[-1]), "story yielding": float(self.hysteretic[-1]),
+                 "frame strain and motion": float(self.frame_strain[-1] + self.kinetic[-1]),
+                 "gravity (P-Delta)": float(self.p_delta[-1])}
+        return {name: value / total for name, value in terms.items()}
+
 
 @dataclass(frozen=True)
 class FrameState:
