@@ -158,7 +158,7 @@ def print_summary(results: dict[str, vdw.SimulationResult]) -> None:
     """The frame's peaks under each model, and how far they move with the wall model."""
     rows = [
         ("peak drift ratio (%)", lambda r: 100 * r.peak_drift_ratio.max()),
-        (f"residual drift ratio, {FREE_VIBRATION:g} s after (%)", _residual),
+        (f"resid. drift ratio, {FREE_VIBRATION:g} s after (%)", _residual),
         ("peak story ductility (-)", lambda r: r.peak_ductility.max()),
         ("peak abs. floor acceleration (g)", lambda r: r.peak_absolute_acceleration.max() / G),
         ("peak base shear, story 1 (kN)", lambda r: r.peak_base_shear / 1e3),
