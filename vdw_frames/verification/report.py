@@ -106,8 +106,8 @@ def markdown(result: VerificationResult, figures: Mapping[str, str], title: str)
              "implementers' code, the committee chair's slides); Table 12.12-1 and the Chapter 18 provisions were "
              "not read at all (see the package documentation, `vdw_frames.verification`).  Sec. 16.2.3.1, "
              "16.2.3.2 and 16.4.1.2 were read in a transcription of their ASCE 7-22 wording (believed the same in "
-             "substance for 7-16, not verified) and are cited so; Sec. 16.4.1.1's count in the ASCE 7-16 chair's "
-             "slides (Hamburger 2014).", "",
+             "substance for 7-16, not verified) and are cited so; Sec. 16.4.1.1's count for Risk Category I-II in the "
+             "ASCE 7-16 chair's slides (Hamburger 2014), for III-IV recalled.", "",
              "## Site and target (Sec. 11.4)", "", f"- {site.describe()}", "",
              "## Suite (Sec. 16.2)", "",
              f"- {suite.range.describe()}",
