@@ -699,7 +699,9 @@ def _verify(args: argparse.Namespace) -> int:
                     progress=True)
     figures = {"Target MCE_R spectrum, 90 % of it, the scaled records and their mean over the period range":
                plotting.plot_suite_spectra(result, out / "suite_spectra.png").name,
-               "Peak story drift ratios per record, the suite mean and the limit, per bound":
+               "Peak story drift ratios per record (acceptable: grey, unacceptable: red dotted), each bound's drift "
+               "statistic of Sec. 16.4.1.2 (the mean, or max(mean, 1.2 x median) of the acceptable records) and the "
+               "limit":
                plotting.plot_story_drifts(result, out / "story_drifts.png").name}
     for name, text in (("suite.csv", verification_report.suite_csv(result)),
                        ("spectra.csv", verification_report.spectra_csv(result)),

@@ -2,7 +2,10 @@
 (the velocity as the derivative of the deformation, computed here)."""
 
 import concurrent.futures
+import csv
 import dataclasses
+import io
+import math
 
 import numpy as np
 import pytest
@@ -11,7 +14,8 @@ from verification_cases import r1_wall, synthetic_records, three_story
 from vdw_frames import FDMKDamper, ShearBuilding, simulate
 from vdw_frames.element import ThermalProperties, WallLimits
 from vdw_frames.element.thermal import ISD110_LOSS_PEAK
-from vdw_frames.verification import Site
+from vdw_frames.plotting import verification as plotting_verification
+from vdw_frames.verification import Site, report
 from vdw_frames.verification.verify import (
     PropertyBounds,
     acceptance,
@@ -46,8 +50,16 @@ def test_one_collapse_among_eleven_is_allowed_for_risk_category_ii_only():
     np.testing.assert_allclose(statistic[0], expected, rtol=1e-14)
     np.testing.assert_allclose(statistic[1], drifts[1].mean(axis=0), rtol=1e-14)
     assert all(c.passed for c in criteria)
+    # each drift criterion says which statistic it is and over how many records, and cites the clause as read
+    assert criteria[1].name == "story drift ratio, max(mean, 1.2 x median) of the 10 acceptable of 11 records (nominal)"
+    assert criteria[3].name == "story drift ratio, mean of all 11 records (upper)"
+    assert criteria[1].clause == ("ASCE 7-16 Sec. 16.4.1.2 (read in ASCE 7-22 wording), Table 12.12-1 (values "
+                                  "recalled, not read from the standard)")
+    assert criteria[0].clause == "ASCE 7-16 Sec. 16.4.1.1 (read in the ASCE 7-16 chair's slides, Hamburger 2014)"
+    assert not any("mean story drift ratio" in c.name for c in criteria)
     # Risk Category III allows none; a second collapse fails Risk Category II
     assert not cases(drifts, reasons, "III")[0][0].passed
+    assert cases(drifts, reasons, "III")[0][0].clause.endswith("(Risk Category III-IV's count recalled, not read)")
     reasons[0][7] = "collapse"
     criteria = cases(drifts, reasons)[0]
     assert not criteria[0].passed and criteria[0].value == 2 and criteria[0].limit == 1
@@ -56,7 +68,8 @@ def test_one_collapse_among_eleven_is_allowed_for_risk_category_ii_only():
     reasons[1] = ["collapse"] * 11
     criteria, statistic, _, _ = cases(drifts, reasons)
     np.testing.assert_allclose(statistic[1], drifts[1].mean(axis=0), rtol=1e-14)
-    assert "mean of all (none acceptable)" in criteria[3].text
+    assert criteria[3].name == "story drift ratio, mean of all 11 records, unacceptable ones included (none " \
+        "acceptable) (upper)"
 
 
 def test_a_mean_drift_exactly_at_the_limit_passes_and_just_above_fails():
@@ -179,6 +192,70 @@ def test_the_mean_drift_is_that_of_the_suite(verified):
     assert result.passed and len(result.criteria) == 6
 
 
+def test_the_report_cites_the_clauses_as_read_and_names_each_drift_statistic(verified):
+    result, _ = verified
+    text = report.markdown(result, {}, "t")
+    for words in ("Sec. 16.2.3.1, 16.2.3.2 and 16.4.1.2 were read in a transcription of their ASCE 7-22 wording",
+                  "(ASCE 7-16 Sec. 16.2.3.1, read in ASCE 7-22 wording)",
+                  "(Sec. 16.2.3.2, read in ASCE 7-22 wording;",
+                  "that component's own 5 %-damped spectrum stands in for the maximum-direction spectrum",
+                  "| ASCE 7-16 Sec. 16.4.1.2 (read in ASCE 7-22 wording), Table 12.12-1 (values recalled, not read "
+                  "from the standard) |",
+                  "| story | nominal: mean of all 11 records (%) | upper: mean of all 11 records (%) | lower: mean of "
+                  "all 11 records (%) |"):
+        assert words in text, words
+    assert "mean drift (%)" not in text and "mean story drift ratio" not in text
+    # every record acceptable: the statistic is the mean of all (test_the_mean_drift_is_that_of_the_suite)
+    # 9, 8 and 11 of the 11 unacceptable (nominal, upper, lower), the statistics and criteria as acceptance gives them
+    bad = [{1, 2, 3, 4, 5, 6, 7, 8, 9}, {0, 1, 2, 3, 4, 5, 6, 7}, set(range(11))]
+    reasons = tuple(tuple("collapse" if r in bad[c] else "" for r in range(11)) for c in range(3))
+    criteria, statistic, _, _ = acceptance(result.peak_drift_ratio, reasons, records=NAMES)
+    failing = dataclasses.replace(result, unacceptable=reasons, drift_statistic=statistic, criteria=criteria)
+    assert [failing.drift_statistic_basis(case) for case, _ in failing.cases] == [
+        "max(mean, 1.2 x median) of the 2 acceptable of 11 records",
+        "max(mean, 1.2 x median) of the 3 acceptable of 11 records",
+        "mean of all 11 records, unacceptable ones included (none acceptable)"]
+    text = report.markdown(failing, {}, "t")
+    assert ("| story | nominal: max(mean, 1.2 x median) of the 2 acceptable of 11 records (%) | upper: max(mean, "
+            "1.2 x median) of the 3 acceptable of 11 records (%) | lower: mean of all 11 records, unacceptable ones "
+            "included (none acceptable) (%) |") in text
+    assert "where none is, the mean of all, the unacceptable ones included (this package's fallback" in text
+    assert "| story drift ratio, max(mean, 1.2 x median) of the 2 acceptable of 11 records (nominal) |" in text
+
+
+def test_the_wall_table_says_which_case_each_column_comes_from(verified, monkeypatch, tmp_path):
+    result, _ = verified
+    text = report.markdown(result, {}, "t")
+    assert ("| wall | story | deformation (mm) | strain (%) | velocity (mm/s) | force (kN) | energy/cycle (kN m) | "
+            "cumulative (kN m) | temperature rise (K) | largest deformation in (case, record) |") in text
+    assert ("Each wall's largest values over all 33 analyses (3 cases x 11 records, unacceptable ones included), "
+            "each column from the case and record that gave it: the last column names those of the largest "
+            "deformation only") in text
+    rows = list(csv.DictReader(io.StringIO(report.walls_csv(result))))
+    assert "strain" not in rows[0] and "governing" not in rows[0]
+    names = [m.name for m in result.suite.motions]
+    for j, row in enumerate(rows):
+        assert float(row["strain_fraction"]) == result.walls[j].strain  # a fraction: 1.0 is 100 %
+        for name in ("deformation", "strain", "velocity", "force", "cycle_energy", "cumulative_energy"):
+            c, r = np.unravel_index(np.argmax(result.wall_peaks[name][:, :, j]), (3, 11))
+            assert row[f"governing_{name}"] == f"{result.cases[c][0]}, {names[r]}", name
+        assert row["governing_deformation"] == result.walls[j].governing
+        assert row["governing_temperature_rise"] == ""  # the walls do not heat
+    # the figure's legend names every line style drawn: records acceptable and not, each panel's statistic
+    reasons = tuple(tuple("collapse" if r < 9 and c == 0 else "" for r in range(11)) for c in range(3))
+    criteria, statistic, _, _ = acceptance(result.peak_drift_ratio, reasons, records=NAMES)
+    failing = dataclasses.replace(result, unacceptable=reasons, drift_statistic=statistic, criteria=criteria)
+    saved, real = [], plotting_verification.save
+    monkeypatch.setattr(plotting_verification, "save", lambda fig, path: (saved.append(fig), real(fig, path))[1])
+    plotting_verification.plot_story_drifts(failing, tmp_path)
+    legends = [[t.get_text() for t in axes.get_legend().get_texts()] for axes in saved[0].axes]
+    assert legends[0] == ["unacceptable record (Sec. 16.4.1.1)", "acceptable record",
+                          "max(mean, 1.2 x median) of the 2\nacceptable of 11 records\n(Sec. 16.4.1.2, ASCE 7-22 "
+                          "wording)", "limit 4.0 % (2 x Table 12.12-1)"]
+    assert legends[1][:2] == ["acceptable record", "mean of all 11 records\n(Sec. 16.4.1.2, ASCE 7-22 wording)"]
+    assert not any("suite mean" in label for legend in legends for label in legend)
+
+
 def test_collapses_are_counted_end_to_end(verified):
     result, _ = verified
     suite = result.suite
@@ -196,8 +273,9 @@ def test_collapses_are_counted_end_to_end(verified):
 def test_walls_that_heat_report_their_temperature_rise(verified):
     result, _records = verified
     thermal = ThermalProperties(ISD110_LOSS_PEAK, 1.8, 21.0)
+    cooled = ThermalProperties(ISD110_LOSS_PEAK, 1.8, 21.0, cooling_time=20.0)  # story 3's wall: not adiabatic
     building = three_story()
-    heated = building.with_walls({s: tuple(dataclasses.replace(w, thermal=thermal) for w in ws)
+    heated = building.with_walls({s: tuple(dataclasses.replace(w, thermal=cooled if s == 3 else thermal) for w in ws)
                                   for s, ws in building.walls.items()})
     with concurrent.futures.ThreadPoolExecutor(2) as executor:
         hot = verify(heated, SITE, list(result.suite.motions), bounds=(0.8, 1.25), executor=executor, progress=False)
@@ -209,6 +287,15 @@ def test_walls_that_heat_report_their_temperature_rise(verified):
             rises.append(np.max(temperature - temperature[0], axis=0))
     np.testing.assert_allclose([w.temperature_rise for w in hot.walls], np.max(rises, axis=0), rtol=1e-9)
     assert all(w.temperature_rise > 0 for w in hot.walls) and "temperature rise" in hot.specification
+    # the outputs say how the rises were computed: adiabatic where the wall does not cool
+    assert [w.cooling_time for w in hot.walls] == [math.inf, math.inf, 20.0]
+    lines = hot.specification.splitlines()
+    assert f"temperature rise {hot.walls[0].temperature_rise:.1f} K (adiabatic: no cooling) to be" in lines[1]
+    assert f"temperature rise {hot.walls[2].temperature_rise:.1f} K (cooling with time constant 20 s)" in lines[3]
+    assert ("Temperature rises: adiabatic for wall(s) 1, 2 (no cooling in the thermal description: cooling time "
+            "infinite), so all the heat stays in the viscoelastic layers -- an upper bound of the rise; wall 3 "
+            "cooling towards its ambient with time constant 20 s.") in report.markdown(hot, {}, "t")
+    assert "Temperature rises" not in report.markdown(result, {}, "t")  # walls that do not heat
 
 
 def test_cycle_energies_of_a_sine():

@@ -72,7 +72,13 @@ def test_verify_command_writes_the_report(inputs, capsys):
     assert ratio.min() == pytest.approx(0.9, rel=1e-9)
     report = (out / "report.md").read_text()
     assert "**Result: PASS**" in report and "![" in report and "Prototype tests" in report
-    assert "mean story drift ratio (lower)" in report
+    assert "| story drift ratio, mean of all 11 records (lower) |" in report and "mean story drift" not in report
+    assert "Sec. 16.4.1.2 (read in ASCE 7-22 wording)" in report and "stands in for the maximum-direction" in report
+    assert "Sec. 16.2.3.1, read in ASCE 7-22 wording" in printed  # the period range, on the console too
+    # walls.csv names the strain a fraction, and the case and record of each column's largest
+    assert [float(row["strain_fraction"]) for row in rows] == pytest.approx([w.strain for w in expected.walls],
+                                                                            rel=1e-12)
+    assert [row["governing_deformation"] for row in rows] == [w.governing for w in expected.walls]
 
 
 @pytest.mark.parametrize("extra, words", [

@@ -85,8 +85,9 @@ class PeriodRange:
     mass_period: float
 
     def describe(self) -> str:
-        """One line stating the range and where its ends come from."""
-        return (f"period range {self.lower:.3f} ... {self.upper:.3f} s (ASCE 7-16 Sec. 16.2.3.1): T_upper = "
+        """One line stating the range and where its ends come from (the clause as read: module docstring)."""
+        return (f"period range {self.lower:.3f} ... {self.upper:.3f} s (ASCE 7-16 Sec. 16.2.3.1, read in ASCE 7-22 "
+                f"wording): T_upper = "
                 f"2 T_1 = 2 x {self.first_period:.3f} s; T_lower = min(0.2 T_1 = {0.2 * self.first_period:.3f} s, "
                 f"T_{self.mass_mode} = {self.mass_period:.3f} s where the modes reach "
                 f"{100 * self.mass_participation[self.mass_mode - 1]:.1f} % of the mass); periods with the walls and "

@@ -21,13 +21,17 @@ nominal, upper- and lower-bound wall properties and judges the results:
   per bound: Risk Category I and II, not more than 1 of the suite (the ASCE 7-16 chair's slides, Hamburger 2014:
   "For Risk Category II Structures not more than 1 motion can produce unacceptable response"); Risk Category III
   and IV: none -- from recollection of the standard, NOT verified in any source read (the strict reading).
-* **mean story drift ratio** (Sec. 16.4.1.2, as transcribed for ASCE 7-22; believed the same for 7-16, not
-  verified): per story and bound, the mean over the suite of the peak drift ratio <= 2 x the allowable drift of
-  Table 12.12-1 (row "all other structures": 0.020, 0.020, 0.015, 0.010 h_sx for Risk Categories I, II, III,
-  IV; the table was NOT read from the standard: values as recalled and partly corroborated by secondary
-  sources), i.e. 0.040 for Risk Category II.  Where some response is unacceptable the statistic is taken
-  over the acceptable ones as max(mean, 1.2 x median) (the ASCE 7-22 transcription's rule; conservative).
-  Compared to a relative 1e-12, so that a mean exactly at the limit passes despite round-off.
+* **story drift statistic** (Sec. 16.4.1.2, as transcribed for ASCE 7-22; believed the same for 7-16, not
+  verified; the outputs cite it as read in ASCE 7-22 wording, :data:`DRIFT_CLAUSE`): per story and bound,
+  the mean over the suite of the peak drift ratio <= 2 x the allowable drift of Table 12.12-1 (row "all other
+  structures": 0.020, 0.020, 0.015, 0.010 h_sx for Risk Categories I, II, III, IV; the table was NOT read
+  from the standard: values as recalled and partly corroborated by secondary sources), i.e. 0.040 for Risk
+  Category II.  Where some response is unacceptable the statistic is taken over the acceptable ones as
+  max(mean, 1.2 x median) (the ASCE 7-22 transcription's rule; conservative); where none is acceptable, the
+  mean of all, the unacceptable ones included (this package's fallback, not read in the clause's
+  transcription).  The outputs name each case's statistic and how many records stand behind it
+  (:func:`drift_statistic_basis`).  Compared to a relative 1e-12, so that a mean exactly at the limit passes
+  despite round-off.
 * **device test demands** (Sec. 18.6, prototype tests; its text was NOT read): per wall, over the suite and the
   bounds: the largest deformation (mm, the wall's own: strain x thickness), strain (-), velocity (mm/s, the
   central-difference derivative of the deformation history), force (N), energy of one cycle (N mm: the work
@@ -91,6 +95,26 @@ not verified)."""
 MEDIAN_FACTOR = 1.2
 """Where responses are unacceptable: the drift statistic is max(mean, 1.2 x median) of the acceptable ones
 (ASCE 7-22 wording as transcribed; not verified for ASCE 7-16)."""
+DRIFT_CLAUSE = ("ASCE 7-16 Sec. 16.4.1.2 (read in ASCE 7-22 wording), Table 12.12-1 (values recalled, not read "
+                "from the standard)")
+"""How the outputs cite the drift criterion: the clause was read in a transcription of the ASCE 7-22 wording
+(:data:`DRIFT_FACTOR`, :data:`MEDIAN_FACTOR`), the table's values recalled (:data:`ALLOWABLE_DRIFT`)."""
+UNACCEPTABLE_CLAUSE = {
+    **dict.fromkeys(("I", "II"), "ASCE 7-16 Sec. 16.4.1.1 (read in the ASCE 7-16 chair's slides, Hamburger 2014)"),
+    **dict.fromkeys(("III", "IV"), "ASCE 7-16 Sec. 16.4.1.1 (Risk Category III-IV's count recalled, not read)")}
+"""How the outputs cite the count of unacceptable responses, by Risk Category (:data:`ALLOWED_UNACCEPTABLE`)."""
+
+
+def drift_statistic_basis(acceptable: int, records: int) -> str:
+    """What the drift statistic of a case is (Sec. 16.4.1.2, read in ASCE 7-22 wording), given how many of the
+    suite's ``records`` gave an ``acceptable`` response: the mean of all of them when every one is acceptable;
+    max(mean, 1.2 x median) of the acceptable ones when some are not; when none is, the mean of all, the
+    unacceptable ones included -- this package's fallback, not read in the clause's transcription."""
+    if acceptable == records:
+        return f"mean of all {records} records"
+    if acceptable > 0:
+        return f"max(mean, {MEDIAN_FACTOR:g} x median) of the {acceptable} acceptable of {records} records"
+    return f"mean of all {records} records, unacceptable ones included (none acceptable)"
 
 
 AGING_ENVIRONMENT_WEIGHT = 0.75
@@ -320,7 +344,10 @@ class WallDemand:
     ``story``; ``wall``: its index in ``building.wall_list``; ``deformation`` (mm), ``strain`` (-),
     ``velocity`` (mm/s), ``force`` (N): largest magnitudes; ``cycle_energy`` (N mm): the largest work of one
     cycle; ``cumulative_energy`` (N mm): the largest work over one record; ``temperature_rise`` (K; None when
-    the wall does not heat); ``governing``: "bound, record" of the largest deformation.
+    the wall does not heat); ``governing``: "bound, record" of the largest deformation only (every other value
+    is the largest over all the bounds and records, each from its own: ``VerificationResult.wall_peaks``);
+    ``cooling_time`` (s): its thermal description's (inf: adiabatic, the heat kept in the layers; None when
+    the wall does not heat).
     """
 
     story: int
@@ -333,6 +360,7 @@ class WallDemand:
     cumulative_energy: float
     temperature_rise: float | None
     governing: str
+    cooling_time: float | None = None
 
 
 @dataclass(frozen=True)
@@ -374,10 +402,12 @@ class VerificationResult:
     ``suite`` (:class:`~vdw_frames.verification.suite.ScaledSuite`); ``bounds``; ``cases``: (name, lambda) of
     the analyses; ``peak_drift_ratio`` (-, (cases, records, stories)); ``collapsed``, ``converged`` (bool,
     (cases, records)); ``unacceptable``: per case and record the reasons ("" when acceptable);
-    ``drift_statistic`` (-, (cases, stories)): the mean (or the statistic of Sec. 16.4.1.2 with unacceptable
-    responses); ``drift_limit`` (-); ``allowed_unacceptable``; ``criteria``; ``walls`` (:class:`WallDemand`
-    per wall); ``wall_peaks``: each analysis's :func:`wall_peaks`, name -> (cases, records, walls);
-    ``specification``: the prototype test specification text; ``first_period`` (s, with walls);
+    ``drift_statistic`` (-, (cases, stories)): the mean, or the statistic of Sec. 16.4.1.2 with unacceptable
+    responses (:meth:`drift_statistic_basis` says which, over how many records); ``drift_limit`` (-);
+    ``allowed_unacceptable``; ``criteria``; ``walls`` (:class:`WallDemand` per wall); ``wall_peaks``: each
+    analysis's :func:`wall_peaks`, name -> (cases, records, walls) (:meth:`wall_governing` names the analysis of
+    each wall's largest); ``specification``: the prototype test specification text; ``first_period`` (s, with
+    walls);
     ``stiffness_factors`` (-, (cases, walls, 2)): each case's K' and K'' of every wall over the nominal, at
     1 / ``first_period`` (:func:`stiffness_factors`; they differ where an ambient range is bounded);
     ``ambient_ends`` (degC, (cases, walls)): the ambient temperature each wall starts from in each case
@@ -411,6 +441,23 @@ class VerificationResult:
         c = [name for name, _ in self.cases].index(case)
         ends = sorted({end for end in self.ambient_ends[c] if end is not None}) if self.ambient_ends else []
         return " and ".join(f"{end:g} degC" for end in ends)
+
+    def drift_statistic_basis(self, case: str) -> str:
+        """What ``drift_statistic`` holds for ``case`` and over how many of the suite's records (the module
+        function :func:`drift_statistic_basis`), e.g. "max(mean, 1.2 x median) of the 2 acceptable of 11
+        records"."""
+        reasons = self.unacceptable[[name for name, _ in self.cases].index(case)]
+        return drift_statistic_basis(sum(not reason for reason in reasons), len(reasons))
+
+    def wall_governing(self, name: str, wall: int) -> str:
+        """"case, record" of the analysis that gave wall ``wall``'s (index in ``walls``) largest ``name``
+        (one of :data:`WALL_PEAKS`) in ``wall_peaks``: the first such analysis, cases in order; "" where the
+        wall does not heat (temperature_rise)."""
+        values = self.wall_peaks[name][:, :, wall]
+        if not np.isfinite(values).any():
+            return ""
+        c, r = np.unravel_index(int(np.nanargmax(values)), values.shape)
+        return f"{self.cases[int(c)][0]}, {self.suite.motions[int(r)].name or f'record {int(r) + 1}'}"
 
     @property
     def passed(self) -> bool:
@@ -618,7 +665,7 @@ def acceptance(peak_drift_ratio: np.ndarray, unacceptable: Sequence[Sequence[str
         bad = [r for r in range(n_records) if unacceptable[c][r]]
         count_text = "; ".join(names[r] for r in bad) or "none"
         criteria.append(Criterion(
-            name=f"unacceptable responses ({case})", clause="ASCE 7-16 Sec. 16.4.1.1", passed=len(bad) <= allowed,
+            name=f"unacceptable responses ({case})", clause=UNACCEPTABLE_CLAUSE[category], passed=len(bad) <= allowed,
             value=float(len(bad)), limit=float(allowed), governing=f"{case}: {count_text}",
             text=f"{len(bad)} of {n_records} unacceptable, {allowed} allowed for Risk Category {category} ({case}: "
                  f"{count_text})"))
@@ -632,13 +679,12 @@ def acceptance(peak_drift_ratio: np.ndarray, unacceptable: Sequence[Sequence[str
         story = int(np.argmax(statistic[c]))
         worst = float(statistic[c, story])
         record = names[int(np.argmax(drifts[c, :, story]))]
-        how = "mean" if not bad else "mean of all (none acceptable)" if good.size == 0 else \
-            "max(mean, 1.2 median) of the acceptable"
+        how = drift_statistic_basis(int(good.size), n_records)
         criteria.append(Criterion(
-            name=f"mean story drift ratio ({case})", clause="ASCE 7-16 Sec. 16.4.1.2, Table 12.12-1",
+            name=f"story drift ratio, {how} ({case})", clause=DRIFT_CLAUSE,
             passed=bool(worst <= limit * (1 + 1e-12)), value=worst, limit=limit,
             governing=f"{case}, story {story + 1}, largest single record {record}",
-            text=f"{how} {worst:.4f} in story {story + 1} vs {DRIFT_FACTOR:g} x {allowable:g} = {limit:.4f} "
+            text=f"{worst:.4f} in story {story + 1} vs {DRIFT_FACTOR:g} x {allowable:g} = {limit:.4f} "
                  f"({case}; largest single record there: {record})"))
     return tuple(criteria), statistic, limit, allowed
 
@@ -652,8 +698,9 @@ def prototype_test_specification(walls: Sequence[WallDemand], frequency: float,
     it; the text says so when there are other devices) at the largest deformation; the number of cycles the
     energy-equivalent one, ceil(cumulative / largest cycle energy), but not fewer than 5; where the largest
     velocity exceeds the sine's 2 pi f A, a second frequency v_max / (2 pi A) that reaches it; the temperature
-    rise to be reached or accounted for where the walls heat.  Per other device (``devices``), the largest
-    deformation, velocity and force over both bounds, which its tests are to reach."""
+    rise to be reached or accounted for where the walls heat (said adiabatic where the wall does not cool).  Per
+    other device (``devices``), the largest deformation, velocity and force over both bounds, which its tests
+    are to reach."""
     frequency = positive("frequency", frequency)
     lines = [f"Prototype tests (ASCE 7-16 Sec. 18.6 as this package reads it; the clause's own sequence was not "
              f"available): sinusoidal cycles at f1 = {frequency:.3f} Hz (1/T1 with the walls) unless stated."]
@@ -672,13 +719,24 @@ def prototype_test_specification(walls: Sequence[WallDemand], frequency: float,
             text += (f"; and cycles at {demand.velocity / (2 * math.pi * demand.deformation):.3f} Hz to reach the "
                      f"velocity {demand.velocity:.0f} mm/s")
         if demand.temperature_rise is not None and np.isfinite(demand.temperature_rise):
-            text += f"; temperature rise {demand.temperature_rise:.1f} K to be reached or accounted for"
+            text += f"; temperature rise {demand.temperature_rise:.1f} K{_heating(demand.cooling_time)} to be " \
+                    "reached or accounted for"
         lines.append(text)
     for other in devices:
         lines.append(f"- device {other.device + 1} (story {other.story}, {other.description}): deformation +/- "
                      f"{max(other.deformation.values()):.1f} mm, velocity up to {max(other.velocity.values()):.0f} "
                      f"mm/s, force up to {max(other.force.values()) / 1e3:.1f} kN (largest of the bounds)")
     return "\n".join(lines)
+
+
+def _heating(cooling_time: float | None) -> str:
+    """" (adiabatic: ...)" or " (cooling ...)": how a wall's temperature rise was computed, from its thermal
+    description's cooling time (s; inf: adiabatic); "" when not known (None)."""
+    if cooling_time is None:
+        return ""
+    if math.isinf(cooling_time):
+        return " (adiabatic: no cooling)"
+    return f" (cooling with time constant {cooling_time:.3g} s)"
 
 
 # ----------------------------------------------------------------------------------------------- verify
@@ -783,13 +841,14 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
 def _wall_demands(building: ShearBuilding, peaks: dict[str, np.ndarray], cases: Sequence[tuple[str, float]],
                   names: Sequence[str]) -> tuple[WallDemand, ...]:
     demands = []
-    for j, (story, _) in enumerate(building.wall_list):
+    for j, (story, wall) in enumerate(building.wall_list):
         c, r = np.unravel_index(int(np.argmax(peaks["deformation"][:, :, j])), peaks["deformation"].shape[:2])
         rise = peaks["temperature_rise"][:, :, j]
         demands.append(WallDemand(
             story=story, wall=j, **{name: float(peaks[name][:, :, j].max()) for name in WALL_PEAKS[:-1]},
             temperature_rise=float(np.nanmax(rise)) if np.isfinite(rise).any() else None,
-            governing=f"{cases[int(c)][0]}, {names[int(r)]}"))
+            governing=f"{cases[int(c)][0]}, {names[int(r)]}",
+            cooling_time=None if wall.thermal is None else float(wall.thermal.cooling_time)))
     return tuple(demands)
 
 
