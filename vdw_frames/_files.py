@@ -167,6 +167,13 @@ def write_via(path: Path, write: Callable[[Path], object]) -> None:
         raise
 
 
+def writable_file(path: str | os.PathLike[str]) -> Path:
+    """``path`` checked as a file the package may write (a new path or a regular writable file in an existing
+    folder), before the work whose result goes there: a command writing several files checks them all first,
+    so that none is written when another would be refused."""
+    return _target(Path(path))
+
+
 def _target(path: Path) -> Path:
     """``path``, checked to be a new path or a regular writable file in an existing folder: a symbolic link
     (followed or dangling, it would have the write land wherever it points), a folder, a FIFO or device is

@@ -21,7 +21,7 @@ import warnings
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager, suppress
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TextIO, cast
+from typing import TYPE_CHECKING, Any, NoReturn, TextIO, cast
 
 import numpy as np
 
@@ -139,6 +139,11 @@ def _simulate(args: argparse.Namespace) -> int:
         raise ValueError(f"--free-vibration must be seconds >= 0, got {args.free_vibration:g}")
     out = _output_folder(args.out) if args.out is not None else None
     save = _output_folder(args.save, "--save") if args.save is not None else None
+    if save is not None:  # both files checked first: a refused one must not leave the other replaced
+        from ._files import writable_file
+
+        for name in ("summary.csv", "result.npz"):
+            writable_file(save / name)
     building, options = load_analysis(args.building)
     motion = read_at2(args.record)
     flag = f"--pga {args.pga:g}" if args.pga is not None else \
@@ -972,11 +977,19 @@ EXIT_DEFECT = 3
 """Exit code after an unexpected error (a defect of the package), apart from FAIL (1) and bad input (2)."""
 
 
+class _OneLineParser(argparse.ArgumentParser):
+    """argparse's parser whose errors are one line, as every other error of the commands (argparse prints its
+    usage block first; ``--help`` gives it).  Its commands' parsers are of this class too (add_subparsers)."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
     from . import __version__
 
     # allow_abbrev=False everywhere: an abbreviation (--scal) must not silently become another flag.
-    parser = argparse.ArgumentParser(prog="vdw-frames", description=DESCRIPTION, allow_abbrev=False)
+    parser = _OneLineParser(prog="vdw-frames", description=DESCRIPTION, allow_abbrev=False)
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
 

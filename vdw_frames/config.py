@@ -467,6 +467,8 @@ def _story_numbers(story_numbers: object, stories: int, what: str = "walls") -> 
                 raise ValueError(f"{what.removesuffix('s')} story must be a story number in 1 ... {stories}, got "
                                  f"{number}")
             numbers.append(number)
+        if not numbers:  # a group for no story is a mistake, not a building without those devices
+            raise ValueError(f"{what} stories must be 'all' or a list of distinct story numbers, got [] (no story)")
         if len(set(numbers)) != len(numbers):
             raise ValueError(f"{what} stories must be 'all' or a list of distinct story numbers, got "
                              f"{show(story_numbers)}")

@@ -87,6 +87,9 @@ def base(**wall):
     ({"limits": {"strain": 0.0}}, r"strain must be > 0, got 0.0"),
     ({"limits": {"residual": 1.0}}, r"residual must lie in \[0, 1\)"),
     ({"limits": {"rupture": 8.5}}, r"unknown walls limits keys \['rupture'\]"),
+    ({"limits": {}}, r"limits need a strain, stress or temperature limit, got none"),
+    ({"limits": {"source": "a source"}}, r"limits need a strain, stress or temperature limit, got none"),
+    ({"stories": []}, r"walls stories must be 'all' or a list of distinct story numbers, got \[\] \(no story\)"),
     # Kelvin typed where degC is meant; a temperature limit on a wall that never heats; cooling by a word unknown.
     ({"thermal": {"shift": "isd110-loss-peak", "heat_capacity": 1.8, "temperature": 294.15}},
      r"temperature 294.15 degC is above 200 degC.*subtract 273.15"),

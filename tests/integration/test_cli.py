@@ -211,6 +211,23 @@ def test_a_mistyped_flag_is_named_before_a_missing_one(argv, line, capsys):
     assert capsys.readouterr().err.splitlines()[-1] == line
 
 
+@pytest.mark.parametrize(("argv", "line"), [
+    (["simulate", "b.toml", "--record", "r.AT2", "--pga", "abc"],
+     "vdw-frames simulate: error: argument --pga: invalid float value: 'abc'"),
+    (["simulate", "b.toml", "--record", "r.AT2", "--pga", "1", "--factor", "2"],
+     "vdw-frames simulate: error: argument --factor: not allowed with argument --pga"),
+    ([], "vdw-frames: error: the following arguments are required: command"),
+    (["bogus"], "vdw-frames: error: argument command: invalid choice: 'bogus' (choose from "),
+])
+def test_argument_errors_are_one_line(argv, line, capsys):
+    """argparse prints its usage block before the error; the commands' errors are one line (usage: --help)."""
+    with pytest.raises(SystemExit) as exit_:
+        cli.main(argv)
+    assert exit_.value.code == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and error.startswith(line)
+
+
 def test_negative_values_are_not_taken_for_flags(capsys):
     assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", str(default_record_path()), "--pga", "-0.5"]) == 2
     assert capsys.readouterr().err == "vdw-frames: error: --pga must be a PGA > 0 in g, got -0.5\n"
@@ -680,3 +697,14 @@ def test_every_default_output_folder_is_ignored_by_git():
     assert {"design", "verification", "sine_test", "out"} <= defaults
     assert all(f"/{name}/" in ignored or f"{name}/" in ignored for name in defaults), defaults
     assert "design/" not in ignored and "verification/" not in ignored  # would hide vdw_frames/design/
+
+
+def test_simulate_checks_both_saved_files_before_it_writes_either(tmp_path, capsys):
+    """--save writes summary.csv and result.npz: where the second cannot be written, the first is not replaced."""
+    (tmp_path / "summary.csv").write_text("kept\n")
+    (tmp_path / "result.npz").mkdir()
+    assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", str(default_record_path()),
+                     "--save", str(tmp_path)]) == 2
+    error = capsys.readouterr().err
+    assert error == f"vdw-frames: error: {tmp_path / 'result.npz'}: is a folder; give a file name\n"
+    assert (tmp_path / "summary.csv").read_text() == "kept\n"

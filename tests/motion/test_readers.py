@@ -381,9 +381,12 @@ def test_read_at2_reads_dt_in_the_time_unit_it_states(tmp_path, count_line, dt):
     assert read_at2(at2_with_header(tmp_path, "IN UNITS OF G", count_line)).dt == pytest.approx(dt, rel=1e-15)
 
 
-def test_read_at2_refuses_a_dt_unit_it_cannot_read(tmp_path):
-    assert_rejected(read_at2, at2_with_header(tmp_path, "IN UNITS OF G", "NPTS= 7, DT= 10min"),
-                    "DT unit 'min' on line 3 is not a time unit")
+@pytest.mark.parametrize("count_line, unit", [("NPTS= 7, DT= 10min", "min"), ("NPTS= 7, DT= 0.02 MIN", "MIN"),
+                                              ("NPTS= 7, DT= 5 us", "us")])
+def test_read_at2_refuses_a_dt_unit_it_cannot_read(tmp_path, count_line, unit):
+    """Written onto the number or as the next word: a time unit it does not read is refused, not read as s."""
+    assert_rejected(read_at2, at2_with_header(tmp_path, "IN UNITS OF G", count_line),
+                    f"DT unit '{unit}' on line 3 is not a time unit")
 
 
 @pytest.mark.parametrize("unit, factor", [("in/s2", 25.4), ("CM/SEC/SEC", 10.0), ("gal", 10.0), ("m/s^2", 1000.0),

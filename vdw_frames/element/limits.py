@@ -26,7 +26,7 @@ from .thermal import ThermalProperties, service_temperature
 
 @dataclass(frozen=True)
 class WallLimits:
-    """Limits of a wall (any subset; None: no limit of that kind).
+    """Limits of a wall (any subset, at least one; None: no limit of that kind).
 
     ``strain`` (-, > 0): the shear strain of rupture or debonding of the layers; ``stress`` (MPa, > 0): the
     shear stress (force / area) of the bond; ``temperature`` (degC, a service temperature: above absolute
@@ -57,6 +57,9 @@ class WallLimits:
         object.__setattr__(self, "residual", residual)
         if not isinstance(self.source, str):
             raise ValueError(f"source must be a string, got {show(self.source)}")
+        if self.strain is None and self.stress is None and self.temperature is None:
+            raise ValueError("limits need a strain, stress or temperature limit, got none (a wall without limits "
+                             "takes limits=None)")
 
     def without_temperature(self) -> WallLimits | None:
         """These limits without the temperature limit (None when no strain or stress limit is left): for a wall

@@ -39,6 +39,9 @@ _OTHER_QUANTITIES = {**dict.fromkeys(("mm/s", "cm/s", "m/s", "in/s"), "velocity"
                      **dict.fromkeys(("mm", "cm", "m", "in"), "displacement")}
 _TIME_UNITS = {**dict.fromkeys(("s", "sec", "secs", "second", "seconds"), 1.0),
                **dict.fromkeys(("ms", "msec", "msecs", "millisecond", "milliseconds"), 1e-3)}
+# Time units no record states its step in: after DT they are refused, not taken for other text (read as s).
+_OTHER_TIME_UNITS = frozenset(("min", "mins", "minute", "minutes", "h", "hr", "hrs", "hour", "hours", "us",
+                               "usec", "microsecond", "microseconds", "ns", "nanosecond", "nanoseconds"))
 # An AT2 header's unit statement: "IN UNITS OF G", "UNITS OF CM/S/S.", "The units are (g)", "UNITS: gal".
 _UNIT_STATEMENT = re.compile(r"\bUNITS?\s*(?:\b(?:OF|ARE|IS|IN)\b|[:=])\s*[:=]?\s*\(?\s*([^\s,;()]*)", re.IGNORECASE)
 # A unit written anywhere in a header line without "UNITS": a length over a time (squared, or over a time
@@ -212,7 +215,8 @@ def read_at2(path: str | os.PathLike[str]) -> GroundMotion:
       NGA-West1, the FEMA P695 set).
 
     DT is taken from that line only, in s unless a time unit follows it (``DT= 10 ms`` or ``DT= 10ms`` is
-    0.01 s; ``SEC``, ``S`` and ``MS`` are read; any other unit written onto the number is refused).  The
+    0.01 s; ``SEC``, ``S`` and ``MS`` are read; any other unit written onto the number, or another time unit
+    after it, ``DT= 0.02 MIN``, is refused).  The
     values, any number a line, follow it; surplus zeros on the last line of values (padding to a full
     line) are ignored.  The module docstring lists the other
     variants accepted.  ValueError, naming the file, for a missing, unreadable or binary file, an empty
@@ -275,13 +279,17 @@ def _npts(text: str, path: Path, line: int) -> int:
 
 def _dt(text: str, path: Path, line: int, word: str | None = None) -> float:
     """DT in s from its text: a number, optionally with a time unit written onto it (``.0050SEC``,
-    ``10ms``) or as the next ``word`` (``.0050 SEC``, ``10 ms``; another word is other text)."""
+    ``10ms``) or as the next ``word`` (``.0050 SEC``, ``10 ms``; another time unit, ``MIN``, is refused; any
+    other word is other text)."""
     match = _NUMBER.match(text)
     numbers = _number_texts(match.group(0)) if match else None
     suffix = text[match.end():] if match else ""
     if suffix and suffix.isalpha() and suffix.lower() not in _TIME_UNITS:
         raise ValueError(f"{path}: DT unit {suffix!r} on line {line} is not a time unit read_at2 reads "
                          f"(s, sec or ms), in {text!r}")
+    if word is not None and word.lower() in _OTHER_TIME_UNITS:
+        raise ValueError(f"{path}: DT unit {word!r} on line {line} is not a time unit read_at2 reads "
+                         f"(s, sec or ms), in {text + ' ' + word!r}")
     unit = suffix or (word if word is not None and word.lower() in _TIME_UNITS else "") or "s"
     dt = float(numbers[0]) * _TIME_UNITS[unit.lower()] if numbers and (suffix == "" or suffix.isalpha()) \
         else float("nan")
