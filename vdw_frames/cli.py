@@ -989,7 +989,7 @@ def build_parser() -> argparse.ArgumentParser:
     from . import __version__
 
     # allow_abbrev=False everywhere: an abbreviation (--scal) must not silently become another flag.
-    parser = _OneLineParser(prog="vdw-frames", description=DESCRIPTION, allow_abbrev=False)
+    parser: argparse.ArgumentParser = _OneLineParser(prog="vdw-frames", description=DESCRIPTION, allow_abbrev=False)
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
 
