@@ -284,7 +284,8 @@ def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analy
     a record longer than that shares a batch only with records of its own length), at most :data:`LANES_PER_TASK`
     analyses each, and at most about a quarter of a worker's share (``workers``
     processes or threads: finer tasks balance the pool; None: no pool, the batches as large as they may be), and
-    within the memory limit of a peaks-only :func:`run_lanes` call (:func:`lane_bytes`), so that a batch runs
+    within the memory limit of a peaks-only :func:`run_lanes` call (:func:`lane_bytes` a step and
+    :func:`lane_state_bytes` a lane), so that a batch runs
     whenever each of its records alone would.
     Analyses whose ``apart`` (one hashable key an analysis, e.g. the building's variant; ``building`` then stands
     for all: walls or none) differ never share a batch.  In the order of ``analyses`` within each batch."""
@@ -311,6 +312,7 @@ def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analy
             return -1.0
         return float(max(steps, strategy.max_steps))
 
+    state = lane_state_bytes(building)
     by_key: dict[tuple[Any, float, float], list[tuple[Any, float]]] = {}
     for motion, analysis, key in zip(motions, analyses, apart, strict=True):
         steps = steps_of(motion)
@@ -322,7 +324,7 @@ def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analy
             longest = 0.0
             for analysis, steps in group[first:first + size]:
                 longest_then = max(longest, steps)
-                if batch and (len(batch) + 1) * longest_then * lane_bytes(building, longest_then, memory) > \
+                if batch and (len(batch) + 1) * (longest_then * lane_bytes(building, longest_then, memory) + state) > \
                         _validation.MEMORY_LIMIT_BYTES:  # (read now: tests lower it)
                     batches.append(batch)
                     batch, longest_then = [], steps
