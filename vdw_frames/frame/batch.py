@@ -247,7 +247,6 @@ class BatchResult:
         return write_text(path, handle.getvalue(), "CSV file")
 
 
-@keyword_only_since_0_3
 def analysis_bytes(building: ShearBuilding) -> int:
     """Bytes one analysis of :func:`run_batch` keeps until the batch returns: its peaks, outcome and warnings (a
     wall's warning names its story and strain, per analysis) and its rows of the :class:`BatchResult` (the lanes'
@@ -281,6 +280,7 @@ def _check_analyses(building: ShearBuilding, motions: int, scales: int, variants
                      "use fewer property factors or ambient temperatures", unit="device variants")
 
 
+@keyword_only_since_0_3
 def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: ArrayLike,
               executor: concurrent.futures.Executor | str | None = None, *, progress: bool = True,
               memory: str | FastMemory = DEFAULT_MEMORY, method: str | Discretisation = DEFAULT_METHOD,
