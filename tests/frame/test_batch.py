@@ -248,9 +248,11 @@ def test_a_batch_whose_results_exceed_the_memory_limit_is_refused_before_any_wor
     assert per_variant <= counted <= 2.0 * per_variant  # measured about 20 KB, counted 29 KB
     monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", 1000 * analysis_bytes(building) - 1)
     with pytest.raises(ValueError, match=r"run_batch \(1 records x 1000 scales = 1,000 analyses, 10 floors\) needs "
-                                         r"1,000 analyses, whose arrays would take .* use fewer records or scales"):
+                                         r"1,000 analyses, whose arrays would take .* \(limit .*\); use fewer records "
+                                         r"or scales"):
         run_batch(building, [short], np.ones(1000), progress=False)
     monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", 100 * counted - 1)
     with pytest.raises(ValueError, match=r"run_batch \(1 records x 1 scales x 100 device variants, 10 floors\) needs "
-                                         r"100 device variants, whose arrays would take .* use fewer property factors"):
+                                         r"100 device variants, whose arrays would take .* \(limit .*\); use fewer "
+                                         r"property factors"):
         run_batch(building, [short], [1.0], progress=False, property_factors=np.linspace(0.5, 1.5, 100))

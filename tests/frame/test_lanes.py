@@ -285,7 +285,7 @@ def test_a_count_of_lanes_beyond_the_memory_limit_is_refused_before_any_work(mon
     monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", 1000 * counted - 1)
     with pytest.raises(ValueError, match=r"run_lanes \(1000 lanes of up to 41 steps, 10 floors, 0 walls: each lane's "
                                          r"state and result with its steps\) needs 1,000 lanes, whose arrays would "
-                                         r"take .* split the batch"):
+                                         r"take .* \(limit .*\); split the batch"):
         run_lanes(building, [short] * 1000)
     monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", 1000 * counted)
     assert len(run_lanes(building, [short] * 1000)) == 1000
