@@ -143,6 +143,22 @@ def test_building_file_strain_compatible_validation(value, match):
         building_from_dict(strain_dependent_building_data(strain_compatible=value))
 
 
+def test_a_strain_compatible_table_cannot_ask_for_unbounded_work(tmp_path, capsys):
+    # A 12-line file asking for 1e9 analyses and a tolerance no double can meet: one error line, exit 2,
+    # before any analysis runs.
+    path = tmp_path / "loop.toml"
+    path.write_text('masses = [10, 10]\nstiffnesses = [20000, 20000]\nstory_heights = [3000, 3000]\n'
+                    '[strain_compatible]\ntolerance = 0.01\nmax_iterations = 1000000000\n'
+                    '[[walls]]\nstories = "all"\narea = 10000\nthickness = 2\nparameters = "strain-dependent"\n')
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path())]) == 2
+    error = capsys.readouterr().err
+    assert "max_iterations = 1000000000 exceeds 200" in error and len(error.strip().splitlines()) == 1
+    path.write_text(path.read_text().replace("max_iterations = 1000000000", "max_iterations = 20")
+                    .replace("tolerance = 0.01", "tolerance = 1e-300"))
+    with pytest.raises(ValueError, match=r"tolerance = 1e-300 is below 1e-12"):
+        load_analysis(path)
+
+
 # ---------------------------------------------------------------------------------------------- keys and lengths
 @pytest.mark.parametrize("text, key", [
     ('{"masses": [1.0], "stiffnesses": [1.0], "masses": [2.0]}', "masses"),

@@ -102,6 +102,22 @@ def test_analyses_too_large_for_memory_are_refused_before_allocating():
     assert "needs 100,000,000,001 steps" in message
 
 
+def test_interpolation_too_large_for_memory_is_refused_before_allocating():
+    # interpolated(10**12) raised numpy's MemoryError; 10**7 allocated (n - 1) m + 1 values of 8 bytes unasked.
+    motion = GroundMotion(np.sin(0.1 * np.arange(1001)), 0.01, "sine")
+    message, peak = peak_allocation(lambda: motion.interpolated(10**7))
+    # 1000 x 10**7 + 1 steps of 24 bytes (the array, its temporaries and the record's copy): 224 GiB.
+    assert message == ("substeps = 10000000 on ground motion 'sine' (1001 samples every 0.01 s) needs "
+                       f"10,000,000,001 steps, whose arrays would take {10_000_000_001 * 24 / 1024**3:.3g} GiB "
+                       "(limit 2 GiB); use fewer substeps") and peak < 20e6
+    for substeps, shown in ((10**12, "1000000000000"), (10**400, "about 1e400")):
+        message, peak = peak_allocation(lambda m=substeps: motion.interpolated(m))
+        assert message.startswith(f"substeps = {shown} on ground motion 'sine'") and "(limit 2 GiB)" in message
+        assert peak < 20e6
+    # Within the limit nothing changes: the interpolation acceleration_at gives.
+    np.testing.assert_array_equal(motion.interpolated(4), motion.acceleration_at(0.0025))
+
+
 def test_whole_numbers_beyond_any_float_are_compared_not_converted():
     # 10**400 raised OverflowError (math.isfinite converts to float) instead of being a number like any other.
     from vdw_frames._validation import whole_number

@@ -629,7 +629,7 @@ def _add_collapse_command(commands: _Commands) -> None:
                                "collapse too (default: a failed wall leaves the frame standing; "
                                "CollapseCriterion.wall_failure)")
     collapse.add_argument("--tolerance", type=float, default=0.02,
-                          help="hunt-and-fill tolerance on the collapse intensity (default 0.02)")
+                          help="hunt-and-fill tolerance on the collapse intensity, in [1e-6, 0.5) (default 0.02)")
     collapse.add_argument("--bare", action="store_true",
                           help="also assess the frame without its walls and other devices, for comparison")
     collapse.add_argument("--out", default="collapse_report", help="output folder (default ./collapse_report)")

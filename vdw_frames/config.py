@@ -89,7 +89,8 @@ any of them, the rest default)::
     effective_strain_ratio = 0.65       # effective / peak strain, in (0, 1]
     initial_strain = 3.0                # starting amplitude (3.0 = 300 %); default: the middle of the range
     tolerance = 0.01                    # converged when every effective strain changes by less than 1 %
-    max_iterations = 20
+                                        # (at least 1e-12: double precision cannot meet a tighter one)
+    max_iterations = 20                 # at most 200: each iteration is a whole analysis
 
 :func:`load_analysis` returns the building and the keyword arguments for
 :func:`~vdw_frames.frame.simulation.simulate` that the file asks for (``vdw-frames simulate`` uses it);

@@ -114,10 +114,19 @@ def test_hunt_and_fill_censors_at_the_cap_and_refuses_collapse_at_no_shaking():
     ({"tolerance": 0.0}, "tolerance must be > 0"), ({"tolerance": 0.6}, "tolerance must lie in"),
     ({"start": 2.0, "cap": 1.0}, "cap = 1.0 must be at least start"), ({"start": -1.0}, "start must be > 0"),
     ({"fill_ratio": 1.01}, "fill_ratio = 1.01 must exceed"), ({"max_runs": 0}, "max_runs must be a whole number"),
-    ({"max_runs": 5000}, "max_runs must be at most 1000")])
+    ({"max_runs": 5000}, "max_runs must be at most 1000"),
+    # Finer than 1e-6 of the intensity resolves nothing, and 1e-300 would allow 11 976 runs a record.
+    ({"tolerance": 1e-300}, r"tolerance = 1e-300 is below 1e-06 of the intensity"),
+    ({"tolerance": 9e-7}, r"tolerance = 9e-07 is below 1e-06 of the intensity")])
 def test_hunt_and_fill_settings_are_checked(kwargs, match):
     with pytest.raises(ValueError, match=match):
         HuntAndFill(**kwargs)
+
+
+def test_hunt_and_fill_finest_tolerance_keeps_the_runs_bounded():
+    # bound() by hand: hunt max(ceil(ln 20 / ln 1.8) + 1, 13) = 13, bisection ceil(log2(ln 1.8 / ln(1 + 1e-6))) = 20,
+    # 11 fills of 1 + 20 runs each.
+    assert HuntAndFill(start=1.0, cap=20.0, tolerance=1e-6).bound() == 13 + 20 + 11 * 21
 
 
 def test_collapse_criterion():

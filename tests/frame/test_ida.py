@@ -7,7 +7,7 @@ import dataclasses
 
 import numpy as np
 import pytest
-from builders import TEN_STORY_MASSES, TEN_STORY_STIFFNESSES
+from builders import TEN_STORY_MASSES, TEN_STORY_STIFFNESSES, tapered_pulse, three_story
 from scipy import stats
 from shared_data import shared_record
 
@@ -20,6 +20,19 @@ def test_ida_refuses_a_building_without_story_heights():
     building = ShearBuilding(TEN_STORY_MASSES, TEN_STORY_STIFFNESSES, hysteresis=[Bilinear(1e6)] * 10)
     with pytest.raises(ValueError, match="needs story_heights"):
         incremental_dynamic_analysis(building, [read_at2(shared_record("RIO270.AT2"))], 0.1 * G, 1.0 * G)
+
+
+@pytest.mark.parametrize("step, cap, count", [
+    (1e-12, 2.0, "2,000,000,000,000"),  # numpy's MemoryError building the levels
+    (1.0, 1e300, "1e+300"),  # numpy's "Maximum allowed size exceeded"
+    (1e-300, 1e300, "more than any float"),  # cap / step overflows
+    (1.0, 1001.0, "1,001"),  # one past the bound
+])
+def test_ida_refuses_more_intensity_levels_than_the_bound_before_building_them(step, cap, count):
+    with pytest.raises(ValueError) as error:
+        incremental_dynamic_analysis(three_story(), [tapered_pulse()], step, cap)
+    assert str(error.value).startswith(f"step = {step!r} mm/s^2 up to cap = {cap!r} mm/s^2 is {count} intensity "
+                                       "levels, more than 1000")
 
 
 def test_fragility_when_every_record_collapsed_and_the_mask_is_nomask():

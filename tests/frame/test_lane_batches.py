@@ -69,23 +69,24 @@ def test_records_beyond_the_fast_memory_s_horizon_share_a_batch_only_with_their_
 
 def test_batches_stay_within_the_memory_limit_of_a_run_lanes_call(monkeypatch):
     """A batch runs whenever each of its records alone would: lane_batches cuts a group so that its lanes together
-    (run_lanes' count: lanes x longest record x lane_bytes) stay within the limit.  Reference: the byte count
-    written out from row_bytes' rule (8 a step of ground, 6 floats a wall of exact memory) and the cut by hand."""
+    (run_lanes' count: lanes x (longest record x lane_bytes + lane_state_bytes)) stay within the limit.  Reference:
+    the byte count written out from row_bytes' rule (8 a step of ground, 6 floats a wall of exact memory) and the cut
+    by hand."""
     from vdw_frames import _validation
-    from vdw_frames.frame.lanes import lane_bytes
+    from vdw_frames.frame.lanes import lane_bytes, lane_state_bytes
 
     walled = three_story()  # one wall (verification_cases), three floors
     assert lane_bytes(walled, 500, "exact") == 8 + 8 * 6 * len(walled.wall_list)
     assert lane_bytes(walled, 500, "exact", histories=True) == 8 + 8 * (6 * len(walled.wall_list) + 14 * 3 + 12)
     below = memory_strategy("fast").exact_below
     assert lane_bytes(walled, below + 1, "fast") == 8  # the fast memory keeps no exact memory a step
-    per_step = lane_bytes(walled, 700, "exact")
+    per_step, state = lane_bytes(walled, 700, "exact"), lane_state_bytes(walled)
     # room for two lanes of 700 steps, or one of 1400, but not three of 700 or two of 1000 (a batch's lanes all
     # count its longest record); a record alone beyond the limit stays alone (run_lanes refuses it, naming it)
-    monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", 2 * 700 * per_step)
+    monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", 2 * (700 * per_step + state))
     motions = [record(700), record(500), record(700), record(1000), record(300), record(1400), record(3000)]
     assert lane_batches(walled, motions, list("abcdefg"), memory="exact", workers=None) == \
         [["a", "b"], ["c"], ["d"], ["e"], ["f"], ["g"]]
     assert lane_batches(walled, motions[:2], list("ab"), memory="exact", workers=None) == [["a", "b"]]
-    monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", 2 * 700 * per_step - 1)
+    monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", 2 * (700 * per_step + state) - 1)
     assert lane_batches(walled, motions[:2], list("ab"), memory="exact", workers=None) == [["a"], ["b"]]

@@ -254,3 +254,38 @@ def test_histories_beyond_the_memory_limit_are_refused_before_any_work():
     with pytest.raises(ValueError, match=r"run_lanes \(1000 lanes of up to 200000 steps, 10 floors, 0 walls, "
                                          r"histories drift\).*keep fewer histories"):
         run_lanes(building, [long] * 1000, record=["drift"])
+
+
+def _lane_memory(building, motion, lanes):
+    """Peak bytes (tracemalloc) of one peaks-only run_lanes call of ``lanes`` lanes of ``motion``."""
+    import tracemalloc
+
+    tracemalloc.start()
+    try:
+        run_lanes(building, [motion] * lanes)
+        return tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
+def test_a_count_of_lanes_beyond_the_memory_limit_is_refused_before_any_work(monkeypatch):
+    """A million lanes of a 41-step record fitted the per-step count (8 bytes a step: 328 MB) and died of
+    MemoryError in their states and results.  Reference: the memory a lane takes, measured here (tracemalloc, 200
+    and 600 lanes), which lane_state_bytes must cover without being far above it."""
+    from vdw_frames import _validation
+    from vdw_frames.frame.lanes import lane_bytes, lane_state_bytes
+
+    building = example_ten_story().without_devices()
+    short = GroundMotion(1000.0 * np.sin(np.linspace(0.0, 6.0, 41)), 0.02, "short")
+    run_lanes(building, [short] * 2)  # compiled and its workspace made before measuring
+    measured = (_lane_memory(building, short, 600) - _lane_memory(building, short, 200)) / 400
+    counted = lane_state_bytes(building) + 41 * lane_bytes(building, 41, "fast")
+    assert measured <= counted <= 2.0 * measured  # measured 10.5 KB, counted 15.5 KB
+    # A limit the steps of 1000 lanes fit (328 KB) but not their states: refused, naming the count, before any work.
+    monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", 1000 * counted - 1)
+    with pytest.raises(ValueError, match=r"run_lanes \(1000 lanes of up to 41 steps, 10 floors, 0 walls: each lane's "
+                                         r"state and result with its steps\) needs 1,000 lanes, whose arrays would "
+                                         r"take .* \(limit .*\); split the batch"):
+        run_lanes(building, [short] * 1000)
+    monkeypatch.setattr(_validation, "MEMORY_LIMIT_BYTES", 1000 * counted)
+    assert len(run_lanes(building, [short] * 1000)) == 1000

@@ -164,10 +164,20 @@ def test_at_rest_the_iteration_stops_at_zero_strain():
     ({"tolerance": 1.0}, r"tolerance must lie in \(0, 1\)"),
     ({"max_iterations": 0}, "max_iterations must be a whole number >= 1"),
     ({"max_iterations": 2.5}, "max_iterations"),
+    # Each iteration is a whole analysis: a tolerance below double precision's reach or a huge count is refused.
+    ({"tolerance": 1e-300}, r"tolerance = 1e-300 is below 1e-12"),
+    ({"tolerance": 9.9e-13}, r"tolerance = 9.9e-13 is below 1e-12"),
+    ({"max_iterations": 10**9}, r"max_iterations = 1000000000 exceeds 200"),
+    ({"max_iterations": 201}, r"max_iterations = 201 exceeds 200"),
 ])
 def test_options_validation(changes, match):
     with pytest.raises(ValueError, match=match):
         StrainCompatibleOptions(**changes)
+
+
+def test_options_bounds_are_accepted():
+    options = StrainCompatibleOptions(tolerance=1e-12, max_iterations=200)
+    assert (options.tolerance, options.max_iterations) == (1e-12, 200)
 
 
 # ------------------------------------------------------------------------------------------ the effective strain

@@ -29,7 +29,7 @@ from numpy.typing import ArrayLike
 
 from .._files import write_text
 from .._parallel import POOLS, Collected, check_executor, executor_for, fan_out, reissue, spread
-from .._validation import finite_array, show
+from .._validation import check_memory, finite_array, show
 from .._warnings import keyword_only_since_0_3
 from ..element.bank import group_walls, wall_order
 from ..element.damper import DEFAULT_MEMORY
@@ -247,6 +247,39 @@ class BatchResult:
         return write_text(path, handle.getvalue(), "CSV file")
 
 
+def analysis_bytes(building: ShearBuilding) -> int:
+    """Bytes one analysis of :func:`run_batch` keeps until the batch returns: its peaks, outcome and warnings (a
+    wall's warning names its story and strain, per analysis) and its rows of the :class:`BatchResult` (the lanes'
+    workspaces, at most :data:`~vdw_frames.frame.lanes.LANES_PER_TASK` analyses a task, are reused).  Measured
+    (tracemalloc, 300-1500 scales of a 41-step record): 2.1 KB an analysis of a 2-story frame, 2.5 KB of a 10-story
+    one with or without 10 quiet walls, 4.5 KB of the 10-story example whose 10 walls warn, 3.6 KB of a 40-story
+    frame, 2.8 KB of a 4-story frame with 4 other devices; this count is about 1.7-3 times those."""
+    return 4096 + 128 * building.stories + 256 * (len(building.wall_list) + len(building.other_device_list))
+
+
+def variant_bytes(building: ShearBuilding) -> int:
+    """Bytes one device variant of :func:`run_batch` (a property factor at an ambient temperature) keeps besides its
+    analyses: its building.  Measured (tracemalloc, 100 and 300 property factors, one analysis each): about 17 KB
+    for the 10-story example frame with 10 walls, 5 KB for a 4-story frame with 5 devices; this count is
+    1.1-2 times those."""
+    floors = building.stories
+    return 4096 + 1024 * floors + 16 * floors**2 + 512 * (len(building.wall_list) + len(building.other_device_list))
+
+
+def _check_analyses(building: ShearBuilding, motions: int, scales: int, variants: int = 1) -> None:
+    """Refuse, before any work, a batch whose results would exceed the memory limit (a small input -- np.ones(10**8)
+    as scales, 10**6 property factors -- asking for gigabytes of them)."""
+    analyses = motions * scales
+    what = f"run_batch ({motions} records x {scales} scales"
+    if variants == 1:
+        check_memory(f"{what} = {analyses:,} analyses, {building.stories} floors)", analyses,
+                     analysis_bytes(building), "use fewer records or scales, or split the batch", unit="analyses")
+    else:
+        check_memory(f"{what} x {variants:,} device variants, {building.stories} floors)", variants,
+                     analyses * analysis_bytes(building) + variant_bytes(building),
+                     "use fewer property factors or ambient temperatures", unit="device variants")
+
+
 @keyword_only_since_0_3
 def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: ArrayLike,
               executor: concurrent.futures.Executor | str | None = None, *, progress: bool = True,
@@ -297,7 +330,13 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
     except TypeError:
         raise ValueError(f"motions must be a list of GroundMotion objects, got {show(motions)}") from None
     if property_factors is not None or ambient_temperatures is not None:  # motions: listed, iterated per variant
+        try:
+            shape = np.shape(scales)
+        except ValueError:  # ragged: refused, named, by the variant's run
+            shape = ()
+        scale_count = shape[-1] if len(shape) in (1, 2) else 1  # a bad shape: refused by the variant's run
         return _property_envelope(building, property_factors, ambient_temperatures, executor,
+                                  (len(motions), scale_count),
                                   lambda variant, pool: run_batch(variant, motions, scales, pool, progress=progress,
                                                                   memory=memory, method=method,
                                                                   strain_compatible=strain_compatible,
@@ -314,6 +353,7 @@ def run_batch(building: ShearBuilding, motions: Iterable[GroundMotion], scales: 
         factors = np.broadcast_to(factors, (len(motions), factors.size))
     if factors.ndim != 2 or factors.shape[0] != len(motions) or factors.shape[1] == 0:
         raise ValueError(f"scales must have shape (scales,) or ({len(motions)}, scales), got {np.shape(scales)}")
+    _check_analyses(building, len(motions), factors.shape[1])
     if strain_compatible is not False:
         strain_compatible_options(strain_compatible)  # a bad value fails here, not in every worker
     else:
@@ -390,10 +430,12 @@ def _label(motions: Sequence[GroundMotion], m: int) -> str:
 
 def _property_envelope(building: ShearBuilding, property_factors: ArrayLike | None,
                        ambient_temperatures: ArrayLike | None, executor: concurrent.futures.Executor | str | None,
+                       analyses: tuple[int, int],
                        run: Callable[[ShearBuilding, concurrent.futures.Executor], BatchResult]) -> BatchResult:
     """Envelope of ``run(variant, executor)`` over every device variant: each property factor f (``scaled(f)``
     of every device) at each ambient temperature T (``wall.at_ambient(T)`` for walls with a thermal
-    description); see run_batch."""
+    description); see run_batch.  ``analyses``: (records, scales) of each variant's run, counted against the memory
+    limit with the variants before any is built."""
     factors = np.array([1.0]) if property_factors is None else \
         finite_array("property_factors", property_factors, ndim=None).ravel()
     if factors.size == 0 or (factors <= 0).any():
@@ -415,6 +457,7 @@ def _property_envelope(building: ShearBuilding, property_factors: ArrayLike | No
                                                    for device in devices)
                                       for story, devices in building.devices.items()})
 
+    _check_analyses(building, *analyses, variants=factors.size * len(temperatures))
     combinations = [(float(f), t) for f in factors for t in temperatures]
     variants = [variant(f, t) for f, t in combinations]
     with executor_for(executor) as pool:  # one pool for every variant

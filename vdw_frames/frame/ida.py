@@ -42,6 +42,10 @@ from .batch import run_batch, scale_factors_to_spectral_acceleration
 from .building import ShearBuilding
 from .time_history import is_strain_range_warning
 
+MAX_LEVELS = 1000
+"""Most intensity levels (cap / step) one IDA may ask for: 0.01 g steps up to 10 g, finer and higher than any
+IDA needs (the example takes 0.1 g to 4 g: 40 levels); each level is one analysis of every standing record."""
+
 COLLAPSE_LIMIT_STATES = "a story drift ratio beyond collapse_drift_ratio, or an analysis that stops converging"
 
 
@@ -127,7 +131,8 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[Grou
                                  period: float | None = None, executor: concurrent.futures.Executor | str | None = None,
                                  *, wall_failure_collapse: bool = False, **options: Any) -> IDAResult:
     """IDA of ``building`` under ``motions`` (GroundMotion, mm/s^2): Sa(``period``, 5 %) from ``step`` in steps
-    of ``step`` up to ``cap`` (mm/s^2) or collapse, record by record (module docstring).
+    of ``step`` up to ``cap`` (mm/s^2) or collapse, record by record (module docstring); at most
+    :data:`MAX_LEVELS` = 1000 levels (cap / step), else a ValueError naming step, cap and the count.
 
     ``period`` (s): the intensity measure's period, default the bare elastic frame's T1.  ``executor``:
     as for :func:`run_batch` (the default thread pool serves every level).
@@ -151,9 +156,14 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[Grou
     if cap < step:
         raise ValueError(f"cap = {cap:g} mm/s^2 must be at least one step ({step:g} mm/s^2)")
     period = building.periods[0] if period is None else positive("period", period)
-    levels = step * np.arange(1, math.floor(cap / step + 1e-9) + 1)
-    if levels.size > 1000:
-        raise ValueError(f"{levels.size} intensity levels (cap / step) is too many; take a larger step")
+    ratio = cap / step  # may overflow to inf (cap 1e300, step 1e-10): counted, never built
+    if not ratio + 1e-9 < MAX_LEVELS + 1:
+        count = f"{math.floor(ratio + 1e-9):,}" if ratio < 1e15 else \
+            (f"{ratio:.3g}" if math.isfinite(ratio) else "more than any float")
+        raise ValueError(f"step = {show(step)} mm/s^2 up to cap = {show(cap)} mm/s^2 is {count} intensity levels, "
+                         f"more than {MAX_LEVELS} (0.01 g steps to 10 g; each level is an analysis of every "
+                         "standing record); take a larger step or a lower cap")
+    levels = step * np.arange(1, math.floor(ratio + 1e-9) + 1)
     factors = scale_factors_to_spectral_acceleration(motions, levels, period)  # (motions, levels)
     intensities: list[list[float]] = [[] for _ in motions]
     drift: list[list[float]] = [[] for _ in motions]

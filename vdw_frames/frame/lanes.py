@@ -284,7 +284,8 @@ def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analy
     a record longer than that shares a batch only with records of its own length), at most :data:`LANES_PER_TASK`
     analyses each, and at most about a quarter of a worker's share (``workers``
     processes or threads: finer tasks balance the pool; None: no pool, the batches as large as they may be), and
-    within the memory limit of a peaks-only :func:`run_lanes` call (:func:`lane_bytes`), so that a batch runs
+    within the memory limit of a peaks-only :func:`run_lanes` call (:func:`lane_bytes` a step and
+    :func:`lane_state_bytes` a lane), so that a batch runs
     whenever each of its records alone would.
     Analyses whose ``apart`` (one hashable key an analysis, e.g. the building's variant; ``building`` then stands
     for all: walls or none) differ never share a batch.  In the order of ``analyses`` within each batch."""
@@ -311,6 +312,7 @@ def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analy
             return -1.0
         return float(max(steps, strategy.max_steps))
 
+    state = lane_state_bytes(building)
     by_key: dict[tuple[Any, float, float], list[tuple[Any, float]]] = {}
     for motion, analysis, key in zip(motions, analyses, apart, strict=True):
         steps = steps_of(motion)
@@ -322,7 +324,7 @@ def lane_batches(building: ShearBuilding, motions: Sequence[GroundMotion], analy
             longest = 0.0
             for analysis, steps in group[first:first + size]:
                 longest_then = max(longest, steps)
-                if batch and (len(batch) + 1) * longest_then * lane_bytes(building, longest_then, memory) > \
+                if batch and (len(batch) + 1) * (longest_then * lane_bytes(building, longest_then, memory) + state) > \
                         _validation.MEMORY_LIMIT_BYTES:  # (read now: tests lower it)
                     batches.append(batch)
                     batch, longest_then = [], steps
@@ -341,6 +343,20 @@ def lane_bytes(building: ShearBuilding, steps: float, memory: str | FastMemory, 
     exact = strategy is None or steps <= strategy.exact_below
     return 8 + row_bytes(building.stories, len(building.wall_list), len(building.other_device_list),
                          wall_memory=exact, histories=histories)
+
+
+def lane_state_bytes(building: ShearBuilding) -> int:
+    """Bytes a lane of a :func:`run_lanes` call takes whatever its length: its state in the workspace (the frame's,
+    each wall group's and device's), its peaks and its :class:`LaneResult`.  Measured (tracemalloc, peaks only,
+    41-step records, 200-1500 lanes): 3.2 KB a lane of a bare 2-story frame, 7.7-10.5 KB of a bare 10-story one
+    (10.5 with hysteresis and gravity), 33 KB of a bare 40-story one (a floors^2 term), 34 KB of state besides the
+    walls' exact memory a step in the 10-story example with 10 walls, 63 KB with 20 stories and 20 wall groups; this
+    count is 1.2-1.9 times those, so that a number of lanes cannot ask for unbounded memory unseen (the per-step
+    arrays are :func:`lane_bytes`)."""
+    floors = building.stories
+    walls = cast("list[tuple[int, Wall]]", building.wall_list)  # as the workspace groups them
+    groups = len(group_walls(walls)[0]) if walls else 0
+    return 4096 + 1024 * floors + 8 * floors**2 + 3072 * groups + 512 * len(building.other_device_list)
 
 
 def _record_names(record: str | Sequence[str]) -> tuple[str, ...]:
@@ -415,6 +431,11 @@ def run_lanes(building: ShearBuilding, motions: Sequence[GroundMotion], scales: 
                  f"{', histories ' + ', '.join(names) if names else ''})", float(len(motions)) * longest,
                  lane_bytes(building, longest, memory, histories=bool(names)),
                  "split the batch" + (" or keep fewer histories (record='peaks')" if names else ""))
+    # and each lane's state and result besides (a million lanes of a short record: gigabytes of them)
+    check_memory(f"run_lanes ({len(motions)} lanes of up to {longest} steps, {building.stories} floors, {walls} walls: "
+                 "each lane's state and result with its steps)", len(motions),
+                 lane_state_bytes(building) + longest * lane_bytes(building, longest, memory, histories=bool(names)),
+                 "split the batch", unit="lanes")
     check_masses(building, dt)
     collapse_ratio = float(collapse_drift_ratio) if (collapse_drift_ratio and building.story_heights) else 0.0
     if not isinstance(wall_demands, bool):

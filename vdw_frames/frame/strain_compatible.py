@@ -79,7 +79,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .. import _warnings
-from .._validation import finite_array, positive, refuse_non_numbers, whole_number
+from .._validation import finite_array, positive, refuse_non_numbers, show, whole_number
 from ..element.damper import FDMKDamper
 from ..element.strain_dependent import StrainDependentDamper
 from ..motion.record import GroundMotion
@@ -92,6 +92,16 @@ if TYPE_CHECKING:
 
 DEFAULT_EFFECTIVE_STRAIN_RATIO = 0.65
 
+MIN_TOLERANCE = 1e-12
+"""Tightest ``tolerance`` accepted: the effective strains are computed in double precision from a
+time-history analysis whose rounding is far above 1e-16 of the strain, so a tighter tolerance could
+never be met and would only run ``max_iterations`` analyses."""
+
+MAX_ITERATIONS = 200
+"""Largest ``max_iterations`` accepted: every iteration is a whole time-history analysis.  The project's
+records converge in 3-12 (``tests/frame/test_strain_compatible.py``); 200, ten times the default 20, leaves
+room for a slowly converging, heavily under-relaxed case while a small input cannot ask for unbounded work."""
+
 
 @dataclass(frozen=True)
 class StrainCompatibleOptions:
@@ -103,9 +113,11 @@ class StrainCompatibleOptions:
         The amplitude every strain-dependent wall starts at (dimensionless, > 0; clamped quietly to
         each wall's range); None (default): the geometric middle of each wall's range.
     tolerance : float
-        Converged when every effective strain changes by less than this fraction (default 0.01).
+        Converged when every effective strain changes by less than this fraction (default 0.01), in
+        [1e-12, 1) (:data:`MIN_TOLERANCE`: double precision cannot meet a tighter one).
     max_iterations : int
-        At most this many analyses (default 20).
+        At most this many analyses (default 20), in [1, 200] (:data:`MAX_ITERATIONS`: each is a whole
+        analysis).
     """
 
     effective_strain_ratio: float = DEFAULT_EFFECTIVE_STRAIN_RATIO
@@ -125,8 +137,16 @@ class StrainCompatibleOptions:
         tolerance = positive("tolerance", self.tolerance)
         if tolerance >= 1.0:
             raise ValueError(f"tolerance must lie in (0, 1), got {self.tolerance!r}")
+        if tolerance < MIN_TOLERANCE:
+            raise ValueError(f"tolerance = {show(self.tolerance)} is below {MIN_TOLERANCE:g}: the effective strains "
+                             "are computed in double precision and could never meet it")
         object.__setattr__(self, "tolerance", tolerance)
-        object.__setattr__(self, "max_iterations", whole_number("max_iterations", self.max_iterations, 1))
+        iterations = whole_number("max_iterations", self.max_iterations, 1)
+        if iterations > MAX_ITERATIONS:
+            raise ValueError(f"max_iterations = {show(self.max_iterations)} exceeds {MAX_ITERATIONS}: each iteration "
+                             "is a whole time-history analysis (the default is 20; the project's records converge "
+                             "in 3-12)")
+        object.__setattr__(self, "max_iterations", iterations)
 
 
 def strain_compatible_options(value: bool | StrainCompatibleOptions) -> StrainCompatibleOptions:

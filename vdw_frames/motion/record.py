@@ -7,6 +7,7 @@ the value (and, for files, the file and the line).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -148,13 +149,17 @@ class GroundMotion:
         2 GiB), refused before allocating with the number of steps and the memory.
         """
         substeps = self.substeps(dt)
-        self._check_memory(dt, substeps)
+        self._check_memory(f"dt = {dt!r} s", substeps, "use a larger dt")
         return self.interpolated(substeps)
 
     def interpolated(self, substeps: int) -> np.ndarray:
         """Ground acceleration (mm/s^2, a new array) with ``substeps`` (a whole number from :meth:`substeps`)
-        steps in each record step, linear in between: ``(n - 1) * substeps + 1`` values."""
+        steps in each record step, linear in between: ``(n - 1) * substeps + 1`` values.  A ``substeps`` whose
+        values would exceed the memory limit (2 GiB, as for :meth:`acceleration_at`) is a ValueError naming it,
+        before allocating."""
         substeps = whole_number("substeps", substeps, 1)
+        shown = f"{substeps}" if substeps < 10**15 else f"about 1e{math.floor(math.log10(substeps))}"
+        self._check_memory(f"substeps = {shown}", substeps, "use fewer substeps")
         acceleration = self.acceleration
         if substeps == 1:
             return acceleration.copy()
@@ -166,7 +171,7 @@ class GroundMotion:
         """The record sampled every ``dt`` s (see :meth:`acceleration_at`); its step is the record step
         divided by the whole number of sub-steps (equal to ``dt`` within 1e-6 relative)."""
         substeps = self.substeps(dt)
-        self._check_memory(dt, substeps)
+        self._check_memory(f"dt = {dt!r} s", substeps, "use a larger dt")
         return GroundMotion(self.interpolated(substeps), self.dt / substeps, self.name, self.metadata)
 
     def substeps(self, dt: float) -> int:
@@ -184,10 +189,10 @@ class GroundMotion:
                              f"of {self._label} (ratio {ratio!r} is not a whole number)")
         return substeps
 
-    def _check_memory(self, dt: float, substeps: int) -> None:
-        check_memory(f"dt = {dt!r} s on {self._label} ({self.acceleration.size} samples every {self.dt!r} s)",
-                     (self.acceleration.size - 1) * substeps + 1, _RESAMPLING_BYTES_PER_STEP,
-                     "use a larger dt")
+    def _check_memory(self, what: str, substeps: int, hint: str) -> None:
+        """Refuse ``substeps`` steps in each record step beyond the memory limit (``what`` names the request)."""
+        check_memory(f"{what} on {self._label} ({self.acceleration.size} samples every {self.dt!r} s)",
+                     (self.acceleration.size - 1) * substeps + 1, _RESAMPLING_BYTES_PER_STEP, hint)
 
     def _nonzero(self, what: str, value: float) -> float:
         if value == 0.0:
