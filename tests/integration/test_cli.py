@@ -128,6 +128,15 @@ def test_a_malformed_building_file_is_one_error_line(tmp_path, capsys):
     assert "nested.json: walls stories must be story numbers in 1 ... 3, got [1] in [[1]]" in error
 
 
+def test_a_building_file_of_stiffnesses_double_precision_cannot_resolve_is_one_error_line(tmp_path, capsys):
+    """1e-12 N/mm next to 2e4: simulate printed "T1 = nan s", a RuntimeWarning and "does not converge"."""
+    path = write_file(tmp_path, "soft.toml", "masses = [10, 10]\nstiffnesses = [1e-12, 20000]\n")
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path())]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and error.startswith("vdw-frames: error: ")
+    assert "soft.toml: stiffnesses span a ratio of 2e+16 (story 1: 1e-12 N/mm, story 2: 20000.0 N/mm)" in error
+
+
 def test_cli_reports_a_missing_record(tmp_path, capsys):
     assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", str(tmp_path / "none.AT2")]) == 2
     assert "none.AT2" in capsys.readouterr().err
