@@ -312,6 +312,12 @@ def test_a_ctrl_c_that_a_callback_swallowed_still_ends_the_command_as_interrupte
     assert done.stderr.endswith("vdw-frames: interrupted (Ctrl-C); sine-test stopped\n")
 
 
+def test_cli_sine_test_names_a_frequency_too_low_for_the_walls_steps(tmp_path, capsys):
+    assert cli.main(["sine-test", "--frequency", "1e-12", "--out", str(tmp_path)]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and error.startswith("vdw-frames: error: frequency = 1e-12 Hz is too low: ")
+
+
 def test_cli_refuses_an_empty_out(capsys):
     assert cli.main(["sine-test", "--out", ""]) == 2
     assert capsys.readouterr().err == "vdw-frames: error: --out must name a folder, got ''\n"
