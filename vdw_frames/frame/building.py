@@ -663,8 +663,8 @@ def _span(values: ArrayLike, unit: str) -> str:
 def _check_eigenproblem(masses: np.ndarray, stiffnesses: np.ndarray) -> None:
     """Refuse story ``stiffnesses`` (N/mm) the double-precision eigenproblem K phi = w^2 M phi cannot resolve:
     a spread (largest / smallest) above :data:`MAX_STIFFNESS_RATIO`, or, with the ``masses`` (tonne), circular
-    frequencies squared beyond the float range (above by Gershgorin's circles of M^-1/2 K M^-1/2, below by
-    Dunkerley's 1 / trace(K^-1 M), within a factor of n^2 of the true extremes)."""
+    frequencies squared beyond the float range (bounded above by Gershgorin's circles of M^-1/2 K M^-1/2, a few
+    times the largest w^2, and below by Dunkerley's 1 / trace(K^-1 M), at least 1/n times the smallest)."""
     k, m = stiffnesses, masses
     softest, stiffest = int(np.argmin(k)), int(np.argmax(k))
     with np.errstate(over="ignore"):
