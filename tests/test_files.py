@@ -31,12 +31,19 @@ def test_readers_name_compressed_utf16_binary_missing_and_folder_inputs(tmp_path
         (good.encode("utf-16-le"), "UTF-16 text"),
         (b"PK\x03\x04" + b"\x00" * 20, "a zip archive"),
         (b"NPTS= 7\x00\x01", "binary data"),
+        # Short binary data with NULs in every other byte was called "UTF-16 text"
+        (b"\x00\x01\x02\xff", r"binary data \(a NUL byte at position 0\), not a text"),
+        (b"\x00\x01\x02\xc3\xbf", r"binary data \(a NUL byte at position 0\), not a text"),
+        ("NPTS= 7, DT= 0.01 \u2265".encode("utf-16-be"), "UTF-16 text"),  # one character beyond Latin-1
     ]
     for data, match in cases:
         for reader in (read_at2, read_two_column):
             path = write_file(tmp_path, "odd.AT2", data)
             with pytest.raises(ValueError, match=re.escape(str(path)) + ": " + match):
                 reader(path)
+    binary = write_file(tmp_path, "binary.toml", b"\x00\x01\x02\xff")
+    with pytest.raises(ValueError, match=r"binary.toml: binary data \(a NUL byte at position 0\), not a text building"):
+        load_building(binary)
     for bad, match in ((tmp_path, "is a folder, not a"), (tmp_path / "missing.AT2", "missing.AT2: no such"),
                        ("", "must be a path, got ''"), (None, "must be a path .* got None")):
         for reader in (read_at2, read_two_column, load_building):

@@ -92,10 +92,18 @@ def read_text(path: str | os.PathLike[str], what: str = "file", strict: bool = T
     return path, text
 
 
+# Bytes of text: not NUL nor a control character other than tab, line feed, form feed and carriage return.
+_TEXT_BYTES = frozenset({9, 10, 12, 13, *range(0x20, 0x7F), *range(0x80, 0x100)})
+
+
 def _looks_utf16(data: bytes) -> bool:
-    # ASCII text in UTF-16 without a byte-order mark: every other byte of the start is NUL.
+    # Mostly-ASCII text in UTF-16 without a byte-order mark: every other byte of the start is NUL (one may not
+    # be: a character beyond Latin-1), the others are text.  Binary data with a few NULs (00 01 02 ff) is not.
     head = data[:200]
-    return len(head) >= 4 and (head[1::2].count(0) >= len(head) // 2 - 1 or head[0::2].count(0) >= len(head) // 2 - 1)
+    if len(head) < 4:
+        return False
+    return any(zeros.count(0) >= len(zeros) - 1 and all(byte in _TEXT_BYTES for byte in chars)
+               for zeros, chars in ((head[1::2], head[0::2]), (head[0::2], head[1::2])))
 
 
 def output_folder(path: str | os.PathLike[str], what: str = "output folder") -> Path:

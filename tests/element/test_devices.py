@@ -192,6 +192,46 @@ def test_a_friction_damper_loop_has_the_area_4_Fs_u0_minus_uy(u0_over_uy):
     assert response["heat"][-1] - response["heat"][-1 - steps] == pytest.approx(expected, rel=1e-5)
 
 
+@pytest.mark.parametrize("u0", [1.5, 1e160, 1e300, 1.7e308])
+def test_a_friction_damper_complex_stiffness_is_the_closed_form_at_any_amplitude(u0):
+    """K_eff = F_s / u0, K'' = 4 F_s (u0 - u_y) / (pi u0^2) (FEMA 356 Sec. 9.3.3, eq. 9-36), written here in
+    higher precision (fractions of the exact binary values), within 1e-14; finite where u0^2 overflows (it
+    raised OverflowError beyond u0 ~ 1.3e154; K'' -> 4 F_s / (pi u0) there)."""
+    from fractions import Fraction
+
+    slip_force, stiffness = 1.0e3, 2.0e3  # u_y = 0.5 mm
+    value = complex(vdw.FrictionDamper(slip_force, stiffness).complex_stiffness(1.0, u0))
+    exact_u0, exact_uy = Fraction(u0), Fraction(slip_force) / Fraction(stiffness)
+    loss = 4 * Fraction(slip_force) * (exact_u0 - exact_uy) / exact_u0**2
+    assert math.isfinite(value.real) and math.isfinite(value.imag)
+    assert value.real == pytest.approx(float(Fraction(slip_force) / exact_u0), rel=1e-14)
+    assert value.imag == pytest.approx(float(loss) / math.pi, rel=1e-14)
+    if u0 >= 1e160:
+        assert value.imag == pytest.approx(4.0 * slip_force / (math.pi * u0), rel=1e-14)
+
+
+def test_a_building_with_friction_dampers_at_a_huge_drift_amplitude_has_the_bare_frames_modes():
+    """K* ~ 1e-297 N/mm at a drift amplitude of 1e300 mm: the modes are the bare frame's, within 1e-12 (it
+    raised OverflowError from F_s / u0^2)."""
+    friction = vdw.FrictionDamper(1.0e3, 2.0e5)
+    building = vdw.ShearBuilding([10.0, 10.0], [2.0e4, 2.0e4], devices={1: [friction], 2: [friction]})
+    modes = vdw.modal_analysis(building, drift_amplitude=1e300)
+    bare = vdw.modal_analysis(building.without_devices())
+    np.testing.assert_allclose(modes.periods, bare.periods, rtol=1e-12)
+    np.testing.assert_allclose(modes.damping_ratios, bare.damping_ratios, rtol=1e-12)
+
+
+def test_a_devices_energy_per_cycle_beyond_the_float_range_is_refused_naming_the_amplitude():
+    """The loop areas 4 F_s (u0 - u_y) and lambda C omega^alpha u0^(1 + alpha) overflow for a huge amplitude:
+    a ValueError naming it (the FVD's raised OverflowError; the friction damper's returned inf)."""
+    with pytest.raises(ValueError, match=r"amplitude = 1\.7e\+308 mm"):
+        vdw.FrictionDamper(1.0e3, 2.0e5).energy_per_cycle(1.7e308)
+    with pytest.raises(ValueError, match=r"amplitude = 1e\+300 mm and frequency = 1\.0 Hz"):
+        vdw.FluidViscousDamper(100.0, 0.5, 1.0e4).energy_per_cycle(1e300, 1.0)
+    with pytest.raises(ValueError, match=r"drift_amplitude = 1\.7e\+308 mm.*magnification 2\.0"):
+        vdw.FrictionDamper(1.0e3, 2.0e5, magnification=2.0).story_stiffness(1.0, 1.7e308)
+
+
 # ---------------------------------------------------------------------------------------------- bad input
 @pytest.mark.parametrize(("arguments", "named"), [
     (dict(C=100.0, alpha=0.0, stiffness=1e4), "alpha.*0.0"),

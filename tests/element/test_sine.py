@@ -76,6 +76,19 @@ def test_bad_amplitudes_frequencies_steps_cycles_and_walls_are_refused():
         sine_test(damper, 1.0, 1.0, cycles=math.inf)
 
 
+def test_a_frequency_whose_step_the_walls_do_not_take_is_named_too_low_or_too_high():
+    """200 steps a cycle at 1e-12 Hz take dt = 5e9 s, beyond the walls' largest step (1000 s): it read "overflowed
+    ... too large".  The range: 1 / (1000 s x 200) = 5e-6 Hz to 1 / (1e-9 s x 200) = 5e6 Hz."""
+    damper = FDMKDamper(**TABLE4)
+    with pytest.raises(ValueError, match=r"frequency = 1e-12 Hz is too low: 200 steps a cycle take dt = 5e\+09 s, "
+                                         r"outside .* \(1e-09 ... 1000 s\).* 5e-06 ... 5e\+06 Hz"):
+        sine_test(damper, 1.0, 1e-12)
+    with pytest.raises(ValueError, match=r"frequency = 1000000000.0 Hz is too high: .* dt = 5e-12 s"):
+        sine_test(damper, 1.0, 1e9)
+    with pytest.raises(ValueError, match=r"dt = 10000.0 s is outside the range of time steps accepted"):
+        sine_test(damper, 1.0, 1e-6, dt=1e4)
+
+
 def test_an_overflowing_sine_test_names_the_amplitude():
     damper = FDMKDamper(**README_WALL)
     with warnings.catch_warnings():

@@ -477,6 +477,10 @@ def test_the_coupled_problem_of_a_fractional_wall_matches_a_dense_diffusive_refe
 @pytest.mark.parametrize("make, match", [
     (lambda: ThermalProperties(ISD110_LOSS_PEAK, 0.0), "heat_capacity must be > 0, got 0.0"),
     (lambda: ThermalProperties(ISD110_LOSS_PEAK, -1.5), "heat_capacity must be > 0, got -1.5"),
+    # Below air's rho c (1.2e-3 J/(cm^3 K)): 5e-324 made the temperatures inf, 1e-300 rises of 1e210 K.
+    (lambda: ThermalProperties(ISD110_LOSS_PEAK, 5e-324), r"heat_capacity 5e-324 MPa/K .* below 0.001, about air's"),
+    (lambda: ThermalProperties(ISD110_LOSS_PEAK, 1e-300), r"heat_capacity 1e-300 MPa/K .* below 0.001"),
+    (lambda: ThermalProperties(ISD110_LOSS_PEAK, 9.99e-4), r"heat_capacity 0.000999 MPa/K .* below 0.001"),
     (lambda: ThermalProperties(ISD110_LOSS_PEAK, 1.8, -300.0), r"temperature must be above absolute zero .* -300.0"),
     (lambda: ThermalProperties(ISD110_LOSS_PEAK, 1.8, 20.0, -5.0), "cooling_time must be > 0, got -5.0"),
     (lambda: WLF(8.86, 0.0, 21.2, (0.0, 40.0)), "C2 must be > 0, got 0.0"),

@@ -136,7 +136,65 @@ def test_stiffnesses_whose_sum_overflows_are_refused_naming_the_stories():
     # Before: scipy's "array must not contain infs or NaNs" from the first eigen-analysis.
     with pytest.raises(ValueError, match=r"stiffnesses of stories 2 and 3 \(1e\+308 and 1e\+308 N/mm\) overflow"):
         ShearBuilding([1.0] * 3, [1.0, 1e308, 1e308])
-    assert ShearBuilding([1.0] * 2, [1e308, 1.0]).stiffness_matrix[0, 0] == 1e308  # its sum is finite
+    assert ShearBuilding([1.0] * 2, [1e308, 1e299]).stiffness_matrix[0, 0] == 1e308 + 1e299  # its sum is finite
+
+
+def _two_story_lowest_frequency(masses, stiffnesses):
+    """w1 (rad/s) of a 2-story shear frame in 60-digit decimal arithmetic: w^2 = 2 det / (tr + sqrt(tr^2 - 4 det))
+    of M^-1 K (the smaller root of its characteristic quadratic, in the form without cancellation)."""
+    from decimal import Decimal, localcontext
+
+    with localcontext() as context:
+        context.prec = 60
+        (m1, m2), (k1, k2) = (Decimal(x) for x in masses), (Decimal(x) for x in stiffnesses)
+        trace = (k1 + k2) / m1 + k2 / m2
+        determinant = k1 * k2 / (m1 * m2)
+        return float((2 * determinant / (trace + (trace * trace - 4 * determinant).sqrt())).sqrt())
+
+
+@pytest.mark.parametrize(("stiffnesses", "named"), [
+    ([1e-12, 2e4], r"ratio of 2e\+16 \(story 1: 1e-12 N/mm, story 2: 20000.0 N/mm\), more than 1e\+10"),
+    ([1e300, 2e4], r"ratio of 5e\+295 \(story 2: 20000.0 N/mm, story 1: 1e\+300 N/mm\), more than 1e\+10"),
+    ([2e4, 1.9e-6], r"ratio of 1.05e\+10 \(story 2: 1.9e-06 N/mm, story 1: 20000.0 N/mm\)"),
+])
+def test_story_stiffnesses_the_eigenproblem_cannot_resolve_are_refused_naming_them(stiffnesses, named):
+    """A spread of stiffnesses above 1e10: the lowest eigenvalue came out negative (1e-12 next to 2e4: period NaN,
+    simulate "did not converge", modal_analysis "SVD did not converge")."""
+    with pytest.raises(ValueError, match=named + ".*double precision cannot resolve"):
+        ShearBuilding([10.0, 10.0], stiffnesses)
+
+
+def test_the_widest_stiffness_spread_allowed_still_gives_the_lowest_frequency_to_6_digits():
+    """At the bound (1e10) both solvers agree with the 60-digit closed form within 1e-5 (measured <= 3e-6)."""
+    for masses, stiffnesses in (([10.0, 10.0], [2e-6, 2e4]), ([1e-12, 1e4], [2e-6, 2e4]), ([10.0, 10.0], [2e4, 2e-6])):
+        frame = ShearBuilding(masses, stiffnesses)
+        exact = _two_story_lowest_frequency(masses, stiffnesses)
+        assert frame.lowest_circular_frequencies(1)[0] == pytest.approx(exact, rel=1e-5)
+        assert frame.circular_frequencies[0] == pytest.approx(exact, rel=1e-5)
+
+
+def test_frequencies_squared_beyond_the_float_range_are_refused_naming_masses_and_stiffnesses():
+    with pytest.raises(ValueError, match=r"masses 1e-300 t and stiffnesses 1e\+300 N/mm .* beyond the double"):
+        ShearBuilding([1e-300, 1e-300], [1e300, 1e300])
+    with pytest.raises(ValueError, match=r"masses 1e\+300 t and stiffnesses 1e-300 N/mm .* below the smallest normal"):
+        ShearBuilding([1e300, 1e300], [1e-300, 1e-300])
+
+
+def test_frequencies_and_periods_are_never_nan(monkeypatch):
+    """Masses spread 1e34 over a stiffness spread of 1e10: the dense solver's w1^2 comes out -1.2e-10 (NaN periods
+    before): a ValueError naming the masses and stiffnesses.  The tridiagonal bisection, on masses and stiffnesses
+    scaled to their largest, resolves it (no frame found where it does not); given the dense solver's eigenvalue
+    it raises the same."""
+    from vdw_frames.frame import building
+
+    frame = ShearBuilding([1e4, 1e-30, 1e4], [2e-6, 2e4, 2e-6])
+    named = r"w\^2 = .* \(not finite and > 0\) for masses 1e-30 ... 10000.0 t and stiffnesses 2e-06 ... 20000.0 N/mm"
+    with pytest.raises(ValueError, match=named):
+        frame.periods  # noqa: B018
+    assert frame.lowest_circular_frequencies(1)[0] > 0.0
+    monkeypatch.setattr(building, "eigh_tridiagonal", lambda *args, **kwargs: np.array([-1.2e-10]))
+    with pytest.raises(ValueError, match=named):
+        ShearBuilding([1e4, 1e-30, 1e4], [2e-6, 2e4, 2e-6]).lowest_circular_frequencies(1)
 
 
 def test_frequency_domain_refuses_a_frame_unstable_under_its_gravity_loads():

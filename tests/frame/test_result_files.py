@@ -241,6 +241,23 @@ def test_load_refuses_a_reversed_time_non_finite_histories_and_a_drift_not_of_th
             SimulationResult.load(path)
 
 
+def test_load_refuses_a_time_with_a_nan_and_names_time_when_it_is_the_one_cut_short(result, saved, tmp_path):
+    """A NaN in time passed every comparison of its uniform-step check (the result loaded); a time one step short
+    of the histories was reported as "displacement must have shape (n - 1, 10)"."""
+    time = result.time.copy()
+    time[4] = np.nan
+    steps = result.time.size
+    cases = [({"result.time": time}, r"time must be finite, got nan at index \(4,\)"),
+             ({"result.time": result.time[:-1].copy()},
+              rf"time has {steps - 1} steps but every history \(displacement, .*, base_shear\) has {steps} rows"),
+             ({"result.time": np.append(result.time, result.time[-1] + result.time[1])},
+              rf"time has {steps + 1} steps but every history .* has {steps} rows")]
+    for arrays, message in cases:
+        path = rewrite(saved, tmp_path / "bad.npz", arrays=arrays)
+        with pytest.raises(ValueError, match=f"bad.npz: {message}"):
+            SimulationResult.load(path)
+
+
 def test_load_refuses_raw_members_deep_metadata_and_a_fifo(saved, tmp_path):
     raw = tmp_path / "raw.npz"
     raw.write_bytes(saved.read_bytes())

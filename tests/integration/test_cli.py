@@ -128,6 +128,27 @@ def test_a_malformed_building_file_is_one_error_line(tmp_path, capsys):
     assert "nested.json: walls stories must be story numbers in 1 ... 3, got [1] in [[1]]" in error
 
 
+def test_a_building_file_of_stiffnesses_double_precision_cannot_resolve_is_one_error_line(tmp_path, capsys):
+    """1e-12 N/mm next to 2e4: simulate printed "T1 = nan s", a RuntimeWarning and "does not converge"."""
+    path = write_file(tmp_path, "soft.toml", "masses = [10, 10]\nstiffnesses = [1e-12, 20000]\n")
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path())]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and error.startswith("vdw-frames: error: ")
+    assert "soft.toml: stiffnesses span a ratio of 2e+16 (story 1: 1e-12 N/mm, story 2: 20000.0 N/mm)" in error
+
+
+def test_a_building_file_of_walls_with_no_heat_capacity_is_one_error_line(tmp_path, capsys):
+    """rho c = 5e-324: the walls' temperatures became inf and result.npz could not be loaded again."""
+    path = write_file(tmp_path, "cold.toml", "masses = [10, 10]\nstiffnesses = [20000, 20000]\n"
+                      "story_heights = [3000, 3000]\n[[walls]]\nstories = 'all'\narea = 100000\nthickness = 10\n"
+                      "parameters = 'fitted-300'\n[walls.thermal]\nshift = 'isd110-loss-peak'\n"
+                      "heat_capacity = 5e-324\n")
+    assert cli.main(["simulate", str(path), "--record", str(default_record_path())]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and error.startswith("vdw-frames: error: ")
+    assert "cold.toml: heat_capacity 5e-324 MPa/K = J/(cm^3 K) is below 0.001, about air's" in error
+
+
 def test_cli_reports_a_missing_record(tmp_path, capsys):
     assert cli.main(["simulate", str(EXAMPLE_BUILDING), "--record", str(tmp_path / "none.AT2")]) == 2
     assert "none.AT2" in capsys.readouterr().err
@@ -306,6 +327,12 @@ def test_a_ctrl_c_that_a_callback_swallowed_still_ends_the_command_as_interrupte
     assert "KeyboardInterrupt" in done.stderr  # as Python reported it
     assert done.returncode == 130, done.stderr
     assert done.stderr.endswith("vdw-frames: interrupted (Ctrl-C); sine-test stopped\n")
+
+
+def test_cli_sine_test_names_a_frequency_too_low_for_the_walls_steps(tmp_path, capsys):
+    assert cli.main(["sine-test", "--frequency", "1e-12", "--out", str(tmp_path)]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and error.startswith("vdw-frames: error: frequency = 1e-12 Hz is too low: ")
 
 
 def test_cli_refuses_an_empty_out(capsys):

@@ -19,6 +19,7 @@ Units: frequency Hz, deformation mm, force N, stiffness N/mm.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import ClassVar, NamedTuple, Protocol, runtime_checkable
 
@@ -88,6 +89,9 @@ def device_amplitude(drift_amplitude: float | None, magnification: float, kind: 
         raise ValueError(f"a {kind}'s equivalent linear stiffness depends on its amplitude: give drift_amplitude "
                          "(mm), the story drift amplitude it is linearised at")
     amplitude = positive("drift_amplitude", drift_amplitude)
+    if not math.isfinite(magnification * amplitude):
+        raise ValueError(f"drift_amplitude = {show(drift_amplitude)} mm times the {kind}'s magnification "
+                         f"{show(magnification)} exceeds the double-precision range")
     return magnification * amplitude
 
 

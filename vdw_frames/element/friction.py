@@ -68,7 +68,11 @@ class FrictionDamper:
         """4 F_s (u_0 - F_s / k) (N*mm): the loop area of one cycle of deformation amplitude u_0 (mm); 0 below
         the slip deformation."""
         amplitude = positive("amplitude", amplitude)
-        return 4.0 * self.slip_force * max(amplitude - self.slip_deformation, 0.0)
+        energy = 4.0 * self.slip_force * max(amplitude - self.slip_deformation, 0.0)
+        if not math.isfinite(energy):
+            raise ValueError(f"the friction damper's energy per cycle at amplitude = {show(amplitude)} mm "
+                             f"(slip_force = {show(self.slip_force)} N) exceeds the double-precision range")
+        return energy
 
     def complex_stiffness(self, f: ArrayLike, amplitude: float | None = None) -> np.ndarray:
         """K_eff + i K'' (N/mm) at frequencies f (Hz, >= 0; rate-independent: the same at every f) and the
@@ -83,7 +87,10 @@ class FrictionDamper:
         if u0 <= self.slip_deformation:
             value = complex(self.stiffness)
         else:
-            value = complex(self.slip_force / u0, self.energy_per_cycle(u0) / (math.pi * u0**2))
+            # K'' = 4 F_s (u0 - u_y) / (pi u0^2) as (F_s / u0) (4 / pi) (1 - u_y / u0): every factor bounded
+            # (F_s / u0 < k), where u0^2 or the loop area would overflow for a huge amplitude
+            secant = self.slip_force / u0
+            value = complex(secant, secant * (4.0 / math.pi) * (1.0 - self.slip_deformation / u0))
         return np.full(frequency.shape, value)
 
     def story_stiffness(self, f: ArrayLike, drift_amplitude: float | None = None) -> np.ndarray:

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import check_memory, positive, whole_number
+from .._validation import SIMULATION_STEP_RANGE, check_memory, positive, time_step, whole_number
 from .damper import FDMKDamper
 from .fractional import DEFAULT_METHOD, Discretisation, get_method
 from .supported import WALL_TYPES, SupportedDamper
@@ -78,7 +78,7 @@ def sine_test(damper: FDMKDamper | SupportedDamper, amplitude: float, frequency:
         raise ValueError(f"damper must be an FDMKDamper or a SupportedDamper, got {type(damper).__name__}")
     amplitude = positive("amplitude", amplitude)
     frequency = positive("frequency", frequency)
-    requested_dt = None if dt is None else positive("dt", dt)
+    requested_dt = None if dt is None else time_step(dt)
     cycles = whole_number("cycles", cycles, 1)
     method = get_method(method)
     samples, dt = _steps_per_cycle(frequency, requested_dt, cycles)
@@ -128,4 +128,11 @@ def _steps_per_cycle(frequency: float, dt: float | None, cycles: int) -> tuple[i
         dt = 1.0 / (frequency * samples)
     if not (np.isfinite(dt) and dt > 0.0):
         raise ValueError(f"frequency = {frequency!r} Hz is beyond what a time step can resolve")
+    # The walls take steps in SIMULATION_STEP_RANGE only (their force refused any other, which read as an overflow)
+    low, high = SIMULATION_STEP_RANGE
+    if not low <= dt <= high:
+        raise ValueError(f"frequency = {frequency!r} Hz is too {'low' if dt > high else 'high'}: {samples} steps a "
+                         f"cycle take dt = {dt:.3g} s, outside the time steps the walls accept ({low:g} ... {high:g} "
+                         f"s); at {samples} steps a cycle the frequency must lie in {1.0 / (high * samples):.3g} ... "
+                         f"{1.0 / (low * samples):.3g} Hz")
     return samples, dt

@@ -101,6 +101,13 @@ THERMAL_DIFFUSIVITY = 0.1
 of unfilled and filled polymers (about 0.08-0.15 mm^2/s; an assumption for the paper's material, which the
 paper does not characterise).  Used by :func:`conduction_time`."""
 
+MIN_HEAT_CAPACITY = 1e-3
+"""MPa/K = J/(cm^3 K): the smallest volumetric heat capacity rho c :class:`ThermalProperties` takes, a
+validation floor (this package's), not a model constant.  Air is about 1.2e-3 (at 300 K, rho = 1.16 kg/m^3
+and c_p = 1.007 kJ/(kg K): Incropera and DeWitt, Fundamentals of Heat and Mass Transfer, Table A.4); every
+solid, foams included, holds more (polymers 1.5-2.0, steel 3.5), so no layer lies below it; a rho c of
+5e-324 made the temperatures inf and 1e-300 rises of 1e210 K."""
+
 GAS_CONSTANT = 8.314462618
 """J/(mol K) (CODATA 2018)."""
 
@@ -337,9 +344,10 @@ class ThermalProperties:
     """What a wall needs to change with temperature and to heat itself.
 
     ``shift``: its :class:`WLF`, :class:`Arrhenius` or :class:`LogLinear` law; the wall's parameters are those at
-    ``shift.reference``.  ``heat_capacity`` rho c of the viscoelastic layers (MPa/K = J/(cm^3 K), > 0;
-    polymers 1.5-2.0).  ``temperature`` (degC): the layers' temperature at rest and the ambient they cool
-    towards; default ``shift.reference``.  ``cooling_time`` tau (s, > 0; default inf, adiabatic): the time
+    ``shift.reference``.  ``heat_capacity`` rho c of the viscoelastic layers (MPa/K = J/(cm^3 K); polymers
+    1.5-2.0; at least :data:`MIN_HEAT_CAPACITY` = 1e-3, about air's, a validation floor, not a model
+    constant).  ``temperature`` (degC): the layers' temperature at rest and the ambient they cool towards;
+    default ``shift.reference``.  ``cooling_time`` tau (s, > 0; default inf, adiabatic): the time
     constant of rho c V dT/dt = P - rho c V (T - T_ambient) / tau.
 
     Adiabatic is the default because the strong motion of most records (10-30 s) is shorter than the time a
@@ -359,7 +367,13 @@ class ThermalProperties:
     def __post_init__(self) -> None:
         if not isinstance(self.shift, SHIFT_LAWS):
             raise ValueError(f"shift must be a WLF, Arrhenius or LogLinear law, got {type(self.shift).__name__}")
-        object.__setattr__(self, "heat_capacity", positive("heat_capacity", self.heat_capacity))
+        heat_capacity = positive("heat_capacity", self.heat_capacity)
+        if heat_capacity < MIN_HEAT_CAPACITY:
+            raise ValueError(f"heat_capacity {show(self.heat_capacity)} MPa/K = J/(cm^3 K) is below "
+                             f"{MIN_HEAT_CAPACITY:g}, about air's rho c (1.2e-3): no damper layer holds so little heat "
+                             "(polymers 1.5-2.0, every solid 100 times air's or more; a validation floor, not a "
+                             "model constant)")
+        object.__setattr__(self, "heat_capacity", heat_capacity)
         temperature = self.shift.reference if self.temperature is None else service_temperature("temperature",
                                                                                                 self.temperature)
         if isinstance(self.shift, WLF) and temperature <= self.shift.lowest:

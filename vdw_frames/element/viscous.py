@@ -113,7 +113,14 @@ class FluidViscousDamper:
         ``amplitude`` u_0 (mm) across the dashpot at ``frequency`` (Hz) (FEMA 356 Sec. 9.3.4.3 commentary)."""
         amplitude = positive("amplitude", amplitude)
         omega = 2.0 * math.pi * positive("frequency", frequency)
-        return energy_factor(self.alpha) * self.C * omega**self.alpha * amplitude ** (1.0 + self.alpha)
+        try:  # a Python float's ** raises OverflowError rather than giving inf
+            energy = energy_factor(self.alpha) * self.C * omega**self.alpha * amplitude ** (1.0 + self.alpha)
+        except OverflowError:
+            energy = math.inf
+        if not math.isfinite(energy):
+            raise ValueError(f"the FVD's energy per cycle at amplitude = {show(amplitude)} mm and frequency = "
+                             f"{show(frequency)} Hz (C = {show(self.C)}) exceeds the double-precision range")
+        return energy
 
     def equivalent_coefficient(self, frequency: ArrayLike, amplitude: float) -> np.ndarray:
         """C_eq = lambda C (omega u_0)^(alpha - 1) / pi (N*s/mm) of the dashpot at its own amplitude u_0 (mm)
@@ -183,7 +190,8 @@ def dashpot_amplitude_ratio(loss_ratio: ArrayLike, alpha: float) -> np.ndarray:
     low, high = np.zeros(q.shape), np.ones(q.shape)
     for _ in range(60):
         middle = 0.5 * (low + high)
-        above = middle**2 + q**2 * middle ** (2.0 * alpha) > 1.0
+        with np.errstate(over="ignore"):  # a q^2 x^(2 alpha) that overflows is above 1 all the same
+            above = middle**2 + q**2 * middle ** (2.0 * alpha) > 1.0
         high = np.where(above, middle, high)
         low = np.where(above, low, middle)
     return 0.5 * (low + high)

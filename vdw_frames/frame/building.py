@@ -28,6 +28,13 @@ DAMPING_MODELS = ("rayleigh", "modal")
 
 _FREQUENCY_CHUNK = 2048  # frequencies solved at once by frequency_response
 
+# The widest spread of story stiffnesses (largest / smallest) a building may have: a validation bound of
+# double-precision arithmetic, not a model constant.  The lowest frequency of K phi = w^2 M phi loses
+# about eps (2.2e-16) times the spread of its digits (2-story frames against a 60-digit closed form: <= 3e-6
+# relative at 1e10, 1e-4 at 1e12; at 2e16 the eigenvalue comes out negative and the period NaN); real story
+# stiffnesses, a soft or an isolation story included, span less than 1e4.
+MAX_STIFFNESS_RATIO = 1e10
+
 
 @dataclass(frozen=True, eq=False, init=False)
 class ShearBuilding:
@@ -40,7 +47,8 @@ class ShearBuilding:
         Floor masses, tonne, from the first floor up.
     stiffnesses : sequence of float
         Initial (elastic) story stiffnesses k0, N/mm; story 1 connects the ground to floor 1, story k
-        floor k-1 to floor k.
+        floor k-1 to floor k.  The largest at most :data:`MAX_STIFFNESS_RATIO` (1e10) times the smallest,
+        and k/m within the float range: what double precision resolves (a validation bound).
     damping_ratio : float
         Inherent damping ratio of the bare frame, in [0, 1).
     damping_modes : (int, int), optional
@@ -145,6 +153,7 @@ class ShearBuilding:
             story = int(np.argmax(~np.isfinite(assembled)))
             raise ValueError(f"stiffnesses of stories {story + 1} and {story + 2} ({show(stiffnesses[story])} and "
                              f"{show(stiffnesses[story + 1])} N/mm) overflow when added into the stiffness matrix")
+        _check_eigenproblem(masses, stiffnesses)
         object.__setattr__(self, "masses", tuple(masses.tolist()))
         object.__setattr__(self, "stiffnesses", tuple(stiffnesses.tolist()))
         return int(masses.size)
@@ -289,7 +298,17 @@ class ShearBuilding:
     @cached_property
     def _modes(self) -> tuple[np.ndarray, np.ndarray]:
         eigenvalues, shapes = eigh(self.stiffness_matrix, self.mass_matrix)
-        return _read_only(np.sqrt(eigenvalues)), _read_only(shapes)
+        return _read_only(np.sqrt(self._checked_squares(eigenvalues))), _read_only(shapes)
+
+    def _checked_squares(self, squares: np.ndarray) -> np.ndarray:
+        """``squares`` (w^2, rad^2/s^2), or a ValueError naming the masses and stiffnesses if one is not finite
+        and > 0 (a rounding eigenvalue of an ill-conditioned frame: its period would be NaN)."""
+        bad = ~(np.isfinite(squares) & (squares > 0.0))
+        if bad.any():
+            raise ValueError(f"the frame's eigenproblem K phi = w^2 M phi gave w^2 = {show(squares[bad][0])} rad^2/s^2 "
+                             f"(not finite and > 0) for masses {_span(self.masses, 't')} and stiffnesses "
+                             f"{_span(self.stiffnesses, 'N/mm')}: double precision cannot resolve it")
+        return squares
 
     @property
     def circular_frequencies(self) -> np.ndarray:
@@ -327,7 +346,8 @@ class ShearBuilding:
         off = -k[1:] * scale[:-1] * scale[1:]
         squares = eigh_tridiagonal(diagonal, off, eigvals_only=True, select="i", select_range=(0, count - 1),
                                    tol=np.finfo(float).tiny)
-        return _read_only(np.sqrt(np.asarray(squares)) * np.sqrt(stiffness_unit / mass_unit))
+        squares = self._checked_squares(np.asarray(squares))
+        return _read_only(np.sqrt(squares) * np.sqrt(stiffness_unit / mass_unit))
 
     @cached_property
     def rayleigh_coefficients(self) -> tuple[float, float]:
@@ -631,6 +651,42 @@ def require_linear_devices(building: ShearBuilding, analysis: str) -> None:
             raise ValueError(f"{analysis} needs linear devices, but story {story} has a {device.describe()}, whose "
                              "stiffness depends on its amplitude: analyse in time (simulate), or linearise it at an "
                              "amplitude (modal_analysis(..., drift_amplitude=...))")
+
+
+def _span(values: ArrayLike, unit: str) -> str:
+    """'a ... b unit' (smallest ... largest), or 'a unit' when all are equal: for messages."""
+    array = np.asarray(values, dtype=float)
+    low, high = float(array.min()), float(array.max())
+    return f"{show(low)} {unit}" if low == high else f"{show(low)} ... {show(high)} {unit}"
+
+
+def _check_eigenproblem(masses: np.ndarray, stiffnesses: np.ndarray) -> None:
+    """Refuse story ``stiffnesses`` (N/mm) the double-precision eigenproblem K phi = w^2 M phi cannot resolve:
+    a spread (largest / smallest) above :data:`MAX_STIFFNESS_RATIO`, or, with the ``masses`` (tonne), circular
+    frequencies squared beyond the float range (bounded above by Gershgorin's circles of M^-1/2 K M^-1/2, a few
+    times the largest w^2, and below by Dunkerley's 1 / trace(K^-1 M), at least 1/n times the smallest)."""
+    k, m = stiffnesses, masses
+    softest, stiffest = int(np.argmin(k)), int(np.argmax(k))
+    with np.errstate(over="ignore"):
+        ratio = k[stiffest] / k[softest]
+    if not ratio <= MAX_STIFFNESS_RATIO:
+        raise ValueError(
+            f"stiffnesses span a ratio of {ratio:.3g} (story {softest + 1}: {show(k[softest])} N/mm, story "
+            f"{stiffest + 1}: {show(k[stiffest])} N/mm), more than {MAX_STIFFNESS_RATIO:.0e}: double precision "
+            "cannot resolve the frame's lowest frequencies (they lose about 2.2e-16 times the ratio of their digits; "
+            "real story stiffnesses span less than 1e4)")
+    with np.errstate(over="ignore", under="ignore", divide="ignore"):
+        coupling = k[1:] / np.sqrt(m[:-1]) / np.sqrt(m[1:])  # |off-diagonal| of M^-1/2 K M^-1/2
+        circles = (k + np.append(k[1:], 0.0)) / m + np.append(coupling, 0.0) + np.append(0.0, coupling)
+        highest = float(circles.max())
+        flexibility = np.cumsum(1.0 / k)  # floor j's deflection under a unit load there, mm/N
+        lowest = float(1.0 / np.sum(m * flexibility))
+    if not np.isfinite(highest):
+        raise ValueError(f"masses {_span(m, 't')} and stiffnesses {_span(k, 'N/mm')} give circular frequencies "
+                         "squared (k/m, rad^2/s^2) beyond the double-precision range (1.8e308)")
+    if not lowest >= np.finfo(float).tiny:
+        raise ValueError(f"masses {_span(m, 't')} and stiffnesses {_span(k, 'N/mm')} give circular frequencies "
+                         "squared (k/m) below the smallest normal double (2.2e-308 rad^2/s^2)")
 
 
 def _read_only(array: np.ndarray) -> np.ndarray:

@@ -521,6 +521,7 @@ def check_saved_result(fields: dict[str, Any], energy: dict[str, Any]) -> None:
     state = _check_outcome_flags(fields, floors)
     time, first, dt = _check_time(fields.get("time"), state)
     rows = time.size
+    _check_time_rows(fields, rows)
     histories = {name: _history(name, fields.get(name), (rows, floors))
                  for name in ("displacement", "velocity", "acceleration", "drift", "story_shear", "story_wall_force")}
     for name in ("ground_acceleration", "base_shear"):
@@ -591,6 +592,10 @@ def _check_time(value: object, state: FrameState | None) -> tuple[np.ndarray, in
     rows = time.size
     if time.ndim != 1 or rows == 0:
         raise ValueError(f"time must be a 1-D array of at least one step, got shape {time.shape}")
+    bad = ~np.isfinite(time)
+    if bad.any():  # NaN passes the comparisons below
+        index = int(np.argmax(bad))
+        raise ValueError(f"time must be finite, got {show(time[index])} at index ({index},)")
     first = 0 if state is None else state.step
     dt = state.dt if state is not None else float(time[1]) if rows > 1 else 1.0
     # simulate writes (first + k) dt exactly; a restart's dt may differ from its state's by 1e-9 (_check_state)
@@ -599,6 +604,21 @@ def _check_time(value: object, state: FrameState | None) -> tuple[np.ndarray, in
         raise ValueError(f"time must be (first step + k) dt, increasing uniformly from {first} dt (dt > 0), got "
                          f"{show(time[:3].tolist())} ...")
     return time, first, dt
+
+
+_STEP_HISTORIES = ("displacement", "velocity", "acceleration", "drift", "story_shear", "story_wall_force",
+                   "ground_acceleration", "base_shear")
+
+
+def _check_time_rows(fields: dict[str, Any], rows: int) -> None:
+    """A ValueError naming ``time`` when the step histories agree among themselves on a number of rows that is
+    not its ``rows`` (a truncated or extended time); a single history of its own length is named by its shape
+    check instead."""
+    counts = {name: value.shape[0] for name in _STEP_HISTORIES
+              if isinstance(value := fields.get(name), np.ndarray) and value.ndim >= 1}
+    if len(counts) == len(_STEP_HISTORIES) and len(set(counts.values())) == 1 and rows not in counts.values():
+        raise ValueError(f"time has {rows} steps but every history ({', '.join(counts)}) has "
+                         f"{next(iter(counts.values()))} rows: time must have one entry a row")
 
 
 def _check_wall_groups(fields: dict[str, Any], building: ShearBuilding, rows: int) -> int:
