@@ -453,11 +453,7 @@ class VerificationResult:
         """"case, record" of the analysis that gave wall ``wall``'s (index in ``walls``) largest ``name``
         (one of :data:`WALL_PEAKS`) in ``wall_peaks``: the first such analysis, cases in order; "" where the
         wall does not heat (temperature_rise)."""
-        values = self.wall_peaks[name][:, :, wall]
-        if not np.isfinite(values).any():
-            return ""
-        c, r = np.unravel_index(int(np.nanargmax(values)), values.shape)
-        return f"{self.cases[int(c)][0]}, {self.suite.motions[int(r)].name or f'record {int(r) + 1}'}"
+        return _governing(self.wall_peaks[name][:, :, wall], self.cases, _record_names(self.suite.motions))
 
     @property
     def passed(self) -> bool:
@@ -808,7 +804,7 @@ def verify(building: ShearBuilding, site: Site, records: Iterable[GroundMotion] 
     n_cases, n_records = len(cases), len(suite.motions)
     drifts = np.array([[summaries[(c, r)]["peak_drift_ratio"] for r in range(n_records)] for c in range(n_cases)])
     unacceptable = tuple(tuple(summaries[(c, r)]["reasons"] for r in range(n_records)) for c in range(n_cases))
-    names = [motion.name or f"record {r + 1}" for r, motion in enumerate(suite.motions)]
+    names = _record_names(suite.motions)
     criteria, statistic, limit, allowed = acceptance(
         drifts, unacceptable, category, cases=[c[0] for c in cases],
         records=names, allowable_drift_ratio=allowable_drift_ratio)
@@ -842,14 +838,27 @@ def _wall_demands(building: ShearBuilding, peaks: dict[str, np.ndarray], cases: 
                   names: Sequence[str]) -> tuple[WallDemand, ...]:
     demands = []
     for j, (story, wall) in enumerate(building.wall_list):
-        c, r = np.unravel_index(int(np.argmax(peaks["deformation"][:, :, j])), peaks["deformation"].shape[:2])
         rise = peaks["temperature_rise"][:, :, j]
         demands.append(WallDemand(
             story=story, wall=j, **{name: float(peaks[name][:, :, j].max()) for name in WALL_PEAKS[:-1]},
             temperature_rise=float(np.nanmax(rise)) if np.isfinite(rise).any() else None,
-            governing=f"{cases[int(c)][0]}, {names[int(r)]}",
+            governing=_governing(peaks["deformation"][:, :, j], cases, names),
             cooling_time=None if wall.thermal is None else float(wall.thermal.cooling_time)))
     return tuple(demands)
+
+
+def _record_names(motions: Sequence[GroundMotion]) -> list[str]:
+    """How the outputs name the suite's records: each record's name, else "record r" (1-based)."""
+    return [motion.name or f"record {r + 1}" for r, motion in enumerate(motions)]
+
+
+def _governing(values: np.ndarray, cases: Sequence[tuple[str, float]], names: Sequence[str]) -> str:
+    """"case, record" of the analysis that gave the largest of ``values`` (cases, records), the first in case
+    order; NaNs (a wall that does not heat) left out; "" when there is no number."""
+    if not np.isfinite(values).any():
+        return ""
+    c, r = np.unravel_index(int(np.nanargmax(values)), values.shape)
+    return f"{cases[int(c)][0]}, {names[int(r)]}"
 
 
 def _run_all(variants: Sequence[ShearBuilding], suite: ScaledSuite, *, collapse_drift_ratio: float,
