@@ -718,6 +718,7 @@ def _verify(args: argparse.Namespace) -> int:
     path = write_text(out / "report.md", verification_report.markdown(result, figures, title), "report")
     print(site.describe())
     print(result.suite.range.describe())
+    print(f"spectra: {result.suite.component_note}")
     frequency = 1.0 / result.first_period
     for c, (case, factor) in enumerate(result.cases[1:], 1):
         storage, loss = result.stiffness_factors[c, :, 0], result.stiffness_factors[c, :, 1]

@@ -75,6 +75,7 @@ def test_verify_command_writes_the_report(inputs, capsys):
     assert "| story drift ratio, mean of all 11 records (lower) |" in report and "mean story drift" not in report
     assert "Sec. 16.4.1.2 (read in ASCE 7-22 wording)" in report and "stands in for the maximum-direction" in report
     assert "Sec. 16.2.3.1, read in ASCE 7-22 wording" in printed  # the period range, on the console too
+    assert "stands in for the maximum-direction spectrum" in printed  # and what the spectra are
     # walls.csv names the strain a fraction, and the case and record of each column's largest
     assert [float(row["strain_fraction"]) for row in rows] == pytest.approx([w.strain for w in expected.walls],
                                                                             rel=1e-12)

@@ -116,10 +116,7 @@ def markdown(result: VerificationResult, figures: Mapping[str, str], title: str)
              f">= {100 * MEAN_FRACTION:.0f} % of the target at every one of {suite.periods.size} periods of the range "
              f"(Sec. 16.2.3.2, read in ASCE 7-22 wording; governing at T = {suite.governing_period:.3f} s; smallest "
              f"ratio {suite.ratio.min():.4f})",
-             f"- the clause scales maximum-direction spectra of the two horizontal components; this planar analysis "
-             f"takes one component per record, and that component's own {100 * suite.damping_ratio:g} %-damped "
-             "spectrum stands in for the maximum-direction spectrum (it is not larger, so scaling it to the "
-             "maximum-direction MCE_R target is conservative)", "",
+             f"- {suite.component_note}", "",
              "| record | factor | misfit | scaled PGA (g) |", "|---|---|---|---|"]
     for motion, factor, misfit in zip(suite.motions, suite.factors, suite.misfits, strict=True):
         lines.append(f"| {motion.name} | {factor:.3f} | {misfit:.3f} | {factor * motion.pga / G:.3f} |")

@@ -164,6 +164,15 @@ class ScaledSuite:
         return self.scaled_spectra.mean(axis=0)
 
     @property
+    def component_note(self) -> str:
+        """What the suite's spectra are: one horizontal component's, standing in for the clause's
+        maximum-direction spectra (module docstring), as the report and the console print it."""
+        return ("the clause scales maximum-direction spectra of the two horizontal components; this planar analysis "
+                f"takes one component per record, and that component's own {100 * self.damping_ratio:g} %-damped "
+                "spectrum stands in for the maximum-direction spectrum (it is not larger, so scaling it to the "
+                "maximum-direction MCE_R target is conservative)")
+
+    @property
     def ratio(self) -> np.ndarray:
         """mean spectrum / target on ``periods`` (-): >= 0.9 everywhere (Sec. 16.2.3.2)."""
         return self.mean_spectrum / self.target
