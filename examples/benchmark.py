@@ -58,6 +58,15 @@ repeats for runs under a second; numba compilation is excluded except in (d)):
     fractional walls on its record x 4 as 44 lanes, per analysis, against one OpenSeesPy analysis of it with
     classical r = 1 walls (as in (c)): target at most 1/100.  The load is printed beside each.
 
+(j) lanes innermost, projected (issue 32): two compiled prototypes in this file, not in the package, with every
+    array's last axis the lanes so that each pass over stories, modes or window does all lanes in SIMD
+    instructions: the bare example frame's step (Bilinear stories, Rayleigh C, P-Delta; Newton in lockstep with
+    converged or collapsed lanes masked, the package's convergence test, energies and peaks; no walls, devices or
+    fallbacks) on the batch of (i), its peak drifts checked against the package's, and the fast memory of 10 walls
+    (the example's r and dt) in 44 lanes, each timed against the package in turn (thread CPU time, median of the
+    ratios).  With (i)'s figures of the same run it projects what a rewrite of the one integrator in that layout
+    would reach, assuming the walls' whole commit gains as their memory does.
+
 ``--part X`` (repeatable) runs only the named parts (``--part h``: (h) alone).
 ``--quick``: 2 000 and 20 000 steps only (no 200 000-step runs), single repeats; (e) on 4 000 steps.  Without the
 ../shared/ground_motions folder (a fresh clone) a synthetic 80 s record at 0.004 s stands in for
@@ -81,6 +90,7 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+from numba import njit
 
 ROOT = Path(__file__).resolve().parents[1]
 RECORD = ROOT.parent / "shared" / "ground_motions" / "HWA002-N.AT2"
@@ -94,6 +104,7 @@ except ImportError:  # run from a checkout without an install
 # After the fallback above, which may put the checkout on the path first.
 from vdw_frames import Bilinear, FDMKDamper, FluidViscousDamper, ShearBuilding, run_batch, simulate  # noqa: E402
 from vdw_frames.element import FastMemory  # noqa: E402
+from vdw_frames.element.kernel import memory_advance  # noqa: E402
 from vdw_frames.motion import G, GroundMotion, read_at2  # noqa: E402
 
 # The fast memory on every record length (by default records under 2 048 steps use the exact memory).
@@ -667,7 +678,7 @@ def fixed_parameter_walls(walled: ShearBuilding) -> ShearBuilding:
 
 
 def part_lanes(benchmark_frame, motion, source, repeats):
-    """(i): lanes against single analyses (module docstring)."""
+    """(i): lanes against single analyses (module docstring); returns the three batches' times a lane and step (us)."""
     import resource
 
     from vdw_frames.config import load_building
@@ -717,7 +728,7 @@ def part_lanes(benchmark_frame, motion, source, repeats):
                                       max_iterations=20, parallel_walls=True)
     if opensees is None:
         print(f"    against OpenSees: skipped ({problem})")
-        return
+        return amortised
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         run_lanes(frame, [motion] * 2, [4.0] * 2, memory=memory)  # compile (or load) before timing
@@ -732,15 +743,327 @@ def part_lanes(benchmark_frame, motion, source, repeats):
     print(f"        lanes / OpenSees = 1/{1 / ratio:.0f} (target <= 1/100: {'meets' if ratio <= 0.01 else 'misses'}); "
           f"one simulate() / OpenSees = 1/{opensees[0] / single:.0f}; {sum(lane.collapsed for lane in lanes)} of 44 "
           "collapsed")
+    return amortised
+
+
+# ------------------------------------------------------------------------------------ (j): lanes innermost
+# Prototypes measured against the package, not part of it: the bare frame's step and the walls' fast memory
+# with every array's last axis the lanes, so that each pass over stories, modes or window does all lanes in
+# SIMD instructions.  What a rewrite of the one integrator in that layout would gain (issue 32's bars).
+@njit(cache=True, inline="always")
+def _lanes_step_constants(step, ground, dt, frame, state, work):  # pragma: no cover - timed only
+    """The parts of every lane's residual fixed by its committed state (integrator._step_constants)."""
+    masses, c_diagonal, c_upper = frame[0], frame[1], frame[2]
+    u, v, a = state[0], state[1], state[2]
+    trial, step_force, offset, scale = work[0], work[10], work[11], work[12]
+    n, lanes = u.shape
+    a0, v1, a1 = 4.0 / dt**2, 2.0 / dt, 4.0 / dt
+    for i in range(n):
+        for lane in range(lanes):
+            damped = c_diagonal[i] * (v1 * u[i, lane] + v[i, lane])
+            if i > 0:
+                damped += c_upper[i - 1] * (v1 * u[i - 1, lane] + v[i - 1, lane])
+            if i + 1 < n:
+                damped += c_upper[i] * (v1 * u[i + 1, lane] + v[i + 1, lane])
+            offset[i, lane] = damped
+            step_force[i, lane] = (a0 * masses[i] * u[i, lane] + masses[i] * (a1 * v[i, lane] + a[i, lane])
+                                   + damped - masses[i] * ground[lane, step + 1])
+            trial[i, lane] = u[i, lane]
+            scale[i, lane] = 1.0
+
+
+@njit(cache=True, inline="always")
+def _lanes_residual(dt, frame, state, work):  # pragma: no cover - timed only
+    """Every lane's Bilinear story trial (hysteresis.story_trial) and unbalanced force (integrator._residual)."""
+    masses, c_diagonal, c_upper, geometric, k0, yield_force, hardening = frame[:7]
+    committed_drift, committed_force = state[3], state[4]
+    trial, drift, force, tangent, total, residual = work[:6]
+    step_force, offset, scale, damping = work[10], work[11], work[12], work[13]
+    n, lanes = trial.shape
+    a0, v1 = 4.0 / dt**2, 2.0 / dt
+    for i in range(n):
+        bound = (1.0 - hardening) * yield_force[i]
+        for lane in range(lanes):
+            d = trial[i, lane] - (trial[i - 1, lane] if i > 0 else 0.0)
+            drift[i, lane] = d
+            elastic = committed_force[i, lane] + k0[i] * (d - committed_drift[i, lane])
+            high = hardening * k0[i] * d + bound
+            low = hardening * k0[i] * d - bound
+            f = min(max(elastic, low), high)
+            force[i, lane] = f
+            tangent[i, lane] = k0[i] if low <= elastic <= high else hardening * k0[i]
+            total[i, lane] = f + geometric[i] * d
+    for i in range(n):
+        for lane in range(lanes):
+            damped = c_diagonal[i] * trial[i, lane]
+            if i > 0:
+                damped += c_upper[i - 1] * trial[i - 1, lane]
+            if i + 1 < n:
+                damped += c_upper[i] * trial[i + 1, lane]
+            above = total[i + 1, lane] if i + 1 < n else 0.0
+            damping[i, lane] = v1 * damped - offset[i, lane]
+            residual[i, lane] = (step_force[i, lane] - a0 * masses[i] * trial[i, lane] - v1 * damped
+                                 - (total[i, lane] - above))
+            scale[i, lane] = max(scale[i, lane], a0 * masses[i] * abs(trial[i, lane]), abs(damping[i, lane]),
+                                 abs(force[i, lane]), abs(total[i, lane]))
+
+
+@njit(cache=True, inline="always")
+def _lanes_converged(iteration, frame, flags, work):  # pragma: no cover - timed only
+    """Mask the lanes that converged (integrator._iterate's test); returns how many still iterate."""
+    geometric = frame[3]
+    tangent, residual, solved, scale = work[3], work[5], work[7], work[12]
+    active, last_correction = flags[0], flags[1]
+    n, lanes = residual.shape
+    live = 0
+    for lane in range(lanes):
+        if active[lane] > 0.0 and iteration > 0:
+            norm, largest, exact = 0.0, 1.0, True
+            for i in range(n):
+                norm = max(norm, abs(residual[i, lane]))
+                largest = max(largest, scale[i, lane])
+                exact = exact and solved[i, lane] == tangent[i, lane] + geometric[i]
+            if norm <= 1e-9 * largest and (exact or last_correction[lane] <= 1e-8):
+                active[lane] = 0.0
+        live += active[lane] > 0.0
+    return live
+
+
+@njit(cache=True, inline="always")
+def _lanes_solve(dt, frame, flags, work):  # pragma: no cover - timed only
+    """Every lane's Newton correction (the Thomas algorithm, integrator._solve_tridiagonal) and update."""
+    masses, c_diagonal, c_upper, geometric = frame[:4]
+    trial, tangent, residual, correction, solved, pivot, upper = (work[0], work[3], work[5], work[6], work[7],
+                                                                  work[8], work[9])
+    active, last_correction = flags[0], flags[1]
+    n, lanes = trial.shape
+    a0, v1 = 4.0 / dt**2, 2.0 / dt
+    for i in range(n):
+        for lane in range(lanes):
+            solved[i, lane] = tangent[i, lane] + geometric[i]
+    for lane in range(lanes):
+        pivot[0, lane] = a0 * masses[0] + v1 * c_diagonal[0] + solved[0, lane] + solved[1, lane]
+        correction[0, lane] = residual[0, lane]
+    for i in range(1, n):
+        for lane in range(lanes):
+            off_diagonal = v1 * c_upper[i - 1] - solved[i, lane]
+            upper[i, lane] = off_diagonal
+            factor = off_diagonal / pivot[i - 1, lane]
+            after = solved[i + 1, lane] if i + 1 < n else 0.0
+            pivot[i, lane] = a0 * masses[i] + v1 * c_diagonal[i] + solved[i, lane] + after - factor * off_diagonal
+            correction[i, lane] = residual[i, lane] - factor * correction[i - 1, lane]
+    for lane in range(lanes):
+        correction[n - 1, lane] /= pivot[n - 1, lane]
+        last_correction[lane] = abs(correction[n - 1, lane])
+    for i in range(n - 2, -1, -1):
+        for lane in range(lanes):
+            correction[i, lane] = (correction[i, lane] - upper[i + 1, lane] * correction[i + 1, lane]) / pivot[i, lane]
+            last_correction[lane] = max(last_correction[lane], abs(correction[i, lane]))
+    for i in range(n):
+        for lane in range(lanes):
+            if active[lane] > 0.0:
+                trial[i, lane] += correction[i, lane]
+
+
+# numba takes no keyword-only arguments: the compiled prototypes' arguments are positional (PLR0917).
+@njit(cache=True, inline="always")
+def _lanes_commit(step, ground, dt, frame, state, work, flags, peaks, energy):  # noqa: PLR0917
+    """Commit every standing lane's step, its energies (integrator._record) and peaks (lane_kernel._note_peaks)."""
+    masses, geometric, k0, heights, collapse_ratio = frame[0], frame[3], frame[4], frame[7], frame[8]
+    u, v, a, committed_drift, committed_force, old_damping = state
+    trial, drift, force, total, damping = work[0], work[1], work[2], work[4], work[13]
+    collapsed = flags[2]
+    n, lanes = u.shape
+    a0, v1, a1 = 4.0 / dt**2, 2.0 / dt, 4.0 / dt
+    for lane in range(lanes):
+        if collapsed[lane] == 0.0:
+            energy[1, lane] = 0.0
+            energy[2, lane] = 0.0
+    for i in range(n):
+        for lane in range(lanes):
+            if collapsed[lane] > 0.0:
+                continue
+            increment = trial[i, lane] - u[i, lane]
+            velocity = v1 * increment - v[i, lane]
+            acceleration = a0 * increment - a1 * v[i, lane] - a[i, lane]
+            change = drift[i, lane] - committed_drift[i, lane]
+            energy[0, lane] -= 0.5 * masses[i] * (ground[lane, step] + ground[lane, step + 1]) * increment
+            energy[1, lane] += 0.5 * masses[i] * velocity * velocity
+            energy[2, lane] += 0.5 * force[i, lane] ** 2 / k0[i]
+            energy[3, lane] += 0.5 * (force[i, lane] + committed_force[i, lane]) * change
+            energy[4, lane] += 0.5 * (damping[i, lane] + old_damping[i, lane]) * increment
+            energy[6, lane] += 0.5 * geometric[i] * (drift[i, lane] + committed_drift[i, lane]) * change
+            u[i, lane], v[i, lane], a[i, lane] = trial[i, lane], velocity, acceleration
+            committed_drift[i, lane], committed_force[i, lane] = drift[i, lane], force[i, lane]
+            old_damping[i, lane] = damping[i, lane]
+            peaks[0, i, lane] = max(peaks[0, i, lane], abs(drift[i, lane]))
+            peaks[1, i, lane] = max(peaks[1, i, lane], abs(acceleration + ground[lane, step + 1]))
+            peaks[2, i, lane] = max(peaks[2, i, lane], abs(total[i, lane]))
+            if abs(drift[i, lane]) > collapse_ratio * heights[i]:
+                collapsed[lane] = 1.0
+
+
+@njit(cache=True, nogil=True)
+def _frame_lanes_innermost(ground, dt, frame, state, work, flags, peaks, energy):  # noqa: PLR0917
+    """The bare frame of Bilinear stories, Rayleigh (tridiagonal) C and P-Delta under ``ground`` (L, N) mm/s^2,
+    every lane at once, arrays (n, L): ``frame`` (masses, C's diagonal and upper diagonal, -P/h, k0, F_y, hardening,
+    heights, collapse drift ratio), ``state`` (u, v, a, committed drift and force, damping force), ``work`` (14
+    arrays), ``flags`` (3, L): iterating, last correction, collapsed.  Newton in lockstep, a lane that converged
+    or collapsed masked; the package's convergence test (force 1e-9 x the step's force scale, and an exact solve or
+    a correction <= 1e-8 mm), its energies and peaks; no walls, devices or fallbacks."""
+    active, last_correction, collapsed = flags[0], flags[1], flags[2]
+    for step in range(ground.shape[1] - 1):
+        _lanes_step_constants(step, ground, dt, frame, state, work)
+        for lane in range(active.shape[0]):
+            active[lane] = 0.0 if collapsed[lane] > 0.0 else 1.0
+            last_correction[lane] = np.inf
+        for iteration in range(26):
+            _lanes_residual(dt, frame, state, work)
+            if _lanes_converged(iteration, frame, flags, work) == 0:
+                break
+            _lanes_solve(dt, frame, flags, work)
+        _lanes_commit(step, ground, dt, frame, state, work, flags, peaks, energy)
+
+
+@njit(cache=True, nogil=True)
+def _memory_lanes_innermost(steps, memory, window, mode_state, history, total):  # pragma: no cover - timed only
+    """``steps`` commits of the fast memory of W walls in L lanes (``memory``: the package's MemoryArrays of the
+    walls, whose weights every lane shares; window (W, 2, 2 size, L), mode_state (W, 2, K, L), history (2, W, L)):
+    each lane the package's kernel.memory_advance in its order of operations, lanes innermost.  The values
+    committed are made from the history as the timed package loop makes them."""
+    walls, size = memory.window_weights.shape
+    modes, lanes = memory.mode_weight.shape[1], history.shape[2]
+    for count in range(steps):
+        slot, absorb = count % size, count >= size
+        filled = min(count + 1, size)
+        start, first = (count + 1) % size + size - filled, size - filled
+        for w in range(walls):
+            for c in range(2):
+                for lane in range(lanes):
+                    total[lane] = 0.0
+                if absorb:
+                    for k in range(modes):
+                        ratio, weight = memory.mode_ratio[w, k], memory.mode_weight[w, k]
+                        for lane in range(lanes):
+                            value = ratio * mode_state[w, c, k, lane] + window[w, c, slot, lane]
+                            mode_state[w, c, k, lane] = value
+                            total[lane] += weight * value
+                for lane in range(lanes):
+                    value = 1e-3 * history[1 - c, w, lane] + (0.1 if c == 0 else -0.1)
+                    window[w, c, slot, lane] = value
+                    window[w, c, slot + size, lane] = value
+                for i in range(filled):
+                    weight = memory.window_weights[w, first + i]
+                    for lane in range(lanes):
+                        total[lane] += weight * window[w, c, start + i, lane]
+                for lane in range(lanes):
+                    history[c, w, lane] = total[lane]
+
+
+@njit(cache=True, nogil=True)
+def _memory_package(steps, memory):  # pragma: no cover - timed only
+    """The package's kernel.memory_advance ``steps`` times on one lane, the values made as above."""
+    for count in range(steps):
+        for w in range(memory.values.shape[1]):
+            memory.values[0, w] = 1e-3 * memory.history[1, w] + 0.1
+            memory.values[1, w] = 1e-3 * memory.history[0, w] - 0.1
+        memory_advance(memory, count)
+
+
+def part_lanes_innermost(amortised, repeats):
+    """(j): the lanes-innermost prototypes against the package, and what they project (module docstring)."""
+    from vdw_frames.config import load_building
+    from vdw_frames.element.bank import _Memory
+    from vdw_frames.element.kernel import MemoryArrays
+    from vdw_frames.frame.lanes import run_lanes
+    from vdw_frames.frame.time_history import frame_arrays
+
+    record = read_at2(ROOT / "vdw_frames" / "motion" / "data" / "synthetic_kt_035g.AT2")
+    bare = load_building(ROOT / "examples" / "ten_story.toml").without_devices()
+    lanes, n = 44, bare.stories
+    scales = np.linspace(0.2, 1.0, lanes)
+    ground = np.outer(scales, record.acceleration)
+    frame = frame_arrays(bare, 0.10)
+    hysteresis = bare.hysteresis
+    constants = (frame.masses, np.diag(frame.damping).copy(), np.diag(frame.damping, 1).copy(), frame.geometric,
+                 np.asarray(bare.stiffnesses, dtype=float), np.array([h.yield_force for h in hysteresis]),
+                 hysteresis[0].hardening, frame.heights, frame.collapse_ratio)
+
+    def prototype():
+        peaks = np.zeros((3, n, lanes))
+        _frame_lanes_innermost(ground, record.dt, constants, tuple(np.zeros((n, lanes)) for _ in range(6)),
+                               tuple(np.zeros((n, lanes)) for _ in range(14)), np.zeros((3, lanes)), peaks,
+                               np.zeros((7, lanes)))
+        return peaks
+
+    print(f"\n(j) lanes innermost (prototypes, not the package): the bare example frame on the shipped record x "
+          f"{lanes} scales, and the fast memory of 10 walls in {lanes} lanes, each against the package in turn")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        results = run_lanes(bare, [record] * lanes, scales)
+    peaks = prototype()
+    package_drift = np.array([lane.peak_drift for lane in results]).T
+    difference = np.abs(peaks[0] - package_drift).max() / package_drift.max()
+    steps = sum(lane.steps - 1 for lane in results)
+    frame_ratios = []
+    for _ in range(repeats):
+        started = time.thread_time()
+        prototype()
+        mine = time.thread_time() - started
+        started = time.thread_time()
+        run_lanes(bare, [record] * lanes, scales)
+        theirs = time.thread_time() - started
+        frame_ratios.append(mine / theirs)
+        print(f"    frame: prototype {1e6 * mine / steps:.3f} us a lane and step, package "
+              f"{1e6 * theirs / steps:.3f} us")
+    frame_ratio = float(np.median(frame_ratios))
+    print(f"    the frame's step lanes innermost: {frame_ratio:.2f} of the package's time (median of {repeats}); "
+          f"peak drifts within {difference:.1e} of the package's (relative to the largest)")
+    order = load_building(ROOT / "examples" / "ten_story.toml").wall_list[0][1].common_order
+    weights = _Memory.allocate(order, record.dt, 4 * record.acceleration.size, memory=FAST)
+    walls, size, modes = 10, weights.window_weights.size, weights.mode_weight.size
+    memory = MemoryArrays(np.full(walls, weights.w0), np.tile(weights.window_weights, (walls, 1)),
+                          np.zeros((walls, 2, 2 * size)), np.tile(weights.mode_weight, (walls, 1)),
+                          np.tile(weights.mode_ratio, (walls, 1)), np.zeros((walls, 2, modes)), np.zeros((2, walls)),
+                          np.zeros((2, walls)))
+    memory_ratios = []
+    count = max(2000, record.acceleration.size)
+    _memory_lanes_innermost(1, memory, np.zeros((walls, 2, 2 * size, lanes)), np.zeros((walls, 2, modes, lanes)),
+                            np.zeros((2, walls, lanes)), np.zeros(lanes))  # compile (or load) before timing
+    _memory_package(1, memory._replace(window=np.zeros_like(memory.window)))
+    for _ in range(repeats):
+        lanes_memory = (np.zeros((walls, 2, 2 * size, lanes)), np.zeros((walls, 2, modes, lanes)),
+                        np.zeros((2, walls, lanes)), np.zeros(lanes))
+        started = time.thread_time()
+        _memory_lanes_innermost(count, memory, *lanes_memory)
+        mine = (time.thread_time() - started) / (count * walls * lanes)
+        started = time.thread_time()
+        _memory_package(count * 4, memory._replace(window=np.zeros_like(memory.window),
+                                                    mode_state=np.zeros_like(memory.mode_state),
+                                                    history=np.zeros_like(memory.history)))
+        theirs = (time.thread_time() - started) / (count * 4 * walls)
+        memory_ratios.append(mine / theirs)
+        print(f"    fast memory ({modes} modes, a window of {size}, two channels): prototype {1e9 * mine:.1f} ns a "
+              f"wall, lane and step, package {1e9 * theirs:.1f} ns a wall and step")
+    memory_ratio = float(np.median(memory_ratios))
+    print(f"    the fast memory lanes innermost: {memory_ratio:.2f} of the package's time (median of {repeats})")
+    if amortised:
+        bare_step, fixed_step, walled_step = amortised.values()
+        projected_bare = bare_step * frame_ratio
+        projected_walls = (projected_bare + (fixed_step - bare_step) * memory_ratio
+                           + (walled_step - fixed_step) * memory_ratio)
+        print(f"    projected for a rewrite of the one integrator in this layout (part (i)'s figures of this run times "
+              f"these ratios; the walls' whole commit assumed to gain as their memory does): bare "
+              f"{projected_bare:.2f} us a lane and step (target <= 0.2), walls {projected_walls:.2f} us (<= 0.6)")
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="2 000 and 20 000 steps only, single repeats")
-    parser.add_argument("--part", action="append", choices=list("abcdefghi"),
+    parser.add_argument("--part", action="append", choices=list("abcdefghij"),
                         help="run only this part (repeatable; default: every part)")
     args = parser.parse_args(argv)
-    parts = set(args.part or "abcdefghi")
+    parts = set(args.part or "abcdefghij")
     repeats = 1 if args.quick else 5
 
     motion, source = load_record()
@@ -775,8 +1098,11 @@ def main(argv=None) -> int:
         part_p695()
     if "h" in parts:
         part_fvd(motion, source, args.quick, repeats)
+    amortised = None
     if "i" in parts:
-        part_lanes(building, motion, source, repeats)
+        amortised = part_lanes(building, motion, source, repeats)
+    if "j" in parts:
+        part_lanes_innermost(amortised, repeats)
     return 0
 
 
