@@ -6,6 +6,7 @@ against an elastic-perfectly-plastic return mapping written here; the bad inputs
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -277,3 +278,40 @@ def test_a_device_of_an_unknown_type_in_a_building_is_refused_naming_its_type():
 
     with pytest.raises(ValueError, match=r"devices\[2\].*FluidViscousDamper.*FrictionDamper.*got Sponge"):
         vdw.ShearBuilding([300.0, 300.0], [2e5, 2e5], devices={2: [vdw.FrictionDamper(1e5, 1e4), Sponge()]})
+
+
+# ---------------------------------------------------------------------------------------------- the float range
+@pytest.mark.parametrize("make", [
+    lambda m: vdw.FluidViscousDamper(100.0, 1.0, magnification=m),
+    lambda m: vdw.FrictionDamper(1.0e3, 2.0e5, magnification=m),
+    lambda m: vdw.FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5, magnification=m),
+])
+@pytest.mark.parametrize("magnification", [1e200, 1e-200])
+def test_a_magnification_whose_square_leaves_the_float_range_is_refused_naming_it(make, magnification):
+    """The story sees magnification^2 x the device's stiffness: at 1e200 story_stiffness raised OverflowError (a
+    traceback), at 1e-200 the square was 0 (a device the story does not see).  Both refused at construction."""
+    with pytest.raises(ValueError, match=re.escape(f"magnification = {magnification:g}: its square")):
+        make(magnification)
+    device = make(1e150)  # square 1e300: accepted
+    assert device.magnification == 1e150
+
+
+def test_a_fvd_whose_loss_stiffness_overflows_is_its_brace_not_nan():
+    """K* = K_b i q / (1 + i q), q = omega C_eq / K_b: as q -> inf, K* -> K_b (the oil locks, the brace carries the
+    motion).  Where omega C_eq overflowed, K* was NaN; where omega = 0, 0 even if C (omega u0)^alpha overflows.
+    Reference: the closed form K_b (q^2 + i q) / (1 + q^2) written here, at q = 3 and q = 1e250 (its limit K_b)."""
+    brace = 1.0e5
+    linear = vdw.FluidViscousDamper(brace * 3.0 / (2.0 * math.pi), 1.0, stiffness=brace)  # q = 3 at 1 Hz
+    np.testing.assert_allclose(linear.complex_stiffness(1.0), brace * (9.0 + 3.0j) / 10.0, rtol=1e-14)
+    huge = vdw.FluidViscousDamper(1.0e300, 1.0, stiffness=brace)
+    np.testing.assert_allclose(huge.complex_stiffness([0.0, 1.0e-55, 1.0e10]),
+                               [0.0, brace * (1.0 + 1j / (2.0 * math.pi * 1.0e-55 * 1.0e300 / brace)), brace],
+                               rtol=1e-14)
+    nonlinear = vdw.FluidViscousDamper(1.0e300, 0.3, stiffness=brace)
+    np.testing.assert_allclose(nonlinear.complex_stiffness([0.0, 1.0e10], 1e-10), [0.0, brace], rtol=1e-14)
+    with pytest.raises(ValueError, match=r"K\*\(f\) overflowed \(inf\) at f = 1e\+306 Hz"):
+        vdw.FluidViscousDamper(100.0, 1.0).complex_stiffness([1.0, 1.0e306])
+    with pytest.raises(ValueError, match=r"equivalent coefficient overflowed \(inf\) at frequency = 1e-300 Hz"):
+        nonlinear.equivalent_coefficient(1.0e-300, 1.0e-300)
+    with pytest.raises(ValueError, match=r"magnification\^2 \(1e\+150\^2\) exceeds"):
+        vdw.FluidViscousDamper(1.0e300, 1.0, stiffness=1.0e300, magnification=1e150).story_stiffness(1.0)

@@ -33,7 +33,14 @@ from numpy.typing import ArrayLike
 
 from .._jit import njit
 from .._validation import finite_array, positive, scaled_value, show
-from .device import Kinematics, describe_number, device_amplitude, kinematics, magnification_factor
+from .device import (
+    Kinematics,
+    describe_number,
+    device_amplitude,
+    kinematics,
+    magnification_factor,
+    story_share,
+)
 
 
 @dataclass(frozen=True)
@@ -96,7 +103,7 @@ class FrictionDamper:
     def story_stiffness(self, f: ArrayLike, drift_amplitude: float | None = None) -> np.ndarray:
         """magnification^2 K*(f) (N/mm) at the story drift amplitude ``drift_amplitude`` (mm)."""
         amplitude = device_amplitude(drift_amplitude, self.magnification, "friction damper")
-        return self.magnification**2 * self.complex_stiffness(f, amplitude)
+        return story_share(self.magnification, self.complex_stiffness(f, amplitude), "friction damper")
 
     def scaled(self, factor: float) -> FrictionDamper:
         """The slip force times ``factor`` (> 0): the property-modification factors of the friction force
