@@ -11,6 +11,7 @@ from builders import CLASSICAL_KELVIN_MAXWELL, example_ten_story
 from reference import state_space_eigenvalues
 from scipy.linalg import eigh
 
+import vdw_frames as vdw
 from vdw_frames import FDMKDamper, FrictionDamper, ShearBuilding, SupportedDamper, modal_analysis, size_walls
 from vdw_frames.design import damping_curve
 from vdw_frames.paper import strain_dependent
@@ -245,3 +246,17 @@ def test_walls_sized_beside_a_friction_damper_at_a_drift_amplitude_meet_the_targ
     bare_curve = damping_curve(ShearBuilding(masses, stiffnesses, damping_ratio=0.0), kelvin, factors=[1.0],
                                drift_amplitude=drift)
     assert bare_curve.drift_amplitudes is None and bare_curve.linearisation == ()
+
+
+def test_a_target_the_other_devices_already_reach_says_no_walls_are_needed_with_their_ratio():
+    """A building whose FVD already gives mode 1 more than the target: size_walls said "reached by vanishingly
+    small walls" (walls were not what reached it).  Reference: one story with a linear FVD, xi = xi_inherent +
+    C / (2 sqrt(k m)) (the inherent damping c = 2 xi sqrt(k m) of the one mode), to the 4 digits printed."""
+    mass, stiffness, coefficient = 100.0, 2.0e5, 300.0
+    building = ShearBuilding([mass], [stiffness], damping_ratio=0.02,
+                             devices={1: [vdw.FluidViscousDamper(coefficient, 1.0)]})
+    expected = 0.02 + coefficient / (2.0 * np.sqrt(stiffness * mass))
+    assert expected > 0.021 + 0.01
+    with pytest.raises(ValueError, match=re.escape(f"target_damping 0.021 is reached without walls: the building's "
+                                                   f"other devices give mode 1 the damping ratio {expected:.4f}")):
+        size_walls(building, KELVIN_MAXWELL, 0.021)

@@ -418,8 +418,10 @@ def _solve(sizer: _Sizer, target: float) -> float:
     low = SEARCH_FACTORS[0]
     while sizer.damping(low) > target:
         low *= 1e-2
-        if low < 1e-12:
-            raise ValueError(f"target_damping {target!r} is reached by vanishingly small {kind}")
+        if low < 1e-12:  # only the building's devices that are not sized can hold the ratio up there
+            raise ValueError(f"target_damping {target!r} is reached without {kind}: the building's other devices "
+                             f"give mode {sizer.mode} the damping ratio {sizer.damping(low):.4f} with {kind} of "
+                             f"{low:.0e} x the size; no {kind} are needed")
     from scipy.optimize import brentq
 
     return float(brentq(lambda f: sizer.damping(f) - target, low, best_factor, xtol=1e-12, rtol=1e-10))
