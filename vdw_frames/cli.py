@@ -422,6 +422,9 @@ def _design(args: argparse.Namespace) -> int:
         raise ValueError(f"--target must be a damping ratio in (0, 1), e.g. 0.15, got {args.target:g}{hint}")
     if args.strain is not None and not (math.isfinite(args.strain) and args.strain > 0.0):
         raise ValueError(f"--strain must be a positive amplitude in %, got {args.strain}")
+    if args.drift_amplitude is not None and not (math.isfinite(args.drift_amplitude) and args.drift_amplitude > 0.0):
+        raise ValueError("--drift-amplitude must be a positive story drift amplitude in mm, got "
+                         f"{args.drift_amplitude}")
     out = _output_folder(args.out)
     building = load_building(args.building)
     nonlinear = [(story, device) for story, device in nonlinear_devices(building)
