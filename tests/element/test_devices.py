@@ -315,3 +315,33 @@ def test_a_fvd_whose_loss_stiffness_overflows_is_its_brace_not_nan():
         nonlinear.equivalent_coefficient(1.0e-300, 1.0e-300)
     with pytest.raises(ValueError, match=r"magnification\^2 \(1e\+150\^2\) exceeds"):
         vdw.FluidViscousDamper(1.0e300, 1.0, stiffness=1.0e300, magnification=1e150).story_stiffness(1.0)
+
+
+@pytest.mark.parametrize(("alpha", "brace", "q", "error", "tolerance"), [
+    (0.5, 1000.0, 0.125, 0.0, 0.015),
+    (0.3, 1000.0, 0.066, 0.0, 0.015),
+    (0.3, 100.0, 0.658, 0.114, 0.005),
+    (0.3, 30.0, 2.193, -0.172, 0.005),
+])
+def test_a_braced_nonlinear_fvds_linearisation_against_the_steady_state_of_the_maxwell_equation(
+        alpha, brace, q, error, tolerance):
+    """The equivalent linear K* of a nonlinear FVD with a brace takes the dashpot's motion as a sine: the
+    accuracy that vdw_frames.element.viscous and docs/theory.rst state.  Reference: F = K_b (u - u_d),
+    u_d' = sgn(F) (|F| / C)^(1/alpha) under u = u0 sin(omega t), solved by scipy to a steady state; its
+    energy per cycle (pi u0 x the first harmonic's quadrature part) against pi K'' u0^2."""
+    coefficient, u0, frequency = 100.0, 5.0, 1.0
+    omega = 2.0 * math.pi * frequency
+    damper = vdw.FluidViscousDamper(coefficient, alpha, stiffness=brace)
+    assert cycle_integral(alpha) * coefficient * omega**alpha * u0 ** (alpha - 1.0) / math.pi / brace == \
+        pytest.approx(q, abs=5e-4)
+
+    def rate(t, state):
+        force = brace * (u0 * math.sin(omega * t) - state[0])
+        return [math.copysign(abs(force / coefficient) ** (1.0 / alpha), force)]
+
+    solution = solve_ivp(rate, (0.0, 12.0), [0.0], rtol=1e-10, atol=1e-12, dense_output=True, max_step=1e-3)
+    t = np.linspace(11.0, 12.0, 20001)[:-1]  # the 12th cycle: steady
+    force = brace * (u0 * np.sin(omega * t) - solution.sol(t)[0])
+    energy = math.pi * u0 * 2.0 * np.mean(force * np.cos(omega * t))
+    linearised = math.pi * complex(damper.complex_stiffness(frequency, u0)).imag * u0**2
+    assert linearised / energy - 1.0 == pytest.approx(error, abs=tolerance)
