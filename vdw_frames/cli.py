@@ -561,7 +561,9 @@ def _design_sizing(args: argparse.Namespace, building: ShearBuilding, out: Path)
                   f"{100 * result.damping_ratios[0]:.2f} %, T = {result.periods[0]:.3f} s{verdict}")
     path = plot_damping_curve(curve, out / "design_damping.png", target=args.target, marks=marks,
                               own=(own_ratio, own_period, 1.0) if on_curve else (own_ratio, own_period),
-                              title=f"{Path(args.building).name}: mode {args.mode} against the wall size")
+                              title=f"{Path(args.building).name}: mode {args.mode} against the wall size"
+                              + (f"\n(other devices linearised at story drift amplitude {args.drift_amplitude:g} mm)"
+                                 if curve.linearisation else ""))
     print(f"figure: {path}")
     if unreachable is not None:
         raise unreachable

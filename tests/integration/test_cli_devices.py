@@ -124,7 +124,7 @@ def test_design_states_the_amplitude_its_modal_table_of_nonlinear_devices_holds_
     assert float(row[4]) == pytest.approx(100 * expected.damping_ratios[0], abs=0.0051)
 
 
-def test_design_sizes_walls_beside_a_friction_damper_at_the_drift_amplitude(tmp_path, capsys):
+def test_design_sizes_walls_beside_a_friction_damper_at_the_drift_amplitude(tmp_path, capsys, monkeypatch):
     """design --target on a building of walls and a friction damper: the walls are sized with the damper
     linearised at --drift-amplitude, and the output says so (it stopped with "give drift_amplitude", an argument
     that size_walls and damping_curve did not take).  Reference: the sized walls' damping ratio by
@@ -141,8 +141,16 @@ def test_design_sizes_walls_beside_a_friction_damper_at_the_drift_amplitude(tmp_
     assert capsys.readouterr().err == (f"vdw-frames: error: {path}: story 2's friction F_s=20000.0, k=200000.0 "
                                        "depends on its amplitude: give --drift-amplitude (mm, the story drift "
                                        "amplitude it is linearised at)\n")
+    import vdw_frames.plotting
+
+    titles = []
+    drawn = vdw_frames.plotting.plot_damping_curve
+    monkeypatch.setattr(vdw_frames.plotting, "plot_damping_curve",
+                        lambda *a, **k: titles.append(k.get("title")) or drawn(*a, **k))
     assert cli.main(["design", str(path), "--target", "0.2", "--drift-amplitude", "10", "--modes", "1",
                      "--out", str(tmp_path)]) == 0
+    assert titles == ["walls_and_friction.toml: mode 1 against the wall size\n(other devices linearised at story "
+                      "drift amplitude 10 mm)"]
     out = capsys.readouterr().out
     assert ("the other devices kept as they are, linearised at story drift amplitude 10 mm (--drift-amplitude): the "
             "damping ratios and sizes below hold at that amplitude only") in out
