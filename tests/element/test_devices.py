@@ -345,3 +345,13 @@ def test_a_braced_nonlinear_fvds_linearisation_against_the_steady_state_of_the_m
     energy = math.pi * u0 * 2.0 * np.mean(force * np.cos(omega * t))
     linearised = math.pi * complex(damper.complex_stiffness(frequency, u0)).imag * u0**2
     assert linearised / energy - 1.0 == pytest.approx(error, abs=tolerance)
+
+
+@pytest.mark.parametrize("device", [vdw.FrictionDamper(1.0e3, 2.0e5), vdw.FluidViscousDamper(100.0, 0.5, 1.0e4)])
+def test_complex_stiffness_without_an_amplitude_names_its_own_argument(device):
+    """complex_stiffness takes the device's own amplitude ``amplitude``: without it the error said "give
+    drift_amplitude", an argument of story_stiffness that complex_stiffness does not take."""
+    with pytest.raises(ValueError, match=r"K\* depends on its amplitude: give amplitude \(mm, the device's own"):
+        device.complex_stiffness(1.0)
+    with pytest.raises(ValueError, match=r"give drift_amplitude \(mm\), the story drift amplitude"):
+        device.story_stiffness(1.0)

@@ -112,6 +112,15 @@ def device_amplitude(drift_amplitude: float | None, magnification: float, kind: 
     return magnification * amplitude
 
 
+def require_own_amplitude(amplitude: float | None, kind: str) -> float:
+    """A device's own deformation amplitude (mm, finite and > 0) for its ``complex_stiffness``: a ValueError naming
+    ``amplitude`` when it is None (its K* depends on it)."""
+    if amplitude is None:
+        raise ValueError(f"a {kind}'s K* depends on its amplitude: give amplitude (mm, the device's own deformation "
+                         "amplitude; story_stiffness takes the story's, drift_amplitude)")
+    return positive("amplitude", amplitude)
+
+
 def describe_number(value: float) -> str:
     """A parameter as tables print it (4 significant digits)."""
     return show(float(f"{value:.4g}"))

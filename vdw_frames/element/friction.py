@@ -39,6 +39,7 @@ from .device import (
     device_amplitude,
     kinematics,
     magnification_factor,
+    require_own_amplitude,
     story_share,
 )
 
@@ -88,9 +89,7 @@ class FrictionDamper:
         frequency = finite_array("f", f, ndim=None)
         if (frequency < 0.0).any():
             raise ValueError(f"f must be >= 0 Hz, got {show(frequency[frequency < 0.0].flat[0])}")
-        if amplitude is None:
-            device_amplitude(None, 1.0, "friction damper")  # the error: a nonlinear device needs an amplitude
-        u0 = positive("amplitude", amplitude)
+        u0 = require_own_amplitude(amplitude, "friction damper")
         if u0 <= self.slip_deformation:
             value = complex(self.stiffness)
         else:

@@ -59,6 +59,7 @@ from .device import (
     device_amplitude,
     kinematics,
     magnification_factor,
+    require_own_amplitude,
     story_share,
 )
 
@@ -162,9 +163,7 @@ class FluidViscousDamper:
             raise ValueError(f"f must be >= 0 Hz, got {show(frequency[frequency < 0.0].flat[0])}")
         with np.errstate(over="ignore"):
             omega = 2.0 * math.pi * frequency
-        if not self.linear and amplitude is None:
-            device_amplitude(None, 1.0, "nonlinear FVD")  # the error: a nonlinear device needs an amplitude
-        u0 = None if self.linear else positive("amplitude", amplitude)
+        u0 = None if self.linear else require_own_amplitude(amplitude, "nonlinear FVD")
         # omega C_eq (N/mm); inf where it overflows (the brace then carries the whole motion: K* -> K_b)
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             if u0 is None:
