@@ -52,7 +52,8 @@ P695_STATEMENT = ("One archetype is not a FEMA P695 system qualification: P695 (
 
 SCHEDULE_UNITS = ("Units of the devices' parameters: walls G1, G2 MPa, eta1, eta2 MPa s^r, A mm^2, t mm; FVD C "
                   "N (s/mm)^alpha, K_b N/mm; friction F_s N, k N/mm; f the magnification (device deformation / "
-                  "story drift, -).")
+                  "story drift, -); each to 4 significant digits (devices.csv and building.toml hold them "
+                  "exactly).")
 """The line under the device schedule that gives its parameters' units (the descriptions print bare numbers)."""
 
 

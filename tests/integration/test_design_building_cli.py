@@ -257,4 +257,7 @@ def test_the_device_schedule_states_the_units_of_the_parameters_it_prints():
     assert "| 2 | FVD C=1000.0, alpha=0.5, K_b=100000.0, f=0.8 | - | - | - | - | - |" in lines
     assert lines[-2] == ("Units of the devices' parameters: walls G1, G2 MPa, eta1, eta2 MPa s^r, A mm^2, t mm; FVD "
                          "C N (s/mm)^alpha, K_b N/mm; friction F_s N, k N/mm; f the magnification (device deformation "
-                         "/ story drift, -).")
+                         "/ story drift, -); each to 4 significant digits (devices.csv and building.toml hold them "
+                         "exactly).")
+    rounded = _schedule(device_rows(ShearBuilding([100.0], [1e5], devices={1: [FrictionDamper(12345.678, 5e4)]})))
+    assert "| 1 | friction F_s=12350.0, k=50000.0 | - | - | - | - | - |" in rounded  # 4 digits, as stated
