@@ -355,3 +355,22 @@ def test_complex_stiffness_without_an_amplitude_names_its_own_argument(device):
         device.complex_stiffness(1.0)
     with pytest.raises(ValueError, match=r"give drift_amplitude \(mm\), the story drift amplitude"):
         device.story_stiffness(1.0)
+
+
+def test_a_trial_or_a_drive_that_overflows_is_refused_and_the_state_kept():
+    """DeviceState.trial and device_response returned inf (a pure dashpot at a 1e300 mm step; a damper whose
+    energy F^2 / (2 K_b) overflows): a ValueError naming the deformation instead, the committed state untouched.
+    Reference: a pure dashpot from rest, F = C v with Newmark's v = 2 u / dt."""
+    from vdw_frames.element.devices import DeviceState
+
+    state = DeviceState(vdw.FluidViscousDamper(1.0e5, 1.0), 0.01)
+    with pytest.raises(ValueError, match=r"trial at deformation 1e\+300 mm overflowed \(inf\)"):
+        state.trial(1e300)
+    with pytest.raises(ValueError, match="commit needs a trial first"):
+        state.commit()
+    force, tangent = state.trial(1.0)
+    assert force == pytest.approx(1.0e5 * 2.0 * 1.0 / 0.01, rel=1e-15)
+    assert tangent == pytest.approx(2.0 * 1.0e5 / 0.01, rel=1e-15)
+    history = 100.0 * np.sin(np.linspace(0.0, 20.0, 2001))
+    with pytest.raises(ValueError, match=r"overflowed \(inf\) at step 1, deformation 0\.99998"):
+        device_response(vdw.FluidViscousDamper(1.0e300, 0.5, stiffness=1.0e300), history, 0.01)
