@@ -409,7 +409,7 @@ def _design(args: argparse.Namespace) -> int:
     from .design.sizing import MAX_STORIES as SIZING_MAX_STORIES
     from .element.strain_dependent import StrainDependentDamper
     from .frame.modal import MAX_STORIES as MODAL_MAX_STORIES
-    from .frame.modal import modal_analysis, require_modal_size
+    from .frame.modal import modal_analysis, nonlinear_devices, require_modal_size
 
     # Every argument checked before any work (a modal search of a large building takes seconds).
     if args.modes < 1:
@@ -422,8 +422,17 @@ def _design(args: argparse.Namespace) -> int:
         raise ValueError(f"--target must be a damping ratio in (0, 1), e.g. 0.15, got {args.target:g}{hint}")
     if args.strain is not None and not (math.isfinite(args.strain) and args.strain > 0.0):
         raise ValueError(f"--strain must be a positive amplitude in %, got {args.strain}")
+    if args.drift_amplitude is not None and not (math.isfinite(args.drift_amplitude) and args.drift_amplitude > 0.0):
+        raise ValueError("--drift-amplitude must be a positive story drift amplitude in mm, got "
+                         f"{args.drift_amplitude}")
     out = _output_folder(args.out)
     building = load_building(args.building)
+    nonlinear = [(story, device) for story, device in nonlinear_devices(building)
+                 if not isinstance(device, StrainDependentDamper)]  # those are taken at --strain
+    if nonlinear and args.drift_amplitude is None:
+        story, device = nonlinear[0]
+        raise ValueError(f"{args.building}: story {story}'s {device.describe()} depends on its amplitude: give "
+                         "--drift-amplitude (mm, the story drift amplitude it is linearised at)")
     if args.target is not None and not building.wall_list:
         raise ValueError(f"--target {args.target:g}: {args.building} has no walls to size; add a [[walls]] group")
     # The sizing below repeats the modal analysis many times: a building beyond its limit is refused now, not
@@ -497,7 +506,10 @@ def _design_sizing(args: argparse.Namespace, building: ShearBuilding, out: Path)
               f"m^2, t = {template.thickness:g} mm), {args.distribution} over {story_text(tuple(stories))}; the "
               "file's walls are replaced")
     distribution = "existing" if existing else args.distribution
-    curve = damping_curve(building, template, args.mode, distribution, stories)
+    curve = damping_curve(building, template, args.mode, distribution, stories, drift_amplitude=args.drift_amplitude)
+    if curve.linearisation:  # the sizes below depend on it
+        print(f"  the other devices kept as they are, linearised at story drift amplitude {args.drift_amplitude:g} mm "
+              "(--drift-amplitude): the damping ratios and sizes below hold at that amplitude only")
     print(f"  the file's walls: xi = {100 * own_ratio:.2f} %, T = {own_period:.3f} s")
 
     total = sum(wall.area for _, wall in walls) / 1e6  # m^2, the file's walls in all stories
@@ -529,7 +541,8 @@ def _design_sizing(args: argparse.Namespace, building: ShearBuilding, out: Path)
     unreachable = None
     if args.target is not None:
         try:
-            sized = size_walls(building, template, args.target, args.mode, distribution, stories)
+            sized = size_walls(building, template, args.target, args.mode, distribution, stories,
+                               drift_amplitude=args.drift_amplitude)
         except ValueError as error:  # reported after the figure, as the command's error
             unreachable = error
         else:
@@ -548,7 +561,9 @@ def _design_sizing(args: argparse.Namespace, building: ShearBuilding, out: Path)
                   f"{100 * result.damping_ratios[0]:.2f} %, T = {result.periods[0]:.3f} s{verdict}")
     path = plot_damping_curve(curve, out / "design_damping.png", target=args.target, marks=marks,
                               own=(own_ratio, own_period, 1.0) if on_curve else (own_ratio, own_period),
-                              title=f"{Path(args.building).name}: mode {args.mode} against the wall size")
+                              title=f"{Path(args.building).name}: mode {args.mode} against the wall size"
+                              + (f"\n(other devices linearised at story drift amplitude {args.drift_amplitude:g} mm)"
+                                 if curve.linearisation else ""))
     print(f"figure: {path}")
     if unreachable is not None:
         raise unreachable

@@ -50,6 +50,13 @@ P695_STATEMENT = ("One archetype is not a FEMA P695 system qualification: P695 (
                   "performance groups of archetypes; this is the collapse assessment of this one design.")
 
 
+SCHEDULE_UNITS = ("Units of the devices' parameters: walls G1, G2 MPa, eta1, eta2 MPa s^r, A mm^2, t mm; FVD C "
+                  "N (s/mm)^alpha, K_b N/mm; friction F_s N, k N/mm; f the magnification (device deformation / "
+                  "story drift, -); each to 4 significant digits (devices.csv and building.toml hold them "
+                  "exactly).")
+"""The line under the device schedule that gives its parameters' units (the descriptions print bare numbers)."""
+
+
 def write_design_report(design: FrameDesign | DampedDesign, out_dir: str | os.PathLike[str], *,
                         title: str | None = None, bounds: PropertyBounds | None = None,
                         collapse: CollapseAssessment | None = None, records: str | None = None) -> Path:
@@ -178,7 +185,7 @@ def _schedule(rows: list[dict[str, Any]]) -> list[str]:
         lines.append(f"| {row['story']} | {row['description']} | {_number(row['deformation_mm'])} | "
                      f"{_number(row['velocity_mm_s'])} | {_number(force)} | {_number(strain)} | "
                      f"{_number(row['temperature_rise_k'])} |")
-    return [*lines, ""]
+    return [*lines, "", SCHEDULE_UNITS, ""]
 
 
 def _markdown(design: Any, frame: FrameDesign, building: ShearBuilding,  # noqa: PLR0917

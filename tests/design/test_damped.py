@@ -208,3 +208,17 @@ def test_a_v_min_above_v_is_not_capped_silently():
     assert design.v_min == pytest.approx(design.undamped.base_shear / design.b_v_plus_i, rel=1e-12)
     assert design.frame.strength_scale == 1.0
     assert any("V_min" in text and "designed for V" in text for text in design.assumptions)
+
+
+def test_a_period_below_t0_is_stated_as_outside_table_18_7_1():
+    """Table 18.7-1 is headed "where period of the structure >= T_0": a round whose T_1 is below T_0 says that its
+    B_V+I is used outside the table (design_damped applied it silently).  T_0 = 0.2 S_D1 / S_DS by hand:
+    0.2 x 0.45 / 0.9 = 0.1 s for SITE (S_MS = 0.9 g, S_M1 = 0.45 g)."""
+    from vdw_frames.design.damped import short_period_note
+
+    t0 = 0.2 * 0.45 / 0.9
+    note = short_period_note(0.08, SITE, 2)
+    assert note is not None and note.startswith(f"round 2: T_1 = 0.080 s is below T_0 = {t0:.3f} s, outside Table "
+                                                "18.7-1")
+    assert "V_min may be low" in note
+    assert short_period_note(t0 * (1 + 1e-9), SITE, 2) is None and short_period_note(0.5, SITE, 1) is None

@@ -57,6 +57,21 @@ def test_size_layers_needs_amplitude_following_walls_and_a_suite():
         size_layers(walled, SUITE, tolerance=0.7)
 
 
+def test_size_layers_refuses_unbounded_passes_before_any_work(monkeypatch):
+    """max_iterations = 10**9 with a tolerance no pass can meet ran the suite 10**9 times: refused before the
+    first analysis (the limit, 100 passes, named)."""
+    from vdw_frames.design import layers
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("the suite ran before max_iterations was checked")
+
+    monkeypatch.setattr(layers, "_suite_amplitudes", no_work)
+    walled = three_story({1: [vdw.paper.strain_dependent()]})
+    with pytest.raises(ValueError, match=r"max_iterations must be at most 100 \(each pass runs the whole suite\), "
+                                         r"got 1000000000"):
+        size_layers(walled, SUITE, tolerance=1e-300, max_iterations=10**9)
+
+
 @pytest.mark.slow  # compiles the lanes for amplitude-following walls on a yielding frame (tens of seconds, cold)
 def test_the_suite_on_lanes_sizes_the_layers_as_simulate_one_record_at_a_time_does():
     """size_layers runs each pass's suite as lanes; given simulate's own ``dt`` option (which lanes do not take)

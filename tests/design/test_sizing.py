@@ -11,7 +11,8 @@ from builders import CLASSICAL_KELVIN_MAXWELL, example_ten_story
 from reference import state_space_eigenvalues
 from scipy.linalg import eigh
 
-from vdw_frames import FDMKDamper, ShearBuilding, SupportedDamper, modal_analysis, size_walls
+import vdw_frames as vdw
+from vdw_frames import FDMKDamper, FrictionDamper, ShearBuilding, SupportedDamper, modal_analysis, size_walls
 from vdw_frames.design import damping_curve
 from vdw_frames.paper import strain_dependent
 
@@ -159,3 +160,103 @@ def test_sizing_refuses_buildings_beyond_its_story_limit_and_too_many_factors_be
     assert time.perf_counter() - start < 1.0
     with pytest.raises(ValueError, match="factors holds 1001 area factors; at most 1000"):
         damping_curve(ShearBuilding([500.0], [6e5]), wall, factors=np.geomspace(0.1, 10.0, 1001))
+
+
+# ------------------------------------------------------------------------------ walls beside nonlinear devices
+def _frozen_state_space_ratio(masses, stiffnesses, inherent, walls, devices, *, drift, mode=1):
+    """Mode ``mode``'s -Re s / |s| of a shear building with Kelvin walls (r = 1: spring G1 A/t, dashpot eta1 A/t)
+    and nonlinear devices replaced by their equivalent spring K' and dashpot K''/omega at omega = |s| (iterated to
+    1e-13), from the eigenvalues of the first-order (state-space) model.  Written from the mechanics:
+    ``inherent`` (a0, a1) Rayleigh coefficients; ``devices`` {story: K*(omega, drift) callables} (N/mm)."""
+    n = len(masses)
+    mass = np.diag(masses)
+
+    def story_matrix(values):
+        matrix = np.zeros((n, n))
+        for k, value in enumerate(values):
+            matrix[k, k] += value
+            if k:
+                matrix[k - 1, k - 1] += value
+                matrix[k - 1, k] -= value
+                matrix[k, k - 1] -= value
+        return matrix
+
+    frame = story_matrix(stiffnesses)
+    damping = inherent[0] * mass + inherent[1] * frame
+    springs = np.array([sum(w.G1 * w.area / w.thickness for w in walls.get(s + 1, ())) for s in range(n)])
+    dashpots = np.array([sum(w.eta1 * w.area / w.thickness for w in walls.get(s + 1, ())) for s in range(n)])
+    omega = np.sqrt(eigh(frame, mass, eigvals_only=True)[mode - 1])
+    for _ in range(200):
+        value = np.array([sum(device(omega, drift) for device in devices.get(s + 1, ())) for s in range(n)],
+                         dtype=complex)
+        k = frame + story_matrix(springs + value.real)
+        c = damping + story_matrix(dashpots + value.imag / omega)
+        a = np.block([[np.zeros((n, n)), np.eye(n)], [-np.linalg.solve(mass, k), -np.linalg.solve(mass, c)]])
+        poles = np.linalg.eigvals(a)
+        poles = poles[poles.imag > 0.0]
+        s = poles[np.argsort(np.abs(poles))][mode - 1]
+        if abs(abs(s) - omega) <= 1e-13 * omega:
+            break
+        omega = abs(s)
+    else:
+        raise AssertionError("no fixed point omega = |s|")
+    return -s.real / abs(s)
+
+
+def _friction_keff(slip_force, stiffness):
+    """K_eff + i K'' of an elastic-perfectly-plastic device at amplitude u0 (mm): F_s / u0 and the loop area
+    4 F_s (u0 - F_s / k) over pi u0^2 (rate-independent)."""
+    def value(omega, u0):
+        if u0 <= slip_force / stiffness:
+            return complex(stiffness)
+        return complex(slip_force / u0, 4.0 * slip_force * (u0 - slip_force / stiffness) / (np.pi * u0**2))
+    return value
+
+
+def test_walls_sized_beside_a_friction_damper_at_a_drift_amplitude_meet_the_target_by_the_state_space_eigenvalues():
+    """size_walls in a building that also holds a friction damper: the damper linearised at the stated drift
+    amplitude (before, size_walls took no amplitude and refused it, telling to give a drift_amplitude it had
+    no argument for).  Reference: the state-space eigenvalues of the building with Kelvin walls and the friction
+    damper's K_eff + i K'' of FEMA 356 Sec. 9.3 written out here, omega = |s| iterated; to 1e-6."""
+    masses, stiffnesses = [300.0, 300.0, 280.0, 250.0, 200.0], [2.0e5, 1.8e5, 1.6e5, 1.4e5, 1.1e5]
+    friction = FrictionDamper(slip_force=3.0e4, stiffness=1.0e5)  # slips at 0.3 mm
+    kelvin = FDMKDamper(G1=0.8, G2=0.0, eta1=0.08, eta2=0.0, r=1.0, area=5e4, thickness=10.0)
+    building = ShearBuilding(masses, stiffnesses, damping_ratio=0.0, devices={2: [friction]})
+    drift = 6.0  # mm, every story
+    with pytest.raises(ValueError, match=r"size_walls\(\): story 2's friction .* give drift_amplitude"):
+        size_walls(building, kelvin, 0.12, stories=[1, 3, 4])
+    with pytest.raises(ValueError, match=r"damping_curve\(\): story 2's friction"):
+        damping_curve(building, kelvin, stories=[1, 3, 4])
+    sized = size_walls(building, kelvin, 0.12, stories=[1, 3, 4], drift_amplitude=drift)
+    assert sized.devices[2] == (friction,)  # kept as it is
+    walls = sized.walls
+    assert sorted(walls) == [1, 3, 4]
+    ratio = _frozen_state_space_ratio(masses, stiffnesses, (0.0, 0.0), walls,
+                                      {2: [_friction_keff(3.0e4, 1.0e5)]}, drift=drift)
+    assert ratio == pytest.approx(0.12, abs=1e-6)
+    # The friction damper counts: the walls alone (the same areas) fall short of the target by its share.
+    alone = _frozen_state_space_ratio(masses, stiffnesses, (0.0, 0.0), walls, {}, drift=drift)
+    assert alone < 0.12 - 0.01
+    curve = damping_curve(building, kelvin, stories=[1, 3, 4], factors=[walls[1][0].area / kelvin.area],
+                          drift_amplitude=drift)
+    assert curve.damping_ratios[0] == pytest.approx(0.12, abs=1e-6)
+    np.testing.assert_array_equal(curve.drift_amplitudes, np.full(5, drift))
+    assert len(curve.linearisation) == 1 and "story 2: friction" in curve.linearisation[0] \
+        and "6 mm" in curve.linearisation[0]
+    bare_curve = damping_curve(ShearBuilding(masses, stiffnesses, damping_ratio=0.0), kelvin, factors=[1.0],
+                               drift_amplitude=drift)
+    assert bare_curve.drift_amplitudes is None and bare_curve.linearisation == ()
+
+
+def test_a_target_the_other_devices_already_reach_says_no_walls_are_needed_with_their_ratio():
+    """A building whose FVD already gives mode 1 more than the target: size_walls said "reached by vanishingly
+    small walls" (walls were not what reached it).  Reference: one story with a linear FVD, xi = xi_inherent +
+    C / (2 sqrt(k m)) (the inherent damping c = 2 xi sqrt(k m) of the one mode), to the 4 digits printed."""
+    mass, stiffness, coefficient = 100.0, 2.0e5, 300.0
+    building = ShearBuilding([mass], [stiffness], damping_ratio=0.02,
+                             devices={1: [vdw.FluidViscousDamper(coefficient, 1.0)]})
+    expected = 0.02 + coefficient / (2.0 * np.sqrt(stiffness * mass))
+    assert expected > 0.021 + 0.01
+    with pytest.raises(ValueError, match=re.escape(f"target_damping 0.021 is reached without walls: the building's "
+                                                   f"other devices give mode 1 the damping ratio {expected:.4f}")):
+        size_walls(building, KELVIN_MAXWELL, 0.021)

@@ -6,6 +6,7 @@ against an elastic-perfectly-plastic return mapping written here; the bad inputs
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -277,3 +278,99 @@ def test_a_device_of_an_unknown_type_in_a_building_is_refused_naming_its_type():
 
     with pytest.raises(ValueError, match=r"devices\[2\].*FluidViscousDamper.*FrictionDamper.*got Sponge"):
         vdw.ShearBuilding([300.0, 300.0], [2e5, 2e5], devices={2: [vdw.FrictionDamper(1e5, 1e4), Sponge()]})
+
+
+# ---------------------------------------------------------------------------------------------- the float range
+@pytest.mark.parametrize("make", [
+    lambda m: vdw.FluidViscousDamper(100.0, 1.0, magnification=m),
+    lambda m: vdw.FrictionDamper(1.0e3, 2.0e5, magnification=m),
+    lambda m: vdw.FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5, magnification=m),
+])
+@pytest.mark.parametrize("magnification", [1e200, 1e-200])
+def test_a_magnification_whose_square_leaves_the_float_range_is_refused_naming_it(make, magnification):
+    """The story sees magnification^2 x the device's stiffness: at 1e200 story_stiffness raised OverflowError (a
+    traceback), at 1e-200 the square was 0 (a device the story does not see).  Both refused at construction."""
+    with pytest.raises(ValueError, match=re.escape(f"magnification = {magnification:g}: its square")):
+        make(magnification)
+    device = make(1e150)  # square 1e300: accepted
+    assert device.magnification == 1e150
+
+
+def test_a_fvd_whose_loss_stiffness_overflows_is_its_brace_not_nan():
+    """K* = K_b i q / (1 + i q), q = omega C_eq / K_b: as q -> inf, K* -> K_b (the oil locks, the brace carries the
+    motion).  Where omega C_eq overflowed, K* was NaN; where omega = 0, 0 even if C (omega u0)^alpha overflows.
+    Reference: the closed form K_b (q^2 + i q) / (1 + q^2) written here, at q = 3 and q = 1e250 (its limit K_b)."""
+    brace = 1.0e5
+    linear = vdw.FluidViscousDamper(brace * 3.0 / (2.0 * math.pi), 1.0, stiffness=brace)  # q = 3 at 1 Hz
+    np.testing.assert_allclose(linear.complex_stiffness(1.0), brace * (9.0 + 3.0j) / 10.0, rtol=1e-14)
+    huge = vdw.FluidViscousDamper(1.0e300, 1.0, stiffness=brace)
+    np.testing.assert_allclose(huge.complex_stiffness([0.0, 1.0e-55, 1.0e10]),
+                               [0.0, brace * (1.0 + 1j / (2.0 * math.pi * 1.0e-55 * 1.0e300 / brace)), brace],
+                               rtol=1e-14)
+    nonlinear = vdw.FluidViscousDamper(1.0e300, 0.3, stiffness=brace)
+    np.testing.assert_allclose(nonlinear.complex_stiffness([0.0, 1.0e10], 1e-10), [0.0, brace], rtol=1e-14)
+    with pytest.raises(ValueError, match=r"K\*\(f\) overflowed \(inf\) at f = 1e\+306 Hz"):
+        vdw.FluidViscousDamper(100.0, 1.0).complex_stiffness([1.0, 1.0e306])
+    with pytest.raises(ValueError, match=r"equivalent coefficient overflowed \(inf\) at frequency = 1e-300 Hz"):
+        nonlinear.equivalent_coefficient(1.0e-300, 1.0e-300)
+    with pytest.raises(ValueError, match=r"magnification\^2 \(1e\+150\^2\) exceeds"):
+        vdw.FluidViscousDamper(1.0e300, 1.0, stiffness=1.0e300, magnification=1e150).story_stiffness(1.0)
+
+
+@pytest.mark.parametrize(("alpha", "brace", "q", "error", "tolerance"), [
+    (0.5, 1000.0, 0.125, 0.0, 0.015),
+    (0.3, 1000.0, 0.066, 0.0, 0.015),
+    (0.3, 100.0, 0.658, 0.114, 0.005),
+    (0.3, 30.0, 2.193, -0.172, 0.005),
+])
+def test_a_braced_nonlinear_fvds_linearisation_against_the_steady_state_of_the_maxwell_equation(
+        alpha, brace, q, error, tolerance):
+    """The equivalent linear K* of a nonlinear FVD with a brace takes the dashpot's motion as a sine: the
+    accuracy that vdw_frames.element.viscous and docs/theory.rst state.  Reference: F = K_b (u - u_d),
+    u_d' = sgn(F) (|F| / C)^(1/alpha) under u = u0 sin(omega t), solved by scipy to a steady state; its
+    energy per cycle (pi u0 x the first harmonic's quadrature part) against pi K'' u0^2."""
+    coefficient, u0, frequency = 100.0, 5.0, 1.0
+    omega = 2.0 * math.pi * frequency
+    damper = vdw.FluidViscousDamper(coefficient, alpha, stiffness=brace)
+    assert cycle_integral(alpha) * coefficient * omega**alpha * u0 ** (alpha - 1.0) / math.pi / brace == \
+        pytest.approx(q, abs=5e-4)
+
+    def rate(t, state):
+        force = brace * (u0 * math.sin(omega * t) - state[0])
+        return [math.copysign(abs(force / coefficient) ** (1.0 / alpha), force)]
+
+    solution = solve_ivp(rate, (0.0, 12.0), [0.0], rtol=1e-10, atol=1e-12, dense_output=True, max_step=1e-3)
+    t = np.linspace(11.0, 12.0, 20001)[:-1]  # the 12th cycle: steady
+    force = brace * (u0 * np.sin(omega * t) - solution.sol(t)[0])
+    energy = math.pi * u0 * 2.0 * np.mean(force * np.cos(omega * t))
+    linearised = math.pi * complex(damper.complex_stiffness(frequency, u0)).imag * u0**2
+    assert linearised / energy - 1.0 == pytest.approx(error, abs=tolerance)
+
+
+@pytest.mark.parametrize("device", [vdw.FrictionDamper(1.0e3, 2.0e5), vdw.FluidViscousDamper(100.0, 0.5, 1.0e4)])
+def test_complex_stiffness_without_an_amplitude_names_its_own_argument(device):
+    """complex_stiffness takes the device's own amplitude ``amplitude``: without it the error said "give
+    drift_amplitude", an argument of story_stiffness that complex_stiffness does not take."""
+    with pytest.raises(ValueError, match=r"K\* depends on its amplitude: give amplitude \(mm, the device's own"):
+        device.complex_stiffness(1.0)
+    with pytest.raises(ValueError, match=r"give drift_amplitude \(mm\), the story drift amplitude"):
+        device.story_stiffness(1.0)
+
+
+def test_a_trial_or_a_drive_that_overflows_is_refused_and_the_state_kept():
+    """DeviceState.trial and device_response returned inf (a pure dashpot at a 1e300 mm step; a damper whose
+    energy F^2 / (2 K_b) overflows): a ValueError naming the deformation instead, the committed state untouched.
+    Reference: a pure dashpot from rest, F = C v with Newmark's v = 2 u / dt."""
+    from vdw_frames.element.devices import DeviceState
+
+    state = DeviceState(vdw.FluidViscousDamper(1.0e5, 1.0), 0.01)
+    with pytest.raises(ValueError, match=r"trial at deformation 1e\+300 mm overflowed \(inf\)"):
+        state.trial(1e300)
+    with pytest.raises(ValueError, match="commit needs a trial first"):
+        state.commit()
+    force, tangent = state.trial(1.0)
+    assert force == pytest.approx(1.0e5 * 2.0 * 1.0 / 0.01, rel=1e-15)
+    assert tangent == pytest.approx(2.0 * 1.0e5 / 0.01, rel=1e-15)
+    history = 100.0 * np.sin(np.linspace(0.0, 20.0, 2001))
+    with pytest.raises(ValueError, match=r"overflowed \(inf\) at step 1, deformation 0\.99998"):
+        device_response(vdw.FluidViscousDamper(1.0e300, 0.5, stiffness=1.0e300), history, 0.01)

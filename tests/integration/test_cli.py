@@ -609,6 +609,8 @@ def test_design_command_refuses_a_building_too_tall_to_size_before_any_work(tmp_
     (["--target", "0"], "--target must be a damping ratio in (0, 1), e.g. 0.15, got 0"),
     (["--mode", "0"], "--mode must be >= 1, got 0"),
     (["--strain", "nan"], "--strain must be a positive amplitude in %, got nan"),
+    (["--drift-amplitude", "-5"], "--drift-amplitude must be a positive story drift amplitude in mm, got -5.0"),
+    (["--drift-amplitude", "inf"], "--drift-amplitude must be a positive story drift amplitude in mm, got inf"),
 ])
 def test_design_command_checks_its_arguments_before_any_work(tmp_path, capsys, monkeypatch, argv, message):
     def no_work(*args, **kwargs):

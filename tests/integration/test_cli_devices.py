@@ -122,3 +122,42 @@ def test_design_states_the_amplitude_its_modal_table_of_nonlinear_devices_holds_
     row = next(line for line in out.splitlines() if line.split()[:1] == ["1"]).split()
     expected = modal_analysis(load_building(path), drift_amplitude=20.0)
     assert float(row[4]) == pytest.approx(100 * expected.damping_ratios[0], abs=0.0051)
+
+
+def test_design_sizes_walls_beside_a_friction_damper_at_the_drift_amplitude(tmp_path, capsys, monkeypatch):
+    """design --target on a building of walls and a friction damper: the walls are sized with the damper
+    linearised at --drift-amplitude, and the output says so (it stopped with "give drift_amplitude", an argument
+    that size_walls and damping_curve did not take).  Reference: the sized walls' damping ratio by
+    modal_analysis at that amplitude (tests/design/test_sizing.py checks size_walls against state-space
+    eigenvalues); without --drift-amplitude, one error line that names the flag."""
+    from vdw_frames import modal_analysis, size_walls
+
+    text = ('masses = [100, 100, 100, 100]\nstiffnesses = [2e5, 2e5, 2e5, 2e5]\ndamping_ratio = 0.02\n'
+            '[[walls]]\nstories = "all"\nparameters = {G1 = 0.0, G2 = 3.0, eta1 = 0.3, eta2 = 2.0, r = 0.5}\n'
+            'area = 2.0e5\nthickness = 10.0\n'
+            '[[devices]]\ntype = "friction"\nstories = [2]\nslip_force = 2.0e4\nstiffness = 2.0e5\n')
+    path = write_file(tmp_path, "walls_and_friction.toml", text)
+    assert cli.main(["design", str(path), "--target", "0.2", "--out", str(tmp_path)]) == 2
+    assert capsys.readouterr().err == (f"vdw-frames: error: {path}: story 2's friction F_s=20000.0, k=200000.0 "
+                                       "depends on its amplitude: give --drift-amplitude (mm, the story drift "
+                                       "amplitude it is linearised at)\n")
+    import vdw_frames.plotting
+
+    titles = []
+    drawn = vdw_frames.plotting.plot_damping_curve
+    monkeypatch.setattr(vdw_frames.plotting, "plot_damping_curve",
+                        lambda *a, **k: titles.append(k.get("title")) or drawn(*a, **k))
+    assert cli.main(["design", str(path), "--target", "0.2", "--drift-amplitude", "10", "--modes", "1",
+                     "--out", str(tmp_path)]) == 0
+    assert titles == ["walls_and_friction.toml: mode 1 against the wall size\n(other devices linearised at story "
+                      "drift amplitude 10 mm)"]
+    out = capsys.readouterr().out
+    assert ("the other devices kept as they are, linearised at story drift amplitude 10 mm (--drift-amplitude): the "
+            "damping ratios and sizes below hold at that amplitude only") in out
+    building = load_building(path)
+    sized = size_walls(building, None, 0.2, distribution="existing", drift_amplitude=10.0)
+    result = modal_analysis(sized, 1, drift_amplitude=10.0)
+    assert result.damping_ratios[0] == pytest.approx(0.2, abs=1e-6)
+    factor = sized.walls[1][0].area / building.walls[1][0].area
+    assert f"target 20 %: the file's walls, every area x {factor:.3f}" in out
+    assert f"xi = 20.00 %, T = {result.periods[0]:.3f} s" in out

@@ -242,3 +242,22 @@ def test_a_target_below_the_bare_frame_s_damping_leaves_no_folder_behind(folder,
     assert code == 2 and len(error) == 1 and "is not above the bare frame's mode-1 damping ratio" in error[0], error
     assert out.exists() == existing
     assert not existing or not any(out.iterdir())
+
+
+def test_the_device_schedule_states_the_units_of_the_parameters_it_prints():
+    """The schedule's descriptions print bare numbers ("FVD C=1000.0, alpha=0.5, K_b=100000.0"): a line under it
+    gives their units (before, the note left C's unit, N (s/mm)^alpha, to be guessed)."""
+    from vdw_frames import FDMKDamper, FluidViscousDamper, FrictionDamper
+    from vdw_frames.design_report import _schedule, device_rows
+
+    building = ShearBuilding([100.0, 100.0], [1e5, 1e5], devices={
+        1: [FDMKDamper(0.0, 3.0, 0.3, 2.0, 0.5)], 2: [FluidViscousDamper(1e3, 0.5, 1e5, magnification=0.8),
+                                                     FrictionDamper(2e4, 5e4)]})
+    lines = _schedule(device_rows(building))
+    assert "| 2 | FVD C=1000.0, alpha=0.5, K_b=100000.0, f=0.8 | - | - | - | - | - |" in lines
+    assert lines[-2] == ("Units of the devices' parameters: walls G1, G2 MPa, eta1, eta2 MPa s^r, A mm^2, t mm; FVD "
+                         "C N (s/mm)^alpha, K_b N/mm; friction F_s N, k N/mm; f the magnification (device deformation "
+                         "/ story drift, -); each to 4 significant digits (devices.csv and building.toml hold them "
+                         "exactly).")
+    rounded = _schedule(device_rows(ShearBuilding([100.0], [1e5], devices={1: [FrictionDamper(12345.678, 5e4)]})))
+    assert "| 1 | friction F_s=12350.0, k=50000.0 | - | - | - | - | - |" in rounded  # 4 digits, as stated

@@ -27,7 +27,8 @@
    linearisation; taken here at the MCE_R amplitude, not the design earthquake's (2/3 of it), which for an FVD
    with alpha < 1 gives less damping, so a smaller B and a larger V_min (conservative).  The frame's
    hysteretic damping (beta_H) is not included (the modal analysis is elastic).  B_V+I from Table 18.7-1
-   (:func:`~vdw_frames.asce7.damping_coefficient`), V_min = max(V / B_V+I, 0.75 V) or 1.0 V where the user
+   (:func:`~vdw_frames.asce7.damping_coefficient`; a round whose T_1 is below T_0, outside the table's heading,
+   says so in the assumptions: :func:`short_period_note`), V_min = max(V / B_V+I, 0.75 V) or 1.0 V where the user
    states the structure is irregular (Sec. 18.2.1.1, :func:`~vdw_frames.asce7.minimum_base_shear`).
 4. **The reduced frame**: :func:`design_frame` again with ``strength_scale = V_min / V`` (strengths scaled; the
    stiffness that the drift limit requires is the one design_frame states), the sized devices put on it.
@@ -291,6 +292,18 @@ def _target(value: object) -> float:
     return target
 
 
+def short_period_note(period: float, site: Site, number: int) -> str | None:
+    """The assumption a round states where its period T_1 (s) is below the site's T_0 (s): Table 18.7-1 is headed
+    "where period of the structure >= T_0" (ASCE 7-16, the heading as read; :mod:`vdw_frames.asce7.damping`), so
+    its B_V+I there is used outside the table's range; None where T_1 >= T_0."""
+    if period >= site.t0:
+        return None
+    return (f"round {number}: T_1 = {period:.3f} s is below T_0 = {site.t0:.3f} s, outside Table 18.7-1 (headed "
+            "'where period of the structure >= T_0'); its B_V+I is used there all the same, and the standard's rule "
+            "for shorter periods (as recalled, not read: B interpolated towards 1.0 at T = 0) is not applied, so "
+            "V_min may be low")
+
+
 def mce_drift_amplitudes(frame: ShearBuilding, site: Site, period: float, damping: float) -> np.ndarray:
     """Story drift amplitudes (mm) of mode 1 at MCE_R, the estimate of the module docstring: the bare ``frame``'s
     undamped first mode (shape and Gamma_1), the site's MCE_R S_a at ``period`` (s) divided by B at ``damping``
@@ -502,6 +515,9 @@ def design_damped(site: Site, system: Any, weights: ArrayLike, story_heights: Ar
         effective = float(modal_analysis(undamped.building.with_devices(devices), 1,
                                          drift_amplitude=amplitudes if nonlinear else None).damping_ratios[0])
         b = damping_coefficient(effective)
+        note = short_period_note(sizing.period, site, number)
+        if note is not None:
+            loop.assumptions.append(note)
         v = float(undamped.base_shear)
         v_min, rule = minimum_base_shear(v, b, bool(irregular))
         if v_min > v:  # B_V+I < 1 (below 5 % damping): design_frame's strength_scale stops at 1

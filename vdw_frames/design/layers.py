@@ -37,6 +37,9 @@ from ..frame.lanes import lane_batches, run_lanes
 from ..frame.simulation import simulate
 from ..motion.record import GroundMotion
 
+MAX_ITERATIONS = 100
+"""The most passes :func:`size_layers` takes (each runs the whole suite), refused above before any work."""
+
 _LANE_OPTIONS = {"method", "memory", "collapse_drift_ratio", "free_vibration", "newton"}
 """The options of :func:`~vdw_frames.simulate` that :func:`~vdw_frames.frame.lanes.run_lanes` takes too."""
 
@@ -78,7 +81,7 @@ def size_layers(building: ShearBuilding, motions: Sequence[GroundMotion], tolera
 
     ``motions``: the suite (GroundMotion, mm/s^2), each already scaled to the design intensity;
     ``tolerance`` (-): the largest relative change of a thickness at convergence; ``max_iterations``:
-    passes at most (each runs the suite once).  ``simulate_options`` go to every
+    passes at most (each runs the suite once; 1 ... :data:`MAX_ITERATIONS`).  ``simulate_options`` go to every
     :func:`~vdw_frames.simulate` (e.g. ``free_vibration``).  Walls of fixed parameters are left as they
     are.  Returns a :class:`LayerSizing` (not converged after ``max_iterations``: ``converged`` False).
     Each pass runs the suite as lanes (:func:`~vdw_frames.frame.lanes.run_lanes`: the same analyses as
@@ -94,6 +97,9 @@ def size_layers(building: ShearBuilding, motions: Sequence[GroundMotion], tolera
     if tolerance >= 0.5:
         raise ValueError(f"tolerance must be below 0.5 (a relative change of thickness), got {tolerance!r}")
     max_iterations = whole_number("max_iterations", max_iterations, 1)
+    if max_iterations > MAX_ITERATIONS:
+        raise ValueError(f"max_iterations must be at most {MAX_ITERATIONS} (each pass runs the whole suite), got "
+                         f"{max_iterations}")
     walls = tuple(i for i, (_, wall) in enumerate(building.wall_list) if isinstance(wall, StrainDependentDamper))
     if not walls:
         raise ValueError("size_layers needs walls that follow their amplitude (StrainDependentDamper); "

@@ -88,7 +88,10 @@ class SizingCurve:
     frame without walls; ``best_factor`` and ``best_damping_ratio``: the largest ratio over factors 1e-3 ... 1e3 and
     the factor that gives it (``best_factor`` = 1e3 means it was still growing there), with ``best_period`` (s).
     ``weights``: the distribution over the stories (largest 1); ``wall``: the template (None for the
-    ``"existing"`` distribution, which scales the building's own walls).
+    ``"existing"`` distribution, which scales the building's own walls).  ``drift_amplitudes`` (mm, one a
+    story): the story drift amplitudes the building's amplitude-dependent devices (nonlinear FVDs, friction
+    dampers, kept as they are) were linearised at, and ``linearisation`` one line per such device (None and
+    () when the building has none): the curve holds at those amplitudes only.
     """
 
     mode: int
@@ -105,6 +108,8 @@ class SizingCurve:
     best_factor: float
     best_damping_ratio: float
     best_period: float
+    drift_amplitudes: np.ndarray | None = None
+    linearisation: tuple[str, ...] = ()
 
     @property
     def stories_text(self) -> str:
@@ -246,15 +251,31 @@ class _Sizer:
                 f"{stories})")
 
 
+def _walls_sizer(building: ShearBuilding, wall: Wall | None, mode: int, distribution: str,
+                 stories: int | Sequence[int] | str | None, *, drift_amplitude: float | ArrayLike | None,
+                 analysis: str) -> _Sizer:
+    """The :class:`_Sizer` of walls, the building's amplitude-dependent devices (kept as they are) linearised at
+    ``drift_amplitude`` (mm): a ValueError naming the first such device when it is None."""
+    amplitudes = drift_amplitudes(building, drift_amplitude) if isinstance(building, ShearBuilding) else None
+    sizer = _Sizer(building, wall, mode, distribution, stories, amplitudes=amplitudes)
+    require_amplitude(sizer.building_for(1.0), amplitudes, analysis)
+    return sizer
+
+
 def damping_curve(building: ShearBuilding, wall: Wall | None, mode: int = 1, distribution: str = "uniform",
-                  stories: int | Sequence[int] | str | None = None, factors: ArrayLike | None = None) -> SizingCurve:
+                  stories: int | Sequence[int] | str | None = None, factors: ArrayLike | None = None, *,
+                  drift_amplitude: float | ArrayLike | None = None) -> SizingCurve:
     """Period and damping ratio of ``mode`` against the walls' size (see the module docstring).
 
     ``factors``: area factors (> 0) to evaluate (default 0.02 ... 50, 41 points, geometric; at most
-    :data:`MAX_FACTORS`).  Buildings above :data:`MAX_STORIES` (30) stories are refused before any work.
-    Returns a :class:`SizingCurve` (mm^2, s, -).
+    :data:`MAX_FACTORS`).  ``drift_amplitude`` (mm, one number or one a story): the story drift amplitude at
+    which the building's devices whose stiffness depends on their amplitude (nonlinear FVDs, friction dampers:
+    kept as they are beside the walls) are linearised (:func:`~vdw_frames.modal_analysis`); needed (a
+    ValueError otherwise) when the building has such a device, and stated in the result.  Buildings above
+    :data:`MAX_STORIES` (30) stories are refused before any work.  Returns a :class:`SizingCurve` (mm^2, s, -).
     """
-    sizer = _Sizer(building, wall, mode, distribution, stories)
+    sizer = _walls_sizer(building, wall, mode, distribution, stories, drift_amplitude=drift_amplitude,
+                         analysis="damping_curve()")
     factors = DEFAULT_FACTORS if factors is None else finite_array("factors", factors)
     if factors.size == 0 or (factors <= 0).any():
         raise ValueError("factors must be one or more area factors > 0")
@@ -267,11 +288,22 @@ def damping_curve(building: ShearBuilding, wall: Wall | None, mode: int = 1, dis
     return SizingCurve(sizer.mode, distribution, sizer.stories, wall, sizer.weights, factors, areas,
                        -poles.real / np.abs(poles), 2.0 * np.pi / np.abs(poles),
                        float(-sizer.bare.real / abs(sizer.bare)), float(2.0 * np.pi / abs(sizer.bare)),
-                       best_factor, best_ratio, float(2.0 * np.pi / abs(sizer.pole(best_factor))))
+                       best_factor, best_ratio, float(2.0 * np.pi / abs(sizer.pole(best_factor))),
+                       *_linearisation(sizer))
+
+
+def _linearisation(sizer: _Sizer) -> tuple[np.ndarray | None, tuple[str, ...]]:
+    """(story drift amplitudes (mm), one line per device) of the sizer's amplitude-dependent devices; (None, ())
+    when it has none."""
+    probe = sizer.building_for(1.0)
+    if sizer.amplitudes is None or not nonlinear_devices(probe):
+        return None, ()
+    return sizer.amplitudes, linearisation_notes(probe, sizer.amplitudes)
 
 
 def size_walls(building: ShearBuilding, wall: Wall | None, target_damping: float, mode: int = 1,
-               distribution: str = "uniform", stories: int | Sequence[int] | str | None = None) -> ShearBuilding:
+               distribution: str = "uniform", stories: int | Sequence[int] | str | None = None, *,
+               drift_amplitude: float | ArrayLike | None = None) -> ShearBuilding:
     """A copy of ``building`` whose walls give ``mode`` the total damping ratio ``target_damping``.
 
     ``wall``: the template (:class:`~vdw_frames.FDMKDamper` or :class:`~vdw_frames.SupportedDamper`), its
@@ -282,9 +314,15 @@ def size_walls(building: ShearBuilding, wall: Wall | None, target_damping: float
     are returned.  ValueError when the target is below the bare frame's ratio or above the largest
     achievable one (the message states that maximum and the wall size that gives it), and for buildings
     above :data:`MAX_STORIES` (30) stories, before any work.
+
+    ``drift_amplitude`` (mm, one number or one a story): the design story drift amplitude at which the
+    building's other devices whose stiffness depends on their amplitude (nonlinear FVDs, friction dampers, kept
+    as they are) are linearised, as for :func:`size_devices`; needed (a ValueError otherwise) when the building
+    has such a device.  The walls found reach the target at that amplitude only.
     """
     target = check_damping_ratio(target_damping, "target_damping")
-    sizer = _Sizer(building, wall, mode, distribution, stories)
+    sizer = _walls_sizer(building, wall, mode, distribution, stories, drift_amplitude=drift_amplitude,
+                         analysis="size_walls()")
     return sizer.building_for(_solve(sizer, target))
 
 
@@ -380,8 +418,10 @@ def _solve(sizer: _Sizer, target: float) -> float:
     low = SEARCH_FACTORS[0]
     while sizer.damping(low) > target:
         low *= 1e-2
-        if low < 1e-12:
-            raise ValueError(f"target_damping {target!r} is reached by vanishingly small {kind}")
+        if low < 1e-12:  # only the building's devices that are not sized can hold the ratio up there
+            raise ValueError(f"target_damping {target!r} is reached without {kind}: the building's other devices "
+                             f"give mode {sizer.mode} the damping ratio {sizer.damping(low):.4f} with {kind} of "
+                             f"{low:.0e} x the size; no {kind} are needed")
     from scipy.optimize import brentq
 
     return float(brentq(lambda f: sizer.damping(f) - target, low, best_factor, xtol=1e-12, rtol=1e-10))

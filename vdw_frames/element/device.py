@@ -20,6 +20,7 @@ Units: frequency Hz, deformation mm, force N, stiffness N/mm.
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Sequence
 from typing import ClassVar, NamedTuple, Protocol, runtime_checkable
 
@@ -78,8 +79,24 @@ class Device(Protocol):
 
 
 def magnification_factor(value: object) -> float:
-    """A device's magnification (-): finite and > 0, else a ValueError naming it."""
-    return positive("magnification", value)
+    """A device's magnification (-): finite and > 0, with its square (the story's share of the device's stiffness)
+    a normal double, else a ValueError naming it."""
+    magnification = positive("magnification", value)
+    if not sys.float_info.min <= magnification * magnification < math.inf:
+        raise ValueError(f"magnification = {show(value)}: its square, the story's share of the device's stiffness, "
+                         "lies outside the double-precision range")
+    return magnification
+
+
+def story_share(magnification: float, stiffness: np.ndarray, kind: str) -> np.ndarray:
+    """magnification^2 x ``stiffness`` (N/mm): what the story sees of a device's K*; a ValueError naming the
+    magnification where the product overflows."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        share = magnification * magnification * np.asarray(stiffness)
+    if not np.isfinite(share).all():
+        raise ValueError(f"the {kind}'s stiffness times its magnification^2 ({show(magnification)}^2) exceeds the "
+                         "double-precision range")
+    return share
 
 
 def device_amplitude(drift_amplitude: float | None, magnification: float, kind: str) -> float:
@@ -93,6 +110,15 @@ def device_amplitude(drift_amplitude: float | None, magnification: float, kind: 
         raise ValueError(f"drift_amplitude = {show(drift_amplitude)} mm times the {kind}'s magnification "
                          f"{show(magnification)} exceeds the double-precision range")
     return magnification * amplitude
+
+
+def require_own_amplitude(amplitude: float | None, kind: str) -> float:
+    """A device's own deformation amplitude (mm, finite and > 0) for its ``complex_stiffness``: a ValueError naming
+    ``amplitude`` when it is None (its K* depends on it)."""
+    if amplitude is None:
+        raise ValueError(f"a {kind}'s K* depends on its amplitude: give amplitude (mm, the device's own deformation "
+                         "amplitude; story_stiffness takes the story's, drift_amplitude)")
+    return positive("amplitude", amplitude)
 
 
 def describe_number(value: float) -> str:

@@ -22,6 +22,7 @@ Units: deformation mm, velocity mm/s, force N, stiffness N/mm, energy N*mm, time
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import NamedTuple
 
@@ -29,7 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._jit import njit
-from .._validation import finite_array, time_step
+from .._validation import finite_array, show, time_step
 from .device import Device
 from .friction import FrictionDamper, FrictionStates, friction_commit, friction_states, friction_trial
 from .viscous import FluidViscousDamper, ViscousStates, viscous_commit, viscous_states, viscous_trial
@@ -157,6 +158,11 @@ def device_response(device: Device, deformation: ArrayLike, dt: float) -> dict[s
     motion = states.viscous.kinematics if states.viscous.coefficient.size else states.friction.kinematics
     force, heat, stored = np.zeros(history.size), np.zeros(history.size), np.zeros(history.size)
     _drive(states, motion, history, float(dt), force, heat, stored)
+    for name, values in (("force", force), ("heat", heat), ("stored", stored)):
+        if not np.isfinite(values).all():
+            step = int(np.flatnonzero(~np.isfinite(values))[0])
+            raise ValueError(f"the {device.describe()}'s {name} overflowed (inf) at step {step}, deformation "
+                             f"{show(float(history[step]))} mm: outside the double-precision range")
     return {"force": force, "heat": heat, "stored": stored}
 
 
@@ -184,6 +190,11 @@ class DeviceState:
         """(force N, tangent N/mm) at the story drift ``deformation`` (mm) this step; nothing committed."""
         self._drift[0] = finite_array("deformation", [deformation])[0]
         devices_trial(self._states, self._drift, self.dt, self._force, self._tangent)
+        if not (math.isfinite(self._force[0]) and math.isfinite(self._tangent[0])
+                and math.isfinite(self._motion.trial_heat[0]) and math.isfinite(self._motion.trial_stored[0])):
+            self._tried = False  # nothing to commit
+            raise ValueError(f"the {self.device.describe()}'s trial at deformation {show(float(deformation))} mm "
+                             "overflowed (inf): outside the double-precision range")
         self._tried = True
         return float(self._force[0]), float(self._tangent[0])
 

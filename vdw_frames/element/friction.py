@@ -33,7 +33,15 @@ from numpy.typing import ArrayLike
 
 from .._jit import njit
 from .._validation import finite_array, positive, scaled_value, show
-from .device import Kinematics, describe_number, device_amplitude, kinematics, magnification_factor
+from .device import (
+    Kinematics,
+    describe_number,
+    device_amplitude,
+    kinematics,
+    magnification_factor,
+    require_own_amplitude,
+    story_share,
+)
 
 
 @dataclass(frozen=True)
@@ -81,9 +89,7 @@ class FrictionDamper:
         frequency = finite_array("f", f, ndim=None)
         if (frequency < 0.0).any():
             raise ValueError(f"f must be >= 0 Hz, got {show(frequency[frequency < 0.0].flat[0])}")
-        if amplitude is None:
-            device_amplitude(None, 1.0, "friction damper")  # the error: a nonlinear device needs an amplitude
-        u0 = positive("amplitude", amplitude)
+        u0 = require_own_amplitude(amplitude, "friction damper")
         if u0 <= self.slip_deformation:
             value = complex(self.stiffness)
         else:
@@ -96,7 +102,7 @@ class FrictionDamper:
     def story_stiffness(self, f: ArrayLike, drift_amplitude: float | None = None) -> np.ndarray:
         """magnification^2 K*(f) (N/mm) at the story drift amplitude ``drift_amplitude`` (mm)."""
         amplitude = device_amplitude(drift_amplitude, self.magnification, "friction damper")
-        return self.magnification**2 * self.complex_stiffness(f, amplitude)
+        return story_share(self.magnification, self.complex_stiffness(f, amplitude), "friction damper")
 
     def scaled(self, factor: float) -> FrictionDamper:
         """The slip force times ``factor`` (> 0): the property-modification factors of the friction force
