@@ -83,6 +83,8 @@ class IDAResult:
     strain-range warnings of the runs (text), counted, not silenced.  ``wall_failed`` (bool per run: any
     wall failed) and ``wall_failure_intensity`` (mm/s^2, the first level with a failed wall, masked where
     no wall failed up to the record's last level); ``limit_states``: what a collapse is, in words.
+    ``other_warnings``: every other warning of the runs (a wall's temperature outside its shift law's range,
+    a step that did not converge, ...), each naming its run; the analysis warns once when there are any.
     """
 
     motion_names: tuple[str, ...]
@@ -96,6 +98,7 @@ class IDAResult:
     wall_failed: tuple[np.ndarray, ...] = ()
     wall_failure_intensity: np.ma.MaskedArray = field(default_factory=lambda: np.ma.masked_array([]))
     limit_states: str = COLLAPSE_LIMIT_STATES
+    other_warnings: tuple[str, ...] = ()
 
     @property
     def analyses(self) -> int:
@@ -189,12 +192,19 @@ def incremental_dynamic_analysis(building: ShearBuilding, motions: Iterable[Grou
             standing = [m for m in standing if not collapsed[m][-1]]
     limit_states = COLLAPSE_LIMIT_STATES + (", or the failure of any wall" if wall_failure_collapse else
                                             " (wall failure not included: a failed wall leaves the frame standing)")
+    # The strain-range warnings are counted in the result; the others (a wall's temperature beyond its shift law's
+    # range, a step that did not converge) were collected with them and must not be lost either.
+    others = tuple(message for message in messages if not is_strain_range_warning(message))
+    if others:
+        _warnings.warn(f"incremental_dynamic_analysis: {len(others)} warning(s) of {sum(map(len, intensities))} "
+                       f"analyses besides wall strain (result.other_warnings), e.g. {others[0]}", UserWarning,
+                       stacklevel=3)
     return IDAResult(tuple(m.name for m in motions), float(period), levels,
                      tuple(np.array(x) for x in intensities), tuple(np.array(x) for x in drift),
                      tuple(np.array(x, dtype=bool) for x in collapsed), _first_level(intensities, collapsed),
                      tuple(message for message in messages if is_strain_range_warning(message)),
                      tuple(np.array(x, dtype=bool) for x in wall_failed), _first_level(intensities, wall_failed),
-                     limit_states)
+                     limit_states, others)
 
 
 def _first_level(intensities: list[list[float]], happened: list[list[bool]]) -> np.ma.MaskedArray:
