@@ -173,7 +173,8 @@ class CollapseAssessment:
     shift law's range, ...), also said once in a warning with their count.  ``metadata``: each record's metadata
     (None where it has none); ``steps``: the time steps integrated per record (all its analyses);
     ``resolution``: per record, the widest ratio left between consecutive standing runs below its collapse (a
-    transition inside it would be unseen); ``seconds``: wall-clock time, ``search_seconds`` the part spent in the records' searches (on the executor).
+    transition inside it would be unseen); ``seconds``: wall-clock time, ``search_seconds`` the part spent in
+    the records' searches (on the executor).
     """
 
     record_names: tuple
