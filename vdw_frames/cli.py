@@ -108,6 +108,15 @@ def _sine_test(args: argparse.Namespace) -> int:
     damper = _damper_from(args)
     amplitude = args.amplitude if args.amplitude is not None else args.strain / 100.0 * damper.thickness
     result = sine_test(damper, amplitude, args.frequency, cycles=args.cycles)
+    if damper.strain_range is not None:  # a recommended set: identified from the paper's tests at 0.5-10 Hz
+        from . import _warnings
+        from .paper.data import FREQUENCIES
+
+        low, high = float(FREQUENCIES.min()), float(FREQUENCIES.max())
+        if not low <= args.frequency <= high:
+            _warnings.warn(f"sine-test: f = {args.frequency:g} Hz lies outside the frequencies the {args.strain:g} % "
+                           f"set was identified at ({low:g}-{high:g} Hz, the paper's Tables 1-3): K', K'' and the "
+                           "loop extrapolate the model there")
     print(f"FDMK damper: G1={damper.G1:g} MPa, G2={damper.G2:g} MPa, eta1={damper.eta1:g} MPa*s^r, "
           f"eta2={damper.eta2:g} MPa*s^r, r={damper.r:g}, A={damper.area:g} mm^2, h={damper.thickness:g} mm")
     if args.area is None and args.thickness is None:  # the paper's stated geometry, by default

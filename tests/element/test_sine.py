@@ -139,3 +139,14 @@ def test_the_strain_of_a_wall_on_a_support_is_its_own_share():
     # half its peak-to-peak (the transient leaves an offset that decays as a power law); 200 samples a cycle
     assert result.strain_amplitude == pytest.approx((own.max() - own.min()) / 20.0, rel=1e-3)
     assert 1.0 < result.strain_amplitude < 2.625
+
+
+def test_the_command_says_when_the_frequency_lies_outside_the_tested_ones(tmp_path, capsys):
+    # The paper's Tables 1-3 hold 0.5, 1, 1.5, 2, 5 and 10 Hz: a recommended set is an extrapolation beyond them.
+    for frequency, warned in (("20", True), ("0.2", True), ("0.5", False), ("10", False)):
+        assert cli.main(["sine-test", "--frequency", frequency, "--out", str(tmp_path)]) == 0
+        err = capsys.readouterr().err
+        assert (f"warning: sine-test: f = {frequency} Hz lies outside the frequencies the 300 % set was identified at "
+                "(0.5-10 Hz" in err) is warned
+    assert cli.main(["sine-test", "--frequency", "20", "--G1", "1", "--out", str(tmp_path)]) == 0
+    assert "warning" not in capsys.readouterr().err  # parameters of one's own: no range known
