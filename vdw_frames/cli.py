@@ -416,6 +416,10 @@ def _print_wall_states(result: SimulationResult) -> None:
     if amplitude is not None:
         print("below/above s: time the followed amplitude spent below/above the tested amplitudes, where the "
               "parameters are those of the nearest tested set")
+        print("amplitude %: the wall's strain amplitude as followed (half-cycle by half-cycle): the envelope of its "
+              "strain while a faster component riding on a slower one has a2 w2 <= 3 a1 w1 (strain-rate amplitudes); "
+              "beyond that a higher mode's reversals can end half-cycles, and the parameters follow a smaller "
+              "amplitude for a while (kernel.track_amplitude)")
 
 
 def _design(args: argparse.Namespace) -> int:
