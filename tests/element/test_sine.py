@@ -150,3 +150,18 @@ def test_the_command_says_when_the_frequency_lies_outside_the_tested_ones(tmp_pa
                 "(0.5-10 Hz" in err) is warned
     assert cli.main(["sine-test", "--frequency", "20", "--G1", "1", "--out", str(tmp_path)]) == 0
     assert "warning" not in capsys.readouterr().err  # parameters of one's own: no range known
+
+
+def test_tiny_amplitudes_give_the_same_linear_wall_or_are_refused():
+    # The wall is linear: K', K'' and the damping ratio do not depend on the amplitude.  At 1e-200 mm the loop
+    # area (F u ~ 1e-395 N*mm) underflowed and the ratio, 0/0, was reported as an overflow; at 5e-324 mm every
+    # result came out 0.
+    wall = fitted(300, area=1e4, thickness=10.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # far below the identified strains
+        reference, tiny = sine_test(wall, 30.0, 1.0), sine_test(wall, 1e-99, 1.0)
+    for name in ("storage_stiffness", "loss_stiffness", "equivalent_damping_ratio", "effective_stiffness"):
+        assert getattr(tiny, name) == pytest.approx(getattr(reference, name), rel=1e-12), name
+    for amplitude in (1e-200, 5e-324):
+        with pytest.raises(ValueError, match=r"below 1e-100 mm, where floating point loses"):
+            sine_test(wall, amplitude, 1.0)

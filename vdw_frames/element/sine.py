@@ -25,6 +25,7 @@ from .damper import FDMKDamper
 from .fractional import DEFAULT_METHOD, Discretisation, get_method
 from .supported import WALL_TYPES, SupportedDamper
 
+MIN_AMPLITUDE = 1e-100  # mm: far below any test; near 1e-308 the samples and forces lose their digits (subnormal)
 SAMPLES_PER_CYCLE = 200  # omega*dt = 0.031: the default method's error r (omega dt)^2 / 6 <= 1.6e-4
 MIN_SAMPLES_PER_CYCLE = 8
 _BYTES_PER_STEP = 64  # time, displacement, force and the element's work arrays
@@ -71,8 +72,8 @@ def sine_test(damper: FDMKDamper | SupportedDamper, amplitude: float, frequency:
               cycles: int = 5, method: str | Discretisation = DEFAULT_METHOD) -> SineTestResult:
     """Drive ``damper`` with u(t) = amplitude * sin(2 pi frequency t) from rest for ``cycles`` cycles.
 
-    amplitude in mm, frequency in Hz, dt in s (default: 200 samples per cycle).  The period is sampled by
-    a whole number (>= 8) of steps: a ``dt`` that does not divide it is replaced by the nearest step
+    amplitude in mm (at least MIN_AMPLITUDE, 1e-100), frequency in Hz, dt in s (default: 200 samples per
+    cycle).  The period is sampled by a whole number (>= 8) of steps: a ``dt`` that does not divide it is replaced by the nearest step
     that does (``result.dt``; ``result.requested_dt`` keeps the one asked for).  A test whose arrays
     would exceed the 2 GiB memory limit is refused before allocating; one whose force or loop overflows
     (absurd amplitudes) is a ValueError naming the amplitude and frequency.  Returns a
@@ -85,6 +86,9 @@ def sine_test(damper: FDMKDamper | SupportedDamper, amplitude: float, frequency:
     if not isinstance(damper, WALL_TYPES):
         raise ValueError(f"damper must be an FDMKDamper or a SupportedDamper, got {type(damper).__name__}")
     amplitude = positive("amplitude", amplitude)
+    if amplitude < MIN_AMPLITUDE:
+        raise ValueError(f"amplitude = {amplitude!r} mm is below {MIN_AMPLITUDE:g} mm, where floating point loses the "
+                         "test's displacements and forces (the results would be zeros)")
     frequency = positive("frequency", frequency)
     requested_dt = None if dt is None else time_step(dt)
     cycles = whole_number("cycles", cycles, 1)
@@ -110,8 +114,10 @@ def sine_test(damper: FDMKDamper | SupportedDamper, amplitude: float, frequency:
         basis = np.column_stack([np.sin(phase), np.cos(phase), np.ones_like(phase)])
         (storage, loss, _), *_ = np.linalg.lstsq(basis, F[:-1] / amplitude, rcond=None)
         effective = (F.max() - F.min()) / (u.max() - u.min())
-        # A damper with no stiffness and no viscosity dissipates nothing: ratio 0, not 0/0.
-        damping_ratio = loop_area / (2.0 * np.pi * effective * np.float64(amplitude) ** 2) if effective > 0.0 else 0.0
+        # A damper with no stiffness and no viscosity dissipates nothing: ratio 0, not 0/0.  The loop is taken per
+        # unit amplitude squared, so that a tiny amplitude's area (F u, below 1e-308 N*mm) does not underflow to 0/0.
+        unit_loop = np.sum(0.5 * (F[1:] + F[:-1]) / amplitude * (np.diff(u) / amplitude))
+        damping_ratio = unit_loop / (2.0 * np.pi * effective) if effective > 0.0 else 0.0
     if not np.all(np.isfinite([loop_area, storage, loss, effective, damping_ratio])):
         raise ValueError(overflow)
     strain = _strain_amplitude(damper, amplitude, frequency)
