@@ -73,10 +73,10 @@ def sine_test(damper: FDMKDamper | SupportedDamper, amplitude: float, frequency:
     """Drive ``damper`` with u(t) = amplitude * sin(2 pi frequency t) from rest for ``cycles`` cycles.
 
     amplitude in mm (at least MIN_AMPLITUDE, 1e-100), frequency in Hz, dt in s (default: 200 samples per
-    cycle).  The period is sampled by a whole number (>= 8) of steps: a ``dt`` that does not divide it is replaced by the nearest step
-    that does (``result.dt``; ``result.requested_dt`` keeps the one asked for).  A test whose arrays
-    would exceed the 2 GiB memory limit is refused before allocating; one whose force or loop overflows
-    (absurd amplitudes) is a ValueError naming the amplitude and frequency.  Returns a
+    cycle).  The period is sampled by a whole number (>= 8) of steps: a ``dt`` that does not divide it is
+    replaced by the nearest step that does (``result.dt``; ``result.requested_dt`` keeps the one asked for).
+    A test whose arrays would exceed the 2 GiB memory limit is refused before allocating; one whose force or
+    loop overflows (absurd amplitudes) is a ValueError naming the amplitude and frequency.  Returns a
     :class:`SineTestResult` (N, mm, N*mm, N/mm).
 
     A ``UserWarning`` when the wall's strain amplitude (its own deformation amplitude / thickness: with a support,
