@@ -447,7 +447,7 @@ def test_the_memory_serves_the_steps_it_was_built_for(ops, record):
 
 
 def test_a_wall_above_its_identified_strains_is_said_once_as_simulate_says_it(ops):
-    # The 450 % set was identified for 375-450 %: a one-story frame whose wall reaches about 600 % is an
+    # The 450 % set was identified for 375-450 %: a one-story frame whose wall reaches about 2260 % is an
     # extrapolation, which simulate warns about; the bridge said nothing.  It now says so once, whether the
     # analysis runs in one call or step by step.
     from vdw_frames import G, GroundMotion, ShearBuilding
