@@ -1,6 +1,7 @@
 """Sinusoidal test of the element alone (vdw_frames.element.sine), against the frequency-domain solution, and
 the inputs it refuses."""
 
+import dataclasses
 import math
 import warnings
 
@@ -165,3 +166,22 @@ def test_tiny_amplitudes_give_the_same_linear_wall_or_are_refused():
     for amplitude in (1e-200, 5e-324):
         with pytest.raises(ValueError, match=r"below 1e-100 mm, where floating point loses"):
             sine_test(wall, amplitude, 1.0)
+
+
+def test_a_wall_heated_past_its_shift_laws_range_is_said():
+    # A shift law valid over 20-21.5 degC and a small heat capacity: the wall leaves the range within the first
+    # cycle and ends thousands of degrees up, adiabatically, which FDMKDamper.force and sine_test never said
+    # (simulate warns).  The end temperature against the hand sum: 20 loops pi K'' U^2 at the law's held 21.5 degC
+    # over rho c A h (the first cycle's transient dissipates a little less).
+    from vdw_frames.element.thermal import LogLinear, ThermalProperties
+
+    narrow = LogLinear(degrees_per_decade=19.45, reference=21.2, valid=(20.0, 21.5))
+    base = fitted(300, area=1e4, thickness=10.0)
+    wall = dataclasses.replace(base, thermal=ThermalProperties(narrow, 0.05, 21.2))
+    with pytest.warns(UserWarning, match=r"shift law's range .* from t = 0.0\d+ s: (\d+\.\d) degC at the end; "
+                                         r"range 20 \.\.\. 21.5 degC") as said:
+        sine_test(wall, 30.0, 1.0, cycles=20)
+    message = next(str(w.message) for w in said if "shift law" in str(w.message))
+    end = float(message.split(": ")[1].split(" degC")[0])
+    loss = float(base.at_temperature(21.5, narrow).loss_stiffness(1.0))
+    assert end - 21.2 == pytest.approx(20 * np.pi * loss * 30.0**2 / (0.05 * 1e4 * 10.0), rel=0.02)

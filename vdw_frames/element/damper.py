@@ -33,6 +33,7 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .. import _warnings
 from .._validation import (
     finite_array,
     finite_complex_array,
@@ -326,11 +327,20 @@ def wall_parameters(wall: FDMKDamper) -> str:
 
 def driven_force(wall: SteppedWall, displacement: ArrayLike, dt: float, method: str | Discretisation = DEFAULT_METHOD,
                  memory: str | FastMemory = DEFAULT_MEMORY) -> np.ndarray:
-    """Force history (N) of a wall assembly for a displacement history (mm) from rest (see ``force``)."""
+    """Force history (N) of a wall assembly for a displacement history (mm) from rest (see ``force``).  A heating
+    wall whose temperature leaves its shift law's range is warned about, as :func:`~vdw_frames.simulate` does
+    (the law is then evaluated at the nearest end of the range)."""
     displacement = finite_array("displacement", displacement)
     dt = positive("dt", dt)
-    force, _ = WallBank((wall,), dt, displacement.size, get_method(method), memory).drive(displacement)
+    bank = WallBank((wall,), dt, displacement.size, get_method(method), memory)
+    force, _ = bank.drive(displacement)
     require_finite("force", force)
+    first = float(bank.state("outside")[0])
+    if first >= 0.0:
+        low, high = float(bank.state("valid_low")[0]), float(bank.state("valid_high")[0])
+        _warnings.warn(f"wall temperature outside its shift law's range (the law is evaluated at the nearest end of "
+                       f"the range) from t = {first * dt:.4g} s: {float(bank.state('temperature')[0]):.1f} degC at the "
+                       f"end; range {low:g} ... {high:g} degC", UserWarning, stacklevel=3)
     return force
 
 
