@@ -329,11 +329,12 @@ def driven_force(wall: SteppedWall, displacement: ArrayLike, dt: float, method: 
                  memory: str | FastMemory = DEFAULT_MEMORY) -> np.ndarray:
     """Force history (N) of a wall assembly for a displacement history (mm) from rest (see ``force``).  A heating
     wall whose temperature leaves its shift law's range is warned about, as :func:`~vdw_frames.simulate` does
-    (the law is then evaluated at the nearest end of the range)."""
+    (the law is then evaluated at the nearest end of the range), and so is a wall following its amplitude that
+    followed one above its identified strains, or never reached them (the nearest end's parameters are used)."""
     displacement = finite_array("displacement", displacement)
     dt = positive("dt", dt)
     bank = WallBank((wall,), dt, displacement.size, get_method(method), memory)
-    force, _ = bank.drive(displacement)
+    force, strain = bank.drive(displacement)
     require_finite("force", force)
     first = float(bank.state("outside")[0])
     if first >= 0.0:
@@ -341,6 +342,16 @@ def driven_force(wall: SteppedWall, displacement: ArrayLike, dt: float, method: 
         _warnings.warn(f"wall temperature outside its shift law's range (the law is evaluated at the nearest end of "
                        f"the range) from t = {first * dt:.4g} s: {float(bank.state('temperature')[0]):.1f} degC at the "
                        f"end; range {low:g} ... {high:g} degC", UserWarning, stacklevel=3)
+    if wall.follows_amplitude:
+        low, high = np.exp(wall.amplitude_table()[[0, -1], 0])  # the identified strains the kernel follows
+        above, peak = float(bank.state("above_range")[0]) * dt, float(bank.state("amplitude")[0])
+        followed = float(np.max(np.abs(strain), initial=0.0))  # the amplitude followed is at most the peak strain
+        if above > 0.0 or followed < low:
+            where = (f"above the range for {above:.3g} s" if above > 0.0
+                     else f"its strain at most {100 * followed:.0f} %, below the range throughout")
+            _warnings.warn(f"wall strain amplitude outside the amplitudes its parameters were identified at "
+                           f"({100 * low:.4g}-{100 * high:.4g} %; those of the nearest are used): {where}"
+                           f" (followed {100 * peak:.0f} % at the end)", UserWarning, stacklevel=3)
     return force
 
 
