@@ -302,9 +302,10 @@ class FDMKDamper(StiffnessMethods):
         (:mod:`vdw_frames.element.fractional`; default: the damped two-step convolution quadrature, second order).
         ``memory``: "fast" (default; O(1) work per step, within 3e-9 of "exact"; see
         :mod:`vdw_frames.element.fast_memory`), "exact" (the full history, O(n) at step n) or a
-        :class:`~vdw_frames.element.fast_memory.FastMemory` with its own tolerance.
+        :class:`~vdw_frames.element.fast_memory.FastMemory` with its own tolerance.  A ``UserWarning`` when the
+        peak strain lies outside ``strain_range`` (or the wall heats past its shift law's range).
         """
-        return driven_force(self, displacement, dt, method, memory)
+        return driven_force(self, displacement, dt, method, memory, strain_range=self.strain_range)
 
 
 def story_stiffness_of(wall: Wall, f: ArrayLike) -> np.ndarray:
@@ -326,11 +327,14 @@ def wall_parameters(wall: FDMKDamper) -> str:
 
 
 def driven_force(wall: SteppedWall, displacement: ArrayLike, dt: float, method: str | Discretisation = DEFAULT_METHOD,
-                 memory: str | FastMemory = DEFAULT_MEMORY) -> np.ndarray:
+                 memory: str | FastMemory = DEFAULT_MEMORY, *,
+                 strain_range: tuple[float, float] | None = None) -> np.ndarray:
     """Force history (N) of a wall assembly for a displacement history (mm) from rest (see ``force``).  A heating
     wall whose temperature leaves its shift law's range is warned about, as :func:`~vdw_frames.simulate` does
     (the law is then evaluated at the nearest end of the range), and so is a wall following its amplitude that
-    followed one above its identified strains, or never reached them (the nearest end's parameters are used)."""
+    followed one above its identified strains, or never reached them (the nearest end's parameters are used),
+    and a wall of fixed parameters identified for ``strain_range`` (-, low, high) whose peak strain (its own
+    deformation / thickness) lies outside it."""
     displacement = finite_array("displacement", displacement)
     dt = positive("dt", dt)
     bank = WallBank((wall,), dt, displacement.size, get_method(method), memory)
@@ -352,6 +356,12 @@ def driven_force(wall: SteppedWall, displacement: ArrayLike, dt: float, method: 
             _warnings.warn(f"wall strain amplitude outside the amplitudes its parameters were identified at "
                            f"({100 * low:.4g}-{100 * high:.4g} %; those of the nearest are used): {where}"
                            f" (followed {100 * peak:.0f} % at the end)", UserWarning, stacklevel=3)
+    elif strain_range is not None:
+        low, high = strain_range
+        peak = float(np.max(np.abs(strain), initial=0.0))
+        if not low <= peak <= high:
+            _warnings.warn(f"wall peak strain outside the range its parameters were identified for: {100 * peak:.0f} % "
+                           f"(range {100 * low:.4g}-{100 * high:.4g} %)", UserWarning, stacklevel=3)
     return force
 
 

@@ -21,7 +21,7 @@ import numpy as np
 
 from .. import _warnings
 from .._validation import SIMULATION_STEP_RANGE, check_memory, positive, time_step, whole_number
-from .damper import FDMKDamper
+from .damper import FDMKDamper, driven_force
 from .fractional import DEFAULT_METHOD, Discretisation, get_method
 from .supported import WALL_TYPES, SupportedDamper
 
@@ -102,7 +102,7 @@ def sine_test(damper: FDMKDamper | SupportedDamper, amplitude: float, frequency:
     overflow = (f"the sine test overflowed (inf or NaN) at amplitude = {amplitude!r} mm, frequency = "
                 f"{frequency!r} Hz: the amplitude or the damper's parameters are too large")
     try:
-        force = damper.force(displacement, dt, method=method)
+        force = driven_force(damper, displacement, dt, method)  # its strain range is checked below, as a test's
     except ValueError:  # the force overflowed
         raise ValueError(overflow) from None
     last = slice(time.size - 1 - samples, time.size)
