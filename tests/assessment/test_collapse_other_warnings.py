@@ -11,6 +11,7 @@ import pytest
 import vdw_frames as vdw
 from vdw_frames.assessment import collapse_assessment
 from vdw_frames.assessment.hunt_fill import HuntAndFill
+from vdw_frames.collapse_report import markdown
 from vdw_frames.element import catalogue
 from vdw_frames.element.thermal import LogLinear, ThermalProperties
 
@@ -35,3 +36,6 @@ def test_the_analyses_other_warnings_are_kept_and_said():
                                          search=HuntAndFill(start=0.2 * vdw.G, cap=4.0 * vdw.G, max_runs=8))
     assert len(result.other_warnings) == result.total_analyses  # one per analysis: each heated its walls past 21.5
     assert all("shift law's range" in message for message in result.other_warnings)
+    report = markdown({"walls": result})
+    assert (f"- walls: {len(result.other_warnings)} other warning(s) from the analyses (e.g. "
+            f"\"{result.other_warnings[0]}\")") in report
