@@ -116,7 +116,7 @@ def test_a_force_history_beyond_the_identified_amplitudes_is_said():
     wall = paper.strain_dependent(area=1e4, thickness=10.0)
     steps = np.arange(1001)
     for amplitude, said in ((100.0, r"above the range for 4.9\d s \(followed 1000 % at the end\)"),
-                            (10.0, r"its strain at most 100 %, below the range throughout")):
+                            (10.0, r"below the range throughout \(its strain at most 100 %\)")):
         with pytest.warns(UserWarning, match=r"amplitudes its parameters were identified at \(225-450 %; .*" + said):
             wall.force(amplitude * np.sin(2 * np.pi * steps / 200), 0.005)
     with warnings.catch_warnings():

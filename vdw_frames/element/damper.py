@@ -349,10 +349,10 @@ def driven_force(wall: SteppedWall, displacement: ArrayLike, dt: float, method: 
     if wall.follows_amplitude:
         low, high = np.exp(wall.amplitude_table()[[0, -1], 0])  # the identified strains the kernel follows
         above, peak = float(bank.state("above_range")[0]) * dt, float(bank.state("amplitude")[0])
-        followed = float(np.max(np.abs(strain), initial=0.0))  # the amplitude followed is at most the peak strain
-        if above > 0.0 or followed < low:
-            where = (f"above the range for {above:.3g} s" if above > 0.0
-                     else f"its strain at most {100 * followed:.0f} %, below the range throughout")
+        never = float(bank.state("below_range")[0]) >= displacement.size  # every step below: never reached
+        if above > 0.0 or never:
+            where = (f"above the range for {above:.3g} s" if above > 0.0 else
+                     f"below the range throughout (its strain at most {100 * np.max(np.abs(strain)):.0f} %)")
             _warnings.warn(f"wall strain amplitude outside the amplitudes its parameters were identified at "
                            f"({100 * low:.4g}-{100 * high:.4g} %; those of the nearest are used): {where}"
                            f" (followed {100 * peak:.0f} % at the end)", UserWarning, stacklevel=3)
