@@ -1,7 +1,11 @@
 """Incremental dynamic analysis (Vamvatsikos & Cornell 2002) and a lognormal collapse fragility.
 
 Every record is scaled to a spectral acceleration Sa(T, 5 %) that steps up from ``step`` by ``step``
-until the building collapses or ``cap`` is reached.  Each level is one :func:`simulate` run (through
+until the building collapses or ``cap`` is reached.  Sa is the peak at the record's samples
+(:func:`~vdw_frames.motion.spectrum.response_spectrum`), a little below the continuous response's when a
+period holds few record steps (measured on El Centro, dt = 0.02 s: 0.3 % at T = 0.5 s, 1.9 % at 0.3 s,
+3.4 % at 0.2 s): the scale factors are that much high, each run shakes the building that much harder than its
+nominal Sa, and the collapse intensities come out that much low.  Each level is one :func:`simulate` run (through
 :func:`run_batch`, so the records of one level run in parallel on any executor).  A run *collapses*
 when a story's drift ratio exceeds ``collapse_drift_ratio`` (the building's P-Delta instability, or
 simply a drift beyond which the model means nothing) or when the analysis stops converging (numerical
