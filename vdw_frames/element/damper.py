@@ -373,7 +373,9 @@ class WallState:
     any number of trials may precede ``state.commit()``, which accepts the last trial and advances the
     memory by one step of ``dt`` seconds; ``revert_to_last_commit()`` discards the trial.  Stepping
     trial/commit reproduces :meth:`FDMKDamper.force`.  ``damper`` is an :class:`FDMKDamper` or a
-    :class:`~vdw_frames.SupportedDamper`.  The exact memory grows as needed; the fast memory serves
+    :class:`~vdw_frames.SupportedDamper`.  The first commit whose strain goes above the strains the wall's
+    parameters were identified at, and the first whose temperature leaves its shift law's range, are said once
+    each in a ``UserWarning``.  The exact memory grows as needed; the fast memory serves
     ``FastMemory.max_steps`` steps (2^20 by default).
     """
 
@@ -391,6 +393,14 @@ class WallState:
         self._trial: float | None = None
         self.committed_displacement = 0.0
         self.committed_force = 0.0
+        # The largest strain its parameters were identified at (-), said once when a commit goes above it.
+        self._identified_high: float | None = None
+        if damper.follows_amplitude:  # its amplitude nodes
+            self._identified_high = float(np.exp(damper.amplitude_table()[-1, 0]))
+        elif isinstance(damper, Wall) and damper.strain_range is not None:
+            self._identified_high = float(damper.strain_range[1])
+        self._said: set[str] = set()
+        self._heats = damper.thermal is not None
 
     def __repr__(self) -> str:
         return f"WallState(damper={self.damper!r}, dt={self.dt!r}, steps={self.steps})"
@@ -439,9 +449,20 @@ class WallState:
         """Accept the last trial and advance the memory one step."""
         if self._trial is None:
             raise ValueError("commit() needs a trial() first")
-        force, _ = self._bank.commit([self._trial], name="displacement")
+        force, strain = self._bank.commit([self._trial], name="displacement")
         self.committed_displacement, self.committed_force = self._trial, float(force[0])
         self._trial = None
+        high, now = self._identified_high, abs(float(strain[0]))
+        if high is not None and now > high and "strain" not in self._said:
+            self._said.add("strain")
+            _warnings.warn(f"WallState: wall strain {100 * now:.4g} % at commit {self.steps}, above the "
+                           f"{100 * high:.4g} % its parameters were identified at (the model is extrapolated there; "
+                           "said once)", UserWarning, stacklevel=2)
+        if self._heats and "temperature" not in self._said and self._bank.states.thermal.outside[0] >= 0.0:
+            self._said.add("temperature")
+            _warnings.warn(f"WallState: wall temperature {self.temperature:.1f} degC at commit {self.steps}, outside "
+                           "its shift law's range (the law is evaluated at the nearest end of the range; said once)",
+                           UserWarning, stacklevel=2)
 
     def revert_to_last_commit(self) -> None:
         """Discard the pending trial."""
