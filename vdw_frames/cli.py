@@ -52,11 +52,14 @@ def _damper_from(args: argparse.Namespace) -> FDMKDamper:
     from .element.damper import FDMKDamper
 
     base = catalogue.fitted(args.strain)
-    values = {name: getattr(args, name) if getattr(args, name) is not None else getattr(base, name)
-              for name in ("G1", "G2", "eta1", "eta2", "r")}
+    names = ("G1", "G2", "eta1", "eta2", "r")
+    values = {name: getattr(args, name) if getattr(args, name) is not None else getattr(base, name) for name in names}
     area = args.area if args.area is not None else catalogue.AREA
     thickness = args.thickness if args.thickness is not None else catalogue.THICKNESS
-    return FDMKDamper(**values, area=area, thickness=thickness)
+    # The recommended set keeps the strains it was identified at (sine_test warns outside them); overridden
+    # parameters are the user's own, of no known range.
+    overridden = any(getattr(args, name) is not None for name in names)
+    return FDMKDamper(**values, area=area, thickness=thickness, strain_range=None if overridden else base.strain_range)
 
 
 def _geometry_caution(damper: FDMKDamper) -> str:
@@ -105,11 +108,23 @@ def _sine_test(args: argparse.Namespace) -> int:
     damper = _damper_from(args)
     amplitude = args.amplitude if args.amplitude is not None else args.strain / 100.0 * damper.thickness
     result = sine_test(damper, amplitude, args.frequency, cycles=args.cycles)
+    if damper.strain_range is not None:  # a recommended set: identified from the paper's tests at 0.5-10 Hz
+        from . import _warnings
+        from .paper.data import FREQUENCIES
+
+        low, high = float(FREQUENCIES.min()), float(FREQUENCIES.max())
+        if not low <= args.frequency <= high:
+            _warnings.warn(f"sine-test: f = {args.frequency:g} Hz lies outside the frequencies the {args.strain:g} % "
+                           f"set was identified at ({low:g}-{high:g} Hz, the paper's Tables 1-3): K', K'' and the "
+                           "loop extrapolate the model there")
     print(f"FDMK damper: G1={damper.G1:g} MPa, G2={damper.G2:g} MPa, eta1={damper.eta1:g} MPa*s^r, "
           f"eta2={damper.eta2:g} MPa*s^r, r={damper.r:g}, A={damper.area:g} mm^2, h={damper.thickness:g} mm")
     if args.area is None and args.thickness is None:  # the paper's stated geometry, by default
         print(_geometry_caution(damper))
-    print(f"sine test: U = {amplitude:g} mm, f = {args.frequency:g} Hz, {args.cycles} cycles, dt = {result.dt:.3g} s")
+    identified = (f"the {args.strain:g} % set, identified for {100 * damper.strain_range[0]:.4g}-"
+                  f"{100 * damper.strain_range[1]:.4g} %" if damper.strain_range is not None else "parameters as given")
+    print(f"sine test: U = {amplitude:g} mm (wall strain {100 * amplitude / damper.thickness:.4g} %; {identified}), "
+          f"f = {args.frequency:g} Hz, {args.cycles} cycles, dt = {result.dt:.3g} s")
     print(f"  storage stiffness K'  = {result.storage_stiffness / 1e3:10.2f} kN/mm"
           f"   (frequency domain {damper.storage_stiffness(args.frequency) / 1e3:.2f})")
     print(f"  loss stiffness    K'' = {result.loss_stiffness / 1e3:10.2f} kN/mm"
@@ -401,6 +416,10 @@ def _print_wall_states(result: SimulationResult) -> None:
     if amplitude is not None:
         print("below/above s: time the followed amplitude spent below/above the tested amplitudes, where the "
               "parameters are those of the nearest tested set")
+        print("amplitude %: the wall's strain amplitude as followed (half-cycle by half-cycle): the envelope of its "
+              "strain while a faster component riding on a slower one has a2 w2 <= 3 a1 w1 (strain-rate amplitudes); "
+              "beyond that a higher mode's reversals can end half-cycles, and the parameters follow a smaller "
+              "amplitude for a while (kernel.track_amplitude)")
 
 
 def _design(args: argparse.Namespace) -> int:

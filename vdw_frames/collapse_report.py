@@ -137,13 +137,17 @@ def markdown(assessments: Mapping[str, CollapseAssessment], title: str = "FEMA P
     row("ACMR >= ACMR10 % (as its own performance group)", ["pass" if a.passes_acmr10 else "FAIL" for a in items])
     lines += ["", "P695 Sec. 7.5 accepts a system when every archetype's ACMR reaches ACMR20 % and each performance "
               "group's average ACMR reaches ACMR10 %; one building here stands for its group.", ""]
-    warned = [(label, a) for label, a in assessments.items() if a.strain_warnings]
+    warned = [(label, a) for label, a in assessments.items() if a.strain_warnings or a.other_warnings]
     if warned:
         lines += ["## Cautions", ""]
         for label, a in warned:
-            lines.append(f"- {label}: {len(a.strain_warnings)} of {a.total_analyses} analyses took walls outside the "
-                         f"strains their parameters were identified for (e.g. \"{a.strain_warnings[0]}\"); "
-                         f"{a.strain_caution}.")
+            if a.strain_warnings:
+                lines.append(f"- {label}: {len(a.strain_warnings)} of {a.total_analyses} analyses took walls outside "
+                             f"the strains their parameters were identified for (e.g. \"{a.strain_warnings[0]}\"); "
+                             f"{a.strain_caution}.")
+            if a.other_warnings:  # a wall heated past its shift law's range, ...
+                lines.append(f"- {label}: {len(a.other_warnings)} other warning(s) from the analyses (e.g. "
+                             f"\"{a.other_warnings[0]}\").")
         lines.append("")
     lines += ["## Files", "", "- `records_<label>.csv`: one row per record (collapse intensity and bracket, g).",
               "- `analyses_<label>.csv`: one row per analysis (the IDA points).",

@@ -107,3 +107,18 @@ def test_strain_dependent_walls_scale_at_every_amplitude():
     for strain in (2.5, 3.0, 4.0):
         np.testing.assert_allclose(wall.scaled(0.8).at(strain).complex_stiffness(1.0),
                                    0.8 * wall.at(strain).complex_stiffness(1.0), rtol=1e-12)
+
+
+def test_a_force_history_beyond_the_identified_amplitudes_is_said():
+    # The paper's family was identified at 225-450 %: a 1000 % sine is followed at 1000 % with the 450 % node's
+    # parameters, a 100 % one with the 225 % node's; simulate warns of both, StrainDependentDamper.force said
+    # nothing.  Within the range it says nothing.
+    wall = paper.strain_dependent(area=1e4, thickness=10.0)
+    steps = np.arange(1001)
+    for amplitude, said in ((100.0, r"above the range for 4.9\d s \(followed 1000 % at the end\)"),
+                            (10.0, r"below the range throughout \(its strain at most 100 %\)")):
+        with pytest.warns(UserWarning, match=r"amplitudes its parameters were identified at \(225-450 %; .*" + said):
+            wall.force(amplitude * np.sin(2 * np.pi * steps / 200), 0.005)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        wall.force(30.0 * np.sin(2 * np.pi * steps / 200), 0.005)

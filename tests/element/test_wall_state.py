@@ -97,3 +97,22 @@ def test_a_trial_whose_force_overflows_is_refused_naming_the_displacement_and_le
         fresh.commit()
         assert state.trial(displacement) == expected
         state.commit()
+
+
+def test_a_state_says_once_when_its_strain_goes_above_the_identified_ones():
+    # The 450 % set: a 600 % sine passes 450 % first at the commit where 60 sin(2 pi n / 200) / 10 > 4.5 (n = 27);
+    # FDMKDamper.force and simulate say so, WallState said nothing.
+    from vdw_frames.element.catalogue import fitted
+
+    state = fitted(450, area=1e4, thickness=10.0).new_state(0.005)
+    displacement = 60.0 * np.sin(2 * np.pi * np.arange(1, 401) / 200)
+    first = int(np.flatnonzero(np.abs(displacement) / 10.0 > 4.5)[0]) + 1
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        for value in displacement:
+            state.trial(float(value))
+            state.commit()
+    said = [str(w.message) for w in caught if "WallState" in str(w.message)]
+    strain = 100 * abs(displacement[first - 1]) / 10.0
+    assert said == [f"WallState: wall strain {strain:.4g} % at commit {first}, above the 450 % its parameters were "
+                    "identified at (the model is extrapolated there; said once)"]

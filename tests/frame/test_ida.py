@@ -12,6 +12,7 @@ from scipy import stats
 from shared_data import shared_record
 
 from vdw_frames import Bilinear, G, ShearBuilding, incremental_dynamic_analysis, read_at2
+from vdw_frames.frame.batch import scale_factors_to_spectral_acceleration
 from vdw_frames.frame.ida import Fragility, IDAResult
 
 
@@ -85,3 +86,29 @@ def test_fragility_refuses_parameters_and_intensities_that_would_give_nan():
     # Zero intensity: no collapse; elsewhere the lognormal CDF written out here.
     probability = fragility.probability([0.0, 2000.0, 4000.0])
     np.testing.assert_allclose(probability, [0.0, stats.norm.cdf(np.log(0.5) / 0.4), 0.5], rtol=1e-14)
+
+
+@pytest.mark.records
+def test_ida_keeps_the_warnings_besides_strain_that_its_runs_gave():
+    # A wall whose shift law holds over 20-21.5 degC only, starting at 21.2 degC: the stronger run heats it past
+    # the range, which simulate of that run says.  IDA collected its runs' warnings and kept only the strain ones.
+    from vdw_frames import simulate
+    from vdw_frames.element import catalogue
+    from vdw_frames.element.thermal import LogLinear, ThermalProperties
+
+    narrow = LogLinear(degrees_per_decade=19.45, reference=21.2, valid=(20.0, 21.5))
+    wall = dataclasses.replace(catalogue.fitted(300, area=2e4, thickness=10.0),
+                               thermal=ThermalProperties(narrow, 1.8, 21.2))
+    building = ShearBuilding([200.0, 150.0], [2e5, 1.5e5], story_heights=[3500.0, 3500.0],
+                             devices={1: [wall], 2: [wall]})
+    record = read_at2(shared_record("elCentro.AT2"))
+    with pytest.warns(UserWarning, match=r"2 warning\(s\) of 2 analyses besides wall strain .*shift law's range"):
+        result = incremental_dynamic_analysis(building, [record], 0.5 * G, 1.0 * G)
+    assert len(result.other_warnings) == 2
+    factors = scale_factors_to_spectral_acceleration([record], result.levels, result.period)[0]
+    for factor, message, peak in zip(factors, result.other_warnings, result.peak_drift_ratio[0], strict=True):
+        with pytest.warns(UserWarning, match="shift law's range") as caught:
+            alone = simulate(building, record.scaled(float(factor)))
+        said = [str(w.message) for w in caught if "shift law's range" in str(w.message)]
+        assert message.endswith(said[0])
+        assert peak == np.abs(alone.drift).max() / 3500.0  # the run is simulate's, to the bit

@@ -279,3 +279,16 @@ def test_a_near_plateau_is_followed_to_the_target(hardening):
     drift = result.story_drift[yielded, 1]
     np.testing.assert_allclose(result.base_shear[yielded] * share, hardening * k * drift + (1.0 - hardening) * fy,
                                rtol=1e-12)
+
+
+def test_increments_too_small_to_resolve_are_refused_not_followed_for_ever():
+    # 1e-300 of the height: every increment lay below the equilibrium tolerance (1e-12 mm), the path stood still
+    # and the loop went on for ever.  Just above the bound the elastic branch is the closed form
+    # V / U = 1 / sum(S_k / (k_k - P_k / h_k)), S_k the pattern's share above story k.
+    building = bilinear_frame([200.0, 150.0], [2e5, 1.5e5], [3500.0] * 2, [5e5] * 2, [0.01] * 2, [1e6, 5e5])
+    with pytest.raises(ValueError, match=r"increments of 1.4e-299 mm, below the 1e-09 mm a pushover resolves"):
+        pushover(building, [1.0, 2.0], target_drift_ratio=1e-300)
+    result = pushover(building, [1.0, 2.0], target_drift_ratio=500 * 2e-9 / 7000.0)
+    shares, stiffness = np.array([1.0, 2.0 / 3.0]), np.array([2e5, 1.5e5]) - np.array([1e6, 5e5]) / 3500.0
+    assert result.base_shear[-1] / result.roof_displacement[-1] == pytest.approx(1.0 / np.sum(shares / stiffness),
+                                                                                  rel=1e-12)

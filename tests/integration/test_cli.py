@@ -737,3 +737,14 @@ def test_simulate_checks_both_saved_files_before_it_writes_either(tmp_path, caps
     error = capsys.readouterr().err
     assert error == f"vdw-frames: error: {tmp_path / 'result.npz'}: is a folder; give a file name\n"
     assert (tmp_path / "summary.csv").read_text() == "kept\n"
+
+
+def test_cli_states_where_the_followed_amplitude_is_the_envelope(tmp_path, capsys):
+    # The tracker's stated range (kernel.track_amplitude): two harmonics are followed by their envelope while
+    # a2 w2 <= 3 a1 w1; beyond it the faster one's reversals may be followed.  The printed amplitudes say so.
+    spec = {"masses": [300.0], "stiffnesses": [2e5], "story_heights": [3500.0],
+            "walls": [{"parameters": "strain-dependent", "area": 2e4}]}
+    building = str(write_file(tmp_path, "following.json", json.dumps(spec)))
+    assert cli.main(["simulate", building, "--record", str(default_record_path())]) == 0
+    out = capsys.readouterr().out
+    assert "a2 w2 <= 3 a1 w1" in out and "higher mode's reversals can end half-cycles" in out

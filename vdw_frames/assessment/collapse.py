@@ -169,11 +169,12 @@ class CollapseAssessment:
     the target over delta_y,eff, accepted only where SSF and beta_TOT do not depend on it, mu_T >= 8),
     ``ssf``, ``acmr``, ``quality``, ``beta_total``, ``acmr10``, ``acmr20``, ``passes_acmr10``,
     ``passes_acmr20``.  ``strain_warnings``: the wall strain-range warnings of the analyses (one per
-    analysis that had one).  ``metadata``: each record's metadata (None where it has none); ``steps``: the
-    time steps integrated per record (all its analyses); ``resolution``: per record, the widest ratio left
-    between consecutive standing runs below its collapse (a transition inside it would be unseen);
-    ``seconds``: wall-clock time, ``search_seconds``
-    the part spent in the records' searches (on the executor).
+    analysis that had one); ``other_warnings``: every other warning of the analyses (a wall heated past its
+    shift law's range, ...), also said once in a warning with their count.  ``metadata``: each record's metadata
+    (None where it has none); ``steps``: the time steps integrated per record (all its analyses);
+    ``resolution``: per record, the widest ratio left between consecutive standing runs below its collapse (a
+    transition inside it would be unseen); ``seconds``: wall-clock time, ``search_seconds`` the part spent in
+    the records' searches (on the executor).
     """
 
     record_names: tuple
@@ -213,6 +214,7 @@ class CollapseAssessment:
     metadata: tuple = ()
     steps: np.ndarray | None = None
     resolution: np.ndarray | None = None
+    other_warnings: tuple = ()
     seconds: float = field(default=0.0, compare=False)
     search_seconds: float = field(default=0.0, compare=False)
 
@@ -563,6 +565,10 @@ def collapse_assessment(building: ShearBuilding, records: str | Iterable[GroundM
         total = sum(len(s.runs) for s in searches)
         _warnings.warn(f"collapse_assessment: {len(strain)} of {total} analyses took walls outside the strains their "
                        f"parameters were identified for (result.strain_warnings); {caution}", UserWarning, stacklevel=2)
+    others = tuple(m for m in messages if not is_strain_range_warning(m))  # collected with them; not to be lost
+    if others:
+        _warnings.warn(f"collapse_assessment: {len(others)} other warning(s) from the analyses "
+                       f"(result.other_warnings), e.g. {others[0]}", UserWarning, stacklevel=2)
     return CollapseAssessment(
         record_names=tuple(m.name for m in motions), record_set=set_name, sdc=sdc, period=t,
         period_source=period_source, analytical_period=analytical, criterion=criterion, search=settings,
@@ -576,7 +582,7 @@ def collapse_assessment(building: ShearBuilding, records: str | Iterable[GroundM
         passes_acmr10=bool(acmr >= acmr10), passes_acmr20=bool(acmr >= acmr20), strain_warnings=strain,
         strain_caution=caution,
         metadata=tuple(m.metadata for m in motions), steps=np.array([sum(r.steps for r in s.runs) for s in searches]),
-        resolution=np.array([s.resolution for s in searches]),
+        resolution=np.array([s.resolution for s in searches]), other_warnings=others,
         seconds=time.perf_counter() - started, search_seconds=searching)
 
 

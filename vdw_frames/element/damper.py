@@ -33,6 +33,7 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .. import _warnings
 from .._validation import (
     finite_array,
     finite_complex_array,
@@ -301,9 +302,10 @@ class FDMKDamper(StiffnessMethods):
         (:mod:`vdw_frames.element.fractional`; default: the damped two-step convolution quadrature, second order).
         ``memory``: "fast" (default; O(1) work per step, within 3e-9 of "exact"; see
         :mod:`vdw_frames.element.fast_memory`), "exact" (the full history, O(n) at step n) or a
-        :class:`~vdw_frames.element.fast_memory.FastMemory` with its own tolerance.
+        :class:`~vdw_frames.element.fast_memory.FastMemory` with its own tolerance.  A ``UserWarning`` when the
+        peak strain lies outside ``strain_range`` (or the wall heats past its shift law's range).
         """
-        return driven_force(self, displacement, dt, method, memory)
+        return driven_force(self, displacement, dt, method, memory, strain_range=self.strain_range)
 
 
 def story_stiffness_of(wall: Wall, f: ArrayLike) -> np.ndarray:
@@ -325,12 +327,41 @@ def wall_parameters(wall: FDMKDamper) -> str:
 
 
 def driven_force(wall: SteppedWall, displacement: ArrayLike, dt: float, method: str | Discretisation = DEFAULT_METHOD,
-                 memory: str | FastMemory = DEFAULT_MEMORY) -> np.ndarray:
-    """Force history (N) of a wall assembly for a displacement history (mm) from rest (see ``force``)."""
+                 memory: str | FastMemory = DEFAULT_MEMORY, *,
+                 strain_range: tuple[float, float] | None = None) -> np.ndarray:
+    """Force history (N) of a wall assembly for a displacement history (mm) from rest (see ``force``).  A heating
+    wall whose temperature leaves its shift law's range is warned about, as :func:`~vdw_frames.simulate` does
+    (the law is then evaluated at the nearest end of the range), and so is a wall following its amplitude that
+    followed one above its identified strains, or never reached them (the nearest end's parameters are used),
+    and a wall of fixed parameters identified for ``strain_range`` (-, low, high) whose peak strain (its own
+    deformation / thickness) lies outside it."""
     displacement = finite_array("displacement", displacement)
     dt = positive("dt", dt)
-    force, _ = WallBank((wall,), dt, displacement.size, get_method(method), memory).drive(displacement)
+    bank = WallBank((wall,), dt, displacement.size, get_method(method), memory)
+    force, strain = bank.drive(displacement)
     require_finite("force", force)
+    first = float(bank.state("outside")[0])
+    if first >= 0.0:
+        low, high = float(bank.state("valid_low")[0]), float(bank.state("valid_high")[0])
+        _warnings.warn(f"wall temperature outside its shift law's range (the law is evaluated at the nearest end of "
+                       f"the range) from t = {first * dt:.4g} s: {float(bank.state('temperature')[0]):.1f} degC at the "
+                       f"end; range {low:g} ... {high:g} degC", UserWarning, stacklevel=3)
+    if wall.follows_amplitude:
+        low, high = np.exp(wall.amplitude_table()[[0, -1], 0])  # the identified strains the kernel follows
+        above, peak = float(bank.state("above_range")[0]) * dt, float(bank.state("amplitude")[0])
+        never = float(bank.state("below_range")[0]) >= displacement.size  # every step below: never reached
+        if above > 0.0 or never:
+            where = (f"above the range for {above:.3g} s" if above > 0.0 else
+                     f"below the range throughout (its strain at most {100 * np.max(np.abs(strain)):.0f} %)")
+            _warnings.warn(f"wall strain amplitude outside the amplitudes its parameters were identified at "
+                           f"({100 * low:.4g}-{100 * high:.4g} %; those of the nearest are used): {where}"
+                           f" (followed {100 * peak:.0f} % at the end)", UserWarning, stacklevel=3)
+    elif strain_range is not None:
+        low, high = strain_range
+        peak = float(np.max(np.abs(strain), initial=0.0))
+        if not low <= peak <= high:
+            _warnings.warn(f"wall peak strain outside the range its parameters were identified for: {100 * peak:.0f} % "
+                           f"(range {100 * low:.4g}-{100 * high:.4g} %)", UserWarning, stacklevel=3)
     return force
 
 
@@ -342,7 +373,9 @@ class WallState:
     any number of trials may precede ``state.commit()``, which accepts the last trial and advances the
     memory by one step of ``dt`` seconds; ``revert_to_last_commit()`` discards the trial.  Stepping
     trial/commit reproduces :meth:`FDMKDamper.force`.  ``damper`` is an :class:`FDMKDamper` or a
-    :class:`~vdw_frames.SupportedDamper`.  The exact memory grows as needed; the fast memory serves
+    :class:`~vdw_frames.SupportedDamper`.  The first commit whose strain goes above the strains the wall's
+    parameters were identified at, and the first whose temperature leaves its shift law's range, are said once
+    each in a ``UserWarning``.  The exact memory grows as needed; the fast memory serves
     ``FastMemory.max_steps`` steps (2^20 by default).
     """
 
@@ -360,6 +393,14 @@ class WallState:
         self._trial: float | None = None
         self.committed_displacement = 0.0
         self.committed_force = 0.0
+        # The largest strain its parameters were identified at (-), said once when a commit goes above it.
+        self._identified_high: float | None = None
+        if damper.follows_amplitude:  # its amplitude nodes
+            self._identified_high = float(np.exp(damper.amplitude_table()[-1, 0]))
+        elif isinstance(damper, Wall) and damper.strain_range is not None:
+            self._identified_high = float(damper.strain_range[1])
+        self._said: set[str] = set()
+        self._heats = damper.thermal is not None
 
     def __repr__(self) -> str:
         return f"WallState(damper={self.damper!r}, dt={self.dt!r}, steps={self.steps})"
@@ -408,9 +449,20 @@ class WallState:
         """Accept the last trial and advance the memory one step."""
         if self._trial is None:
             raise ValueError("commit() needs a trial() first")
-        force, _ = self._bank.commit([self._trial], name="displacement")
+        force, strain = self._bank.commit([self._trial], name="displacement")
         self.committed_displacement, self.committed_force = self._trial, float(force[0])
         self._trial = None
+        high, now = self._identified_high, abs(float(strain[0]))
+        if high is not None and now > high and "strain" not in self._said:
+            self._said.add("strain")
+            _warnings.warn(f"WallState: wall strain {100 * now:.4g} % at commit {self.steps}, above the "
+                           f"{100 * high:.4g} % its parameters were identified at (the model is extrapolated there; "
+                           "said once)", UserWarning, stacklevel=2)
+        if self._heats and "temperature" not in self._said and self._bank.states.thermal.outside[0] >= 0.0:
+            self._said.add("temperature")
+            _warnings.warn(f"WallState: wall temperature {self.temperature:.1f} degC at commit {self.steps}, outside "
+                           "its shift law's range (the law is evaluated at the nearest end of the range; said once)",
+                           UserWarning, stacklevel=2)
 
     def revert_to_last_commit(self) -> None:
         """Discard the pending trial."""

@@ -158,7 +158,7 @@ class SupportedDamper(StiffnessMethods):
     def force(self, displacement: ArrayLike, dt: float, method: str | Discretisation = DEFAULT_METHOD,
               memory: str | FastMemory = DEFAULT_MEMORY) -> np.ndarray:
         """Force history (N) for an assembly displacement history (mm) every ``dt`` s, from rest."""
-        return driven_force(self, displacement, dt, method, memory)
+        return driven_force(self, displacement, dt, method, memory, strain_range=self.strain_range)
 
 
 WALL_TYPES = (FDMKDamper, SupportedDamper)

@@ -76,6 +76,9 @@ _SEARCH_ITERATIONS = 400
 _FORCE_TOLERANCE = 1e-13  # of the story shear sought (a few hundred times the rounding)
 _DISPLACEMENT_TOLERANCE = 1e-12  # of the roof displacement sought (at least 1 mm)
 _EVENT_PRECISION = 1e-9  # a kink (a story yielding) is located to this fraction of an increment
+# The smallest roof-displacement increment (mm): a thousand times the equilibrium tolerance of a roof below 1 mm
+# (_DISPLACEMENT_TOLERANCE), which a smaller one would not move past (the path stood still, for ever).
+MIN_INCREMENT = 1e-9
 
 
 @dataclass(frozen=True)
@@ -160,10 +163,10 @@ def pushover(building: ShearBuilding, pattern: str | ArrayLike = "modal", target
     the period of eq. (6-7), max(T, T1) with T = C_u T_a (Sec. 5.2.5); default the elastic static model's T1
     (:func:`elastic_mode`), the T1 consistent with this curve and with C0 (eq. 6-8), which comes from that
     model's phi_1 (:attr:`PushoverResult.elastic_period`; module docstring).  ``steps``: equal
-    roof-displacement increments (1 ... 100 000); an increment over which a story's tangent jumps (a
-    Bilinear story yielding or unloading) is cut so that the curve has a point just past the corner
-    (within 1e-9 of an increment), and the peak (the limit point) is a point of the curve, so V_max is
-    exact.  The building needs ``story_heights``.
+    roof-displacement increments (1 ... 100 000, each at least :data:`MIN_INCREMENT` = 1e-9 mm); an increment
+    over which a story's tangent jumps (a Bilinear story yielding or unloading) is cut so that the curve has a
+    point just past the corner (within 1e-9 of an increment), and the peak (the limit point) is a point of the
+    curve, so V_max is exact.  The building needs ``story_heights``.
 
     Branch rule (the module docstring): the load factor rises until the first story reaches its strength
     under the pattern -- the story k with the smallest peak of V_k(d) / S_k, S_k the share of the pattern
@@ -202,8 +205,13 @@ def pushover(building: ShearBuilding, pattern: str | ArrayLike = "modal", target
     path = _Path(building, loads, walls)
     target = target_drift_ratio * height
     increment = target / steps
+    if not increment >= MIN_INCREMENT:
+        raise ValueError(f"target_drift_ratio = {show(target_drift_ratio)} of a {height:g} mm height in {steps} steps "
+                         f"is increments of {increment:.3g} mm, below the {MIN_INCREMENT:g} mm a pushover resolves; "
+                         "take a larger target or fewer steps")
     roof, shear, drift = [0.0], [0.0], [np.zeros(building.stories)]
     end = "target"
+    stood = 0  # commits in a row that did not move the path (a turn to drift control moves on at the next)
     while roof[-1] < target * (1.0 - 1e-12):
         if shear[-1] <= 0.0 < max(shear):
             end = "no strength left"
@@ -219,7 +227,13 @@ def pushover(building: ShearBuilding, pattern: str | ArrayLike = "modal", target
         moved = trial.roof != path.roof or trial.load != path.load
         path.commit(trial)
         if not moved:  # a turn to drift control where the path stood (a limit point at the last point)
+            stood += 1
+            if stood > 2:  # a turn happens once; a path that keeps standing would loop for ever
+                raise ValueError(f"pushover stopped at a roof displacement of {path.roof:.6g} mm (base shear "
+                                 f"{path.load / 1e3:.6g} kN) short of the target {target:.6g} mm: the path does not "
+                                 "move forward")
             continue
+        stood = 0
         roof.append(path.roof)
         shear.append(path.load)
         drift.append(path.drift.copy())

@@ -103,6 +103,7 @@ from typing import TYPE_CHECKING, Any, NoReturn
 import numpy as np
 from numpy.typing import NDArray
 
+from .. import _warnings
 from .._validation import positive, whole_number
 from ..element.bank import DEFAULT_MEMORY, WallBank, kernel_constants, memory_strategy
 from ..element.fast_memory import FastMemory
@@ -200,6 +201,9 @@ class WallBridge:
     Results (rows: the start, then every completed step): ``force`` (N), ``deformation`` (mm), ``strain`` (-,
     the wall's own deformation / thickness), ``time`` (s); ``steps`` completed, ``failed_step`` (None, or
     the step the last :meth:`analyze` stopped at), ``fallback_steps`` (the steps a fallback rescued).
+    A wall whose strain goes above the range its parameters were identified for (``strain_range``) is said
+    once, in a ``UserWarning`` at the end of the :meth:`analyze` call where it first did (as
+    :func:`~vdw_frames.simulate` warns); one that stays below its range is not (compare ``peak_strain``).
 
     Requirements: Newmark's average acceleration (gamma = 1/2, beta = 1/4: any other integrator is refused
     with a ValueError on the first steps that identify it), a transient analysis, a uniform dt (the
@@ -238,6 +242,7 @@ class WallBridge:
         self._identified = False
         self._identifying_steps = 0
         self._probe: int | None = None
+        self._warned_above: set[int] = set()  # walls already said to be above their identified strains
 
     # ------------------------------------------------------------------ set-up
     def __len__(self) -> int:
@@ -524,7 +529,23 @@ class WallBridge:
             if done:
                 self._rows.append((forces[:done], deformations[:done], strains[:done]))
             self._time = ops.getTime()
+        self._warn_above_range(np.abs(strains[:done]).max(axis=0, initial=0.0))
         return status
+
+    def _warn_above_range(self, peak: np.ndarray) -> None:
+        """One warning naming the walls whose strain (``peak``, -, of the last call) went above their identified
+        range for the first time."""
+        above = []
+        for index, (node_i, node_j, _, wall) in enumerate(self._walls):
+            strain_range = wall.strain_range
+            if index in self._warned_above or strain_range is None or not peak[index] > strain_range[1]:
+                continue
+            self._warned_above.add(index)
+            above.append(f"wall {index} (nodes {node_i}-{node_j}): {100 * peak[index]:.0f} % (range "
+                         f"{100 * strain_range[0]:.4g}-{100 * strain_range[1]:.4g} %)")
+        if above:
+            _warnings.warn("WallBridge: wall strain above the range its parameters were identified for (the model "
+                           "is extrapolated there): " + "; ".join(above), UserWarning, stacklevel=3)
 
 
 def _first(value: Any) -> Any:

@@ -75,8 +75,11 @@ def response_spectrum(acceleration: ArrayLike, dt: float, periods: ArrayLike,
     result has the same shape): 0, which gives the PGA, or between 1e-6 and 1e5 record steps
     (:data:`PERIOD_STEPS`; ValueError naming the period otherwise).  ``damping_ratio`` (fraction of
     critical) in [0, 1).  Each oscillator starts from rest and is integrated by the exact recurrence for
-    an excitation linear between samples (Nigam & Jennings 1969); the peak is taken at the samples (for
-    periods below ~10 dt the true peak between samples can be a little larger).  For a
+    an excitation linear between samples (Nigam & Jennings 1969); the peak is taken at the samples, which
+    misses the peak between them by up to about 1 - cos(pi dt / T) for a response near its own period: 0.4 %
+    at 35 steps a period, 4.9 % at 10 (measured on El Centro, dt = 0.02 s, against the continuous response:
+    0.48 % low at T = 0.7 s, 1.9 % at 0.3 s, 3.4 % at 0.2 s, 6.4 % at 0.1 s), so Sa is low by that much and a
+    factor scaling a record to a target Sa high.  For a
     :class:`~vdw_frames.GroundMotion`: ``motion.spectrum(periods, damping_ratio)``.
     """
     acceleration = finite_array("acceleration", acceleration)
