@@ -213,6 +213,7 @@ def _friction_keff(slip_force, stiffness):
     return value
 
 
+@pytest.mark.slow
 def test_walls_sized_beside_a_friction_damper_at_a_drift_amplitude_meet_the_target_by_the_state_space_eigenvalues():
     """size_walls in a building that also holds a friction damper: the damper linearised at the stated drift
     amplitude (before, size_walls took no amplitude and refused it, telling to give a drift_amplitude it had

@@ -124,6 +124,7 @@ def test_design_states_the_amplitude_its_modal_table_of_nonlinear_devices_holds_
     assert float(row[4]) == pytest.approx(100 * expected.damping_ratios[0], abs=0.0051)
 
 
+@pytest.mark.slow
 def test_design_sizes_walls_beside_a_friction_damper_at_the_drift_amplitude(tmp_path, capsys, monkeypatch):
     """design --target on a building of walls and a friction damper: the walls are sized with the damper
     linearised at --drift-amplitude, and the output says so (it stopped with "give drift_amplitude", an argument
