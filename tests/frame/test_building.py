@@ -136,7 +136,8 @@ def test_stiffnesses_whose_sum_overflows_are_refused_naming_the_stories():
     # Before: scipy's "array must not contain infs or NaNs" from the first eigen-analysis.
     with pytest.raises(ValueError, match=r"stiffnesses of stories 2 and 3 \(1e\+308 and 1e\+308 N/mm\) overflow"):
         ShearBuilding([1.0] * 3, [1.0, 1e308, 1e308])
-    assert ShearBuilding([1.0] * 2, [1e308, 1e299]).stiffness_matrix[0, 0] == 1e308 + 1e299  # its sum is finite
+    # its sum is finite (masses that keep k/m within MAX_FREQUENCY_SQUARED)
+    assert ShearBuilding([1e300] * 2, [1e308, 1e299]).stiffness_matrix[0, 0] == 1e308 + 1e299
 
 
 def _two_story_lowest_frequency(masses, stiffnesses):
@@ -174,10 +175,25 @@ def test_the_widest_stiffness_spread_allowed_still_gives_the_lowest_frequency_to
 
 
 def test_frequencies_squared_beyond_the_float_range_are_refused_naming_masses_and_stiffnesses():
-    with pytest.raises(ValueError, match=r"masses 1e-300 t and stiffnesses 1e\+300 N/mm .* beyond the double"):
+    with pytest.raises(ValueError, match=r"masses 1e-300 t and stiffnesses 1e\+300 N/mm .* up to inf rad\^2/s\^2"):
         ShearBuilding([1e-300, 1e-300], [1e300, 1e300])
     with pytest.raises(ValueError, match=r"masses 1e\+300 t and stiffnesses 1e-300 N/mm .* below the smallest normal"):
         ShearBuilding([1e300, 1e300], [1e-300, 1e-300])
+
+
+def test_frequencies_squared_the_complex_mode_search_cannot_resolve_are_refused_and_those_below_computed():
+    """k/m = 1e200 rad^2/s^2 (finite): modal_analysis's complex-mode search overflowed and raised "the argument
+    principle counts 2 poles ... but 0 were found; please report this building" (the CLI: exit 3).  Refused above
+    1e150 (Gershgorin's bound on w^2, 3 k/m for two equal stories); just below it, modal_analysis's first period
+    against the closed form of the two-story frame."""
+    from vdw_frames import modal_analysis
+
+    with pytest.raises(ValueError, match=r"masses 1.0 t and stiffnesses 1e\+200 N/mm give circular frequencies squared "
+                                         r"\(k/m\) up to 3e\+200 rad\^2/s\^2, beyond the 1e\+150 the complex-mode"):
+        ShearBuilding([1.0, 1.0], [1e200, 1e200])
+    masses, stiffnesses = [1.0, 1.0], [3e149, 3e149]  # Gershgorin's bound 9e149: accepted
+    exact = _two_story_lowest_frequency(masses, stiffnesses)
+    assert modal_analysis(ShearBuilding(masses, stiffnesses)).periods[0] == pytest.approx(2 * np.pi / exact, rel=1e-9)
 
 
 def test_frequencies_and_periods_are_never_nan(monkeypatch):

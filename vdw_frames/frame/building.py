@@ -34,6 +34,9 @@ _FREQUENCY_CHUNK = 2048  # frequencies solved at once by frequency_response
 # relative at 1e10, 1e-4 at 1e12; at 2e16 the eigenvalue comes out negative and the period NaN); real story
 # stiffnesses, a soft or an isolation story included, span less than 1e4.
 MAX_STIFFNESS_RATIO = 1e10
+# The largest circular frequency squared (rad^2/s^2) accepted: the complex-mode search (modal_analysis) works with
+# norms of s^2 M + K and overflows above about 1e170 (measured, 2 and 10 stories); real buildings stay below 1e7.
+MAX_FREQUENCY_SQUARED = 1e150
 
 
 @dataclass(frozen=True, eq=False, init=False)
@@ -48,7 +51,8 @@ class ShearBuilding:
     stiffnesses : sequence of float
         Initial (elastic) story stiffnesses k0, N/mm; story 1 connects the ground to floor 1, story k
         floor k-1 to floor k.  The largest at most :data:`MAX_STIFFNESS_RATIO` (1e10) times the smallest,
-        and k/m within the float range: what double precision resolves (a validation bound).
+        and k/m at most :data:`MAX_FREQUENCY_SQUARED` (1e150 rad^2/s^2) and above the smallest normal double: what
+        double precision and the complex-mode search resolve (validation bounds).
     damping_ratio : float
         Inherent damping ratio of the bare frame, in [0, 1).
     damping_modes : (int, int), optional
@@ -663,8 +667,9 @@ def _span(values: ArrayLike, unit: str) -> str:
 def _check_eigenproblem(masses: np.ndarray, stiffnesses: np.ndarray) -> None:
     """Refuse story ``stiffnesses`` (N/mm) the double-precision eigenproblem K phi = w^2 M phi cannot resolve:
     a spread (largest / smallest) above :data:`MAX_STIFFNESS_RATIO`, or, with the ``masses`` (tonne), circular
-    frequencies squared beyond the float range (bounded above by Gershgorin's circles of M^-1/2 K M^-1/2, a few
-    times the largest w^2, and below by Dunkerley's 1 / trace(K^-1 M), at least 1/n times the smallest)."""
+    frequencies squared above :data:`MAX_FREQUENCY_SQUARED` or below the float range (bounded above by
+    Gershgorin's circles of M^-1/2 K M^-1/2, a few times the largest w^2, and below by Dunkerley's
+    1 / trace(K^-1 M), at least 1/n times the smallest)."""
     k, m = stiffnesses, masses
     softest, stiffest = int(np.argmin(k)), int(np.argmax(k))
     with np.errstate(over="ignore"):
@@ -681,9 +686,10 @@ def _check_eigenproblem(masses: np.ndarray, stiffnesses: np.ndarray) -> None:
         highest = float(circles.max())
         flexibility = np.cumsum(1.0 / k)  # floor j's deflection under a unit load there, mm/N
         lowest = float(1.0 / np.sum(m * flexibility))
-    if not np.isfinite(highest):
+    if not highest <= MAX_FREQUENCY_SQUARED:
         raise ValueError(f"masses {_span(m, 't')} and stiffnesses {_span(k, 'N/mm')} give circular frequencies "
-                         "squared (k/m, rad^2/s^2) beyond the double-precision range (1.8e308)")
+                         f"squared (k/m) up to {highest:.3g} rad^2/s^2, beyond the {MAX_FREQUENCY_SQUARED:.0e} the "
+                         "complex-mode search resolves (a validation bound: real buildings stay below 1e7)")
     if not lowest >= np.finfo(float).tiny:
         raise ValueError(f"masses {_span(m, 't')} and stiffnesses {_span(k, 'N/mm')} give circular frequencies "
                          "squared (k/m) below the smallest normal double (2.2e-308 rad^2/s^2)")
