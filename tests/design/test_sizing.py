@@ -51,6 +51,7 @@ def test_sized_r1_walls_meet_the_target_by_the_state_space_eigenvalues(distribut
         assert dataclasses.replace(wall, area=KELVIN_MAXWELL.area) == KELVIN_MAXWELL
 
 
+@pytest.mark.slow  # seconds of analysis: not in the fast subset
 def test_the_existing_walls_scaled_meet_the_target_by_the_state_space_eigenvalues():
     """distribution="existing": the building's own walls (areas and thicknesses that differ by story), every
     area scaled by one factor, meet the target by the exact state-space eigenvalues (tests/reference.py)."""

@@ -229,6 +229,7 @@ def _batch_memory(building, motion, **options):
         tracemalloc.stop()
 
 
+@pytest.mark.slow  # seconds of analysis: not in the fast subset
 def test_a_batch_whose_results_exceed_the_memory_limit_is_refused_before_any_work(monkeypatch):
     """run_batch(b, [gm], np.ones(10**8)) and 10**6 property factors reached MemoryError.  Reference: the memory an
     analysis and a device variant take, measured here (tracemalloc), which analysis_bytes and variant_bytes must

@@ -544,6 +544,7 @@ def test_design_command_says_when_the_damping_still_grows_at_the_largest_size_se
     assert "largest achievable" not in out
 
 
+@pytest.mark.slow  # seconds of analysis: not in the fast subset
 def test_design_command_scales_the_files_own_walls_by_default(tmp_path, capsys):
     """The guide's four-story file, whose walls differ by story: by default the command scales every wall's
     area by one factor (the layout kept), says the factor against the file's walls, and marks them."""
@@ -565,6 +566,7 @@ def test_design_command_scales_the_files_own_walls_by_default(tmp_path, capsys):
     assert "sizing mode 1: the file's own walls, every wall's area scaled by one factor (stories 1-4" in out
 
 
+@pytest.mark.slow  # seconds of analysis: not in the fast subset
 def test_design_damping_figure_marks_the_files_walls(tmp_path, monkeypatch):
     """The figure draws the file's walls: a point on the curves for the default layout, dotted lines at their
     damping ratio and period for another layout (walls laid out otherwise lie off the curve)."""
@@ -621,6 +623,7 @@ def test_design_command_checks_its_arguments_before_any_work(tmp_path, capsys, m
     assert capsys.readouterr().err == f"vdw-frames: error: {message}\n"
 
 
+@pytest.mark.slow  # seconds of analysis: not in the fast subset
 def test_design_command_takes_the_amplitude_of_strain_dependent_walls(tmp_path, capsys):
     path = EXAMPLE_BUILDING
     assert cli.main(["design", str(path), "--strain", "400", "--modes", "1", "--out", str(tmp_path)]) == 0
@@ -676,6 +679,7 @@ def test_cli_free_vibration_measures_the_residual_drift_at_rest(tmp_path, capsys
     assert capsys.readouterr().err == "vdw-frames: error: --free-vibration must be seconds >= 0, got -1\n"
 
 
+@pytest.mark.slow  # seconds of analysis: not in the fast subset
 def test_cli_simulates_a_10000_story_file_without_a_dense_eigendecomposition(tmp_path, capsys, monkeypatch):
     """Once >150 s in a dense eigendecomposition for the two Rayleigh frequencies: now those come from the
     tridiagonal problem, and T1 printed is the uniform chain's closed form 2 pi / (2 sqrt(k/m) sin(pi/(2(2n+1))))."""
