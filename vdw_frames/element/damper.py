@@ -54,7 +54,7 @@ from .kernel import FAILURE_MODES
 from .limits import WallLimits, check_temperature_limit
 from .prony import PronySeries, fit_prony
 from .thermal import SHIFT_LAWS, PropertyFactors, ShiftLaw, ThermalProperties, property_factors, shift_factor
-from .wall import SteppedWall, StiffnessMethods, Wall
+from .wall import AMPLITUDE_OUTSIDE, PEAK_OUTSIDE, TEMPERATURE_OUTSIDE, SteppedWall, StiffnessMethods, Wall
 
 __all__ = ["DEFAULT_MEMORY", "MEMORY_STRATEGIES", "FDMKDamper", "WallState", "driven_force"]
 
@@ -343,9 +343,9 @@ def driven_force(wall: SteppedWall, displacement: ArrayLike, dt: float, method: 
     first = float(bank.state("outside")[0])
     if first >= 0.0:
         low, high = float(bank.state("valid_low")[0]), float(bank.state("valid_high")[0])
-        _warnings.warn(f"wall temperature outside its shift law's range (the law is evaluated at the nearest end of "
-                       f"the range) from t = {first * dt:.4g} s: {float(bank.state('temperature')[0]):.1f} degC at the "
-                       f"end; range {low:g} ... {high:g} degC", UserWarning, stacklevel=3)
+        _warnings.warn(f"{TEMPERATURE_OUTSIDE} from t = {first * dt:.4g} s: "
+                       f"{float(bank.state('temperature')[0]):.1f} degC at the end; range {low:g} ... {high:g} degC",
+                       UserWarning, stacklevel=3)
     if wall.follows_amplitude:
         low, high = np.exp(wall.amplitude_table()[[0, -1], 0])  # the identified strains the kernel follows
         above, peak = float(bank.state("above_range")[0]) * dt, float(bank.state("amplitude")[0])
@@ -353,14 +353,13 @@ def driven_force(wall: SteppedWall, displacement: ArrayLike, dt: float, method: 
         if above > 0.0 or never:
             where = (f"above the range for {above:.3g} s" if above > 0.0 else
                      f"below the range throughout (its strain at most {100 * np.max(np.abs(strain)):.0f} %)")
-            _warnings.warn(f"wall strain amplitude outside the amplitudes its parameters were identified at "
-                           f"({100 * low:.4g}-{100 * high:.4g} %; those of the nearest are used): {where}"
-                           f" (followed {100 * peak:.0f} % at the end)", UserWarning, stacklevel=3)
+            _warnings.warn(f"{AMPLITUDE_OUTSIDE} ({100 * low:.4g}-{100 * high:.4g} %; those of the nearest are used): "
+                           f"{where} (followed {100 * peak:.0f} % at the end)", UserWarning, stacklevel=3)
     elif strain_range is not None:
         low, high = strain_range
         peak = float(np.max(np.abs(strain), initial=0.0))
         if not low <= peak <= high:
-            _warnings.warn(f"wall peak strain outside the range its parameters were identified for: {100 * peak:.0f} % "
+            _warnings.warn(f"{PEAK_OUTSIDE}{100 * peak:.0f} % "
                            f"(range {100 * low:.4g}-{100 * high:.4g} %)", UserWarning, stacklevel=3)
     return force
 

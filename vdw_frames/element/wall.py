@@ -23,6 +23,14 @@ if TYPE_CHECKING:
     from .limits import WallLimits
     from .thermal import ThermalProperties
 
+# The openings of the warnings a wall outside its identified range gives, on every path that steps walls
+# (simulate, the batches, a wall's own force history): one text, so that callers can tell them apart
+# (vdw_frames.frame.time_history.is_strain_range_warning).
+PEAK_OUTSIDE = "wall peak strain outside the range its parameters were identified for: "
+AMPLITUDE_OUTSIDE = "wall strain amplitude outside the amplitudes its parameters were identified at"
+TEMPERATURE_OUTSIDE = ("wall temperature outside its shift law's range (the law is evaluated at the nearest end of "
+                       "the range)")
+
 
 @runtime_checkable
 class SteppedWall(Protocol):

@@ -23,6 +23,7 @@ from ..element.bank import DEFAULT_MEMORY, WallBank, group_walls, memory_strateg
 from ..element.devices import device_states
 from ..element.fast_memory import FastMemory
 from ..element.fractional import DEFAULT_METHOD, Discretisation, get_method
+from ..element.wall import AMPLITUDE_OUTSIDE, PEAK_OUTSIDE, TEMPERATURE_OUTSIDE
 from ..motion.record import G, GroundMotion
 from .building import ShearBuilding, require_stable_under_gravity
 from .hysteresis import StoryArrays, story_arrays
@@ -348,18 +349,15 @@ def _warn_temperature_range(groups: Sequence[tuple[int, object]], bank: WallBank
     outside = [f"story {story} at t = {first[g] * dt:.4g} s ({temperature[g]:.1f} degC at the end; "
                f"range {low[g]:g} ... {high[g]:g} degC)" for g, (story, _) in enumerate(groups) if first[g] >= 0]
     if outside:
-        _warnings.warn("wall temperature outside its shift law's range (the law is evaluated at the nearest end of "
-                       "the range): " + "; ".join(outside), UserWarning, stacklevel=4)
+        _warnings.warn(TEMPERATURE_OUTSIDE + ": " + "; ".join(outside), UserWarning, stacklevel=4)
 
 
-_PEAK_OUTSIDE = "wall peak strain outside the range its parameters were identified for: "
-_AMPLITUDE_OUTSIDE = "wall strain amplitude outside the amplitudes its parameters were identified at"
 
 
 def is_strain_range_warning(message: str) -> bool:
     """Whether ``message`` is one of the warnings of walls outside the strains their parameters were
     identified for (peak strain of a fixed-parameter wall, or amplitude of an amplitude-following one)."""
-    return _PEAK_OUTSIDE in message or _AMPLITUDE_OUTSIDE in message
+    return PEAK_OUTSIDE in message or AMPLITUDE_OUTSIDE in message
 
 
 def wall_model(wall: Wall | StrainDependentDamper) -> str:
@@ -386,7 +384,7 @@ def peak_strain_warning(walls: Sequence[tuple[int, Wall | StrainDependentDamper]
         if peak > high or (peak < low and not wall.follows_amplitude):
             outside.append(f"story {story}: {100 * peak:.0f} % (range {100 * low:.0f}-{100 * high:.0f} %), "
                            f"{model or wall_model(wall)}")
-    return _PEAK_OUTSIDE + "; ".join(dict.fromkeys(outside)) if outside else None
+    return PEAK_OUTSIDE + "; ".join(dict.fromkeys(outside)) if outside else None
 
 
 def _warn_strain_range(walls: Sequence[tuple[int, Wall]], peak_wall_strain: np.ndarray, above_seconds: np.ndarray,
@@ -411,6 +409,6 @@ def _warn_strain_range(walls: Sequence[tuple[int, Wall]], peak_wall_strain: np.n
                           f"{100 * low:.0f}-{100 * high:.0f} % throughout")
     said = [peak_strain_warning(walls, peak_wall_strain)]
     if beyond:
-        said.append(_AMPLITUDE_OUTSIDE + " (those of the nearest are used): " + "; ".join(dict.fromkeys(beyond)))
+        said.append(AMPLITUDE_OUTSIDE + " (those of the nearest are used): " + "; ".join(dict.fromkeys(beyond)))
     if any(said):  # one warning an analysis: batches count the analyses that warned (is_strain_range_warning)
         _warnings.warn(". ".join(text for text in said if text), UserWarning, stacklevel=4)
